@@ -1,1 +1,53 @@
-//! placeholder
+//! # engine — an exact a priori engine for sliding discs
+//!
+//! Discs slide on a plane under Coulomb friction, hit each other, fixed
+//! points and lines, and stop. Between two events every trajectory is a
+//! closed-form function of time, so the engine *computes* when the next
+//! contact happens (a polynomial root) and jumps there: no time step, no
+//! tunnelling, no overlap to repair. The result is a chain of timed scenes
+//! ([`Model`]) that can be queried at any time, rewound and replayed exactly.
+//!
+//! ```
+//! use engine::{Scene, Model, Limits};
+//! let scene = Scene::from_json(r#"{
+//!   "bodies": [
+//!     { "id": 1, "pos": [0.0, 0.0], "vel": [2.0, 0.0], "radius": 0.016, "mass": 0.01, "mu": 0.3 },
+//!     { "id": 2, "pos": [0.5, 0.0], "vel": [0.0, 0.0], "radius": 0.016, "mass": 0.01, "mu": 0.3 }
+//!   ]
+//! }"#).unwrap();
+//! let mut model = Model::new(scene).unwrap();
+//! let end = model.compute(&Limits::default());
+//! assert_eq!(model.events()[0].kind.name(), "body-body");
+//! // Equal masses, head on: the striker stops, the target slides on.
+//! let at_end = model.scene_at(end.t);
+//! assert_eq!(at_end.bodies[0].vel.length(), 0.0);
+//! ```
+//!
+//! Modules, from the bottom up: [`roots`] (polynomial root solvers),
+//! [`trajectory`] (closed-form motion), [`obstacle`] (points and lines),
+//! [`contact`] (when two things touch), [`impulse`] (what a contact does),
+//! [`calendar`] and [`grid`] (which event is next, who is near whom),
+//! [`world`] (the event loop), [`model`] (the chain of scenes: queries at any
+//! time, actions, rewind, diffs), [`scene`] (the JSON scene format).
+//! The library does no I/O; the `sim` binary is a thin shell over it.
+
+pub mod calendar;
+pub mod contact;
+pub mod event;
+pub mod grid;
+pub mod id;
+pub mod impulse;
+pub mod model;
+pub mod obstacle;
+pub mod roots;
+pub mod scene;
+pub mod trajectory;
+pub mod world;
+
+pub use event::{Event, EventKind};
+pub use id::{BodyId, LineId, PointId};
+pub use model::Model;
+pub use obstacle::{Line, LineKind, Point};
+pub use scene::{BodySpec, Scene, SceneError};
+pub use trajectory::Trajectory;
+pub use world::{End, EndReason, EventHandler, ExitResponse, Limits, World, WorldConfig};

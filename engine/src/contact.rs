@@ -1,0 +1,420 @@
+//! Contact prediction: when will a disc next touch another disc, a point or a
+//! line, or cross a sensor — the exact time, from the closed-form trajectories.
+//!
+//! Only *approaching* contacts count: at the returned time the distance
+//! function is decreasing (or the objects already touch and approach now).
+//! A pair that touches and separates, or rests side by side, gives nothing,
+//! which is also what stops a just-resolved contact from firing again.
+//!
+//! A disc moves along a straight line (friction only slows it), so every
+//! contact with something that does not move is solved in closed form on the
+//! path parameter and converted to time. Only two discs that both move, at
+//! least one of them with friction, need the quartic
+//! `|dp + dv t + da t^2/2|^2 - S^2 = 0`; that goes to the root solver, on the
+//! interval until the first of the two stops (a stop is an event of its own
+//! that re-predicts the body). Pairs whose remaining paths never come within
+//! reach are rejected before any polynomial is formed.
+
+use crate::obstacle::LineGeom;
+use crate::roots::RootSolver;
+use crate::trajectory::Trajectory;
+use glam::DVec2;
+
+/// Relative distance under which two discs count as touching now: their
+/// gap is below rounding noise of the contact distance.
+const TOUCH: f64 = 1e-12;
+
+/// How a disc's path is parametrised from time `now`: position `P + w l`,
+/// where `l` is time (frictionless, `w` the velocity) or distance travelled
+/// (with friction, `w` the unit direction).
+struct Path {
+    now_pos: DVec2,
+    w: DVec2,
+}
+
+impl Path {
+    fn of(tr: &Trajectory, now: f64) -> Path {
+        let w = if tr.is_frictionless() {
+            tr.start_velocity()
+        } else {
+            tr.direction()
+        };
+        Path {
+            now_pos: tr.position(now),
+            w,
+        }
+    }
+
+    /// Absolute time at parameter `l` past `now` (None if the disc stops first).
+    fn time_at(tr: &Trajectory, now: f64, l: f64) -> Option<f64> {
+        if tr.is_frictionless() {
+            Some(now + l)
+        } else {
+            let travelled = tr.sigma(now - tr.start_time());
+            tr.time_at_distance(travelled + l)
+                .map(|t| t.max(now))
+        }
+    }
+}
+
+/// The first time `>= now` at which the disc on `tr` (moving) touches the
+/// fixed point `q` at centre distance `s`, approaching.
+pub fn disc_point(tr: &Trajectory, q: DVec2, s: f64, now: f64) -> Option<f64> {
+    if !tr.is_moving_at(now) {
+        return None;
+    }
+    let path = Path::of(tr, now);
+    let d = path.now_pos - q;
+    let b = d.dot(path.w);
+    if b >= 0.0 {
+        return None; // moving away (or sideways): a straight path never returns
+    }
+    let c = d.length_squared() - s * s;
+    if c <= 0.0 {
+        return Some(now);
+    }
+    let a = path.w.length_squared();
+    let disc = b * b - a * c;
+    if disc < 0.0 {
+        return None;
+    }
+    let l = c / (-b + disc.sqrt());
+    Path::time_at(tr, now, l)
+}
+
+/// A predicted hit on a line: the time, and which end if it is a corner.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LineHit {
+    pub t: f64,
+    pub end: Option<u8>,
+}
+
+/// The first time `>= now` at which the disc of radius `r` on `tr` touches
+/// the solid line (its straight part or one of its ends), approaching.
+pub fn disc_line(tr: &Trajectory, line: &LineGeom, r: f64, now: f64) -> Option<LineHit> {
+    if !tr.is_moving_at(now) {
+        return None;
+    }
+    let mut best = disc_line_body(tr, line, r, now).map(|t| LineHit { t, end: None });
+    for (k, end) in line.ends.iter().enumerate() {
+        if let Some(q) = end {
+            if let Some(t) = disc_point(tr, *q, r, now) {
+                if best.is_none_or(|b| t < b.t) {
+                    best = Some(LineHit {
+                        t,
+                        end: Some(k as u8),
+                    });
+                }
+            }
+        }
+    }
+    best
+}
+
+fn disc_line_body(tr: &Trajectory, line: &LineGeom, r: f64, now: f64) -> Option<f64> {
+    let path = Path::of(tr, now);
+    let h = line.signed_distance(path.now_pos);
+    let rate = line.n.dot(path.w);
+    let side = if h > 0.0 || (h == 0.0 && rate < 0.0) {
+        1.0
+    } else {
+        -1.0
+    };
+    if side * rate >= 0.0 {
+        return None; // not approaching the line
+    }
+    let gap = side * h - r;
+    let l = if gap <= 0.0 { 0.0 } else { gap / (-side * rate) };
+    let at = path.now_pos + path.w * l;
+    if !line.covers(at) {
+        return None; // passes beyond the extent; the ends are checked as points
+    }
+    Path::time_at(tr, now, l)
+}
+
+/// The first time `>= now` at which the centre on `tr` crosses the sensor
+/// line, leaving its current side (`inside` = the left side, positive signed
+/// distance). Returns the time and whether the crossing is within the
+/// sensor's extent (a crossing outside a ray or segment is only bookkeeping).
+pub fn centre_crossing(
+    tr: &Trajectory,
+    line: &LineGeom,
+    inside: bool,
+    now: f64,
+) -> Option<(f64, bool)> {
+    if !tr.is_moving_at(now) {
+        return None;
+    }
+    let path = Path::of(tr, now);
+    let h = line.signed_distance(path.now_pos);
+    let rate = line.n.dot(path.w);
+    let (h, rate) = if inside { (h, rate) } else { (-h, -rate) };
+    if rate >= 0.0 {
+        return None; // moving deeper into its side, or along the line
+    }
+    let l = if h <= 0.0 { 0.0 } else { h / -rate };
+    let t = Path::time_at(tr, now, l)?;
+    Some((t, line.covers(path.now_pos + path.w * l)))
+}
+
+/// The first time `>= now` at which two discs at centre distance `s` touch
+/// while approaching. `ti` and `tj` are their trajectories; `solver` finds
+/// the roots of the quartic when both move with friction.
+pub fn disc_disc(
+    ti: &Trajectory,
+    tj: &Trajectory,
+    s: f64,
+    now: f64,
+    solver: &impl RootSolver,
+) -> Option<f64> {
+    let mi = ti.is_moving_at(now);
+    let mj = tj.is_moving_at(now);
+    match (mi, mj) {
+        (false, false) => None,
+        (true, false) => disc_point(ti, tj.position(now), s, now),
+        (false, true) => disc_point(tj, ti.position(now), s, now),
+        (true, true) if ti.is_frictionless() && tj.is_frictionless() => {
+            linear_pair(ti, tj, s, now)
+        }
+        (true, true) => curved_pair(ti, tj, s, now, solver),
+    }
+}
+
+/// Both move without friction: relative motion is linear, the contact
+/// equation quadratic.
+fn linear_pair(ti: &Trajectory, tj: &Trajectory, s: f64, now: f64) -> Option<f64> {
+    let dp = ti.position(now) - tj.position(now);
+    let dv = ti.start_velocity() - tj.start_velocity();
+    let b = dp.dot(dv);
+    if b >= 0.0 {
+        return None;
+    }
+    let c = dp.length_squared() - s * s;
+    if c <= 0.0 {
+        return Some(now);
+    }
+    let a = dv.length_squared();
+    let disc = b * b - a * c;
+    if disc < 0.0 {
+        return None;
+    }
+    Some(now + c / (-b + disc.sqrt()))
+}
+
+/// At least one of two moving discs slows down: solve the quartic on the
+/// interval until the first of them stops.
+fn curved_pair(
+    ti: &Trajectory,
+    tj: &Trajectory,
+    s: f64,
+    now: f64,
+    solver: &impl RootSolver,
+) -> Option<f64> {
+    let pi = ti.position(now);
+    let pj = tj.position(now);
+    let horizon = ti.stop_time().min(tj.stop_time()) - now;
+    if paths_never_within(ti, pi, tj, pj, s, now) {
+        return None;
+    }
+    let dp = pi - pj;
+    let dv = ti.velocity(now) - tj.velocity(now);
+    let da = ti.acceleration(now) - tj.acceleration(now);
+    let c0 = dp.length_squared() - s * s;
+    let c1 = 2.0 * dp.dot(dv);
+    let c2 = dv.length_squared() + dp.dot(da);
+    let c3 = dv.dot(da);
+    let c4 = 0.25 * da.length_squared();
+    let touching = c0 <= 2.0 * TOUCH * s * s;
+    if touching && c1 < 0.0 {
+        return Some(now);
+    }
+    if touching {
+        // f(t) = t g(t) with g the cubic below; f crosses downwards where g does.
+        let g = [c1, c2, c3, c4];
+        for &r in solver.roots_in(&g, 0.0, horizon).iter() {
+            if r > 0.0 && c2 + r * (2.0 * c3 + r * 3.0 * c4) < 0.0 {
+                return Some(now + r);
+            }
+        }
+        return None;
+    }
+    let f = [c0, c1, c2, c3, c4];
+    for &r in solver.roots_in(&f, 0.0, horizon).iter() {
+        let slope = c1 + r * (2.0 * c2 + r * (3.0 * c3 + r * 4.0 * c4));
+        if slope < 0.0 {
+            return Some(now + r);
+        }
+    }
+    None
+}
+
+/// True if the remaining paths (segments, or rays without friction) of the
+/// two discs never come within `s` of each other.
+fn paths_never_within(
+    ti: &Trajectory,
+    pi: DVec2,
+    tj: &Trajectory,
+    pj: DVec2,
+    s: f64,
+    now: f64,
+) -> bool {
+    let li = ti.stopping_distance() - ti.sigma(now - ti.start_time());
+    let lj = tj.stopping_distance() - tj.sigma(now - tj.start_time());
+    if !(li.is_finite() && lj.is_finite()) {
+        return false;
+    }
+    segment_distance(pi, pi + ti.direction() * li, pj, pj + tj.direction() * lj) > s
+}
+
+/// Distance between segments `[a0, a1]` and `[b0, b1]`.
+pub fn segment_distance(a0: DVec2, a1: DVec2, b0: DVec2, b1: DVec2) -> f64 {
+    let da = a1 - a0;
+    let db = b1 - b0;
+    let cross = da.perp_dot(db);
+    if cross != 0.0 {
+        // Proper intersection?
+        let w = b0 - a0;
+        let s = w.perp_dot(db) / cross;
+        let t = w.perp_dot(da) / cross;
+        if (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t) {
+            return 0.0;
+        }
+    }
+    point_segment(a0, b0, b1)
+        .min(point_segment(a1, b0, b1))
+        .min(point_segment(b0, a0, a1))
+        .min(point_segment(b1, a0, a1))
+}
+
+fn point_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
+    let ab = b - a;
+    let len2 = ab.length_squared();
+    let t = if len2 > 0.0 {
+        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a + ab * t - p).length()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::obstacle::{Line, LineKind};
+    use crate::roots::Production;
+
+    fn mover(p: (f64, f64), u: (f64, f64), alpha: f64) -> Trajectory {
+        Trajectory::new(0.0, DVec2::new(p.0, p.1), DVec2::new(u.0, u.1), alpha)
+    }
+
+    #[test]
+    fn frictionless_disc_meets_a_point_at_the_geometric_time() {
+        let tr = mover((0.0, 0.0), (2.0, 0.0), 0.0);
+        let t = disc_point(&tr, DVec2::new(5.0, 0.0), 1.0, 0.0).unwrap();
+        assert_eq!(t, 2.0);
+    }
+
+    #[test]
+    fn sliding_disc_stopping_short_of_a_point_never_touches_it() {
+        // Stops after v^2/(2 alpha) = 1.0; the point is 1.5 away at contact distance 0.4.
+        let tr = mover((0.0, 0.0), (2.0, 0.0), 2.0);
+        assert_eq!(disc_point(&tr, DVec2::new(1.5, 0.0), 0.4, 0.0), None);
+        let t = disc_point(&tr, DVec2::new(1.3, 0.0), 0.4, 0.0).unwrap();
+        // Travels 0.9: 2t - t^2 = 0.9.
+        let exact = 1.0 - (1.0f64 - 0.9).sqrt();
+        assert!((t - exact).abs() < 1e-15, "{t} vs {exact}");
+    }
+
+    #[test]
+    fn touching_and_separating_gives_no_contact() {
+        let tr = mover((0.0, 0.0), (-1.0, 0.0), 0.0);
+        assert_eq!(disc_point(&tr, DVec2::new(1.0, 0.0), 1.0, 0.0), None);
+    }
+
+    #[test]
+    fn touching_and_approaching_is_a_contact_now() {
+        let tr = mover((0.0, 0.0), (1.0, 0.0), 0.5);
+        assert_eq!(disc_point(&tr, DVec2::new(1.0, 0.0), 1.0, 0.0), Some(0.0));
+    }
+
+    #[test]
+    fn disc_hits_segment_interior_and_misses_beyond_its_end() {
+        let seg = LineGeom::new(&Line::new(
+            DVec2::new(2.0, -1.0),
+            DVec2::new(2.0, 1.0),
+            LineKind::Segment,
+        ))
+        .unwrap();
+        let tr = mover((0.0, 0.0), (1.0, 0.0), 0.0);
+        let hit = disc_line(&tr, &seg, 0.5, 0.0).unwrap();
+        assert_eq!(hit, LineHit { t: 1.5, end: None });
+        let tr = mover((0.0, 3.0), (1.0, 0.0), 0.0);
+        assert_eq!(disc_line(&tr, &seg, 0.5, 0.0), None);
+    }
+
+    #[test]
+    fn disc_grazing_a_segment_end_hits_the_corner() {
+        let seg = LineGeom::new(&Line::new(
+            DVec2::new(2.0, -1.0),
+            DVec2::new(2.0, 1.0),
+            LineKind::Segment,
+        ))
+        .unwrap();
+        let tr = mover((0.0, 1.3), (1.0, 0.0), 0.0);
+        let hit = disc_line(&tr, &seg, 0.5, 0.0).unwrap();
+        assert_eq!(hit.end, Some(1));
+        let expected = 2.0 - (0.25f64 - 0.09).sqrt();
+        assert!((hit.t - expected).abs() < 1e-15);
+    }
+
+    #[test]
+    fn two_sliding_discs_meet_at_the_quartic_root() {
+        let a = mover((0.0, 0.0), (2.0, 0.0), 1.0);
+        let b = mover((1.5, 0.0), (-2.0, 0.0), 1.0);
+        let t = disc_disc(&a, &b, 0.5, 0.0, &Production).unwrap();
+        // 2(2t - t^2/2) = 1  =>  t^2 - 4t + 1 = 0
+        let exact = 2.0 - 3.0f64.sqrt();
+        assert!((t - exact).abs() < 1e-15, "{t} vs {exact}");
+    }
+
+    #[test]
+    fn paths_that_never_come_close_are_not_solved() {
+        let a = mover((0.0, 0.0), (1.0, 0.0), 1.0);
+        let b = mover((0.0, 5.0), (1.0, 0.0), 1.0);
+        assert!(paths_never_within(&a, DVec2::ZERO, &b, DVec2::new(0.0, 5.0), 1.0, 0.0));
+        assert_eq!(disc_disc(&a, &b, 1.0, 0.0, &Production), None);
+    }
+
+    #[test]
+    fn sensor_crossing_fires_once_in_the_direction_of_travel() {
+        let edge = LineGeom::new(&Line::sensor(
+            DVec2::new(1.0, -1.0),
+            DVec2::new(1.0, 1.0),
+            LineKind::Line,
+        ))
+        .unwrap();
+        // Left of (1,-1)->(1,1), walking north, is x < 1: the inside.
+        let tr = mover((0.0, 0.0), (2.0, 0.0), 0.0);
+        assert_eq!(centre_crossing(&tr, &edge, true, 0.0), Some((0.5, true)));
+        // Once outside and moving out, no further crossing.
+        assert_eq!(centre_crossing(&tr, &edge, false, 0.5), None);
+    }
+
+    #[test]
+    fn segment_distance_handles_crossing_and_parallel_segments() {
+        let d = segment_distance(
+            DVec2::new(0.0, 0.0),
+            DVec2::new(2.0, 0.0),
+            DVec2::new(1.0, -1.0),
+            DVec2::new(1.0, 1.0),
+        );
+        assert_eq!(d, 0.0);
+        let d = segment_distance(
+            DVec2::new(0.0, 0.0),
+            DVec2::new(2.0, 0.0),
+            DVec2::new(0.0, 3.0),
+            DVec2::new(2.0, 3.0),
+        );
+        assert_eq!(d, 3.0);
+    }
+}

@@ -1,0 +1,117 @@
+//! Impulses: how velocities change at a contact.
+//!
+//! At a contact with unit normal `n` (pointing from the other object to body
+//! `i`) and relative normal velocity `w = (v_i - v_j) . n < 0`, the impulse is
+//! `J = -(1 + e) w m*` with the reduced mass `m* = m_i m_j / (m_i + m_j)`,
+//! `e` the smaller restitution of the two. With `e = 1` this is the thesis's
+//! elastic formula (25); an obstacle is an infinite mass, formula (28).
+//! The reduced mass is formed as `m_s - m_s (m_s / (m_s + m_b))` (`m_s` the
+//! smaller mass) so that huge mass ratios (Galperin's billiard, 10^16)
+//! neither overflow nor lose the small correction.
+
+use glam::DVec2;
+
+/// The reduced mass `m_i m_j / (m_i + m_j)`, free of overflow.
+pub fn reduced_mass(m_i: f64, m_j: f64) -> f64 {
+    let (small, big) = if m_i <= m_j { (m_i, m_j) } else { (m_j, m_i) };
+    small - small * (small / (small + big))
+}
+
+/// New velocities of two discs after an impulse along `n` (from `j` to `i`).
+/// Returns the velocities unchanged if they are not approaching.
+pub fn body_body(
+    v_i: DVec2,
+    v_j: DVec2,
+    m_i: f64,
+    m_j: f64,
+    e: f64,
+    n: DVec2,
+) -> (DVec2, DVec2) {
+    let w = (v_i - v_j).dot(n);
+    if w >= 0.0 {
+        return (v_i, v_j);
+    }
+    let j = -(1.0 + e) * w * reduced_mass(m_i, m_j);
+    (v_i + n * (j / m_i), v_j - n * (j / m_j))
+}
+
+/// New velocity of a disc after hitting an immovable object with normal `n`
+/// (pointing from the object to the disc).
+pub fn body_static(v: DVec2, e: f64, n: DVec2) -> DVec2 {
+    let w = v.dot(n);
+    if w >= 0.0 {
+        return v;
+    }
+    v - n * ((1.0 + e) * w)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn head_on_elastic_hit_of_equal_masses_swaps_velocities() {
+        let (a, b) = body_body(
+            DVec2::new(2.0, 0.0),
+            DVec2::ZERO,
+            1.0,
+            1.0,
+            1.0,
+            DVec2::new(-1.0, 0.0),
+        );
+        assert_eq!(a, DVec2::ZERO);
+        assert_eq!(b, DVec2::new(2.0, 0.0));
+    }
+
+    #[test]
+    fn glancing_elastic_hit_of_equal_masses_separates_at_right_angles() {
+        let n = DVec2::new(-1.0, -1.0).normalize();
+        let v = DVec2::new(1.0, 0.0);
+        let (a, b) = body_body(v, DVec2::ZERO, 0.3, 0.3, 1.0, n);
+        assert!(a.dot(b).abs() < 1e-15);
+        assert!((a.length_squared() + b.length_squared() - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn impulse_conserves_momentum_and_elastic_energy() {
+        let n = DVec2::new(0.6, -0.8);
+        let (vi, vj, mi, mj) = (DVec2::new(-1.0, 2.0), DVec2::new(0.5, -0.25), 2.0, 7.0);
+        let (a, b) = body_body(vi, vj, mi, mj, 1.0, n);
+        let p0 = vi * mi + vj * mj;
+        let p1 = a * mi + b * mj;
+        assert!((p0 - p1).length() < 1e-14);
+        let e0 = mi * vi.length_squared() + mj * vj.length_squared();
+        let e1 = mi * a.length_squared() + mj * b.length_squared();
+        assert!((e0 - e1).abs() < 1e-14);
+    }
+
+    #[test]
+    fn restitution_scales_the_separation_speed() {
+        let n = DVec2::new(-1.0, 0.0);
+        let (a, b) = body_body(DVec2::new(2.0, 0.0), DVec2::ZERO, 1.0, 1.0, 0.5, n);
+        let w_after = (a - b).dot(n);
+        assert!((w_after - 0.5 * 2.0).abs() < 1e-15);
+        let v = body_static(DVec2::new(0.0, -3.0), 0.5, DVec2::new(0.0, 1.0));
+        assert_eq!(v, DVec2::new(0.0, 1.5));
+    }
+
+    #[test]
+    fn wall_reflection_mirrors_the_normal_component() {
+        let v = body_static(DVec2::new(3.0, -4.0), 1.0, DVec2::new(0.0, 1.0));
+        assert_eq!(v, DVec2::new(3.0, 4.0));
+    }
+
+    #[test]
+    fn separating_bodies_get_no_impulse() {
+        let n = DVec2::new(1.0, 0.0);
+        let (a, b) = body_body(DVec2::new(1.0, 0.0), DVec2::ZERO, 1.0, 1.0, 1.0, n);
+        assert_eq!((a, b), (DVec2::new(1.0, 0.0), DVec2::ZERO));
+    }
+
+    #[test]
+    fn huge_mass_ratio_keeps_the_small_correction() {
+        let m = reduced_mass(1.0, 1e16);
+        assert!(m < 1.0 && m > 0.999_999_999_999_99);
+        assert_eq!(reduced_mass(1e300, 1e300), 5e299);
+    }
+}

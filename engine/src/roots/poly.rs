@@ -1,0 +1,308 @@
+//! Polynomial arithmetic shared by every solver: normalising a coefficient
+//! slice (trimming zero high coefficients, rejecting NaN/inf), derivatives,
+//! plain Horner evaluation with its running error bound, the error-free
+//! transformations `two_sum`/`two_prod`, compensated Horner evaluation
+//! (Graillat, Langlois & Louvet 2005) with its a-priori error bound, and a
+//! cheap Fujiwara-type bound on the magnitude of all roots.
+//!
+//! Coefficients are stored lowest degree first in a fixed `[f64; 5]`, so
+//! nothing here allocates. Evaluation routines are generic over the degree
+//! `N` so that their loops unroll completely.
+
+/// Coefficients `c[0] + c[1] x + ... + c[4] x^4`, padded with zeros.
+pub(super) type Coeffs = [f64; 5];
+
+/// Unit roundoff of `f64` (half an ulp of 1.0).
+pub(super) const U: f64 = f64::EPSILON * 0.5;
+
+/// Trims zero high coefficients and validates the input.
+///
+/// Returns the padded coefficients and the degree (1..=4), or `None` when
+/// the polynomial has no roots to look for: a non-finite coefficient, the
+/// zero polynomial, a non-zero constant, or a non-zero coefficient beyond
+/// degree 4 (outside this module's contract).
+pub(super) fn normalize(c: &[f64]) -> Option<(Coeffs, usize)> {
+    let mut deg = c.len();
+    while deg > 0 && c[deg - 1] == 0.0 {
+        deg -= 1;
+    }
+    if deg > 5 || c.iter().any(|v| !v.is_finite()) {
+        return None;
+    }
+    if deg <= 1 {
+        return None;
+    }
+    let mut a = [0.0; 5];
+    a[..deg].copy_from_slice(&c[..deg]);
+    Some((a, deg - 1))
+}
+
+/// Coefficients of the derivative of a degree-`N` polynomial.
+#[inline(always)]
+pub(super) fn derivative<const N: usize>(a: &Coeffs) -> Coeffs {
+    let mut d = [0.0; 5];
+    let mut i = 1;
+    while i <= N {
+        d[i - 1] = a[i] * i as f64;
+        i += 1;
+    }
+    d
+}
+
+/// Plain Horner evaluation (no fused multiply-add, so results are the same
+/// on every target).
+#[inline(always)]
+pub(super) fn horner<const N: usize>(a: &Coeffs, x: f64) -> f64 {
+    let mut s = a[N];
+    let mut i = N;
+    while i > 0 {
+        i -= 1;
+        s = s * x + a[i];
+    }
+    s
+}
+
+/// Horner evaluation of `p(x)` and `p'(x)` together.
+#[inline(always)]
+pub(super) fn horner_d<const N: usize>(a: &Coeffs, x: f64) -> (f64, f64) {
+    let mut p = a[N];
+    let mut d = 0.0;
+    let mut i = N;
+    while i > 0 {
+        i -= 1;
+        d = d * x + p;
+        p = p * x + a[i];
+    }
+    (p, d)
+}
+
+/// `gamma(k) = k u / (1 - k u)`, the classic bound on `k` roundings.
+#[inline(always)]
+pub(super) const fn gamma(k: usize) -> f64 {
+    let ku = k as f64 * U;
+    ku / (1.0 - ku)
+}
+
+/// Smallest magnitude we treat as meaningful in error bounds (guards the
+/// bounds against underflow).
+const TINY: f64 = 4.0 * f64::MIN_POSITIVE;
+
+/// Plain Horner value together with a rigorous bound on its rounding error:
+/// `|value - p(x)| <= bound` (Higham, *Accuracy and Stability*, 5.1).
+#[inline(always)]
+pub(super) fn horner_bounded<const N: usize>(a: &Coeffs, x: f64) -> (f64, f64) {
+    let ax = x.abs();
+    let mut s = a[N];
+    let mut m = a[N].abs();
+    let mut i = N;
+    while i > 0 {
+        i -= 1;
+        s = s * x + a[i];
+        m = m * ax + a[i].abs();
+    }
+    (s, gamma(2 * N + 1) * m * (1.0 + 4.0 * U) + TINY)
+}
+
+/// Error-free sum: `a + b == s + e` exactly (Knuth's TwoSum).
+#[inline(always)]
+pub(super) fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    let e = (a - (s - bb)) + (b - bb);
+    (s, e)
+}
+
+/// Error-free product: `a * b == p + e` exactly (barring over/underflow).
+/// Uses the fused multiply-add when the target has one, Dekker's splitting
+/// otherwise; both give bit-identical results.
+#[inline(always)]
+pub(super) fn two_prod(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    #[cfg(target_feature = "fma")]
+    {
+        (p, a.mul_add(b, -p))
+    }
+    #[cfg(not(target_feature = "fma"))]
+    {
+        let (ah, al) = split(a);
+        let (bh, bl) = split(b);
+        (p, al * bl - (((p - ah * bh) - al * bh) - ah * bl))
+    }
+}
+
+/// Veltkamp/Dekker splitting of `a` into two 26-bit halves.
+#[cfg(not(target_feature = "fma"))]
+#[inline(always)]
+fn split(a: f64) -> (f64, f64) {
+    const FACTOR: f64 = 134_217_729.0; // 2^27 + 1
+    let c = FACTOR * a;
+    let h = c - (c - a);
+    (h, a - h)
+}
+
+/// Compensated Horner: the value of `p(x)` as if computed in twice the
+/// working precision and rounded once, with a rigorous error bound
+/// `|value - p(x)| <= bound` (Langlois & Louvet 2007:
+/// `u |p(x)| + gamma(2N)^2 p~(|x|)`, plus slack for computing the bound).
+#[inline(always)]
+pub(super) fn horner_comp<const N: usize>(a: &Coeffs, x: f64) -> (f64, f64) {
+    let ax = x.abs();
+    let mut s = a[N];
+    let mut c = 0.0;
+    let mut m = a[N].abs();
+    let mut i = N;
+    while i > 0 {
+        i -= 1;
+        let (p, pi) = two_prod(s, x);
+        let (t, sigma) = two_sum(p, a[i]);
+        s = t;
+        c = c * x + (pi + sigma);
+        m = m * ax + a[i].abs();
+    }
+    let v = s + c;
+    let g = gamma(2 * N);
+    let bound = (g * g * m) * (1.0 + gamma(2 * N + 2)) + 2.0 * U * v.abs() + TINY;
+    (v, bound)
+}
+
+/// A bound `R` with `|z| < R` for every complex root `z` of the degree-`n`
+/// polynomial `a`: twice Fujiwara's bound
+/// `2 max(|a_{n-1}/a_n|, |a_{n-2}/a_n|^(1/2), ..., |a_0/(2 a_n)|^(1/n))`,
+/// each term rounded up to a power of two using only exponent arithmetic
+/// (no `powf`). By Gauss–Lucas the bound also holds for every derivative.
+pub(super) fn root_bound(a: &Coeffs, n: usize) -> f64 {
+    let inv = 1.0 / a[n].abs();
+    let mut e_max = i32::MIN;
+    for k in 0..n {
+        let mut t = a[k].abs() * inv;
+        if k == 0 {
+            t *= 0.5;
+        }
+        if t == 0.0 {
+            continue;
+        }
+        if !t.is_finite() {
+            return f64::INFINITY;
+        }
+        // t < 2^e  =>  t^(1/m) < 2^ceil(e/m)
+        let e = exponent_above(t);
+        let m = (n - k) as i32;
+        let r = e.div_euclid(m) + i32::from(e.rem_euclid(m) != 0);
+        e_max = e_max.max(r);
+    }
+    if e_max == i32::MIN {
+        // p = a_n x^n: every root is zero.
+        return f64::MIN_POSITIVE;
+    }
+    // Fujiwara's factor 2, and another 2 to make the bound strict.
+    pow2(e_max + 2)
+}
+
+/// The smallest `e` with `t < 2^e`, for finite positive `t`.
+#[inline(always)]
+fn exponent_above(t: f64) -> i32 {
+    let bits = t.to_bits();
+    let biased = ((bits >> 52) & 0x7ff) as i32;
+    if biased == 0 {
+        // Subnormal: t < 2^-1022.
+        -1022
+    } else {
+        biased - 1023 + 1
+    }
+}
+
+/// `2^e`, saturating to `f64::MAX`/`f64::MIN_POSITIVE` outside the normal range.
+#[inline(always)]
+pub(super) fn pow2(e: i32) -> f64 {
+    if e > 1023 {
+        f64::MAX
+    } else if e < -1022 {
+        f64::MIN_POSITIVE
+    } else {
+        f64::from_bits(((e + 1023) as u64) << 52)
+    }
+}
+
+/// A point strictly between `a < b` that halves the interval in the
+/// floating-point (bit-pattern) sense when both ends have the same sign and
+/// differ a lot in magnitude, and arithmetically otherwise; so bisection
+/// ends after at most about 64 steps on any finite interval.
+#[inline]
+pub(super) fn split_point(a: f64, b: f64) -> f64 {
+    if a < 0.0 && b > 0.0 {
+        return 0.0;
+    }
+    let m = if a >= 0.0 && b > 4.0 * a.max(f64::MIN_POSITIVE) {
+        f64::from_bits((a.to_bits() / 2) + (b.to_bits() / 2))
+    } else if b <= 0.0 && -a > 4.0 * (-b).max(f64::MIN_POSITIVE) {
+        -f64::from_bits(((-b).to_bits() / 2) + ((-a).to_bits() / 2))
+    } else {
+        a + 0.5 * (b - a)
+    };
+    m
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn normalize_trims_zero_high_coefficients_and_rejects_bad_input() {
+        assert_eq!(normalize(&[1.0, 2.0, 0.0, 0.0]).map(|(_, n)| n), Some(1));
+        assert_eq!(normalize(&[1.0, 2.0, 3.0, 4.0, 5.0]).map(|(_, n)| n), Some(4));
+        assert!(normalize(&[]).is_none());
+        assert!(normalize(&[0.0, 0.0]).is_none());
+        assert!(normalize(&[3.0]).is_none());
+        assert!(normalize(&[1.0, f64::NAN]).is_none());
+        assert!(normalize(&[1.0, 1.0, f64::INFINITY]).is_none());
+        assert!(normalize(&[1.0, 1.0, 0.0, 0.0, 0.0, 0.0]).is_some());
+        assert!(normalize(&[1.0, 1.0, 0.0, 0.0, 0.0, 1.0]).is_none());
+    }
+
+    #[test]
+    fn two_sum_and_two_prod_are_error_free() {
+        let (s, e) = two_sum(1.0, 1e-20);
+        assert_eq!((s, e), (1.0, 1e-20));
+        let a = 1.0 + f64::EPSILON;
+        let (p, e) = two_prod(a, a);
+        // (1+eps)^2 = 1 + 2 eps + eps^2
+        assert_eq!(p, 1.0 + 2.0 * f64::EPSILON);
+        assert_eq!(e, f64::EPSILON * f64::EPSILON);
+    }
+
+    #[test]
+    fn compensated_horner_resolves_what_plain_horner_cannot() {
+        // (x - 1)^4 expanded, evaluated next to its quadruple root: the plain
+        // value is pure rounding noise, the compensated one is exact here.
+        let a = [1.0, -4.0, 6.0, -4.0, 1.0];
+        let x = 1.0 + 1.0 / 1024.0;
+        let exact = (1.0f64 / 1024.0).powi(4);
+        let (v, bound) = horner_comp::<4>(&a, x);
+        assert!((v - exact).abs() <= bound);
+        assert!((v - exact).abs() <= 2.0 * U * exact);
+        let (pv, pbound) = horner_bounded::<4>(&a, x);
+        assert!((pv - exact).abs() <= pbound);
+    }
+
+    #[test]
+    fn root_bound_encloses_every_root() {
+        let cases: [(Coeffs, usize, f64); 4] = [
+            ([-2.0, 1.0, 0.0, 0.0, 0.0], 1, 2.0),
+            ([1e16, 0.0, 0.0, 0.0, 1.0], 4, 1e4),
+            ([0.0, 0.0, 0.0, -1e-9, 1.0], 4, 1e-9),
+            ([-1e-40, 1.0, 0.0, 0.0, 0.0], 1, 1e-40),
+        ];
+        for (a, n, r) in cases {
+            let b = root_bound(&a, n);
+            assert!(b > r && b < 64.0 * r, "{b} vs {r}");
+        }
+    }
+
+    #[test]
+    fn split_point_is_strictly_inside() {
+        for (a, b) in [(1.0, 2.0), (1e-300, 1e300), (-1e300, -1e-300), (-1.0, 3.0), (0.0, 1.0)] {
+            let m = split_point(a, b);
+            assert!(a < m && m < b, "{a} {m} {b}");
+        }
+    }
+}

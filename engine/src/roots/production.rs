@@ -1,0 +1,495 @@
+//! The engine's default solver: exact-structure root isolation plus
+//! safeguarded Newton, after Yuksel ("High-Performance Polynomial Root
+//! Finding for Graphics", HPG 2022) with the accuracy safeguards of
+//! compensated arithmetic (Graillat, Langlois & Louvet 2005).
+//!
+//! * Degree 1 is one division; degree 2 is the stable quadratic formula with
+//!   the discriminant computed with error-free products (Kahan), so a double
+//!   root or a near-tangency is classified from an almost exact `b^2 - 4ac`.
+//! * Degrees 3 and 4: the critical points (roots of `p'`) split the search
+//!   interval into pieces on which `p` is monotone; a piece holds a root iff
+//!   its ends have opposite signs. For a quartic the critical points are the
+//!   roots of the cubic `p'`, isolated in turn by the closed-form roots of
+//!   the quadratic `p''`. Everything is lazy: `first_root` walks the pieces
+//!   left to right, computes a critical point only when it reaches it, and
+//!   stops at the first piece with a sign change.
+//! * Signs at piece ends are decided by plain Horner when its running error
+//!   bound allows, otherwise by compensated Horner; a value that even the
+//!   compensated bound cannot separate from zero is a root there (a double
+//!   root at a critical point, reported once).
+//! * Inside a piece: Newton started from a quadratic model at the critical
+//!   end (or a secant point), kept inside the bracket, falling back to
+//!   bisection (in the floating-point sense, so at most ~64 halvings); then
+//!   one or two Newton corrections with a compensated residual, accepted once
+//!   the compensated sign changes between adjacent iterates, so the result
+//!   is within an ulp or two of the exact root of the `f64` polynomial even
+//!   for clustered roots.
+//! * Unbounded searches are closed with a Fujiwara bound (`poly::root_bound`),
+//!   whose end signs are known without evaluating.
+//!
+//! Range: coefficients and roots must keep `p` finite near the roots (for a
+//! monic quartic, roots below about `1e75` in magnitude); beyond that the
+//! result is still returned without panicking but may miss roots.
+
+use super::poly::{
+    derivative, horner, horner_bounded, horner_comp, horner_d, normalize, root_bound, split_point,
+    two_prod, Coeffs, U,
+};
+use super::{RootSolver, Roots};
+
+/// Lazy critical-point walk + safeguarded Newton + compensated polishing.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Production;
+
+impl RootSolver for Production {
+    fn real_roots(&self, coeffs: &[f64]) -> Roots {
+        solve(coeffs, f64::NEG_INFINITY, f64::INFINITY, false)
+    }
+
+    fn roots_in(&self, coeffs: &[f64], lo: f64, hi: f64) -> Roots {
+        solve(coeffs, lo, hi, false)
+    }
+
+    fn first_root(&self, coeffs: &[f64], lo: f64, hi: f64) -> Option<f64> {
+        solve(coeffs, lo, hi, true).first()
+    }
+}
+
+#[inline]
+fn solve(coeffs: &[f64], lo: f64, hi: f64, first: bool) -> Roots {
+    let mut out = Roots::new();
+    if !(lo < hi) {
+        return out;
+    }
+    let Some((a, n)) = normalize(coeffs) else {
+        return out;
+    };
+    match n {
+        1 => {
+            let r = -a[0] / a[1] + 0.0;
+            if lo <= r && r < hi {
+                out.push(r);
+            }
+        }
+        2 => {
+            let (k, r) = quadratic(a[0], a[1], a[2]);
+            for &x in &r[..k] {
+                if lo <= x && x < hi {
+                    out.push(x);
+                }
+            }
+        }
+        3 => cubic(&a, lo, hi, first, &mut out),
+        _ => quartic(&a, lo, hi, first, &mut out),
+    }
+    out
+}
+
+/// Real roots of `c2 x^2 + c1 x + c0` (`c2 != 0`), ascending, a double root
+/// once. The discriminant is formed from error-free products, so its sign
+/// is right unless it is below the rounding level of its own error terms.
+#[inline]
+pub(super) fn quadratic(c0: f64, c1: f64, c2: f64) -> (usize, [f64; 2]) {
+    let (bb, ebb) = two_prod(c1, c1);
+    let (ac, eac) = two_prod(4.0 * c2, c0);
+    let d = (bb - ac) + (ebb - eac);
+    if !(d >= 0.0) {
+        // Negative, or NaN from overflow of the products.
+        if d.is_nan() {
+            return quadratic_scaled(c0, c1, c2);
+        }
+        return (0, [0.0; 2]);
+    }
+    if d == 0.0 {
+        return (1, [-c1 / (2.0 * c2) + 0.0, 0.0]);
+    }
+    let q = -0.5 * (c1 + d.sqrt().copysign(c1));
+    let (r1, r2) = (q / c2, c0 / q);
+    if !(r1.is_finite() && r2.is_finite()) {
+        return quadratic_scaled(c0, c1, c2);
+    }
+    let (r1, r2) = (r1 + 0.0, r2 + 0.0);
+    if r1 <= r2 {
+        (2, [r1, r2])
+    } else {
+        (2, [r2, r1])
+    }
+}
+
+/// The quadratic formula on coefficients rescaled by a power of two (exact)
+/// when the direct form overflows.
+#[cold]
+fn quadratic_scaled(c0: f64, c1: f64, c2: f64) -> (usize, [f64; 2]) {
+    let m = c0.abs().max(c1.abs()).max(c2.abs());
+    if !(m.is_finite() && m > 0.0) || (0.25..=4.0).contains(&m) {
+        // Already balanced: give up quietly (only reachable with extreme
+        // coefficient ratios).
+        return (0, [0.0; 2]);
+    }
+    let s = super::poly::pow2(-(m.log2().round() as i32));
+    quadratic(c0 * s, c1 * s, c2 * s)
+}
+
+/// The value of `p(x)` when its sign can be trusted: plain Horner when its
+/// error bound allows, compensated Horner otherwise, and `0.0` when even the
+/// compensated value cannot be told apart from zero.
+#[inline(always)]
+fn signed_value<const N: usize>(p: &Coeffs, x: f64) -> f64 {
+    let (v, e) = horner_bounded::<N>(p, x);
+    if v.abs() > e || !v.is_finite() {
+        return v;
+    }
+    let (v, e) = horner_comp::<N>(p, x);
+    if v.abs() > e {
+        v
+    } else {
+        0.0
+    }
+}
+
+/// `p''(x) / 2` of a degree-`N` polynomial (for the quadratic model at a
+/// critical point).
+#[inline(always)]
+fn half_second_derivative<const N: usize>(p: &Coeffs, x: f64) -> f64 {
+    let mut v = p[N];
+    let mut d = 0.0;
+    let mut h = 0.0;
+    let mut i = N;
+    while i > 0 {
+        i -= 1;
+        h = h * x + d;
+        d = d * x + v;
+        v = v * x + p[i];
+    }
+    h
+}
+
+/// Newton iterations, kept inside the bracket `(a, b)` that holds the only
+/// root of the monotone `p`: a step leaving the bracket is replaced by a
+/// bisection. `fa` is `p(a)` (only its sign is used). Stops when a step is
+/// below `tol * |x|` (returning the stepped point) or when `p(x)` is within
+/// the rounding level of plain Horner. Returns the point and `p'` there.
+#[inline(always)]
+fn newton<const N: usize>(p: &Coeffs, mut a: f64, mut b: f64, fa: f64, x0: f64, tol: f64) -> (f64, f64) {
+    let neg_a = fa < 0.0;
+    let mut x = x0;
+    let mut d = 0.0;
+    for _ in 0..128 {
+        let (f, df) = horner_d::<N>(p, x);
+        d = df;
+        if f == 0.0 {
+            return (x, d);
+        }
+        if (f < 0.0) == neg_a {
+            a = x;
+        } else {
+            b = x;
+        }
+        let step = f / df;
+        let xn = x - step;
+        if xn > a && xn < b {
+            if step.abs() <= tol * xn.abs() {
+                return (xn, d);
+            }
+            x = xn;
+        } else {
+            let m = split_point(a, b);
+            if !(m > a && m < b) {
+                return (x, d);
+            }
+            x = m;
+        }
+    }
+    (x, d)
+}
+
+/// Final polishing of a root of `p` near `x` inside the certified bracket
+/// `(a, b)` (`fa` = `p(a)`): Newton corrections with the compensated
+/// residual until the compensated sign changes between two iterates at most
+/// an ulp or two apart, the correction vanishes, or the residual is below
+/// its error bound. `d` is an estimate of `p'` near the root.
+#[inline(always)]
+fn polish<const N: usize>(p: &Coeffs, x: f64, mut a: f64, mut b: f64, fa: f64, d: f64) -> f64 {
+    let neg_a = fa < 0.0;
+    let mut x = x;
+    let mut d = d;
+    let (mut v, mut e) = horner_comp::<N>(p, x);
+    for _ in 0..8 {
+        if v.abs() <= e {
+            return x;
+        }
+        if (v < 0.0) == neg_a {
+            a = x;
+        } else {
+            b = x;
+        }
+        let mut xn = x - v / d;
+        if !(xn > a && xn < b) {
+            xn = split_point(a, b);
+            if !(xn > a && xn < b) {
+                return x;
+            }
+            d = horner_d::<N>(p, xn).1;
+        }
+        if xn == x {
+            return x;
+        }
+        let (vn, en) = horner_comp::<N>(p, xn);
+        if vn.abs() <= en {
+            return xn;
+        }
+        if (vn < 0.0) != (v < 0.0) && (xn - x).abs() <= 2.0 * f64::EPSILON * xn.abs() {
+            return if vn.abs() <= v.abs() { xn } else { x };
+        }
+        x = xn;
+        v = vn;
+        e = en;
+    }
+    x
+}
+
+/// Relative step below which Newton hands over: for the roots themselves
+/// the compensated polish does the last step; critical points only need to
+/// be good to a few ulps.
+const ROOT_TOL: f64 = 1e-9;
+const CRIT_TOL: f64 = 4.0 * U;
+
+/// A starting point for Newton in `(x0, x1)` where `p(x0) = f0` and
+/// `p(x1) = f1` have opposite signs: the root of the quadratic model at an
+/// end that is a critical point (`p' = 0` there), preferring the end with
+/// the smaller `|p|`; otherwise the secant point.
+#[inline(always)]
+fn start_point<const N: usize>(
+    p: &Coeffs,
+    (x0, f0, c0): (f64, f64, bool),
+    (x1, f1, c1): (f64, f64, bool),
+) -> f64 {
+    let use_right = c1 && (!c0 || f1.abs() <= f0.abs());
+    let guess = if use_right || c0 {
+        let (c, f) = if use_right { (x1, f1) } else { (x0, f0) };
+        let h2 = half_second_derivative::<N>(p, c);
+        let h = (-f / h2).sqrt();
+        if use_right {
+            x1 - h
+        } else {
+            x0 + h
+        }
+    } else {
+        x0 - f0 * ((x1 - x0) / (f1 - f0))
+    };
+    if guess > x0 && guess < x1 {
+        guess
+    } else {
+        let s = x0 - f0 * ((x1 - x0) / (f1 - f0));
+        if s > x0 && s < x1 {
+            s
+        } else {
+            split_point(x0, x1)
+        }
+    }
+}
+
+/// Walks the monotone pieces of a degree-`N` polynomial left to right.
+struct Walker<'a, const N: usize> {
+    p: &'a Coeffs,
+    /// Left end of the current piece, `p` there (`0.0`: a root, already
+    /// reported), and whether it is a critical point.
+    x: f64,
+    f: f64,
+    crit: bool,
+    first: bool,
+    out: &'a mut Roots,
+}
+
+impl<'a, const N: usize> Walker<'a, N> {
+    /// Starts at `lo` (`p(lo) = f`); reports `lo` if it is a root. Returns
+    /// `None` when that already answers a `first_root` query.
+    #[inline(always)]
+    fn start(p: &'a Coeffs, lo: f64, f: f64, first: bool, out: &'a mut Roots) -> Option<Self> {
+        if f == 0.0 {
+            out.push(lo);
+            if first {
+                return None;
+            }
+        }
+        Some(Walker {
+            p,
+            x: lo,
+            f,
+            crit: false,
+            first,
+            out,
+        })
+    }
+
+    /// Advances to the breakpoint `c` (> current end) where `p(c) = fc`,
+    /// solving the piece in between if it holds a root. Returns true when a
+    /// `first_root` query is answered.
+    #[inline(always)]
+    fn advance(&mut self, c: f64, fc: f64, crit: bool) -> bool {
+        if fc == 0.0 {
+            self.out.push(c);
+            if self.first {
+                return true;
+            }
+        } else if self.f != 0.0 && (self.f < 0.0) != (fc < 0.0) {
+            let start = start_point::<N>(self.p, (self.x, self.f, self.crit), (c, fc, crit));
+            let (x, d) = newton::<N>(self.p, self.x, c, self.f, start, ROOT_TOL);
+            let r = polish::<N>(self.p, x, self.x, c, self.f, d);
+            self.out.push(r);
+            if self.first {
+                return true;
+            }
+        }
+        self.x = c;
+        self.f = fc;
+        self.crit = crit;
+        false
+    }
+
+    /// Visits the critical point `c`.
+    #[inline(always)]
+    fn visit(&mut self, c: f64) -> bool {
+        if !(c > self.x) {
+            return false;
+        }
+        let fc = signed_value::<N>(self.p, c);
+        self.advance(c, fc, true)
+    }
+
+    /// Closes the walk at `hi` (exclusive) where `p(hi) = fh`.
+    #[inline(always)]
+    fn finish(&mut self, hi: f64, fh: f64) {
+        if fh != 0.0 && hi > self.x {
+            self.advance(hi, fh, false);
+        }
+    }
+}
+
+/// Effective search interval: `[lo, hi)` clipped to the root bound, with
+/// `p` at both ends (the sign at a bound end is known: no evaluation).
+#[inline(always)]
+fn search_interval<const N: usize>(a: &Coeffs, lo: f64, hi: f64) -> Option<(f64, f64, f64, f64)> {
+    let r = root_bound(a, N);
+    let lead = a[N];
+    let (l, fl) = if lo <= -r {
+        let s = if N % 2 == 0 { lead } else { -lead };
+        (-r, finite_or(horner::<N>(a, -r), s))
+    } else {
+        (lo, signed_value::<N>(a, lo))
+    };
+    let (h, fh) = if hi >= r {
+        (r, finite_or(horner::<N>(a, r), lead))
+    } else {
+        (hi, signed_value::<N>(a, hi))
+    };
+    if l < h {
+        Some((l, fl, h, fh))
+    } else {
+        None
+    }
+}
+
+/// `v` if it is a finite non-zero number of the sign of `s`, else `s`
+/// scaled to the largest finite magnitude.
+#[inline(always)]
+fn finite_or(v: f64, s: f64) -> f64 {
+    if v.is_finite() && v != 0.0 && (v < 0.0) == (s < 0.0) {
+        v
+    } else {
+        f64::MAX.copysign(s)
+    }
+}
+
+fn cubic(a: &Coeffs, lo: f64, hi: f64, first: bool, out: &mut Roots) {
+    let Some((l, fl, h, fh)) = search_interval::<3>(a, lo, hi) else {
+        return;
+    };
+    // Critical points: the roots of the quadratic p'.
+    let (k, cp) = quadratic(a[1], 2.0 * a[2], 3.0 * a[3]);
+    let Some(mut w) = Walker::<3>::start(a, l, fl, first, out) else {
+        return;
+    };
+    for &c in &cp[..k] {
+        if c > l && c < h && w.visit(c) {
+            return;
+        }
+    }
+    w.finish(h, fh);
+}
+
+fn quartic(a: &Coeffs, lo: f64, hi: f64, first: bool, out: &mut Roots) {
+    let Some((l, fl, h, fh)) = search_interval::<4>(a, lo, hi) else {
+        return;
+    };
+    let d = derivative::<4>(a);
+    let Some(mut w) = Walker::<4>::start(a, l, fl, first, out) else {
+        return;
+    };
+    // The critical points are the roots of the cubic p', which is monotone
+    // between the roots of the quadratic p'' (the inflection points).
+    let (k, infl) = quadratic(d[1], 2.0 * d[2], 3.0 * d[3]);
+    let mut x = l;
+    let mut gx = signed_value::<3>(&d, l);
+    let mut x_infl = false;
+    let mut i = 0;
+    loop {
+        let (e, ge, e_infl) = if i < k {
+            let e = infl[i];
+            i += 1;
+            if !(e > x && e < h) {
+                continue;
+            }
+            (e, signed_value::<3>(&d, e), true)
+        } else {
+            (h, signed_value::<3>(&d, h), false)
+        };
+        if gx != 0.0 && ge != 0.0 && (gx < 0.0) != (ge < 0.0) {
+            let start = start_point::<3>(&d, (x, gx, x_infl), (e, ge, e_infl));
+            let (c, _) = newton::<3>(&d, x, e, gx, start, CRIT_TOL);
+            if w.visit(c) {
+                return;
+            }
+        } else if ge == 0.0 && e < h && w.visit(e) {
+            return;
+        }
+        if !e_infl {
+            break;
+        }
+        x = e;
+        gx = ge;
+        x_infl = true;
+    }
+    w.finish(h, fh);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quadratic_classifies_tangency_from_an_accurate_discriminant() {
+        // (x - 0.1)^2 with rounded coefficients: b^2 - 4ac is a few ulps
+        // either side of zero and the plain formula gets its sign wrong.
+        let (k, r) = quadratic(1.0, -2.0, 1.0);
+        assert_eq!((k, r[0]), (1, 1.0));
+        let (k, r) = quadratic(-1.0, 0.0, 1.0);
+        assert_eq!((k, r), (2, [-1.0, 1.0]));
+        let (k, _) = quadratic(1.0, 0.0, 1.0);
+        assert_eq!(k, 0);
+    }
+
+    #[test]
+    fn linear_and_quadratic_respect_the_half_open_interval() {
+        assert_eq!(Production.first_root(&[-2.0, 1.0], 0.0, 2.0), None);
+        assert_eq!(Production.first_root(&[-2.0, 1.0], 2.0, 3.0), Some(2.0));
+        assert_eq!(Production.roots_in(&[2.0, -3.0, 1.0], 1.0, 2.0).as_slice(), &[1.0]);
+    }
+
+    #[test]
+    fn quartic_with_four_simple_roots() {
+        let r = Production.real_roots(&[24.0, -50.0, 35.0, -10.0, 1.0]);
+        assert_eq!(r.as_slice(), &[1.0, 2.0, 3.0, 4.0]);
+        assert_eq!(Production.first_root(&[24.0, -50.0, 35.0, -10.0, 1.0], 1.5, 10.0), Some(2.0));
+    }
+}
