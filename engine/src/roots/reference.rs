@@ -21,6 +21,14 @@ fn big(x: f64) -> F {
         .value()
 }
 
+fn abs(x: F) -> F {
+    if x < F::ZERO {
+        -x
+    } else {
+        x
+    }
+}
+
 fn eval(a: &[F], x: &F) -> F {
     let mut s = a[a.len() - 1].clone();
     for c in a[..a.len() - 1].iter().rev() {
@@ -30,17 +38,17 @@ fn eval(a: &[F], x: &F) -> F {
 }
 
 fn magnitude(a: &[F], x: &F) -> F {
-    let ax = x.clone().abs();
-    let mut s = a[a.len() - 1].clone().abs();
+    let ax =abs(x.clone());
+    let mut s =abs(a[a.len() - 1].clone());
     for c in a[..a.len() - 1].iter().rev() {
-        s = s * &ax + c.clone().abs();
+        s = s * &ax +abs(c.clone());
     }
     s
 }
 
 fn is_negligible(a: &[F], x: &F, v: &F) -> bool {
     let tiny = magnitude(a, x) * big(2f64.powi(-280));
-    v.clone().abs() <= tiny
+abs(v.clone()) <= tiny
 }
 
 fn roots_rec(a: &[F], lo: &F, hi: &F) -> Vec<F> {
@@ -82,7 +90,7 @@ fn bisect(a: &[F], mut lo: F, mut hi: F, flo: &F) -> F {
     for _ in 0..400 {
         let mid = (lo.clone() + &hi) * &half;
         let width = hi.clone() - &lo;
-        let scale = mid.clone().abs();
+        let scale =abs(mid.clone());
         if width <= scale * big(2f64.powi(-90)) || width <= big(2f64.powi(-1070)) {
             return mid;
         }
@@ -115,10 +123,10 @@ pub fn reference_roots(c: &[f64]) -> Vec<f64> {
     }
     if coeffs.len() > 1 {
         let a: Vec<F> = coeffs.iter().map(|&x| big(x)).collect();
-        let lead = a[a.len() - 1].clone().abs();
+        let lead =abs(a[a.len() - 1].clone());
         let mut m = big(0.0);
         for c in &a[..a.len() - 1] {
-            let t = c.clone().abs() / &lead;
+            let t =abs(c.clone()) / &lead;
             if t > m {
                 m = t;
             }

@@ -1,0 +1,1 @@
+//! Chapaev rules on the engine (in progress).
