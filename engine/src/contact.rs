@@ -258,11 +258,11 @@ fn paths_never_within(
     s: f64,
     now: f64,
 ) -> bool {
-    let li = ti.stopping_distance() - ti.sigma(now - ti.start_time());
-    let lj = tj.stopping_distance() - tj.sigma(now - tj.start_time());
-    if !(li.is_finite() && lj.is_finite()) {
+    if ti.is_frictionless() || tj.is_frictionless() {
         return false;
     }
+    let li = ti.stopping_distance() - ti.sigma(now - ti.start_time());
+    let lj = tj.stopping_distance() - tj.sigma(now - tj.start_time());
     segment_distance(pi, pi + ti.direction() * li, pj, pj + tj.direction() * lj) > s
 }
 

@@ -97,16 +97,23 @@ impl Grid {
         self.cell_of[slot] = nc;
     }
 
-    /// Calls `f` for every slot in the 3x3 block of cells around `slot`'s cell.
+    /// The cells of the 3x3 block around `slot`'s cell (fewer at the border).
     #[inline]
-    pub fn for_neighbours(&self, slot: usize, mut f: impl FnMut(usize)) {
+    pub fn neighbour_cells(&self, slot: usize) -> impl Iterator<Item = &[u32]> + '_ {
         let c = self.cell_of[slot] as i32;
         let (cx, cy) = (c % self.nx, c / self.nx);
-        for y in (cy - 1).max(0)..=(cy + 1).min(self.ny - 1) {
-            for x in (cx - 1).max(0)..=(cx + 1).min(self.nx - 1) {
-                for &s in &self.cells[self.index(x, y) as usize] {
-                    f(s as usize);
-                }
+        let xs = (cx - 1).max(0)..=(cx + 1).min(self.nx - 1);
+        ((cy - 1).max(0)..=(cy + 1).min(self.ny - 1)).flat_map(move |y| {
+            xs.clone()
+                .map(move |x| self.cells[self.index(x, y) as usize].as_slice())
+        })
+    }
+
+    /// Calls `f` for every slot in the 3x3 block of cells around `slot`'s cell.
+    pub fn for_neighbours(&self, slot: usize, mut f: impl FnMut(usize)) {
+        for cell in self.neighbour_cells(slot) {
+            for &s in cell {
+                f(s as usize);
             }
         }
     }

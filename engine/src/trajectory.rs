@@ -21,7 +21,9 @@ pub struct Trajectory {
     p: DVec2,
     u: DVec2,
     alpha: f64,
-    // Derived, cached: |u|, u/|u|, and the absolute stop time.
+    // Derived, cached: |u|, u/|u| (only with friction: frictionless motion
+    // needs neither, and skipping them keeps a frictionless event cheap), and
+    // the absolute stop time.
     speed: f64,
     dir: DVec2,
     t_stop: f64,
@@ -57,6 +59,20 @@ impl Trajectory {
     /// Motion starting at time `t0` at position `p` with velocity `u`, slowing
     /// at `alpha >= 0` (units of acceleration).
     pub fn new(t0: f64, p: DVec2, u: DVec2, alpha: f64) -> Self {
+        if alpha == 0.0 {
+            if u == DVec2::ZERO {
+                return Self::at_rest(t0, p, alpha);
+            }
+            return Trajectory {
+                t0,
+                p,
+                u,
+                alpha,
+                speed: 0.0,
+                dir: DVec2::ZERO,
+                t_stop: f64::INFINITY,
+            };
+        }
         let speed = u.length();
         if speed == 0.0 {
             return Self::at_rest(t0, p, alpha);
@@ -109,11 +125,19 @@ impl Trajectory {
     }
     /// Speed at the start.
     pub fn speed(&self) -> f64 {
-        self.speed
+        if self.alpha == 0.0 {
+            self.u.length()
+        } else {
+            self.speed
+        }
     }
     /// Unit direction of travel (zero at rest).
     pub fn direction(&self) -> DVec2 {
-        self.dir
+        if self.alpha == 0.0 {
+            self.u.normalize_or_zero()
+        } else {
+            self.dir
+        }
     }
     /// Absolute time the disc comes to rest (`t0` if it starts at rest,
     /// infinite without friction).
@@ -126,7 +150,7 @@ impl Trajectory {
     }
     /// Whether the disc moves at all.
     pub fn is_moving(&self) -> bool {
-        self.speed > 0.0
+        self.t_stop > self.t0
     }
     /// Whether it moves without friction (never stops).
     pub fn is_frictionless(&self) -> bool {
@@ -137,7 +161,7 @@ impl Trajectory {
     /// (clamped at the stop).
     pub fn sigma(&self, s: f64) -> f64 {
         if self.alpha == 0.0 {
-            return self.speed * s;
+            return self.speed() * s;
         }
         let s = s.min(self.t_stop - self.t0);
         s * (self.speed - 0.5 * self.alpha * s)
@@ -145,7 +169,7 @@ impl Trajectory {
 
     /// Total distance it will travel (infinite without friction).
     pub fn stopping_distance(&self) -> f64 {
-        if self.speed == 0.0 {
+        if !self.is_moving() {
             0.0
         } else if self.alpha == 0.0 {
             f64::INFINITY
@@ -189,11 +213,11 @@ impl Trajectory {
     /// Absolute time at which the disc has travelled `sigma` along its
     /// direction, or `None` if it stops first.
     pub fn time_at_distance(&self, sigma: f64) -> Option<f64> {
-        if self.speed == 0.0 || sigma < 0.0 {
+        if !self.is_moving() || sigma < 0.0 {
             return None;
         }
         if self.alpha == 0.0 {
-            return Some(self.t0 + sigma / self.speed);
+            return Some(self.t0 + sigma / self.speed());
         }
         // sigma = v s - a s^2/2  =>  s = 2 sigma / (v + sqrt(v^2 - 2 a sigma)),
         // the cancellation-free root.

@@ -219,6 +219,27 @@ enum Next {
     Cell(Step),
 }
 
+/// A body's pair whose time is already known (or is to be reported).
+type Known = Option<(usize, Option<Option<f64>>)>;
+
+/// The best candidate so far for a body's next event.
+#[derive(Clone, Copy, Debug)]
+struct Best {
+    t: f64,
+    next: Next,
+}
+
+impl Best {
+    /// Keeps `(t, next)` if it is strictly earlier (the first offered wins ties).
+    #[inline(always)]
+    fn offer(&mut self, t: f64, next: Next) {
+        if t < self.t {
+            self.t = t;
+            self.next = next;
+        }
+    }
+}
+
 /// The live state of a computation.
 #[derive(Clone, Debug)]
 pub struct World {
@@ -609,8 +630,9 @@ impl World {
         self.traj[j] = Trajectory::new(t, pj, vj, self.traj[j].alpha());
         self.gen[i] = self.gen[i].wrapping_add(1);
         self.gen[j] = self.gen[j].wrapping_add(1);
-        self.predict(i);
-        self.predict(j);
+        // The pair (i, j) is solved once, for both.
+        let pair = self.predict_with(i, Some((j, None)));
+        self.predict_with(j, Some((i, pair)));
     }
 
     fn bounce(&mut self, i: usize, t: f64, n: DVec2) {
@@ -640,91 +662,113 @@ impl World {
 
     /// Recomputes the earliest event of body `i` from the current time.
     fn predict(&mut self, i: usize) {
+        self.predict_with(i, None);
+    }
+
+    /// As `predict`; with `known = Some((j, t))` the pair `(i, j)` is not
+    /// solved if `t` is given (it was, for `j`), and its time is returned.
+    fn predict_with(&mut self, i: usize, known: Known) -> Option<Option<f64>> {
+        let (best, pair) = self.earliest(i, known);
+        self.next[i] = best.next;
+        self.calendar.set(i, best.t);
+        pair
+    }
+
+    /// The earliest event of body `i` from the current time (and the time
+    /// of its pair with `known`'s body, if that was asked for).
+    fn earliest(&self, i: usize, known: Known) -> (Best, Option<Option<f64>>) {
         let now = self.t;
-        let tr = self.traj[i];
+        let tr = &self.traj[i];
         let r = self.material[i].radius;
-        let mut best_t = f64::INFINITY;
-        let mut best = Next::None;
-        let solver = self.config.solver;
         let moving = tr.is_moving_at(now);
-        {
-            let traj = &self.traj;
-            let material = &self.material;
-            let gen = &self.gen;
-            let alive = &self.alive;
-            let mut pair = |j: usize| {
-                if j == i || !alive[j] {
-                    return;
-                }
-                let tj = &traj[j];
-                if !moving && !tj.is_moving_at(now) {
-                    return;
-                }
-                let s = r + material[j].radius;
-                if let Some(t) = contact::disc_disc(&tr, tj, s, now, &solver) {
-                    if t < best_t {
-                        best_t = t;
-                        best = Next::Body {
-                            other: j as u32,
-                            other_gen: gen[j],
-                        };
-                    }
-                }
-            };
-            match &self.grid {
-                Some(grid) => grid.for_neighbours(i, &mut pair),
-                None => (0..traj.len()).for_each(&mut pair),
-            }
-        }
-        if moving {
-            for &k in &self.solid {
-                if let Some(LineHit { t, end }) =
-                    contact::disc_line(&tr, &self.geoms[k as usize], r, now)
-                {
-                    if t < best_t {
-                        best_t = t;
-                        best = Next::Line(k, end);
+        let mut best = Best {
+            t: f64::INFINITY,
+            next: Next::None,
+        };
+        let mut pair = None;
+        match &self.grid {
+            Some(grid) => {
+                for cell in grid.neighbour_cells(i) {
+                    for &j in cell {
+                        self.offer_pair(i, j as usize, moving, known, &mut best, &mut pair);
                     }
                 }
             }
-            for (k, p) in self.points.iter().enumerate() {
-                if let Some(t) = contact::disc_point(&tr, p.pos, r, now) {
-                    if t < best_t {
-                        best_t = t;
-                        best = Next::Point(k as u32);
-                    }
-                }
-            }
-            for (bit, &k) in self.sensors.iter().enumerate() {
-                let inside = self.sides[i] & (1 << bit) != 0;
-                if let Some((t, reported)) =
-                    contact::centre_crossing(&tr, &self.geoms[k as usize], inside, now)
-                {
-                    if t < best_t {
-                        best_t = t;
-                        best = Next::Sensor {
-                            line: k,
-                            bit: bit as u8,
-                            reported,
-                        };
-                    }
-                }
-            }
-            let stop = tr.stop_time();
-            if stop < best_t {
-                best_t = stop;
-                best = Next::Stop;
-            }
-            if let Some(grid) = &self.grid {
-                if let Some((t, step)) = grid.next_crossing(i, &tr, now) {
-                    if t < best_t {
-                        best_t = t;
-                        best = Next::Cell(step);
-                    }
+            None => {
+                for j in 0..self.traj.len() {
+                    self.offer_pair(i, j, moving, known, &mut best, &mut pair);
                 }
             }
         }
-        self.next[i] = best;
-        self.calendar.set(i, best_t);
+        if !moving {
+            return (best, pair);
+        }
+        for &k in &self.solid {
+            if let Some(LineHit { t, end }) = contact::disc_line(tr, &self.geoms[k as usize], r, now) {
+                best.offer(t, Next::Line(k, end));
+            }
+        }
+        for (k, p) in self.points.iter().enumerate() {
+            if let Some(t) = contact::disc_point(tr, p.pos, r, now) {
+                best.offer(t, Next::Point(k as u32));
+            }
+        }
+        for (bit, &k) in self.sensors.iter().enumerate() {
+            let inside = self.sides[i] & (1 << bit) != 0;
+            if let Some((t, reported)) =
+                contact::centre_crossing(tr, &self.geoms[k as usize], inside, now)
+            {
+                let bit = bit as u8;
+                best.offer(t, Next::Sensor { line: k, bit, reported });
+            }
+        }
+        best.offer(tr.stop_time(), Next::Stop);
+        if let Some(grid) = &self.grid {
+            if let Some((t, step)) = grid.next_crossing(i, tr, now) {
+                best.offer(t, Next::Cell(step));
+            }
+        }
+        (best, pair)
+    }
+
+    /// Offers the contact of bodies `i` and `j` as `i`'s next event.
+    #[inline(always)]
+    fn offer_pair(
+        &self,
+        i: usize,
+        j: usize,
+        i_moving: bool,
+        known: Known,
+        best: &mut Best,
+        pair: &mut Option<Option<f64>>,
+    ) {
+        if j == i || !self.alive[j] {
+            return;
+        }
+        let now = self.t;
+        let tj = &self.traj[j];
+        if !i_moving && !tj.is_moving_at(now) {
+            return;
+        }
+        let hit = match known {
+            Some((k, Some(t))) if k == j => t,
+            _ => {
+                let s = self.material[i].radius + self.material[j].radius;
+                let t = contact::disc_disc(&self.traj[i], tj, s, now, &self.config.solver);
+                if matches!(known, Some((k, None)) if k == j) {
+                    *pair = Some(t);
+                }
+                t
+            }
+        };
+        if let Some(t) = hit {
+            best.offer(
+                t,
+                Next::Body {
+                    other: j as u32,
+                    other_gen: self.gen[j],
+                },
+            );
+        }
     }
 }

@@ -165,6 +165,71 @@ pub(super) fn horner_comp<const N: usize>(a: &Coeffs, x: f64) -> (f64, f64) {
     (v, bound)
 }
 
+/// `p(x)` evaluated exactly with floating-point expansions (Shewchuk,
+/// "Adaptive precision floating-point arithmetic", 1997) and rounded once:
+/// the sign is always right and the value is faithful (barring overflow or
+/// underflow in the products). About 30x the cost of compensated Horner, so
+/// it is only the last resort when the compensated bound cannot decide.
+pub(super) fn horner_exact<const N: usize>(a: &Coeffs, x: f64) -> f64 {
+    // Horner on expansions: lengths grow 1, 3, 7, 15, 31 at most.
+    let mut e = [0.0f64; 32];
+    let mut len = 1;
+    e[0] = a[N];
+    let mut h = [0.0f64; 32];
+    let mut i = N;
+    while i > 0 {
+        i -= 1;
+        // h = e * x (scale-expansion with zero elimination)
+        let mut hl = 0;
+        let (mut q, hh) = two_prod(e[0], x);
+        if hh != 0.0 {
+            h[hl] = hh;
+            hl += 1;
+        }
+        for &ej in &e[1..len] {
+            let (t1, t0) = two_prod(ej, x);
+            let (q2, hh) = two_sum(q, t0);
+            if hh != 0.0 {
+                h[hl] = hh;
+                hl += 1;
+            }
+            let s = t1 + q2;
+            let hh = q2 - (s - t1);
+            q = s;
+            if hh != 0.0 {
+                h[hl] = hh;
+                hl += 1;
+            }
+        }
+        if q != 0.0 || hl == 0 {
+            h[hl] = q;
+            hl += 1;
+        }
+        // e = h + a[i] (grow-expansion with zero elimination)
+        len = 0;
+        let mut q = a[i];
+        for &hj in &h[..hl] {
+            let (s, hh) = two_sum(q, hj);
+            q = s;
+            if hh != 0.0 {
+                e[len] = hh;
+                len += 1;
+            }
+        }
+        if q != 0.0 || len == 0 {
+            e[len] = q;
+            len += 1;
+        }
+    }
+    // Components are non-overlapping and increasing: summing from the
+    // smallest keeps the sign and gives a faithful value.
+    let mut v = 0.0;
+    for &c in &e[..len] {
+        v += c;
+    }
+    v
+}
+
 /// A bound `R` with `|z| < R` for every complex root `z` of the degree-`n`
 /// polynomial `a`: twice Fujiwara's bound
 /// `2 max(|a_{n-1}/a_n|, |a_{n-2}/a_n|^(1/2), ..., |a_0/(2 a_n)|^(1/n))`,
@@ -282,6 +347,22 @@ mod tests {
         assert!((v - exact).abs() <= 2.0 * U * exact);
         let (pv, pbound) = horner_bounded::<4>(&a, x);
         assert!((pv - exact).abs() <= pbound);
+    }
+
+    #[test]
+    fn exact_horner_gets_the_sign_where_compensated_cannot() {
+        // (x - 1)^4 at 1 + 2^-20: the exact value 2^-80 is far below the
+        // compensated bound but exact evaluation recovers it.
+        let a = [1.0, -4.0, 6.0, -4.0, 1.0];
+        let x = 1.0 + 2f64.powi(-20);
+        assert_eq!(horner_exact::<4>(&a, x), 2f64.powi(-80));
+        let (_, bound) = horner_comp::<4>(&a, x);
+        assert!(bound > 2f64.powi(-80));
+        assert_eq!(horner_exact::<4>(&a, 1.0), 0.0);
+        // Where compensated Horner is decisive the two agree.
+        let b = [0.1, -0.7, 0.3, 0.0, 0.0];
+        let (vc, ec) = horner_comp::<2>(&b, 3.0);
+        assert!((horner_exact::<2>(&b, 3.0) - vc).abs() <= ec);
     }
 
     #[test]

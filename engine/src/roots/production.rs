@@ -32,7 +32,7 @@
 //! result is still returned without panicking but may miss roots.
 
 use super::poly::{
-    derivative, horner, horner_bounded, horner_comp, horner_d, normalize, root_bound, split_point,
+    derivative, horner, horner_bounded, horner_comp, horner_d, horner_exact, normalize, root_bound, split_point,
     two_prod, Coeffs, U,
 };
 use super::{RootSolver, Roots};
@@ -175,6 +175,7 @@ fn newton<const N: usize>(p: &Coeffs, mut a: f64, mut b: f64, fa: f64, x0: f64, 
     let mut x = x0;
     let mut d = 0.0;
     for _ in 0..128 {
+        super::COUNT.with(|c| c.borrow_mut()[N] += 1);
         let (f, df) = horner_d::<N>(p, x);
         d = df;
         if f == 0.0 {
@@ -203,19 +204,35 @@ fn newton<const N: usize>(p: &Coeffs, mut a: f64, mut b: f64, fa: f64, x0: f64, 
     (x, d)
 }
 
-/// Final polishing of a root of `p` near `x` inside the certified bracket
-/// `(a, b)` (`fa` = `p(a)`): Newton corrections with the compensated
-/// residual until the compensated sign changes between two iterates at most
-/// an ulp or two apart, the correction vanishes, or the residual is below
-/// its error bound. `d` is an estimate of `p'` near the root.
+/// `p(x)` with a sign that can be trusted: compensated Horner, or exact
+/// evaluation when the compensated error bound cannot decide.
+#[inline(always)]
+fn certain_value<const N: usize>(p: &Coeffs, x: f64) -> f64 {
+    let (v, e) = horner_comp::<N>(p, x);
+    if v.abs() > e {
+        v
+    } else {
+        horner_exact::<N>(p, x)
+    }
+}
+
+/// Final polishing of a root of `p` near `x` inside the bracket `(a, b)`
+/// (`fa` = `p(a)`), which stays certified because every sign comes from
+/// [`certain_value`]. Newton corrections with that residual until the sign
+/// changes between two iterates at most an ulp or two apart or the
+/// correction vanishes; when Newton creeps (two corrections without a sign
+/// change, as next to a cluster) the bracket is bisected instead. `d`
+/// estimates `p'` near the root.
 #[inline(always)]
 fn polish<const N: usize>(p: &Coeffs, x: f64, mut a: f64, mut b: f64, fa: f64, d: f64) -> f64 {
     let neg_a = fa < 0.0;
     let mut x = x;
     let mut d = d;
-    let (mut v, mut e) = horner_comp::<N>(p, x);
-    for _ in 0..8 {
-        if v.abs() <= e {
+    let mut v = certain_value::<N>(p, x);
+    let mut creep = 0;
+    for _ in 0..200 {
+        super::COUNT.with(|c| c.borrow_mut()[0] += 1);
+        if v == 0.0 {
             return x;
         }
         if (v < 0.0) == neg_a {
@@ -224,26 +241,31 @@ fn polish<const N: usize>(p: &Coeffs, x: f64, mut a: f64, mut b: f64, fa: f64, d
             b = x;
         }
         let mut xn = x - v / d;
-        if !(xn > a && xn < b) {
+        if xn == x {
+            // The correction is below half an ulp.
+            return x;
+        }
+        if creep >= 2 || !(xn > a && xn < b) {
+            // Newton creeps or left the bracket: bisect it, unless it is
+            // already as tight as the format allows.
+            creep = 0;
             xn = split_point(a, b);
             if !(xn > a && xn < b) {
                 return x;
             }
             d = horner_d::<N>(p, xn).1;
         }
-        if xn == x {
-            return x;
-        }
-        let (vn, en) = horner_comp::<N>(p, xn);
-        if vn.abs() <= en {
-            return xn;
-        }
-        if (vn < 0.0) != (v < 0.0) && (xn - x).abs() <= 2.0 * f64::EPSILON * xn.abs() {
-            return if vn.abs() <= v.abs() { xn } else { x };
+        let vn = certain_value::<N>(p, xn);
+        if (vn < 0.0) != (v < 0.0) {
+            if (xn - x).abs() <= 2.0 * f64::EPSILON * xn.abs() {
+                return if vn.abs() <= v.abs() { xn } else { x };
+            }
+            creep = 0;
+        } else {
+            creep += 1;
         }
         x = xn;
         v = vn;
-        e = en;
     }
     x
 }

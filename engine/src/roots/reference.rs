@@ -2,7 +2,8 @@
 //! coefficients are the given `f64` values, computed with 320-bit binary
 //! floating point (`dashu-float`) by the same derivative-recursive isolation
 //! as the baseline (critical points split the line into monotone pieces,
-//! each sign change is bisected to ~90 bits) and rounded to the nearest
+//! each sign change is bisected to ~300 bits, so that the value at a
+//! critical point is accurate enough to classify a double root) and rounded to the nearest
 //! `f64`. A value at a critical point within `2^-280` of the polynomial's
 //! scale counts as zero (a double root, listed twice). Also: helpers that
 //! measure errors in ulps.
@@ -38,24 +39,28 @@ fn eval(a: &[F], x: &F) -> F {
 }
 
 fn magnitude(a: &[F], x: &F) -> F {
-    let ax =abs(x.clone());
-    let mut s =abs(a[a.len() - 1].clone());
+    let ax = abs(x.clone());
+    let mut s = abs(a[a.len() - 1].clone());
     for c in a[..a.len() - 1].iter().rev() {
-        s = s * &ax +abs(c.clone());
+        s = s * &ax + abs(c.clone());
     }
     s
 }
 
 fn is_negligible(a: &[F], x: &F, v: &F) -> bool {
     let tiny = magnitude(a, x) * big(2f64.powi(-280));
-abs(v.clone()) <= tiny
+    abs(v.clone()) <= tiny
 }
 
 fn roots_rec(a: &[F], lo: &F, hi: &F) -> Vec<F> {
     let n = a.len() - 1;
     if n == 1 {
         let r = -(a[0].clone() / &a[1]);
-        return if &r >= lo && &r <= hi { vec![r] } else { vec![] };
+        return if &r >= lo && &r <= hi {
+            vec![r]
+        } else {
+            vec![]
+        };
     }
     let d: Vec<F> = (1..=n).map(|i| a[i].clone() * big(i as f64)).collect();
     let crit = roots_rec(&d, lo, hi);
@@ -87,11 +92,13 @@ fn roots_rec(a: &[F], lo: &F, hi: &F) -> Vec<F> {
 fn bisect(a: &[F], mut lo: F, mut hi: F, flo: &F) -> F {
     let neg = flo.sign();
     let half = big(0.5);
-    for _ in 0..400 {
+    let rel = big(2f64.powi(-300));
+    let floor = big(2f64.powi(-1070));
+    for _ in 0..4000 {
         let mid = (lo.clone() + &hi) * &half;
         let width = hi.clone() - &lo;
-        let scale =abs(mid.clone());
-        if width <= scale * big(2f64.powi(-90)) || width <= big(2f64.powi(-1070)) {
+        let scale = abs(mid.clone());
+        if width <= scale * &rel || width <= floor {
             return mid;
         }
         let fm = eval(a, &mid);
@@ -111,7 +118,7 @@ pub fn reference_roots(c: &[f64]) -> Vec<f64> {
     while n > 0 && c[n - 1] == 0.0 {
         n -= 1;
     }
-    if n <= 1 {
+    if n <= 1 || c.iter().any(|x| !x.is_finite()) {
         return vec![];
     }
     let mut coeffs: Vec<f64> = c[..n].to_vec();
@@ -123,10 +130,10 @@ pub fn reference_roots(c: &[f64]) -> Vec<f64> {
     }
     if coeffs.len() > 1 {
         let a: Vec<F> = coeffs.iter().map(|&x| big(x)).collect();
-        let lead =abs(a[a.len() - 1].clone());
+        let lead = abs(a[a.len() - 1].clone());
         let mut m = big(0.0);
         for c in &a[..a.len() - 1] {
-            let t =abs(c.clone()) / &lead;
+            let t = abs(c.clone()) / &lead;
             if t > m {
                 m = t;
             }

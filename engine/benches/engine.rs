@@ -1,0 +1,375 @@
+//! Performance benchmarks of the event loop (criterion).
+//!
+//! * `break_shot_16` / `break_shot_16_hard`: a Chapaev break on an 8x8 board
+//!   of 4 cm squares (16 discs, board edges are sensors; a disc whose centre
+//!   leaves the board is removed, as in the game), from `World::new` to rest.
+//! * `galperin_n7` / `galperin_n8`: Galperin's billiard; the collision count
+//!   (the digits of pi) is asserted on every iteration.
+//! * `box_frictionless_{100,10000}`: discs in a closed box at ~10% area
+//!   fraction, 20 000 events from a steady state (the world is built and
+//!   warmed up once, then cloned per iteration, outside the timing).
+//! * `box_friction_{100,10000}`: the same boxes with mu = 0.1, run to rest.
+//! * `solver_choice`: the break shot with each root-finding method.
+//!
+//! Rates are printed as elements/s, where an element is one event.
+//! Run with `cargo bench -p engine --bench engine`.
+
+use criterion::{
+    black_box, criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion, SamplingMode,
+    Throughput,
+};
+use engine::roots::Method;
+use engine::world::{Counter, Stats};
+use engine::{
+    BodyId, BodySpec, End, EndReason, Event, EventHandler, ExitResponse, Limits, Line, LineId,
+    LineKind, Scene, World, WorldConfig,
+};
+use glam::DVec2;
+use std::time::Duration;
+
+const BREAK_JSON: &str = include_str!("../examples/break.json");
+
+/// Counts events and takes a disc off the board when its centre leaves it
+/// (the Chapaev rule).
+#[derive(Default)]
+struct FallOff(Counter);
+
+impl EventHandler for FallOff {
+    #[inline]
+    fn on_event(&mut self, world: &World, event: &Event) {
+        self.0.on_event(world, event);
+    }
+
+    fn on_region_exit(&mut self, _t: f64, _body: BodyId, _line: LineId) -> ExitResponse {
+        ExitResponse::Remove
+    }
+}
+
+/// The standard break: `examples/break.json` (striker at 3 m/s, slightly
+/// off the file it stands on, so several pieces are hit).
+fn break_scene() -> Scene {
+    Scene::from_json(BREAK_JSON).expect("examples/break.json is a valid scene")
+}
+
+/// A harder break: the same board, the striker (body 4) aimed at the middle
+/// of the opposite row (the gap between bodies 12 and 13) at 5 m/s.
+fn hard_break_scene() -> Scene {
+    let mut scene = break_scene();
+    let striker = scene
+        .bodies
+        .iter_mut()
+        .find(|b| b.id == BodyId(4))
+        .expect("body 4 is the striker");
+    let target = DVec2::new(0.16, 0.30);
+    striker.vel = (target - striker.pos).normalize() * 5.0;
+    scene
+}
+
+/// Builds the world and runs it to the end.
+fn run_break(scene: &Scene, config: WorldConfig) -> (u64, End) {
+    let mut world = World::new(scene, config).expect("valid scene");
+    let mut handler = FallOff::default();
+    let end = world.run(&Limits::default(), &mut handler);
+    (handler.0.events, end)
+}
+
+/// Galperin's billiard for `n` digits: a wall at x = 0, a disc of mass 1
+/// at x = 1, a disc of mass 100^(n-1) at x = 3 moving towards them.
+fn galperin_scene(n: u32) -> Scene {
+    Scene {
+        g: 9.81,
+        t: 0.0,
+        bodies: vec![
+            BodySpec::new(1, DVec2::new(1.0, 0.0), 0.1, 1.0, 0.0),
+            BodySpec::new(2, DVec2::new(3.0, 0.0), 0.5, 100f64.powi(n as i32 - 1), 0.0)
+                .with_velocity(DVec2::new(-1.0, 0.0)),
+        ],
+        points: Vec::new(),
+        lines: vec![Line::new(
+            DVec2::new(0.0, -1.0),
+            DVec2::new(0.0, 1.0),
+            LineKind::Line,
+        )],
+    }
+}
+
+fn run_galperin(scene: &Scene) -> (Counter, Stats) {
+    let mut world = World::new(scene, WorldConfig::default()).expect("valid scene");
+    let mut counter = Counter::default();
+    let limits = Limits {
+        max_events: 100_000_000,
+        ..Limits::default()
+    };
+    let end = world.run(&limits, &mut counter);
+    assert_ne!(end.reason, EndReason::MaxEvents, "Galperin run hit the cap");
+    (counter, *world.stats())
+}
+
+/// xorshift64*: a tiny deterministic generator for the scenes.
+struct Rng(u64);
+
+impl Rng {
+    fn next_u64(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+
+    /// Uniform in `[-1, 1)`.
+    fn symmetric(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+}
+
+/// `n` discs of radius 1 cm with random velocities (|v_x|, |v_y| < 1 m/s) in
+/// a closed square box of four segments, area fraction 10%, restitution 1.
+fn box_scene(n: usize, mu: f64) -> Scene {
+    let r = 0.01;
+    let side = (n as f64 * std::f64::consts::PI * r * r / 0.10).sqrt();
+    let per_row = (n as f64).sqrt().ceil() as usize;
+    let spacing = side / per_row as f64;
+    let jitter = 0.9 * (0.5 * spacing - r);
+    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+    let bodies = (0..n)
+        .map(|k| {
+            let (i, j) = (k % per_row, k / per_row);
+            let pos = DVec2::new(
+                (i as f64 + 0.5) * spacing + jitter * rng.symmetric(),
+                (j as f64 + 0.5) * spacing + jitter * rng.symmetric(),
+            );
+            let vel = DVec2::new(rng.symmetric(), rng.symmetric());
+            BodySpec::new(k as u64 + 1, pos, r, 0.01, mu).with_velocity(vel)
+        })
+        .collect();
+    let corners = [
+        DVec2::new(0.0, 0.0),
+        DVec2::new(side, 0.0),
+        DVec2::new(side, side),
+        DVec2::new(0.0, side),
+    ];
+    let lines = (0..4)
+        .map(|k| Line::new(corners[k], corners[(k + 1) % 4], LineKind::Segment))
+        .collect();
+    Scene {
+        g: 9.81,
+        t: 0.0,
+        bodies,
+        points: Vec::new(),
+        lines,
+    }
+}
+
+/// The benchmark groups of this file.
+const GROUPS: [&str; 5] = [
+    "break_shot_16",
+    "galperin",
+    "box_frictionless",
+    "box_friction",
+    "solver_choice",
+];
+
+/// Whether the command line's filter (if any) can select `id` (a group, or
+/// `group/parameter`), so that the costly set-up of a benchmark (a
+/// 31-million-event Galperin run, a box warm-up) is skipped when profiling
+/// another one with `--profile-time`.
+fn selected(id: &str) -> bool {
+    let filters: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| !a.starts_with('-') && a.parse::<f64>().is_err())
+        .filter(|a| {
+            GROUPS
+                .iter()
+                .any(|g| a.starts_with(g) || g.contains(a.as_str()))
+        })
+        .collect();
+    filters.is_empty()
+        || filters
+            .iter()
+            .any(|f| f == id || f.starts_with(&format!("{id}/")) || id.contains(f.as_str()))
+}
+
+/// Events measured per iteration of the frictionless boxes.
+const BOX_EVENTS: u64 = 20_000;
+
+fn limits_events(max_events: u64) -> Limits {
+    Limits {
+        max_events,
+        ..Limits::default()
+    }
+}
+
+fn break_shot(c: &mut Criterion) {
+    if !selected("break_shot_16") {
+        return;
+    }
+    let mut group = c.benchmark_group("break_shot_16");
+    for (name, scene) in [("standard", break_scene()), ("hard", hard_break_scene())] {
+        let (events, end) = run_break(&scene, WorldConfig::default());
+        assert_eq!(
+            end.reason,
+            EndReason::Rest,
+            "{name}: the break must come to rest"
+        );
+        println!(
+            "break_shot_16/{name}: {events} events, rest at t = {:.4} s",
+            end.t
+        );
+        group.throughput(Throughput::Elements(events));
+        group.bench_with_input(BenchmarkId::from_parameter(name), &scene, |b, scene| {
+            b.iter(|| run_break(black_box(scene), WorldConfig::default()))
+        });
+    }
+    group.finish();
+}
+
+fn solver_choice(c: &mut Criterion) {
+    if !selected("solver_choice") {
+        return;
+    }
+    let mut group = c.benchmark_group("solver_choice");
+    for (name, scene) in [("standard", break_scene()), ("hard", hard_break_scene())] {
+        for method in Method::ALL {
+            let config = WorldConfig {
+                solver: method,
+                ..WorldConfig::default()
+            };
+            let (events, end) = run_break(&scene, config);
+            println!(
+                "solver_choice/{}/{name}: {events} events, {:?} at t = {:.6} s",
+                method.name(),
+                end.reason,
+                end.t
+            );
+            group.throughput(Throughput::Elements(events));
+            let id = BenchmarkId::new(method.name(), name);
+            group.bench_with_input(id, &scene, |b, scene| {
+                b.iter(|| run_break(black_box(scene), config))
+            });
+        }
+    }
+    group.finish();
+}
+
+fn galperin(c: &mut Criterion) {
+    if !selected("galperin") {
+        return;
+    }
+    let mut group = c.benchmark_group("galperin");
+    group.sample_size(10).sampling_mode(SamplingMode::Flat);
+    for (n, digits) in [(7u32, 3_141_592u64), (8, 31_415_926)] {
+        if !selected(&format!("galperin/n{n}")) {
+            continue;
+        }
+        let scene = galperin_scene(n);
+        let (counter, stats) = run_galperin(&scene);
+        assert_eq!(counter.collisions, digits, "Galperin n = {n}");
+        println!(
+            "galperin_n{n}: {} collisions, {} events; {stats:?}",
+            counter.collisions, counter.events
+        );
+        group.throughput(Throughput::Elements(counter.events));
+        group.bench_with_input(
+            BenchmarkId::from_parameter(format!("n{n}")),
+            &scene,
+            |b, scene| {
+                b.iter(|| {
+                    let (counter, _) = run_galperin(black_box(scene));
+                    assert_eq!(counter.collisions, digits, "Galperin n = {n}");
+                    counter
+                })
+            },
+        );
+    }
+    group.finish();
+}
+
+fn box_frictionless(c: &mut Criterion) {
+    if !selected("box_frictionless") {
+        return;
+    }
+    let mut group = c.benchmark_group("box_frictionless");
+    for n in [100usize, 10_000] {
+        if !selected(&format!("box_frictionless/{n}")) {
+            continue;
+        }
+        let mut world = World::new(&box_scene(n, 0.0), WorldConfig::default()).expect("valid");
+        let warm_up = (5 * n as u64).max(5_000);
+        let end = world.run(&limits_events(warm_up), &mut Counter::default());
+        assert_eq!(end.reason, EndReason::MaxEvents);
+        let mut probe = world.clone();
+        let before = *probe.stats();
+        probe.run(&limits_events(BOX_EVENTS), &mut Counter::default());
+        let after = probe.stats();
+        println!(
+            "box_frictionless/{n}: per {BOX_EVENTS} events: {} stale, {} cell crossings",
+            after.stale - before.stale,
+            after.cell_crossings - before.cell_crossings
+        );
+        group.throughput(Throughput::Elements(BOX_EVENTS));
+        group.bench_with_input(BenchmarkId::from_parameter(n), &world, |b, world| {
+            b.iter_batched(
+                || world.clone(),
+                |mut w| {
+                    let mut counter = Counter::default();
+                    w.run(&limits_events(BOX_EVENTS), &mut counter);
+                    assert_eq!(counter.events, BOX_EVENTS);
+                    w
+                },
+                BatchSize::LargeInput,
+            )
+        });
+    }
+    group.finish();
+}
+
+fn box_friction(c: &mut Criterion) {
+    if !selected("box_friction") {
+        return;
+    }
+    let mut group = c.benchmark_group("box_friction");
+    group.sample_size(10);
+    for n in [100usize, 10_000] {
+        if !selected(&format!("box_friction/{n}")) {
+            continue;
+        }
+        let world = World::new(&box_scene(n, 0.1), WorldConfig::default()).expect("valid");
+        let cap = 2_000_000;
+        let mut counter = Counter::default();
+        let mut probe = world.clone();
+        let end = probe.run(&limits_events(cap), &mut counter);
+        println!(
+            "box_friction/{n}: {} events ({} collisions), {:?} at t = {:.4} s; {:?}",
+            counter.events,
+            counter.collisions,
+            end.reason,
+            end.t,
+            probe.stats()
+        );
+        group.throughput(Throughput::Elements(counter.events));
+        group.bench_with_input(BenchmarkId::from_parameter(n), &world, |b, world| {
+            b.iter_batched(
+                || world.clone(),
+                |mut w| {
+                    w.run(&limits_events(cap), &mut Counter::default());
+                    w
+                },
+                BatchSize::LargeInput,
+            )
+        });
+    }
+    group.finish();
+}
+
+fn config() -> Criterion {
+    Criterion::default()
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(3))
+}
+
+criterion_group! {
+    name = benches;
+    config = config();
+    targets = break_shot, galperin, box_frictionless, box_friction, solver_choice
+}
+criterion_main!(benches);

@@ -1,0 +1,44 @@
+//! Galperin's billiard: counts the collisions of a small and a big disc and
+//! a wall; the count is the first `n` digits of pi.
+//!
+//! `cargo run --release -p engine --example galperin -- 7`
+
+use engine::world::Counter;
+use engine::{BodySpec, Limits, Line, LineKind, Scene, World, WorldConfig};
+use glam::DVec2;
+use std::time::Instant;
+
+fn main() {
+    let n: i32 = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(7);
+    let scene = Scene {
+        bodies: vec![
+            BodySpec::new(1, DVec2::new(1.0, 0.0), 0.1, 1.0, 0.0),
+            BodySpec::new(2, DVec2::new(3.0, 0.0), 0.5, 100f64.powi(n - 1), 0.0)
+                .with_velocity(DVec2::new(-1.0, 0.0)),
+        ],
+        lines: vec![Line::new(
+            DVec2::new(0.0, -1.0),
+            DVec2::new(0.0, 1.0),
+            LineKind::Line,
+        )],
+        ..Scene::default()
+    };
+    let mut world = World::new(&scene, WorldConfig::default()).expect("a valid scene");
+    let mut counter = Counter::default();
+    let limits = Limits {
+        max_events: u64::MAX,
+        ..Limits::default()
+    };
+    let start = Instant::now();
+    let end = world.run(&limits, &mut counter);
+    let secs = start.elapsed().as_secs_f64();
+    println!(
+        "n = {n}: {} collisions ({:?}), {:.1} million events/s",
+        counter.collisions,
+        end.reason,
+        counter.events as f64 / secs / 1e6
+    );
+}

@@ -1,0 +1,224 @@
+//! The match configuration: board geometry, piece material, shot power and
+//! the rule variants, in one serde [`Config`] recorded with every match.
+//!
+//! Units are SI. The defaults model a real board: 4 cm squares (a 32 cm
+//! board), wooden checkers 3.2 cm across (0.8 of a square), 5 g, sliding
+//! with friction 0.3. A piece shot at speed `v` slides `v² / (2 mu g)`, so
+//! the default maximum speed of 2 m/s carries a lone piece about 68 cm —
+//! more than the board's diagonal — while a quarter of it (0.5 m/s) moves a
+//! piece about one square. The tests below prove both in closed form.
+
+use serde::{Deserialize, Serialize};
+
+/// Squares along each side of the board.
+pub const BOARD_SQUARES: u8 = 8;
+
+/// Everything that defines the physics and rules of a match.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Config {
+    /// Side of one square, m.
+    pub square: f64,
+    /// Radius of a piece, m (must be less than half a square).
+    pub piece_radius: f64,
+    /// Mass of a piece, kg.
+    pub piece_mass: f64,
+    /// Sliding friction coefficient of a piece on the board.
+    pub mu: f64,
+    /// Gravity, m/s².
+    pub g: f64,
+    /// Coefficient of restitution of piece–piece hits, 0–1.
+    pub restitution: f64,
+    /// Fastest shot allowed, m/s.
+    pub max_speed: f64,
+    /// Hard cap on engine events for one shot (the engine's safety net;
+    /// a shot that reaches it is frozen where it stands).
+    pub max_events_per_shot: u64,
+    /// Rule variants.
+    pub variants: Variants,
+}
+
+/// Optional rules.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Variants {
+    /// A round won without losing a piece moves the winner two rows.
+    pub two_row_advance: bool,
+    /// After White's first shot of the match, Black may swap seats.
+    pub pie_rule: bool,
+    /// The match is a single round (a draw is a drawn match).
+    pub quick_match: bool,
+    /// Execution noise on every shot, drawn from the match's seed.
+    pub noise: Option<NoiseConfig>,
+}
+
+/// Gaussian execution noise (standard deviations).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NoiseConfig {
+    /// Of the direction, radians.
+    pub angle_sigma: f64,
+    /// Of the speed, as a fraction of the aimed speed.
+    pub speed_sigma: f64,
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Config {
+            square: 0.04,
+            piece_radius: 0.016,
+            piece_mass: 0.005,
+            mu: 0.3,
+            g: 9.81,
+            restitution: 0.9,
+            max_speed: 2.0,
+            max_events_per_shot: 100_000,
+            variants: Variants::default(),
+        }
+    }
+}
+
+/// A configuration that cannot be played.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ConfigError {
+    #[error("config field \"{0}\" must be a finite number")]
+    NotFinite(&'static str),
+    #[error("config field \"{0}\" must be > 0")]
+    NotPositive(&'static str),
+    #[error("config field \"{0}\" must be >= 0")]
+    Negative(&'static str),
+    #[error("restitution must be between 0 and 1")]
+    Restitution,
+    #[error("a piece (radius {radius}) must fit inside a square (side {square})")]
+    PieceTooBig { radius: f64, square: f64 },
+}
+
+impl Config {
+    /// Side of the whole board, m.
+    pub fn board_size(&self) -> f64 {
+        self.square * BOARD_SQUARES as f64
+    }
+
+    /// Deceleration of a sliding piece, `mu * g`.
+    pub fn deceleration(&self) -> f64 {
+        self.mu * self.g
+    }
+
+    /// How far a lone piece shot at `speed` slides: `v² / (2 mu g)`.
+    pub fn stopping_distance(&self, speed: f64) -> f64 {
+        speed * speed / (2.0 * self.deceleration())
+    }
+
+    /// The speed that slides a lone piece exactly `distance`.
+    pub fn speed_for_distance(&self, distance: f64) -> f64 {
+        (2.0 * self.deceleration() * distance).sqrt()
+    }
+
+    /// Checks that the configuration can be played.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        let positive = [
+            ("square", self.square),
+            ("piece_radius", self.piece_radius),
+            ("piece_mass", self.piece_mass),
+            ("mu", self.mu),
+            ("g", self.g),
+            ("max_speed", self.max_speed),
+        ];
+        for (name, x) in positive {
+            if !x.is_finite() {
+                return Err(ConfigError::NotFinite(name));
+            }
+            if x <= 0.0 {
+                return Err(ConfigError::NotPositive(name));
+            }
+        }
+        if !(0.0..=1.0).contains(&self.restitution) {
+            return Err(ConfigError::Restitution);
+        }
+        if self.max_events_per_shot == 0 {
+            return Err(ConfigError::NotPositive("max_events_per_shot"));
+        }
+        if self.piece_radius >= self.square / 2.0 {
+            return Err(ConfigError::PieceTooBig {
+                radius: self.piece_radius,
+                square: self.square,
+            });
+        }
+        if let Some(n) = &self.variants.noise {
+            for (name, x) in [("angle_sigma", n.angle_sigma), ("speed_sigma", n.speed_sigma)] {
+                if !x.is_finite() {
+                    return Err(ConfigError::NotFinite(name));
+                }
+                if x < 0.0 {
+                    return Err(ConfigError::Negative(name));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_config_is_valid() {
+        assert_eq!(Config::default().validate(), Ok(()));
+    }
+
+    #[test]
+    fn a_real_checker_is_about_four_fifths_of_a_square_across() {
+        let c = Config::default();
+        assert!((2.0 * c.piece_radius / c.square - 0.8).abs() < 1e-12);
+    }
+
+    #[test]
+    fn full_power_shot_crosses_the_board_even_diagonally() {
+        let c = Config::default();
+        // v² / (2 mu g) = 4 / 5.886 = 0.6796 m; the diagonal is 0.4525 m.
+        let d = c.stopping_distance(c.max_speed);
+        assert!((d - 4.0 / (2.0 * 0.3 * 9.81)).abs() < 1e-12);
+        assert!(d > c.board_size() * std::f64::consts::SQRT_2);
+    }
+
+    #[test]
+    fn gentle_quarter_power_shot_moves_a_piece_about_one_square() {
+        let c = Config::default();
+        let one_square = c.speed_for_distance(c.square);
+        // sqrt(2 * 0.3 * 9.81 * 0.04) = 0.4852 m/s, about a quarter of the maximum.
+        assert!((one_square - 0.235_44_f64.sqrt()).abs() < 1e-12);
+        assert!(one_square > 0.2 * c.max_speed && one_square < 0.3 * c.max_speed);
+        let quarter = c.stopping_distance(c.max_speed / 4.0);
+        assert!((quarter / c.square - 1.0).abs() < 0.1, "{}", quarter / c.square);
+        assert!((c.stopping_distance(one_square) - c.square).abs() < 1e-15);
+    }
+
+    #[test]
+    fn unplayable_configs_are_rejected_naming_the_field() {
+        let bad = |f: fn(&mut Config)| {
+            let mut c = Config::default();
+            f(&mut c);
+            c.validate().unwrap_err()
+        };
+        assert_eq!(bad(|c| c.mu = 0.0), ConfigError::NotPositive("mu"));
+        assert_eq!(bad(|c| c.square = f64::NAN), ConfigError::NotFinite("square"));
+        assert_eq!(bad(|c| c.restitution = 1.5), ConfigError::Restitution);
+        assert!(matches!(bad(|c| c.piece_radius = 0.03), ConfigError::PieceTooBig { .. }));
+        assert_eq!(
+            bad(|c| c.variants.noise = Some(NoiseConfig { angle_sigma: -1.0, speed_sigma: 0.0 })),
+            ConfigError::Negative("angle_sigma")
+        );
+        assert!(bad(|c| c.max_events_per_shot = 0).to_string().contains("max_events_per_shot"));
+    }
+
+    #[test]
+    fn partial_json_config_takes_defaults_and_unknown_fields_are_refused() {
+        let c: Config = serde_json::from_str(r#"{"variants": {"pie_rule": true}}"#).unwrap();
+        assert!(c.variants.pie_rule);
+        assert_eq!(c.max_speed, Config::default().max_speed);
+        assert!(serde_json::from_str::<Config>(r#"{"speed": 3}"#).is_err());
+        let back: Config = serde_json::from_str(&serde_json::to_string(&c).unwrap()).unwrap();
+        assert_eq!(back, c);
+    }
+}

@@ -1,0 +1,226 @@
+//! Execution noise, bit-identical on every platform.
+//!
+//! As in computational pool tournaments, a shot is played not exactly as
+//! aimed: its direction is turned by a Gaussian angle and its speed scaled
+//! by a Gaussian factor. The draws come from the match's recorded seed and
+//! the shot's number, so a replay reproduces them. Everything here uses only
+//! `+ - * /`, `sqrt` and bit manipulation — all exactly specified by IEEE
+//! 754 and so identical natively and in wasm — never the platform's `sin`,
+//! `cos` or `ln`, whose last bits differ between libms. The generator is
+//! SplitMix64, the Gaussians come from Box–Muller with our own polynomial
+//! `ln` and `sin_cos` (accurate to a few ulps, deterministic always).
+
+use crate::config::NoiseConfig;
+use glam::DVec2;
+use std::f64::consts::{FRAC_PI_2, LN_2, SQRT_2, TAU};
+
+/// SplitMix64: a tiny, fast, well-mixed 64-bit generator.
+#[derive(Clone, Debug)]
+pub struct SplitMix64(u64);
+
+impl SplitMix64 {
+    /// A generator started from `seed`.
+    pub fn new(seed: u64) -> Self {
+        SplitMix64(seed)
+    }
+
+    /// The generator for shot number `shot` of a match with seed `seed`
+    /// (independent streams per shot, so replays can start anywhere).
+    pub fn for_shot(seed: u64, shot: u32) -> Self {
+        let mut mix = SplitMix64(seed ^ (shot as u64).wrapping_mul(0xD1B5_4A32_D192_ED03));
+        SplitMix64(mix.next_u64())
+    }
+
+    /// The next 64 random bits.
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in `[0, 1)`, 53 random bits.
+    pub fn next_f64(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+
+    /// Two independent standard normal draws (Box–Muller).
+    pub fn gaussian_pair(&mut self) -> (f64, f64) {
+        let u1 = 1.0 - self.next_f64(); // (0, 1]: ln is finite
+        let u2 = self.next_f64();
+        let r = (-2.0 * ln(u1)).sqrt();
+        let (s, c) = sin_cos(TAU * u2);
+        (r * c, r * s)
+    }
+}
+
+/// Natural logarithm of a positive finite `x`, deterministic everywhere
+/// (`NaN` for anything else).
+pub fn ln(x: f64) -> f64 {
+    if !(x > 0.0) || !x.is_finite() {
+        return f64::NAN;
+    }
+    let (mut x, mut e) = (x, 0i64);
+    if x < f64::MIN_POSITIVE {
+        x *= (1u64 << 54) as f64; // exact: normalise a subnormal
+        e -= 54;
+    }
+    let bits = x.to_bits();
+    e += ((bits >> 52) & 0x7ff) as i64 - 1023;
+    let mut m = f64::from_bits((bits & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000);
+    if m > SQRT_2 {
+        m /= 2.0; // exact
+        e += 1;
+    }
+    // ln m = 2 atanh z with |z| <= 0.1716 for m in [1/sqrt2, sqrt2].
+    let z = (m - 1.0) / (m + 1.0);
+    let z2 = z * z;
+    let mut sum = 0.0;
+    for k in (0..14).rev() {
+        sum = sum * z2 + 1.0 / (2 * k + 1) as f64;
+    }
+    e as f64 * LN_2 + 2.0 * z * sum
+}
+
+/// `(sin x, cos x)`, deterministic everywhere: reduction to `|r| <= pi/4`
+/// by quarter turns, then Taylor polynomials to degree 19.
+pub fn sin_cos(x: f64) -> (f64, f64) {
+    if !x.is_finite() {
+        return (f64::NAN, f64::NAN);
+    }
+    // pi/2 split in two so that k * PIO2_HI is exact for moderate k.
+    const PIO2_HI: f64 = 1.570_796_326_734_125_6;
+    const PIO2_LO: f64 = 6.077_100_506_506_192e-11;
+    let k = (x / FRAC_PI_2).round();
+    let r = (x - k * PIO2_HI) - k * PIO2_LO;
+    let r2 = r * r;
+    let mut s = 1.0;
+    let mut c = 1.0;
+    for n in (1..=9).rev() {
+        let n = n as f64;
+        s = 1.0 - r2 / ((2.0 * n) * (2.0 * n + 1.0)) * s;
+        c = 1.0 - r2 / ((2.0 * n - 1.0) * (2.0 * n)) * c;
+    }
+    let s = r * s;
+    match (k as i64).rem_euclid(4) {
+        0 => (s, c),
+        1 => (c, -s),
+        2 => (-s, -c),
+        _ => (-c, s),
+    }
+}
+
+/// `v` turned by `angle` radians counter-clockwise (deterministic).
+pub fn rotate(v: DVec2, angle: f64) -> DVec2 {
+    let (s, c) = sin_cos(angle);
+    DVec2::new(v.x * c - v.y * s, v.x * s + v.y * c)
+}
+
+/// The velocity actually played when `aimed` is shot as the match's shot
+/// number `shot`: turned by `N(0, angle_sigma)` radians, its speed scaled by
+/// `1 + N(0, speed_sigma)` and kept within `[0, max_speed]`.
+pub fn perturb(noise: &NoiseConfig, seed: u64, shot: u32, aimed: DVec2, max_speed: f64) -> DVec2 {
+    let mut rng = SplitMix64::for_shot(seed, shot);
+    let (a, b) = rng.gaussian_pair();
+    let speed = aimed.length();
+    if speed == 0.0 {
+        return aimed;
+    }
+    let turned = rotate(aimed, noise.angle_sigma * a);
+    let new_speed = (speed * (1.0 + noise.speed_sigma * b)).clamp(0.0, max_speed);
+    turned * (new_speed / speed)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn polynomial_sin_cos_matches_the_platform_to_a_few_ulps() {
+        let mut rng = SplitMix64::new(1);
+        for _ in 0..10_000 {
+            let x = (rng.next_f64() - 0.5) * 40.0;
+            let (s, c) = sin_cos(x);
+            assert!((s - x.sin()).abs() < 4e-16, "sin {x}: {s} vs {}", x.sin());
+            assert!((c - x.cos()).abs() < 4e-16, "cos {x}: {c} vs {}", x.cos());
+        }
+        assert_eq!(sin_cos(0.0), (0.0, 1.0));
+    }
+
+    #[test]
+    fn polynomial_ln_matches_the_platform_to_a_few_ulps() {
+        let mut rng = SplitMix64::new(2);
+        for _ in 0..10_000 {
+            let x = rng.next_f64() * 1e3 + 1e-300;
+            assert!((ln(x) - x.ln()).abs() <= 4.0 * f64::EPSILON * x.ln().abs().max(1.0));
+        }
+        assert_eq!(ln(1.0), 0.0);
+        assert!((ln(5e-324) - 5e-324f64.ln()).abs() < 1e-12);
+        assert!(ln(0.0).is_nan() && ln(-1.0).is_nan());
+    }
+
+    #[test]
+    fn splitmix_gives_the_reference_sequence() {
+        // Reference values of SplitMix64 seeded with 1234567.
+        let mut rng = SplitMix64::new(1234567);
+        assert_eq!(rng.next_u64(), 6457827717110365317);
+        assert_eq!(rng.next_u64(), 3203168211198807973);
+    }
+
+    #[test]
+    fn gaussian_draws_have_zero_mean_and_unit_variance() {
+        let mut rng = SplitMix64::new(7);
+        let n = 100_000;
+        let (mut sum, mut sq) = (0.0, 0.0);
+        for _ in 0..n / 2 {
+            let (a, b) = rng.gaussian_pair();
+            sum += a + b;
+            sq += a * a + b * b;
+        }
+        let mean = sum / n as f64;
+        let var = sq / n as f64 - mean * mean;
+        assert!(mean.abs() < 0.02, "{mean}");
+        assert!((var - 1.0).abs() < 0.02, "{var}");
+    }
+
+    #[test]
+    fn the_same_seed_and_shot_give_the_same_noise_and_others_differ() {
+        let n = NoiseConfig {
+            angle_sigma: 0.05,
+            speed_sigma: 0.05,
+        };
+        let v = DVec2::new(1.0, 0.5);
+        let a = perturb(&n, 42, 3, v, 2.0);
+        assert_eq!(a.x.to_bits(), perturb(&n, 42, 3, v, 2.0).x.to_bits());
+        assert_ne!(a, perturb(&n, 42, 4, v, 2.0));
+        assert_ne!(a, perturb(&n, 43, 3, v, 2.0));
+        assert_ne!(a, v);
+    }
+
+    #[test]
+    fn zero_sigmas_play_the_shot_exactly_as_aimed() {
+        let n = NoiseConfig {
+            angle_sigma: 0.0,
+            speed_sigma: 0.0,
+        };
+        let v = DVec2::new(-0.3, 1.25);
+        assert_eq!(perturb(&n, 9, 0, v, 2.0), v);
+    }
+
+    #[test]
+    fn noisy_speed_never_exceeds_the_maximum_and_rotation_keeps_length() {
+        let n = NoiseConfig {
+            angle_sigma: 0.3,
+            speed_sigma: 0.5,
+        };
+        for shot in 0..1000 {
+            let v = perturb(&n, 5, shot, DVec2::new(0.0, 2.0), 2.0);
+            assert!(v.length() <= 2.0 * (1.0 + 1e-15));
+        }
+        let r = rotate(DVec2::new(3.0, 4.0), 1.0);
+        assert!((r.length() - 5.0).abs() < 1e-14);
+        let q = rotate(DVec2::X, FRAC_PI_2);
+        assert!(q.x.abs() < 1e-16 && (q.y - 1.0).abs() < 1e-16);
+    }
+}

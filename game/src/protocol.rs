@@ -1,0 +1,325 @@
+//! The wire protocol shared by the server, the bots and the client: JSON
+//! messages tagged by a `"type"` field, one definition for all three.
+//!
+//! A client says hello with [`PROTOCOL_VERSION`], creates or joins a match,
+//! then shoots, decides the pie rule, resigns, offers or accepts a rematch,
+//! chats. The server answers with the full [`MatchView`] on connect, every
+//! shot as [`ServerMessage::ShotPlayed`] — its outcome (the engine's event
+//! chain, the pieces knocked off, whose turn is next) and its [`Film`]
+//! (every piece's exact trajectory from the flick to rest), so a client
+//! animates it exactly without running physics of its own — and errors with
+//! stable string codes ([`ErrorCode`]).
+//!
+//! ```
+//! use game::protocol::{ClientMessage, ErrorCode};
+//! let m = ClientMessage::from_json(r#"{"type":"shot","piece":3,"velocity":[0.0,1.5]}"#).unwrap();
+//! assert!(matches!(m, ClientMessage::Shot { .. }));
+//! assert_eq!(ClientMessage::from_json("{").unwrap_err().code, ErrorCode::BadJson);
+//! ```
+
+use crate::config::Config;
+use crate::film::Film;
+use crate::game::MatchView;
+use crate::outcome::{MatchResult, ShotOutcome};
+use crate::piece::PieceId;
+use crate::record::MatchRecord;
+use crate::side::Seat;
+use glam::DVec2;
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+/// The protocol version; a hello with another one is refused.
+pub const PROTOCOL_VERSION: u32 = 1;
+
+/// Longest chat message, in characters.
+pub const MAX_CHAT_CHARS: usize = 500;
+
+/// What a client sends.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum ClientMessage {
+    /// First message of a connection.
+    Hello { protocol: u32, name: String },
+    /// Create a match with this configuration (missing fields take the
+    /// defaults); the creator takes [`Seat::First`].
+    CreateMatch {
+        #[serde(default)]
+        config: Config,
+    },
+    /// Join a match as its second player.
+    JoinMatch { match_id: String },
+    /// Watch a match without playing.
+    Watch { match_id: String },
+    /// Flick `piece` with `velocity` (m/s, `[x, y]`).
+    Shot { piece: PieceId, velocity: DVec2 },
+    /// Black's pie-rule decision.
+    PieDecision { swap: bool },
+    /// Give up the match.
+    Resign,
+    /// Propose another match with the same opponent.
+    OfferRematch,
+    /// Accept the opponent's rematch offer.
+    AcceptRematch,
+    /// Say something to the match.
+    Chat { text: String },
+}
+
+/// Who is in a match.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Players {
+    pub first: Option<String>,
+    pub second: Option<String>,
+}
+
+/// What the server sends.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum ServerMessage {
+    /// Answer to a hello.
+    Welcome { protocol: u32 },
+    /// The match is created; share its id with the opponent.
+    MatchCreated { match_id: String },
+    /// The full state of a match (on join, watch or reconnect). `you` is
+    /// the receiver's seat (`None` for a spectator).
+    MatchState {
+        match_id: String,
+        you: Option<Seat>,
+        players: Players,
+        view: MatchView,
+    },
+    /// A shot was played: what it did and how everything moved.
+    ShotPlayed { outcome: ShotOutcome, film: Film },
+    /// Black decided the pie rule.
+    PieDecided { swap: bool },
+    /// The match ended; the record (with its seed) is now public.
+    MatchOver { result: MatchResult, record: MatchRecord },
+    /// A seat offered a rematch.
+    RematchOffered { by: Seat },
+    /// The rematch has started under this id.
+    RematchStarted { match_id: String },
+    /// Chat from a seat (`None`: a spectator or the server).
+    Chat { from: Option<Seat>, name: String, text: String },
+    /// A request was refused.
+    Error { code: ErrorCode, message: String },
+}
+
+/// Stable error codes (kebab-case strings on the wire).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ErrorCode {
+    /// The message is not JSON.
+    BadJson,
+    /// JSON, but not a message this protocol knows.
+    BadMessage,
+    /// The hello named another protocol version.
+    UnsupportedProtocol,
+    /// Something was sent before the hello.
+    NoHello,
+    NoSuchMatch,
+    MatchFull,
+    /// A match action from a connection not seated in a match.
+    NotInMatch,
+    NotYourTurn,
+    NotYourPiece,
+    PieceOffBoard,
+    NotFinite,
+    ZeroSpeed,
+    TooFast,
+    MatchOver,
+    PieDecisionPending,
+    NoPieDecision,
+    NotYourDecision,
+    /// A config in a create request is unplayable.
+    BadConfig,
+    NoRematchOffer,
+    ChatTooLong,
+    /// The server failed; not the client's fault.
+    Internal,
+}
+
+impl ErrorCode {
+    /// The code as it appears on the wire.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ErrorCode::BadJson => "bad-json",
+            ErrorCode::BadMessage => "bad-message",
+            ErrorCode::UnsupportedProtocol => "unsupported-protocol",
+            ErrorCode::NoHello => "no-hello",
+            ErrorCode::NoSuchMatch => "no-such-match",
+            ErrorCode::MatchFull => "match-full",
+            ErrorCode::NotInMatch => "not-in-match",
+            ErrorCode::NotYourTurn => "not-your-turn",
+            ErrorCode::NotYourPiece => "not-your-piece",
+            ErrorCode::PieceOffBoard => "piece-off-board",
+            ErrorCode::NotFinite => "not-finite",
+            ErrorCode::ZeroSpeed => "zero-speed",
+            ErrorCode::TooFast => "too-fast",
+            ErrorCode::MatchOver => "match-over",
+            ErrorCode::PieDecisionPending => "pie-decision-pending",
+            ErrorCode::NoPieDecision => "no-pie-decision",
+            ErrorCode::NotYourDecision => "not-your-decision",
+            ErrorCode::BadConfig => "bad-config",
+            ErrorCode::NoRematchOffer => "no-rematch-offer",
+            ErrorCode::ChatTooLong => "chat-too-long",
+            ErrorCode::Internal => "internal",
+        }
+    }
+}
+
+impl fmt::Display for ErrorCode {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// A message that could not be read, with the code to answer it with.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{code}: {message}")]
+pub struct ProtocolError {
+    pub code: ErrorCode,
+    pub message: String,
+}
+
+impl ProtocolError {
+    /// The error message to send back.
+    pub fn to_message(&self) -> ServerMessage {
+        ServerMessage::Error {
+            code: self.code,
+            message: self.message.clone(),
+        }
+    }
+}
+
+fn read<T: for<'de> Deserialize<'de>>(text: &str) -> Result<T, ProtocolError> {
+    serde_json::from_str(text).map_err(|e| ProtocolError {
+        code: if e.is_syntax() || e.is_eof() {
+            ErrorCode::BadJson
+        } else {
+            ErrorCode::BadMessage
+        },
+        message: e.to_string(),
+    })
+}
+
+impl ClientMessage {
+    /// Reads a client message; the error carries `bad-json` or `bad-message`.
+    pub fn from_json(text: &str) -> Result<Self, ProtocolError> {
+        read(text)
+    }
+
+    /// The message as JSON.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).expect("client messages always serialise")
+    }
+}
+
+impl ServerMessage {
+    /// Reads a server message.
+    pub fn from_json(text: &str) -> Result<Self, ProtocolError> {
+        read(text)
+    }
+
+    /// The message as JSON.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).expect("server messages always serialise")
+    }
+
+    /// An error message.
+    pub fn error(code: ErrorCode, message: impl Into<String>) -> Self {
+        ServerMessage::Error {
+            code,
+            message: message.into(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::game::Game;
+    use crate::shot::{Shot, ShotError};
+    use crate::side::Side;
+
+    #[test]
+    fn client_messages_are_tagged_by_type_in_kebab_case() {
+        let m = ClientMessage::Shot {
+            piece: PieceId::new(Side::White, 3).unwrap(),
+            velocity: DVec2::new(0.25, 1.5),
+        };
+        assert_eq!(m.to_json(), r#"{"type":"shot","piece":3,"velocity":[0.25,1.5]}"#);
+        assert_eq!(ClientMessage::Resign.to_json(), r#"{"type":"resign"}"#);
+        assert_eq!(
+            ClientMessage::from_json(r#"{"type":"offer-rematch"}"#).unwrap(),
+            ClientMessage::OfferRematch
+        );
+        let create = ClientMessage::from_json(r#"{"type":"create-match"}"#).unwrap();
+        assert_eq!(create, ClientMessage::CreateMatch { config: Config::default() });
+    }
+
+    #[test]
+    fn every_client_message_round_trips() {
+        let all = [
+            ClientMessage::Hello { protocol: PROTOCOL_VERSION, name: "Petka".into() },
+            ClientMessage::CreateMatch { config: Config::default() },
+            ClientMessage::JoinMatch { match_id: "m1".into() },
+            ClientMessage::Watch { match_id: "m1".into() },
+            ClientMessage::Shot { piece: PieceId::new(Side::Black, 7).unwrap(), velocity: DVec2::new(-0.1, -1.9) },
+            ClientMessage::PieDecision { swap: true },
+            ClientMessage::Resign,
+            ClientMessage::OfferRematch,
+            ClientMessage::AcceptRematch,
+            ClientMessage::Chat { text: "Vasily Ivanovich!".into() },
+        ];
+        for m in all {
+            assert_eq!(ClientMessage::from_json(&m.to_json()).unwrap(), m);
+        }
+    }
+
+    #[test]
+    fn unreadable_messages_get_stable_error_codes() {
+        assert_eq!(ClientMessage::from_json("not json").unwrap_err().code, ErrorCode::BadJson);
+        assert_eq!(ClientMessage::from_json(r#"{"type":"teleport"}"#).unwrap_err().code, ErrorCode::BadMessage);
+        assert_eq!(
+            ClientMessage::from_json(r#"{"type":"shot","piece":16,"velocity":[0,1]}"#).unwrap_err().code,
+            ErrorCode::BadMessage
+        );
+        let e = ClientMessage::from_json("[").unwrap_err().to_message();
+        assert!(e.to_json().starts_with(r#"{"type":"error","code":"bad-json""#), "{}", e.to_json());
+    }
+
+    #[test]
+    fn error_codes_serialise_as_their_stable_strings() {
+        for code in [
+            ErrorCode::BadJson,
+            ErrorCode::NotYourTurn,
+            ErrorCode::PieceOffBoard,
+            ErrorCode::PieDecisionPending,
+            ErrorCode::Internal,
+            ErrorCode::TooFast,
+        ] {
+            assert_eq!(serde_json::to_string(&code).unwrap(), format!("\"{}\"", code.as_str()));
+        }
+        assert_eq!(ShotError::NotFinite.code().as_str(), "not-finite");
+    }
+
+    #[test]
+    fn a_played_shot_and_the_match_state_travel_as_server_messages() {
+        let mut g = Game::new(Config::default(), 1).unwrap();
+        let state = ServerMessage::MatchState {
+            match_id: "m".into(),
+            you: Some(Seat::First),
+            players: Players { first: Some("a".into()), second: None },
+            view: g.view(),
+        };
+        assert_eq!(ServerMessage::from_json(&state.to_json()).unwrap(), state);
+        let piece = PieceId::new(Side::White, 4).unwrap();
+        let shot = Shot::new(piece, DVec2::new(0.0, 2.0), g.config()).unwrap();
+        let played = g.play(Side::White, shot).unwrap();
+        let msg = ServerMessage::ShotPlayed { outcome: played.outcome, film: played.film };
+        let json = msg.to_json();
+        assert!(json.starts_with(r#"{"type":"shot-played""#));
+        assert_eq!(ServerMessage::from_json(&json).unwrap(), msg);
+        let over = ServerMessage::MatchOver { result: g.resign(Side::Black).unwrap(), record: g.record().clone() };
+        assert_eq!(ServerMessage::from_json(&over.to_json()).unwrap(), over);
+    }
+}
