@@ -50,7 +50,9 @@ impl Calendar {
     /// The slot with the earliest time, and that time.
     #[inline]
     pub fn peek(&self) -> Option<(usize, f64)> {
-        self.heap.first().map(|&s| (s as usize, self.time[s as usize]))
+        self.heap
+            .first()
+            .map(|&s| (s as usize, self.time[s as usize]))
     }
 
     /// The time of `slot`'s entry.
@@ -145,7 +147,7 @@ mod tests {
         #[test]
         fn peek_is_always_the_minimum(ops in prop::collection::vec((0usize..16, 0.0f64..100.0), 1..200)) {
             let mut c = Calendar::new(16);
-            let mut reference = vec![f64::INFINITY; 16];
+            let mut reference = [f64::INFINITY; 16];
             for (slot, t) in ops {
                 c.set(slot, t);
                 reference[slot] = t;

@@ -51,8 +51,7 @@ impl Path {
             Some(now + l)
         } else {
             let travelled = tr.sigma(now - tr.start_time());
-            tr.time_at_distance(travelled + l)
-                .map(|t| t.max(now))
+            tr.time_at_distance(travelled + l).map(|t| t.max(now))
         }
     }
 }
@@ -124,7 +123,11 @@ fn disc_line_body(tr: &Trajectory, line: &LineGeom, r: f64, now: f64) -> Option<
         return None; // not approaching the line
     }
     let gap = side * h - r;
-    let l = if gap <= 0.0 { 0.0 } else { gap / (-side * rate) };
+    let l = if gap <= 0.0 {
+        0.0
+    } else {
+        gap / (-side * rate)
+    };
     let at = path.now_pos + path.w * l;
     if !line.covers(at) {
         return None; // passes beyond the extent; the ends are checked as points
@@ -173,9 +176,7 @@ pub fn disc_disc(
         (false, false) => None,
         (true, false) => disc_point(ti, tj.position(now), s, now),
         (false, true) => disc_point(tj, ti.position(now), s, now),
-        (true, true) if ti.is_frictionless() && tj.is_frictionless() => {
-            linear_pair(ti, tj, s, now)
-        }
+        (true, true) if ti.is_frictionless() && tj.is_frictionless() => linear_pair(ti, tj, s, now),
         (true, true) => curved_pair(ti, tj, s, now, solver),
     }
 }
@@ -381,7 +382,14 @@ mod tests {
     fn paths_that_never_come_close_are_not_solved() {
         let a = mover((0.0, 0.0), (1.0, 0.0), 1.0);
         let b = mover((0.0, 5.0), (1.0, 0.0), 1.0);
-        assert!(paths_never_within(&a, DVec2::ZERO, &b, DVec2::new(0.0, 5.0), 1.0, 0.0));
+        assert!(paths_never_within(
+            &a,
+            DVec2::ZERO,
+            &b,
+            DVec2::new(0.0, 5.0),
+            1.0,
+            0.0
+        ));
         assert_eq!(disc_disc(&a, &b, 1.0, 0.0, &Production), None);
     }
 

@@ -135,11 +135,18 @@ impl TryFrom<FlatEvent> for Event {
     fn try_from(f: FlatEvent) -> Result<Self, String> {
         let body = |n: usize| -> Result<BodyId, String> {
             if f.bodies.len() != n {
-                return Err(format!("a {} event needs {} bodies, got {}", f.kind, n, f.bodies.len()));
+                return Err(format!(
+                    "a {} event needs {} bodies, got {}",
+                    f.kind,
+                    n,
+                    f.bodies.len()
+                ));
             }
             Ok(f.bodies[0])
         };
-        let need = |x: Option<u32>, what: &str| x.ok_or_else(|| format!("a {} event needs \"{what}\"", f.kind));
+        let need = |x: Option<u32>, what: &str| {
+            x.ok_or_else(|| format!("a {} event needs \"{what}\"", f.kind))
+        };
         let kind = match f.kind.as_str() {
             "body-body" => {
                 body(2)?;
@@ -210,12 +217,29 @@ mod tests {
     #[test]
     fn every_kind_round_trips_through_json() {
         let kinds = [
-            EventKind::BodyBody { a: BodyId(1), b: BodyId(2) },
-            EventKind::BodyPoint { body: BodyId(1), point: PointId(3) },
-            EventKind::BodyLine { body: BodyId(1), line: LineId(2), end: Some(1) },
+            EventKind::BodyBody {
+                a: BodyId(1),
+                b: BodyId(2),
+            },
+            EventKind::BodyPoint {
+                body: BodyId(1),
+                point: PointId(3),
+            },
+            EventKind::BodyLine {
+                body: BodyId(1),
+                line: LineId(2),
+                end: Some(1),
+            },
             EventKind::Stop { body: BodyId(4) },
-            EventKind::RegionExit { body: BodyId(4), line: LineId(1), removed: true },
-            EventKind::RegionEntry { body: BodyId(4), line: LineId(1) },
+            EventKind::RegionExit {
+                body: BodyId(4),
+                line: LineId(1),
+                removed: true,
+            },
+            EventKind::RegionEntry {
+                body: BodyId(4),
+                line: LineId(1),
+            },
             EventKind::Action { index: 7 },
         ];
         for kind in kinds {

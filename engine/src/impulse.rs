@@ -19,14 +19,7 @@ pub fn reduced_mass(m_i: f64, m_j: f64) -> f64 {
 
 /// New velocities of two discs after an impulse along `n` (from `j` to `i`).
 /// Returns the velocities unchanged if they are not approaching.
-pub fn body_body(
-    v_i: DVec2,
-    v_j: DVec2,
-    m_i: f64,
-    m_j: f64,
-    e: f64,
-    n: DVec2,
-) -> (DVec2, DVec2) {
+pub fn body_body(v_i: DVec2, v_j: DVec2, m_i: f64, m_j: f64, e: f64, n: DVec2) -> (DVec2, DVec2) {
     let w = (v_i - v_j).dot(n);
     if w >= 0.0 {
         return (v_i, v_j);

@@ -31,6 +31,9 @@
 //! time, actions, rewind, diffs), [`scene`] (the JSON scene format).
 //! The library does no I/O; the `sim` binary is a thin shell over it.
 
+// `!(x > 0.0)` is deliberate throughout: it is also true for NaN.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 pub mod calendar;
 pub mod contact;
 pub mod event;
@@ -46,7 +49,7 @@ pub mod world;
 
 pub use event::{Event, EventKind};
 pub use id::{BodyId, LineId, PointId};
-pub use model::Model;
+pub use model::{Action, Model, ModelRecord, SceneDiff, Snapshot, TimedAction};
 pub use obstacle::{Line, LineKind, Point};
 pub use scene::{BodySpec, Scene, SceneError};
 pub use trajectory::Trajectory;

@@ -17,7 +17,9 @@ use crate::id::BodyId;
 use crate::obstacle::{Line, Point};
 use crate::scene::{BodySpec, Scene, SceneError};
 use crate::trajectory::Trajectory;
-use crate::world::{BodyState, End, EndReason, EventHandler, ExitResponse, Limits, Material, World, WorldConfig};
+use crate::world::{
+    BodyState, End, EndReason, EventHandler, ExitResponse, Limits, Material, World, WorldConfig,
+};
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -137,6 +139,20 @@ pub struct Fixed {
     pub lines: Vec<Line>,
 }
 
+/// What a model is made of, as JSON: the starting scene, the actions in
+/// effect and how far it was computed. [`Model::from_record`] recomputes the
+/// same chain bit for bit (the engine is deterministic), so this is what the
+/// sandbox exports and imports.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ModelRecord {
+    pub scene: Scene,
+    #[serde(default)]
+    pub actions: Vec<TimedAction>,
+    /// The time the chain was computed to (absent: to its natural end).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub until: Option<f64>,
+}
+
 #[derive(Clone, Debug)]
 struct Entry {
     /// Number of events in the chain when this entry began.
@@ -215,6 +231,33 @@ impl<H: EventHandler> Model<H> {
             world,
             end: None,
         })
+    }
+
+    /// Rebuilds a model from its record, with `rules`, recomputing the chain.
+    pub fn from_record(
+        record: &ModelRecord,
+        rules: H,
+        config: WorldConfig,
+    ) -> Result<Self, ActionError> {
+        let mut model = Model::with_rules(record.scene.clone(), rules, config)?;
+        for a in &record.actions {
+            model.apply(a.t, a.action.clone())?;
+        }
+        model.compute(&Limits {
+            until: record.until.unwrap_or(f64::INFINITY),
+            ..Limits::default()
+        });
+        Ok(model)
+    }
+
+    /// The record that rebuilds this model.
+    pub fn record(&self) -> ModelRecord {
+        let until = self.computed_to();
+        ModelRecord {
+            scene: self.start.clone(),
+            actions: self.actions.clone(),
+            until: until.is_finite().then_some(until),
+        }
     }
 
     /// The scene the model started from.
@@ -340,13 +383,14 @@ impl<H: EventHandler> Model<H> {
             let first_after = lane.entries.partition_point(|e| e.seq <= lo);
             let touched = lane.entries.get(first_after).is_some_and(|e| e.seq <= hi);
             if touched {
-                let state = lane.at(kb).and_then(|e| e.state).map(|(material, trajectory)| {
-                    BodyState {
+                let state = lane
+                    .at(kb)
+                    .and_then(|e| e.state)
+                    .map(|(material, trajectory)| BodyState {
                         id: lane.id,
                         material,
                         trajectory,
-                    }
-                });
+                    });
                 bodies.push((lane.id, state));
             }
         }
@@ -367,7 +411,7 @@ impl<H: EventHandler> Model<H> {
         self.compute_through(t);
         let k = self.count_at(t);
         let snap = self.snapshot_after(k, t);
-        self.truncate(k, t);
+        self.truncate(k);
         self.world = world_from(&snap, t, self.config);
         Ok(())
     }
@@ -384,7 +428,7 @@ impl<H: EventHandler> Model<H> {
         let changed = apply_to(&mut snap, t, &action)?;
         snap.scene_at(t).validate()?;
         // Accepted: commit.
-        self.truncate(k, t);
+        self.truncate(k);
         let index = self.actions.len() as u32;
         self.actions.push(TimedAction { t, action });
         self.events.push(Event {
@@ -434,7 +478,7 @@ impl<H: EventHandler> Model<H> {
         }
     }
 
-    fn truncate(&mut self, k: u32, t: f64) {
+    fn truncate(&mut self, k: u32) {
         self.events.truncate(k as usize);
         for lane in &mut self.lanes {
             let keep = lane.entries.partition_point(|e| e.seq <= k);
@@ -449,7 +493,6 @@ impl<H: EventHandler> Model<H> {
             .count();
         self.actions.truncate(kept_actions);
         self.end = None;
-        let _ = t;
     }
 }
 
@@ -527,7 +570,8 @@ fn apply_to(snap: &mut Snapshot, t: f64, action: &Action) -> Result<Vec<BodyId>,
                     b.trajectory = b.trajectory.with_alpha(t, b.material.mu * g);
                     ids.push(b.id);
                 } else {
-                    b.trajectory = Trajectory::at_rest(t, b.trajectory.position(t), b.material.mu * g);
+                    b.trajectory =
+                        Trajectory::at_rest(t, b.trajectory.position(t), b.material.mu * g);
                 }
             }
             ids
@@ -571,5 +615,151 @@ impl<H: EventHandler> EventHandler for Recorder<'_, H> {
 
     fn on_region_exit(&mut self, t: f64, body: BodyId, line: crate::id::LineId) -> ExitResponse {
         self.rules.on_region_exit(t, body, line)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::obstacle::LineKind;
+
+    fn table() -> Scene {
+        let mut bodies = Vec::new();
+        for k in 0..6u64 {
+            let x = 0.1 * k as f64;
+            bodies.push(BodySpec::new(
+                k + 1,
+                DVec2::new(x, 0.02 * (k % 2) as f64),
+                0.03,
+                0.01,
+                0.2,
+            ));
+        }
+        bodies[0].vel = DVec2::new(0.3, 2.5);
+        bodies[3].vel = DVec2::new(-1.5, 1.8);
+        bodies[5].vel = DVec2::new(-2.0, 0.05);
+        let corners = [
+            DVec2::new(-0.3, -0.3),
+            DVec2::new(0.8, -0.3),
+            DVec2::new(0.8, 0.8),
+            DVec2::new(-0.3, 0.8),
+        ];
+        let lines = (0..4)
+            .map(|k| Line::new(corners[k], corners[(k + 1) % 4], LineKind::Segment))
+            .collect();
+        Scene {
+            bodies,
+            lines,
+            ..Scene::default()
+        }
+    }
+
+    fn bits(scene: &Scene) -> Vec<u64> {
+        scene
+            .bodies
+            .iter()
+            .flat_map(|b| [b.pos.x, b.pos.y, b.vel.x, b.vel.y])
+            .map(f64::to_bits)
+            .collect()
+    }
+
+    #[test]
+    fn state_between_events_is_the_closed_form_advance_of_the_last_scene() {
+        let mut m = Model::new(table()).unwrap();
+        m.compute(&Limits::default());
+        let e = m.events()[2];
+        let t = e.t + 1e-3;
+        let snap = m.snapshot_at(e.t);
+        assert_eq!(m.scene_at(t), snap.scene_at(t));
+    }
+
+    #[test]
+    fn a_record_rebuilds_the_same_chain_bit_for_bit() {
+        let mut m = Model::new(table()).unwrap();
+        m.compute(&Limits {
+            until: 0.4,
+            ..Limits::default()
+        });
+        m.apply(
+            0.2,
+            Action::SetVelocity {
+                id: BodyId(5),
+                vel: DVec2::new(0.5, 0.5),
+            },
+        )
+        .unwrap();
+        m.compute(&Limits::default());
+        let json = serde_json::to_string(&m.record()).unwrap();
+        let record: ModelRecord = serde_json::from_str(&json).unwrap();
+        let again = Model::from_record(&record, (), WorldConfig::default()).unwrap();
+        assert_eq!(again.events(), m.events());
+        for t in [0.0, 0.1, 0.2, 0.35, 1.0, 5.0] {
+            assert_eq!(bits(&again.scene_at(t)), bits(&m.scene_at(t)), "t = {t}");
+        }
+    }
+
+    #[test]
+    fn an_action_in_the_past_drops_later_history_and_recomputes_from_there() {
+        let mut m = Model::new(table()).unwrap();
+        m.compute(&Limits::default());
+        let before = m.events().len();
+        let t = m.events()[before / 2].t;
+        let kept = m.events().iter().filter(|e| e.t <= t).count();
+        m.apply(t, Action::RemoveBody { id: BodyId(6) }).unwrap();
+        assert_eq!(m.events().len(), kept + 1);
+        assert!(matches!(
+            m.events()[kept].kind,
+            EventKind::Action { index: 0 }
+        ));
+        m.compute(&Limits::default());
+        assert!(m.events().iter().skip(kept + 1).all(|e| e.t >= t));
+        assert!(m.body_at(BodyId(6), t + 1e-9).is_none());
+        assert!(m.body_at(BodyId(6), t * 0.5).is_some());
+        // Same as starting fresh from the state at t with the body removed.
+        let mut fresh_scene = m.scene_at(t);
+        fresh_scene.bodies.retain(|b| b.id != BodyId(6));
+        let mut fresh = Model::new(fresh_scene).unwrap();
+        fresh.compute(&Limits::default());
+        let tail: Vec<EventKind> = m.events()[kept + 1..].iter().map(|e| e.kind).collect();
+        let fresh_kinds: Vec<EventKind> = fresh.events().iter().map(|e| e.kind).collect();
+        assert_eq!(tail, fresh_kinds);
+    }
+
+    #[test]
+    fn a_refused_action_changes_nothing() {
+        let mut m = Model::new(table()).unwrap();
+        m.compute(&Limits::default());
+        let events = m.events().to_vec();
+        let scene = m.scene_at(0.3);
+        let overlapping = BodySpec::new(99, DVec2::new(0.0, 0.0), 0.05, 1.0, 0.1);
+        assert!(matches!(
+            m.apply(0.0, Action::AddBody { body: overlapping }),
+            Err(ActionError::Invalid(_))
+        ));
+        assert_eq!(
+            m.apply(0.1, Action::RemoveBody { id: BodyId(42) }),
+            Err(ActionError::NoSuchBody(BodyId(42)))
+        );
+        assert!(matches!(
+            m.apply(f64::NAN, Action::SetGravity { g: 1.0 }),
+            Err(ActionError::BadTime(_))
+        ));
+        assert_eq!(m.events(), &events[..]);
+        assert_eq!(m.scene_at(0.3), scene);
+    }
+
+    #[test]
+    fn a_diff_turns_one_snapshot_into_the_other_both_ways() {
+        let mut m = Model::new(table()).unwrap();
+        m.compute(&Limits::default());
+        let (a, b) = (0.05, 0.6);
+        let mut snap = m.snapshot_at(a);
+        let diff = m.diff(a, b);
+        assert!(diff.bodies.len() <= m.start().bodies.len());
+        diff.apply(&mut snap);
+        assert_eq!(snap, m.snapshot_at(b));
+        let mut back = m.snapshot_at(b);
+        m.diff(b, a).apply(&mut back);
+        assert_eq!(back, m.snapshot_at(a));
     }
 }

@@ -153,8 +153,7 @@ mod tests {
 
     #[test]
     fn kinds_use_kebab_case_names_in_json() {
-        let l: Line =
-            serde_json::from_str(r#"{"a":[0,0],"b":[1,0],"kind":"ray"}"#).unwrap();
+        let l: Line = serde_json::from_str(r#"{"a":[0,0],"b":[1,0],"kind":"ray"}"#).unwrap();
         assert_eq!(l.kind, LineKind::Ray);
         assert!(!l.sensor);
     }

@@ -188,10 +188,7 @@ impl Scene {
             .into_iter()
             .enumerate()
             .map(|(index, v)| {
-                let id = v
-                    .get("id")
-                    .and_then(|x| x.as_u64())
-                    .map(BodyId);
+                let id = v.get("id").and_then(|x| x.as_u64()).map(BodyId);
                 item::<BodySpec>(v, Object::Body { index, id })
             })
             .collect::<Result<Vec<_>, _>>()?;
@@ -454,9 +451,14 @@ mod tests {
 
     #[test]
     fn non_positive_radius_is_rejected_naming_body_and_field() {
-        let text = GOOD.replace(r#""radius": 0.016, "mass": 0.01, "mu": 0.3, "restitution""#,
-            r#""radius": 0.0, "mass": 0.01, "mu": 0.3, "restitution""#);
-        assert_eq!(err(&text), r#"bodies[1] (id 2): field "radius": must be > 0"#);
+        let text = GOOD.replace(
+            r#""radius": 0.016, "mass": 0.01, "mu": 0.3, "restitution""#,
+            r#""radius": 0.0, "mass": 0.01, "mu": 0.3, "restitution""#,
+        );
+        assert_eq!(
+            err(&text),
+            r#"bodies[1] (id 2): field "radius": must be > 0"#
+        );
     }
 
     #[test]
@@ -513,11 +515,17 @@ mod tests {
         let text = with_body(
             r#"{ "id": 3, "pos": [-0.99, 0.0], "vel": [0, 0], "radius": 0.016, "mass": 1, "mu": 0 }"#,
         );
-        assert_eq!(err(&text), r#"bodies[2] (id 3): field "pos": overlaps lines[0] at the start"#);
+        assert_eq!(
+            err(&text),
+            r#"bodies[2] (id 3): field "pos": overlaps lines[0] at the start"#
+        );
         let text = with_body(
             r#"{ "id": 3, "pos": [1.0, 0.99], "vel": [0, 0], "radius": 0.016, "mass": 1, "mu": 0 }"#,
         );
-        assert_eq!(err(&text), r#"bodies[2] (id 3): field "pos": overlaps points[0] at the start"#);
+        assert_eq!(
+            err(&text),
+            r#"bodies[2] (id 3): field "pos": overlaps points[0] at the start"#
+        );
     }
 
     #[test]
@@ -529,7 +537,11 @@ mod tests {
     #[test]
     fn unknown_line_kind_and_unknown_fields_are_rejected() {
         let text = GOOD.replace(r#""segment""#, r#""curve""#);
-        assert!(err(&text).starts_with("lines[0]: unknown variant `curve`"), "{}", err(&text));
+        assert!(
+            err(&text).starts_with("lines[0]: unknown variant `curve`"),
+            "{}",
+            err(&text)
+        );
         let text = GOOD.replace(r#""g": 9.81"#, r#""gravity": 9.81"#);
         assert_eq!(err(&text), r#"scene: unknown field "gravity""#);
     }

@@ -289,7 +289,10 @@ mod tests {
     fn serialises_only_the_defining_numbers() {
         let tr = Trajectory::new(0.25, DVec2::new(1.0, 2.0), DVec2::new(3.0, 0.0), 1.5);
         let json = serde_json::to_string(&tr).unwrap();
-        assert_eq!(json, r#"{"t0":0.25,"pos":[1.0,2.0],"vel":[3.0,0.0],"alpha":1.5}"#);
+        assert_eq!(
+            json,
+            r#"{"t0":0.25,"pos":[1.0,2.0],"vel":[3.0,0.0],"alpha":1.5}"#
+        );
         let back: Trajectory = serde_json::from_str(&json).unwrap();
         assert_eq!(back, tr);
     }

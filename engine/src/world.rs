@@ -418,11 +418,13 @@ impl World {
 
     /// The bodies still in the scene, in the order they were given.
     pub fn bodies(&self) -> impl Iterator<Item = BodyState> + '_ {
-        (0..self.ids.len()).filter(|&i| self.alive[i]).map(|i| BodyState {
-            id: self.ids[i],
-            material: self.material[i],
-            trajectory: self.traj[i],
-        })
+        (0..self.ids.len())
+            .filter(|&i| self.alive[i])
+            .map(|i| BodyState {
+                id: self.ids[i],
+                material: self.material[i],
+                trajectory: self.traj[i],
+            })
     }
 
     /// One body still in the scene.
@@ -520,7 +522,12 @@ impl World {
 
     /// Handles the calendar entry of `i` at time `t`; returns the event if a
     /// real one happened (stale entries and cell crossings are internal).
-    fn process<H: EventHandler + ?Sized>(&mut self, i: usize, t: f64, handler: &mut H) -> Option<Event> {
+    fn process<H: EventHandler + ?Sized>(
+        &mut self,
+        i: usize,
+        t: f64,
+        handler: &mut H,
+    ) -> Option<Event> {
         self.t = t;
         let kind = match self.next[i] {
             Next::None => {
@@ -579,7 +586,11 @@ impl World {
                     point: PointId(k),
                 }
             }
-            Next::Sensor { line, bit, reported } => {
+            Next::Sensor {
+                line,
+                bit,
+                reported,
+            } => {
                 let was_inside = self.sides[i] & (1 << bit) != 0;
                 self.sides[i] ^= 1 << bit;
                 if !reported {
@@ -704,7 +715,9 @@ impl World {
             return (best, pair);
         }
         for &k in &self.solid {
-            if let Some(LineHit { t, end }) = contact::disc_line(tr, &self.geoms[k as usize], r, now) {
+            if let Some(LineHit { t, end }) =
+                contact::disc_line(tr, &self.geoms[k as usize], r, now)
+            {
                 best.offer(t, Next::Line(k, end));
             }
         }
@@ -719,7 +732,14 @@ impl World {
                 contact::centre_crossing(tr, &self.geoms[k as usize], inside, now)
             {
                 let bit = bit as u8;
-                best.offer(t, Next::Sensor { line: k, bit, reported });
+                best.offer(
+                    t,
+                    Next::Sensor {
+                        line: k,
+                        bit,
+                        reported,
+                    },
+                );
             }
         }
         best.offer(tr.stop_time(), Next::Stop);

@@ -159,9 +159,18 @@ mod tests {
         let a = PieceId::new(Side::Black, 0).unwrap();
         let b = PieceId::new(Side::White, 0).unwrap();
         let board = Board::from_pieces([
-            Piece { id: a, pos: DVec2::ZERO },
-            Piece { id: b, pos: DVec2::ONE },
-            Piece { id: a, pos: DVec2::X },
+            Piece {
+                id: a,
+                pos: DVec2::ZERO,
+            },
+            Piece {
+                id: b,
+                pos: DVec2::ONE,
+            },
+            Piece {
+                id: a,
+                pos: DVec2::X,
+            },
         ]);
         assert_eq!(board.pieces().len(), 2);
         assert_eq!(board.pieces()[0].id, b);

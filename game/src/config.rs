@@ -145,7 +145,10 @@ impl Config {
             });
         }
         if let Some(n) = &self.variants.noise {
-            for (name, x) in [("angle_sigma", n.angle_sigma), ("speed_sigma", n.speed_sigma)] {
+            for (name, x) in [
+                ("angle_sigma", n.angle_sigma),
+                ("speed_sigma", n.speed_sigma),
+            ] {
                 if !x.is_finite() {
                     return Err(ConfigError::NotFinite(name));
                 }
@@ -190,7 +193,11 @@ mod tests {
         assert!((one_square - 0.235_44_f64.sqrt()).abs() < 1e-12);
         assert!(one_square > 0.2 * c.max_speed && one_square < 0.3 * c.max_speed);
         let quarter = c.stopping_distance(c.max_speed / 4.0);
-        assert!((quarter / c.square - 1.0).abs() < 0.1, "{}", quarter / c.square);
+        assert!(
+            (quarter / c.square - 1.0).abs() < 0.1,
+            "{}",
+            quarter / c.square
+        );
         assert!((c.stopping_distance(one_square) - c.square).abs() < 1e-15);
     }
 
@@ -202,14 +209,25 @@ mod tests {
             c.validate().unwrap_err()
         };
         assert_eq!(bad(|c| c.mu = 0.0), ConfigError::NotPositive("mu"));
-        assert_eq!(bad(|c| c.square = f64::NAN), ConfigError::NotFinite("square"));
-        assert_eq!(bad(|c| c.restitution = 1.5), ConfigError::Restitution);
-        assert!(matches!(bad(|c| c.piece_radius = 0.03), ConfigError::PieceTooBig { .. }));
         assert_eq!(
-            bad(|c| c.variants.noise = Some(NoiseConfig { angle_sigma: -1.0, speed_sigma: 0.0 })),
+            bad(|c| c.square = f64::NAN),
+            ConfigError::NotFinite("square")
+        );
+        assert_eq!(bad(|c| c.restitution = 1.5), ConfigError::Restitution);
+        assert!(matches!(
+            bad(|c| c.piece_radius = 0.03),
+            ConfigError::PieceTooBig { .. }
+        ));
+        assert_eq!(
+            bad(|c| c.variants.noise = Some(NoiseConfig {
+                angle_sigma: -1.0,
+                speed_sigma: 0.0
+            })),
             ConfigError::Negative("angle_sigma")
         );
-        assert!(bad(|c| c.max_events_per_shot = 0).to_string().contains("max_events_per_shot"));
+        assert!(bad(|c| c.max_events_per_shot = 0)
+            .to_string()
+            .contains("max_events_per_shot"));
     }
 
     #[test]

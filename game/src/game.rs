@@ -200,7 +200,10 @@ impl Game {
             Phase::Shooting => {}
         }
         if side != self.turn {
-            return Err(ShotError::NotYourTurn { side, turn: self.turn });
+            return Err(ShotError::NotYourTurn {
+                side,
+                turn: self.turn,
+            });
         }
         let piece = shot.piece();
         if piece.side() != side {
@@ -222,7 +225,8 @@ impl Game {
             Some(n) => noise::perturb(n, self.seed, self.shots, aimed, self.config.max_speed),
             None => aimed,
         };
-        let res = physics::resolve(&self.config, &self.board, shot.piece(), played).map_err(ShotError::Physics)?;
+        let res = physics::resolve(&self.config, &self.board, shot.piece(), played)
+            .map_err(ShotError::Physics)?;
         // Accepted: commit.
         let number = self.shots;
         let round = self.round;
@@ -293,7 +297,11 @@ impl Game {
             return None;
         }
         let flawless = self.board.count(winner) == PIECES_PER_SIDE as usize;
-        let steps = if self.config.variants.two_row_advance && flawless { 2 } else { 1 };
+        let steps = if self.config.variants.two_row_advance && flawless {
+            2
+        } else {
+            1
+        };
         match self.rows.advance(winner, steps) {
             Advance::FarEdge => {
                 self.phase = Phase::Over {
@@ -356,5 +364,505 @@ impl Game {
         self.board = board;
         self.rows = rows;
         self.turn = turn;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::board::{square_centre, Piece};
+    use crate::config::NoiseConfig;
+    use crate::piece::PieceId;
+    use glam::DVec2;
+
+    fn w(f: u8) -> PieceId {
+        PieceId::new(Side::White, f).unwrap()
+    }
+    fn b(f: u8) -> PieceId {
+        PieceId::new(Side::Black, f).unwrap()
+    }
+    fn at(c: &Config, id: PieceId, file: u8, rank: u8) -> Piece {
+        Piece {
+            id,
+            pos: square_centre(c, file, rank),
+        }
+    }
+    fn shot(g: &Game, id: PieceId, vx: f64, vy: f64) -> Shot {
+        Shot::new(id, DVec2::new(vx, vy), g.config()).unwrap()
+    }
+    fn game_with(variants: impl FnOnce(&mut Config)) -> Game {
+        let mut c = Config::default();
+        variants(&mut c);
+        Game::new(c, 11).unwrap()
+    }
+    /// A position where a horizontal shot of White's piece cuts Black's
+    /// piece (standing half a square from the right edge) at 45 degrees:
+    /// Black's piece flies off the right edge, White's carries on up and
+    /// off the top edge. `extra` pieces stand far away.
+    fn cut_shot_position(g: &mut Game, extra: &[Piece]) -> Shot {
+        let c = g.config().clone();
+        let l = c.board_size();
+        let target = DVec2::new(l - 0.5 * c.square, l - 1.5 * c.square);
+        let offset = 2.0 * c.piece_radius * std::f64::consts::FRAC_1_SQRT_2;
+        let shooter = DVec2::new(l - 4.5 * c.square, target.y + offset);
+        let mut pieces = vec![
+            Piece {
+                id: w(0),
+                pos: shooter,
+            },
+            Piece {
+                id: b(0),
+                pos: target,
+            },
+        ];
+        pieces.extend_from_slice(extra);
+        g.set_position(Board::from_pieces(pieces), g.rows(), Side::White);
+        shot(g, w(0), c.max_speed, 0.0)
+    }
+
+    #[test]
+    fn round_one_starts_with_white_on_the_first_row_to_shoot() {
+        let g = Game::new(Config::default(), 0).unwrap();
+        assert_eq!(g.to_shoot(), Some(Side::White));
+        assert_eq!(g.round(), 1);
+        assert_eq!(g.rows(), Rows::initial());
+        assert_eq!(g.board().count(Side::White), 8);
+        assert_eq!(g.board().count(Side::Black), 8);
+        assert_eq!(g.phase(), Phase::Shooting);
+    }
+
+    #[test]
+    fn an_unplayable_config_is_refused() {
+        let c = Config {
+            g: -1.0,
+            ..Config::default()
+        };
+        assert!(Game::new(c, 0).is_err());
+    }
+
+    #[test]
+    fn a_shot_out_of_turn_is_refused_and_changes_nothing() {
+        let mut g = Game::new(Config::default(), 0).unwrap();
+        let before = g.view();
+        let e = g.play(Side::Black, shot(&g, b(0), 0.0, -1.0)).unwrap_err();
+        assert_eq!(
+            e,
+            ShotError::NotYourTurn {
+                side: Side::Black,
+                turn: Side::White
+            }
+        );
+        assert_eq!(g.view(), before);
+        assert!(g.record().moves.is_empty());
+    }
+
+    #[test]
+    fn shooting_an_enemy_piece_is_refused() {
+        let mut g = Game::new(Config::default(), 0).unwrap();
+        let e = g.play(Side::White, shot(&g, b(0), 0.0, -1.0)).unwrap_err();
+        assert_eq!(
+            e,
+            ShotError::NotYourPiece {
+                piece: b(0),
+                side: Side::White
+            }
+        );
+        assert_eq!(g.shots(), 0);
+    }
+
+    #[test]
+    fn a_piece_no_longer_on_the_board_cannot_be_shot() {
+        let mut g = Game::new(Config::default(), 0).unwrap();
+        // Knock Black's e-piece off: White shoots again.
+        g.play(Side::White, shot(&g, w(4), 0.0, 2.0)).unwrap();
+        // White's a-piece straight off its own edge: the turn passes.
+        let out = g
+            .play(Side::White, shot(&g, w(0), 0.0, -0.5))
+            .unwrap()
+            .outcome;
+        assert_eq!(out.knocked_off, vec![w(0)]);
+        g.set_position(g.board().clone(), g.rows(), Side::White);
+        let before = g.view();
+        assert_eq!(
+            g.play(Side::White, shot(&g, w(0), 0.0, 1.0)),
+            Err(ShotError::PieceOffBoard(w(0)))
+        );
+        assert_eq!(g.view(), before);
+    }
+
+    #[test]
+    fn a_shot_built_for_a_faster_config_is_refused_as_too_fast() {
+        let fast = Config {
+            max_speed: 10.0,
+            ..Config::default()
+        };
+        let mut g = Game::new(Config::default(), 0).unwrap();
+        let s = Shot::new(w(0), DVec2::new(0.0, 5.0), &fast).unwrap();
+        assert!(matches!(
+            g.play(Side::White, s),
+            Err(ShotError::TooFast { .. })
+        ));
+    }
+
+    #[test]
+    fn a_shot_that_hits_nothing_is_legal_and_passes_the_turn() {
+        let mut g = Game::new(Config::default(), 0).unwrap();
+        let v = g.config().speed_for_distance(g.config().square);
+        let out = g.play(Side::White, shot(&g, w(2), 0.0, v)).unwrap().outcome;
+        assert!(out.knocked_off.is_empty());
+        assert_eq!(out.next, Next::Shoot { side: Side::Black });
+        assert_eq!(g.to_shoot(), Some(Side::Black));
+        let moved = g.board().piece(w(2)).unwrap().pos - square_centre(g.config(), 2, 0);
+        assert!((moved.y - g.config().square).abs() < 1e-12);
+    }
+
+    #[test]
+    fn knocking_off_an_enemy_and_none_of_your_own_earns_another_shot() {
+        let mut g = Game::new(Config::default(), 0).unwrap();
+        let out = g
+            .play(Side::White, shot(&g, w(4), 0.0, 2.0))
+            .unwrap()
+            .outcome;
+        assert_eq!(out.knocked_off, vec![b(4)]);
+        assert_eq!(out.next, Next::Shoot { side: Side::White });
+        assert_eq!(g.to_shoot(), Some(Side::White));
+        assert_eq!(g.board().count(Side::Black), 7);
+    }
+
+    #[test]
+    fn losing_your_own_piece_while_knocking_off_an_enemy_passes_the_turn() {
+        let mut g = Game::new(Config::default(), 0).unwrap();
+        let c = g.config().clone();
+        let s = cut_shot_position(&mut g, &[at(&c, w(1), 0, 0), at(&c, b(1), 1, 0)]);
+        let out = g.play(Side::White, s).unwrap().outcome;
+        let mut off = out.knocked_off.clone();
+        off.sort();
+        assert_eq!(off, vec![w(0), b(0)], "the position must knock both off");
+        assert_eq!(out.round_end, None);
+        assert_eq!(g.to_shoot(), Some(Side::Black));
+    }
+
+    #[test]
+    fn the_last_pieces_of_both_sides_falling_on_one_shot_draw_the_round_and_keep_the_rows() {
+        let mut g = Game::new(Config::default(), 0).unwrap();
+        let s = cut_shot_position(&mut g, &[]);
+        let out = g.play(Side::White, s).unwrap().outcome;
+        assert_eq!(out.knocked_off.len(), 2);
+        assert_eq!(
+            out.round_end,
+            Some(RoundEnd {
+                result: RoundResult::Draw,
+                next_rows: Some(Rows::initial())
+            })
+        );
+        assert_eq!(g.round(), 2);
+        assert_eq!(g.rows(), Rows::initial());
+        // The side that started the drawn round starts again, on a fresh board.
+        assert_eq!(g.to_shoot(), Some(Side::White));
+        assert_eq!(g.board(), &Board::setup(g.config(), Rows::initial()));
+    }
+
+    /// White knocks off Black's last piece (on file e, straight ahead).
+    fn white_wins_round(g: &mut Game, rows: Rows, white: &[Piece]) -> ShotOutcome {
+        let c = g.config().clone();
+        let mut pieces = white.to_vec();
+        pieces.push(at(&c, b(4), 4, 7));
+        pieces.push(at(&c, w(4), 4, 3));
+        g.set_position(Board::from_pieces(pieces), rows, Side::White);
+        g.play(Side::White, shot(g, w(4), 0.0, 2.0))
+            .unwrap()
+            .outcome
+    }
+
+    #[test]
+    fn the_round_winner_moves_its_row_forward_and_shoots_first() {
+        let mut g = Game::new(Config::default(), 0).unwrap();
+        let out = white_wins_round(&mut g, Rows::initial(), &[]);
+        assert_eq!(out.knocked_off, vec![b(4)]);
+        let next = Rows::new(1, 7).unwrap();
+        assert_eq!(
+            out.round_end,
+            Some(RoundEnd {
+                result: RoundResult::Won(Side::White),
+                next_rows: Some(next)
+            })
+        );
+        assert_eq!(
+            (g.round(), g.rows(), g.to_shoot()),
+            (2, next, Some(Side::White))
+        );
+        assert_eq!(g.board(), &Board::setup(g.config(), next));
+        assert_eq!(
+            g.board().piece(w(0)).unwrap().pos,
+            square_centre(g.config(), 0, 1)
+        );
+    }
+
+    #[test]
+    fn a_black_round_win_moves_blacks_row_down_and_black_shoots_first() {
+        let mut g = Game::new(Config::default(), 0).unwrap();
+        let c = g.config().clone();
+        let board = Board::from_pieces([at(&c, w(4), 4, 0), at(&c, b(4), 4, 4)]);
+        g.set_position(board, Rows::initial(), Side::Black);
+        let out = g
+            .play(Side::Black, shot(&g, b(4), 0.0, -2.0))
+            .unwrap()
+            .outcome;
+        assert_eq!(out.knocked_off, vec![w(4)]);
+        assert_eq!(g.rows(), Rows::new(0, 6).unwrap());
+        assert_eq!(g.to_shoot(), Some(Side::Black));
+    }
+
+    #[test]
+    fn once_the_rows_meet_the_winner_advances_and_the_loser_is_pushed_back() {
+        let mut g = Game::new(Config::default(), 0).unwrap();
+        white_wins_round(&mut g, Rows::new(3, 4).unwrap(), &[]);
+        assert_eq!(g.rows(), Rows::new(4, 5).unwrap());
+        assert_eq!(
+            g.board().piece(b(0)).unwrap().pos,
+            square_centre(g.config(), 0, 5)
+        );
+    }
+
+    #[test]
+    fn a_row_reaching_the_far_edge_wins_the_match_and_then_nothing_more_is_played() {
+        let mut g = Game::new(Config::default(), 0).unwrap();
+        let out = white_wins_round(&mut g, Rows::new(6, 7).unwrap(), &[]);
+        let result = MatchResult::Won {
+            side: Side::White,
+            reason: WinReason::FarEdge,
+        };
+        assert_eq!(out.next, Next::MatchOver { result });
+        assert_eq!(out.round_end.unwrap().next_rows, None);
+        assert_eq!(g.result(), Some(result));
+        assert_eq!(g.to_shoot(), None);
+        let before = g.view();
+        assert_eq!(
+            g.play(Side::White, shot(&g, w(4), 0.0, 1.0)),
+            Err(ShotError::MatchOver)
+        );
+        assert_eq!(
+            g.play(Side::Black, shot(&g, b(4), 0.0, 1.0)),
+            Err(ShotError::MatchOver)
+        );
+        assert_eq!(g.resign(Side::Black), Err(GameError::MatchOver));
+        assert_eq!(g.view(), before);
+    }
+
+    #[test]
+    fn two_row_variant_advances_two_rows_after_a_round_won_without_losing_a_piece() {
+        let c = Config::default();
+        let full_row: Vec<Piece> = (0..8)
+            .filter(|&f| f != 4)
+            .map(|f| at(&c, w(f), f, 0))
+            .collect();
+        let mut g = game_with(|c| c.variants.two_row_advance = true);
+        white_wins_round(&mut g, Rows::initial(), &full_row);
+        assert_eq!(g.rows(), Rows::new(2, 7).unwrap());
+        // A piece short: one row only.
+        let mut g = game_with(|c| c.variants.two_row_advance = true);
+        white_wins_round(&mut g, Rows::initial(), &full_row[1..]);
+        assert_eq!(g.rows(), Rows::new(1, 7).unwrap());
+        // Without the variant: one row.
+        let mut g = Game::new(c.clone(), 0).unwrap();
+        white_wins_round(&mut g, Rows::initial(), &full_row);
+        assert_eq!(g.rows(), Rows::new(1, 7).unwrap());
+    }
+
+    #[test]
+    fn quick_match_is_decided_by_its_single_round() {
+        let mut g = game_with(|c| c.variants.quick_match = true);
+        let out = white_wins_round(&mut g, Rows::initial(), &[]);
+        let result = MatchResult::Won {
+            side: Side::White,
+            reason: WinReason::QuickMatch,
+        };
+        assert_eq!(out.next, Next::MatchOver { result });
+        assert_eq!(g.round(), 1);
+        let mut g = game_with(|c| c.variants.quick_match = true);
+        let s = cut_shot_position(&mut g, &[]);
+        g.play(Side::White, s).unwrap();
+        assert_eq!(g.result(), Some(MatchResult::Draw));
+    }
+
+    #[test]
+    fn pie_rule_lets_black_swap_seats_after_whites_first_shot() {
+        let mut g = game_with(|c| c.variants.pie_rule = true);
+        assert_eq!(
+            g.decide_pie(Side::Black, true),
+            Err(GameError::NoPieDecision)
+        );
+        let v = g.config().speed_for_distance(g.config().square);
+        let out = g.play(Side::White, shot(&g, w(0), 0.0, v)).unwrap().outcome;
+        assert_eq!(out.next, Next::PieDecision { then: Side::Black });
+        assert_eq!(g.phase(), Phase::PieDecision);
+        assert_eq!(g.to_shoot(), None);
+        // No shot until Black decides, and only Black decides.
+        assert_eq!(
+            g.play(Side::Black, shot(&g, b(0), 0.0, -1.0)),
+            Err(ShotError::PieDecisionPending)
+        );
+        assert_eq!(
+            g.decide_pie(Side::White, true),
+            Err(GameError::NotYourDecision(Side::White))
+        );
+        assert_eq!(g.side_of(Seat::First), Side::White);
+        g.decide_pie(Side::Black, true).unwrap();
+        assert!(g.swapped());
+        assert_eq!(g.side_of(Seat::First), Side::Black);
+        assert_eq!(g.seat_of(Side::White), Seat::Second);
+        assert_eq!(g.to_shoot(), Some(Side::Black));
+        assert_eq!(
+            g.decide_pie(Side::Black, false),
+            Err(GameError::NoPieDecision)
+        );
+        // The decision is offered once per match.
+        g.play(Side::Black, shot(&g, b(0), 0.0, -0.3)).unwrap();
+        g.play(Side::White, shot(&g, w(1), 0.0, 0.3)).unwrap();
+        assert_eq!(g.phase(), Phase::Shooting);
+    }
+
+    #[test]
+    fn pie_rule_declined_keeps_the_seats() {
+        let mut g = game_with(|c| c.variants.pie_rule = true);
+        g.play(Side::White, shot(&g, w(0), 0.0, 0.3)).unwrap();
+        g.decide_pie(Side::Black, false).unwrap();
+        assert!(!g.swapped());
+        assert_eq!(g.side_of(Seat::Second), Side::Black);
+        assert_eq!(g.to_shoot(), Some(Side::Black));
+    }
+
+    #[test]
+    fn pie_decision_after_a_first_shot_that_earned_another_keeps_whites_turn() {
+        let mut g = game_with(|c| c.variants.pie_rule = true);
+        let out = g
+            .play(Side::White, shot(&g, w(4), 0.0, 2.0))
+            .unwrap()
+            .outcome;
+        assert_eq!(out.next, Next::PieDecision { then: Side::White });
+        g.decide_pie(Side::Black, true).unwrap();
+        // The swapped-in player (seat Second) now plays White's extra shot.
+        assert_eq!(g.to_shoot(), Some(Side::White));
+        assert_eq!(g.seat_of(Side::White), Seat::Second);
+    }
+
+    #[test]
+    fn resigning_gives_the_match_to_the_other_side() {
+        let mut g = Game::new(Config::default(), 0).unwrap();
+        let r = g.resign(Side::White).unwrap();
+        assert_eq!(
+            r,
+            MatchResult::Won {
+                side: Side::Black,
+                reason: WinReason::Resignation
+            }
+        );
+        assert_eq!(r.winner(), Some(Side::Black));
+        assert!(g.is_over());
+        assert_eq!(
+            g.record().moves,
+            vec![RecordedMove::Resign { side: Side::White }]
+        );
+    }
+
+    #[test]
+    fn execution_noise_changes_the_played_velocity_reproducibly() {
+        let noisy = |c: &mut Config| {
+            c.variants.noise = Some(NoiseConfig {
+                angle_sigma: 0.02,
+                speed_sigma: 0.05,
+            })
+        };
+        let mut g1 = game_with(noisy);
+        let mut g2 = game_with(noisy);
+        let o1 = g1
+            .play(Side::White, shot(&g1, w(3), 0.0, 1.0))
+            .unwrap()
+            .outcome;
+        let o2 = g2
+            .play(Side::White, shot(&g2, w(3), 0.0, 1.0))
+            .unwrap()
+            .outcome;
+        assert_eq!(o1.aimed, DVec2::new(0.0, 1.0));
+        assert_ne!(o1.played, o1.aimed);
+        assert_eq!(o1.played.x.to_bits(), o2.played.x.to_bits());
+        assert_eq!(o1.played.y.to_bits(), o2.played.y.to_bits());
+        assert!((o1.played.length() - 1.0).abs() < 0.3);
+    }
+
+    #[test]
+    fn every_accepted_move_is_recorded_with_its_outcome() {
+        let mut g = Game::new(Config::default(), 0).unwrap();
+        let p1 = g.play(Side::White, shot(&g, w(4), 0.0, 2.0)).unwrap();
+        let p2 = g.play(Side::White, shot(&g, w(0), 0.0, 0.2)).unwrap();
+        assert_eq!(
+            g.record().moves,
+            vec![
+                RecordedMove::Shot(p1.outcome.clone()),
+                RecordedMove::Shot(p2.outcome.clone())
+            ]
+        );
+        assert_eq!((p1.outcome.number, p2.outcome.number), (0, 1));
+        assert!(p1
+            .outcome
+            .events
+            .iter()
+            .any(|e| e.kind.name() == "region-exit"));
+        assert_eq!(p1.outcome.duration, p1.film.end);
+    }
+}
+
+#[cfg(test)]
+mod properties {
+    use super::*;
+    use crate::noise::SplitMix64;
+    use crate::testing::{random_match, random_shot, variant_config};
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+
+        #[test]
+        fn piece_counts_never_grow_within_a_round(seed in any::<u64>(), variant in 0u64..5) {
+            let mut game = Game::new(variant_config(variant), seed).unwrap();
+            let mut rng = SplitMix64::new(seed);
+            for _ in 0..60 {
+                if game.is_over() {
+                    break;
+                }
+                if game.phase() == Phase::PieDecision {
+                    game.decide_pie(Side::Black, seed & 1 == 0).unwrap();
+                    continue;
+                }
+                let side = game.to_shoot().unwrap();
+                let before = [game.board().count(Side::White), game.board().count(Side::Black)];
+                let round = game.round();
+                let out = game.play(side, random_shot(&game, side, &mut rng)).unwrap().outcome;
+                if game.round() == round {
+                    let after = [game.board().count(Side::White), game.board().count(Side::Black)];
+                    prop_assert!(after[0] <= before[0] && after[1] <= before[1]);
+                    prop_assert_eq!(before[0] + before[1] - after[0] - after[1], out.knocked_off.len());
+                } else {
+                    prop_assert!(out.round_end.is_some());
+                }
+                prop_assert!(game.board().pieces().len() <= 16);
+            }
+        }
+
+        #[test]
+        fn a_match_between_random_players_always_ends(seed in any::<u64>(), variant in 0u64..5) {
+            let (game, _) = random_match(variant_config(variant), seed, 20_000);
+            prop_assert!(game.is_over());
+            prop_assert!(game.to_shoot().is_none());
+        }
+
+        #[test]
+        fn a_quick_match_between_random_players_always_ends(seed in any::<u64>()) {
+            let mut c = variant_config(seed);
+            c.variants.quick_match = true;
+            let (game, _) = random_match(c, seed, 5_000);
+            prop_assert_eq!(game.round(), 1);
+            prop_assert!(game.is_over());
+        }
     }
 }

@@ -58,7 +58,7 @@ impl SplitMix64 {
 /// Natural logarithm of a positive finite `x`, deterministic everywhere
 /// (`NaN` for anything else).
 pub fn ln(x: f64) -> f64 {
-    if !(x > 0.0) || !x.is_finite() {
+    if x.is_nan() || x <= 0.0 || x == f64::INFINITY {
         return f64::NAN;
     }
     let (mut x, mut e) = (x, 0i64);

@@ -25,7 +25,10 @@ pub enum WinReason {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(tag = "result", rename_all = "kebab-case")]
 pub enum MatchResult {
-    Won { side: Side, reason: WinReason },
+    Won {
+        side: Side,
+        reason: WinReason,
+    },
     /// Only a quick match can be drawn (its single round was drawn).
     Draw,
 }

@@ -114,7 +114,10 @@ mod tests {
     fn out_of_range_numbers_are_not_pieces_even_from_json() {
         assert!(PieceId::try_from(16).is_err());
         assert!(serde_json::from_str::<PieceId>("16").is_err());
-        assert_eq!(serde_json::from_str::<PieceId>("15").unwrap().side(), Side::Black);
+        assert_eq!(
+            serde_json::from_str::<PieceId>("15").unwrap().side(),
+            Side::Black
+        );
         assert!(PieceId::from_body(BodyId(300)).is_err());
         assert_eq!(PieceId::from_body(BodyId(3)).unwrap().number(), 3);
     }

@@ -92,13 +92,20 @@ pub enum ServerMessage {
     /// Black decided the pie rule.
     PieDecided { swap: bool },
     /// The match ended; the record (with its seed) is now public.
-    MatchOver { result: MatchResult, record: MatchRecord },
+    MatchOver {
+        result: MatchResult,
+        record: MatchRecord,
+    },
     /// A seat offered a rematch.
     RematchOffered { by: Seat },
     /// The rematch has started under this id.
     RematchStarted { match_id: String },
     /// Chat from a seat (`None`: a spectator or the server).
-    Chat { from: Option<Seat>, name: String, text: String },
+    Chat {
+        from: Option<Seat>,
+        name: String,
+        text: String,
+    },
     /// A request was refused.
     Error { code: ErrorCode, message: String },
 }
@@ -246,29 +253,51 @@ mod tests {
             piece: PieceId::new(Side::White, 3).unwrap(),
             velocity: DVec2::new(0.25, 1.5),
         };
-        assert_eq!(m.to_json(), r#"{"type":"shot","piece":3,"velocity":[0.25,1.5]}"#);
+        assert_eq!(
+            m.to_json(),
+            r#"{"type":"shot","piece":3,"velocity":[0.25,1.5]}"#
+        );
         assert_eq!(ClientMessage::Resign.to_json(), r#"{"type":"resign"}"#);
         assert_eq!(
             ClientMessage::from_json(r#"{"type":"offer-rematch"}"#).unwrap(),
             ClientMessage::OfferRematch
         );
         let create = ClientMessage::from_json(r#"{"type":"create-match"}"#).unwrap();
-        assert_eq!(create, ClientMessage::CreateMatch { config: Config::default() });
+        assert_eq!(
+            create,
+            ClientMessage::CreateMatch {
+                config: Config::default()
+            }
+        );
     }
 
     #[test]
     fn every_client_message_round_trips() {
         let all = [
-            ClientMessage::Hello { protocol: PROTOCOL_VERSION, name: "Petka".into() },
-            ClientMessage::CreateMatch { config: Config::default() },
-            ClientMessage::JoinMatch { match_id: "m1".into() },
-            ClientMessage::Watch { match_id: "m1".into() },
-            ClientMessage::Shot { piece: PieceId::new(Side::Black, 7).unwrap(), velocity: DVec2::new(-0.1, -1.9) },
+            ClientMessage::Hello {
+                protocol: PROTOCOL_VERSION,
+                name: "Petka".into(),
+            },
+            ClientMessage::CreateMatch {
+                config: Config::default(),
+            },
+            ClientMessage::JoinMatch {
+                match_id: "m1".into(),
+            },
+            ClientMessage::Watch {
+                match_id: "m1".into(),
+            },
+            ClientMessage::Shot {
+                piece: PieceId::new(Side::Black, 7).unwrap(),
+                velocity: DVec2::new(-0.1, -1.9),
+            },
             ClientMessage::PieDecision { swap: true },
             ClientMessage::Resign,
             ClientMessage::OfferRematch,
             ClientMessage::AcceptRematch,
-            ClientMessage::Chat { text: "Vasily Ivanovich!".into() },
+            ClientMessage::Chat {
+                text: "Vasily Ivanovich!".into(),
+            },
         ];
         for m in all {
             assert_eq!(ClientMessage::from_json(&m.to_json()).unwrap(), m);
@@ -277,14 +306,29 @@ mod tests {
 
     #[test]
     fn unreadable_messages_get_stable_error_codes() {
-        assert_eq!(ClientMessage::from_json("not json").unwrap_err().code, ErrorCode::BadJson);
-        assert_eq!(ClientMessage::from_json(r#"{"type":"teleport"}"#).unwrap_err().code, ErrorCode::BadMessage);
         assert_eq!(
-            ClientMessage::from_json(r#"{"type":"shot","piece":16,"velocity":[0,1]}"#).unwrap_err().code,
+            ClientMessage::from_json("not json").unwrap_err().code,
+            ErrorCode::BadJson
+        );
+        assert_eq!(
+            ClientMessage::from_json(r#"{"type":"teleport"}"#)
+                .unwrap_err()
+                .code,
+            ErrorCode::BadMessage
+        );
+        assert_eq!(
+            ClientMessage::from_json(r#"{"type":"shot","piece":16,"velocity":[0,1]}"#)
+                .unwrap_err()
+                .code,
             ErrorCode::BadMessage
         );
         let e = ClientMessage::from_json("[").unwrap_err().to_message();
-        assert!(e.to_json().starts_with(r#"{"type":"error","code":"bad-json""#), "{}", e.to_json());
+        assert!(
+            e.to_json()
+                .starts_with(r#"{"type":"error","code":"bad-json""#),
+            "{}",
+            e.to_json()
+        );
     }
 
     #[test]
@@ -297,7 +341,10 @@ mod tests {
             ErrorCode::Internal,
             ErrorCode::TooFast,
         ] {
-            assert_eq!(serde_json::to_string(&code).unwrap(), format!("\"{}\"", code.as_str()));
+            assert_eq!(
+                serde_json::to_string(&code).unwrap(),
+                format!("\"{}\"", code.as_str())
+            );
         }
         assert_eq!(ShotError::NotFinite.code().as_str(), "not-finite");
     }
@@ -308,18 +355,27 @@ mod tests {
         let state = ServerMessage::MatchState {
             match_id: "m".into(),
             you: Some(Seat::First),
-            players: Players { first: Some("a".into()), second: None },
+            players: Players {
+                first: Some("a".into()),
+                second: None,
+            },
             view: g.view(),
         };
         assert_eq!(ServerMessage::from_json(&state.to_json()).unwrap(), state);
         let piece = PieceId::new(Side::White, 4).unwrap();
         let shot = Shot::new(piece, DVec2::new(0.0, 2.0), g.config()).unwrap();
         let played = g.play(Side::White, shot).unwrap();
-        let msg = ServerMessage::ShotPlayed { outcome: played.outcome, film: played.film };
+        let msg = ServerMessage::ShotPlayed {
+            outcome: played.outcome,
+            film: played.film,
+        };
         let json = msg.to_json();
         assert!(json.starts_with(r#"{"type":"shot-played""#));
         assert_eq!(ServerMessage::from_json(&json).unwrap(), msg);
-        let over = ServerMessage::MatchOver { result: g.resign(Side::Black).unwrap(), record: g.record().clone() };
+        let over = ServerMessage::MatchOver {
+            result: g.resign(Side::Black).unwrap(),
+            record: g.record().clone(),
+        };
         assert_eq!(ServerMessage::from_json(&over.to_json()).unwrap(), over);
     }
 }

@@ -70,7 +70,8 @@ impl MatchRecord {
 
     /// Reads a record, checking its version before anything else.
     pub fn from_json(text: &str) -> Result<MatchRecord, RecordError> {
-        let value: serde_json::Value = serde_json::from_str(text).map_err(|e| RecordError::Json(e.to_string()))?;
+        let value: serde_json::Value =
+            serde_json::from_str(text).map_err(|e| RecordError::Json(e.to_string()))?;
         let version = value.get("version").ok_or(RecordError::MissingVersion)?;
         if version.as_u64() != Some(RECORD_VERSION as u64) {
             return Err(RecordError::UnsupportedVersion {
@@ -100,7 +101,8 @@ mod tests {
 
     #[test]
     fn an_unknown_version_is_refused_with_a_clear_error() {
-        let mut v: serde_json::Value = serde_json::from_str(&MatchRecord::new(Config::default(), 1).to_json()).unwrap();
+        let mut v: serde_json::Value =
+            serde_json::from_str(&MatchRecord::new(Config::default(), 1).to_json()).unwrap();
         v["version"] = serde_json::json!(2);
         let err = MatchRecord::from_json(&v.to_string()).unwrap_err();
         assert_eq!(
@@ -112,7 +114,10 @@ mod tests {
         );
         assert!(err.to_string().contains("version 2 is not supported"));
         v["version"] = serde_json::json!("one");
-        assert!(matches!(MatchRecord::from_json(&v.to_string()), Err(RecordError::UnsupportedVersion { .. })));
+        assert!(matches!(
+            MatchRecord::from_json(&v.to_string()),
+            Err(RecordError::UnsupportedVersion { .. })
+        ));
     }
 
     #[test]
@@ -121,6 +126,9 @@ mod tests {
             MatchRecord::from_json(r#"{"config":{},"seed":1,"moves":[]}"#),
             Err(RecordError::MissingVersion)
         );
-        assert!(matches!(MatchRecord::from_json("{"), Err(RecordError::Json(_))));
+        assert!(matches!(
+            MatchRecord::from_json("{"),
+            Err(RecordError::Json(_))
+        ));
     }
 }

@@ -130,3 +130,132 @@ impl Replay {
 fn same_bits(a: &ShotOutcome, b: &ShotOutcome) -> bool {
     serde_json::to_string(a).ok() == serde_json::to_string(b).ok()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::Config;
+    use crate::testing::{random_match, variant_config};
+    use engine::Scene;
+
+    fn same_scene(a: &Scene, b: &Scene, what: &str) {
+        assert_eq!(a.bodies.len(), b.bodies.len(), "{what}");
+        for (x, y) in a.bodies.iter().zip(&b.bodies) {
+            assert_eq!(x.id, y.id, "{what}");
+            for (p, q) in [
+                (x.pos.x, y.pos.x),
+                (x.pos.y, y.pos.y),
+                (x.vel.x, y.vel.x),
+                (x.vel.y, y.vel.y),
+            ] {
+                assert_eq!(p.to_bits(), q.to_bits(), "{what}: {p} vs {q}");
+            }
+        }
+    }
+
+    #[test]
+    fn random_matches_replayed_from_their_json_record_give_bit_identical_states() {
+        for seed in 0..100 {
+            let (game, films) = random_match(variant_config(seed), seed, 20_000);
+            let json = game.record().to_json();
+            let replay = Replay::from_json(&json).unwrap();
+            assert_eq!(replay.shot_count(), films.len());
+            assert_eq!(replay.record(), game.record());
+            for (n, film) in films.iter().enumerate() {
+                let again = replay.film(n).unwrap();
+                for k in 0..=8 {
+                    let t = film.end * k as f64 / 8.0;
+                    same_scene(
+                        &again.scene_at(t),
+                        &film.scene_at(t),
+                        &format!("seed {seed} shot {n} t {t}"),
+                    );
+                }
+                assert_eq!(again.end.to_bits(), film.end.to_bits());
+            }
+            let (a, b) = (replay.game().board(), game.board());
+            assert_eq!(a.pieces().len(), b.pieces().len());
+            for (p, q) in a.pieces().iter().zip(b.pieces()) {
+                assert_eq!(
+                    (p.pos.x.to_bits(), p.pos.y.to_bits()),
+                    (q.pos.x.to_bits(), q.pos.y.to_bits())
+                );
+            }
+            assert_eq!(replay.game().view(), game.view());
+            assert_eq!(replay.game().result(), game.result());
+        }
+    }
+
+    #[test]
+    fn any_moment_of_any_shot_can_be_shown() {
+        let (game, _) = random_match(Config::default(), 3, 20_000);
+        let replay = Replay::new(game.record().clone()).unwrap();
+        assert!(replay.shot_count() > 0);
+        for n in 0..replay.shot_count() {
+            let film = replay.film(n).unwrap();
+            let before = replay.view_before_shot(n).unwrap();
+            // At the flick: the board as it stood before the shot.
+            let start = replay.scene_at(n, 0.0).unwrap();
+            let outcome = replay.outcome(n).unwrap();
+            let fell_at_zero = outcome
+                .events
+                .iter()
+                .filter(|e| e.t == 0.0 && e.kind.name() == "region-exit")
+                .count();
+            assert_eq!(
+                start.bodies.len() + fell_at_zero,
+                before.board.pieces().len()
+            );
+            // At the end: nothing moves and the knocked-off pieces are gone.
+            let end = replay.scene_at(n, film.end).unwrap();
+            assert!(end.bodies.iter().all(|b| b.vel == glam::DVec2::ZERO));
+            assert_eq!(
+                end.bodies.len(),
+                before.board.pieces().len() - outcome.knocked_off.len()
+            );
+            // Halfway: every piece is on the board.
+            let mid = replay.scene_at(n, film.end / 2.0).unwrap();
+            assert!(mid
+                .bodies
+                .iter()
+                .all(|b| crate::board::is_on_board(game.config(), b.pos)));
+        }
+        assert_eq!(
+            replay.view_before(replay.record().moves.len()).unwrap(),
+            &game.view()
+        );
+    }
+
+    #[test]
+    fn a_tampered_record_is_caught_as_diverging() {
+        let (game, _) = random_match(Config::default(), 5, 20_000);
+        let mut record = game.record().clone();
+        let RecordedMove::Shot(first) = &mut record.moves[0] else {
+            panic!("the first move is a shot");
+        };
+        first.played.x = f64::from_bits(first.played.x.to_bits() ^ 1);
+        // One bit of one number is enough.
+        assert!(matches!(
+            Replay::new(record),
+            Err(ReplayError::Diverged { index: 0 })
+        ));
+    }
+
+    #[test]
+    fn a_record_with_an_illegal_move_is_refused() {
+        let mut record = MatchRecord::new(Config::default(), 0);
+        record.moves.push(RecordedMove::Pie { swap: true });
+        assert!(matches!(
+            Replay::new(record),
+            Err(ReplayError::IllegalMove {
+                index: 0,
+                error: GameError::NoPieDecision
+            })
+        ));
+        let json = r#"{"version": 99, "config": {}, "seed": 0, "moves": []}"#;
+        assert!(matches!(
+            Replay::from_json(json),
+            Err(ReplayError::Record(RecordError::UnsupportedVersion { .. }))
+        ));
+    }
+}

@@ -145,8 +145,14 @@ mod tests {
 
     #[test]
     fn a_round_winner_moves_its_row_one_rank_forward() {
-        assert_eq!(Rows::initial().advance(Side::White, 1), Advance::Rows(rows(1, 7)));
-        assert_eq!(Rows::initial().advance(Side::Black, 1), Advance::Rows(rows(0, 6)));
+        assert_eq!(
+            Rows::initial().advance(Side::White, 1),
+            Advance::Rows(rows(1, 7))
+        );
+        assert_eq!(
+            Rows::initial().advance(Side::Black, 1),
+            Advance::Rows(rows(0, 6))
+        );
     }
 
     #[test]
@@ -156,21 +162,36 @@ mod tests {
         assert_eq!(met.advance(Side::White, 1), Advance::Rows(rows(4, 5)));
         assert_eq!(met.advance(Side::Black, 1), Advance::Rows(rows(2, 3)));
         // Rows one apart meet after one more win, then push.
-        assert_eq!(rows(2, 4).advance(Side::White, 2), Advance::Rows(rows(4, 5)));
+        assert_eq!(
+            rows(2, 4).advance(Side::White, 2),
+            Advance::Rows(rows(4, 5))
+        );
     }
 
     #[test]
     fn reaching_the_far_edge_wins_the_match() {
         assert_eq!(rows(6, 7).advance(Side::White, 1), Advance::FarEdge);
-        assert_eq!(rows(5, 7).advance(Side::White, 1), Advance::Rows(rows(6, 7)));
+        assert_eq!(
+            rows(5, 7).advance(Side::White, 1),
+            Advance::Rows(rows(6, 7))
+        );
         assert_eq!(rows(0, 1).advance(Side::Black, 1), Advance::FarEdge);
-        assert_eq!(rows(0, 2).advance(Side::Black, 1), Advance::Rows(rows(0, 1)));
-        assert_eq!(rows(3, 7).advance(Side::Black, 1), Advance::Rows(rows(3, 6)));
+        assert_eq!(
+            rows(0, 2).advance(Side::Black, 1),
+            Advance::Rows(rows(0, 1))
+        );
+        assert_eq!(
+            rows(3, 7).advance(Side::Black, 1),
+            Advance::Rows(rows(3, 6))
+        );
     }
 
     #[test]
     fn two_row_advance_stops_at_the_far_edge() {
-        assert_eq!(rows(0, 7).advance(Side::White, 2), Advance::Rows(rows(2, 7)));
+        assert_eq!(
+            rows(0, 7).advance(Side::White, 2),
+            Advance::Rows(rows(2, 7))
+        );
         assert_eq!(rows(5, 7).advance(Side::White, 2), Advance::FarEdge);
         assert_eq!(rows(0, 2).advance(Side::Black, 2), Advance::FarEdge);
     }

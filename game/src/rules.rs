@@ -64,24 +64,42 @@ mod tests {
         PieceId::new(Side::Black, f).unwrap()
     }
     fn board(ids: &[PieceId]) -> Board {
-        Board::from_pieces(ids.iter().map(|&id| Piece { id, pos: DVec2::ZERO }))
+        Board::from_pieces(ids.iter().map(|&id| Piece {
+            id,
+            pos: DVec2::ZERO,
+        }))
     }
 
     #[test]
     fn knocking_off_an_enemy_and_none_of_your_own_earns_another_shot() {
-        assert_eq!(judge(Side::White, &[b(1)], &board(&[w(0), b(0)])), Verdict::ShootAgain);
-        assert_eq!(judge(Side::Black, &[w(1), w(2)], &board(&[w(0), b(0)])), Verdict::ShootAgain);
+        assert_eq!(
+            judge(Side::White, &[b(1)], &board(&[w(0), b(0)])),
+            Verdict::ShootAgain
+        );
+        assert_eq!(
+            judge(Side::Black, &[w(1), w(2)], &board(&[w(0), b(0)])),
+            Verdict::ShootAgain
+        );
     }
 
     #[test]
     fn knocking_off_nothing_passes_the_turn() {
-        assert_eq!(judge(Side::White, &[], &board(&[w(0), b(0)])), Verdict::PassTurn);
+        assert_eq!(
+            judge(Side::White, &[], &board(&[w(0), b(0)])),
+            Verdict::PassTurn
+        );
     }
 
     #[test]
     fn losing_your_own_piece_while_knocking_off_an_enemy_passes_the_turn() {
-        assert_eq!(judge(Side::White, &[b(1), w(1)], &board(&[w(0), b(0)])), Verdict::PassTurn);
-        assert_eq!(judge(Side::White, &[w(1)], &board(&[w(0), b(0)])), Verdict::PassTurn);
+        assert_eq!(
+            judge(Side::White, &[b(1), w(1)], &board(&[w(0), b(0)])),
+            Verdict::PassTurn
+        );
+        assert_eq!(
+            judge(Side::White, &[w(1)], &board(&[w(0), b(0)])),
+            Verdict::PassTurn
+        );
     }
 
     #[test]
@@ -99,6 +117,9 @@ mod tests {
 
     #[test]
     fn the_last_pieces_of_both_sides_falling_together_is_a_draw() {
-        assert_eq!(judge(Side::Black, &[w(0), b(0)], &board(&[])), Verdict::RoundOver(RoundResult::Draw));
+        assert_eq!(
+            judge(Side::Black, &[w(0), b(0)], &board(&[])),
+            Verdict::RoundOver(RoundResult::Draw)
+        );
     }
 }

@@ -70,7 +70,12 @@ impl Shot {
     }
 
     /// A shot of `piece` along `direction` (any length) at `speed`.
-    pub fn aimed(piece: PieceId, direction: DVec2, speed: f64, config: &Config) -> Result<Shot, ShotError> {
+    pub fn aimed(
+        piece: PieceId,
+        direction: DVec2,
+        speed: f64,
+        config: &Config,
+    ) -> Result<Shot, ShotError> {
         if !direction.is_finite() || !speed.is_finite() {
             return Err(ShotError::NotFinite);
         }
@@ -135,18 +140,36 @@ mod tests {
             DVec2::new(1e300, 1e300),
         ] {
             let e = Shot::new(piece(), v, &c).unwrap_err();
-            assert!(matches!(e, ShotError::NotFinite | ShotError::TooFast { .. }), "{e:?}");
+            assert!(
+                matches!(e, ShotError::NotFinite | ShotError::TooFast { .. }),
+                "{e:?}"
+            );
         }
-        assert_eq!(Shot::new(piece(), DVec2::new(f64::NAN, 0.0), &c), Err(ShotError::NotFinite));
-        assert_eq!(Shot::aimed(piece(), DVec2::Y, f64::NAN, &c), Err(ShotError::NotFinite));
+        assert_eq!(
+            Shot::new(piece(), DVec2::new(f64::NAN, 0.0), &c),
+            Err(ShotError::NotFinite)
+        );
+        assert_eq!(
+            Shot::aimed(piece(), DVec2::Y, f64::NAN, &c),
+            Err(ShotError::NotFinite)
+        );
     }
 
     #[test]
     fn zero_speed_is_refused() {
         let c = Config::default();
-        assert_eq!(Shot::new(piece(), DVec2::ZERO, &c), Err(ShotError::ZeroSpeed));
-        assert_eq!(Shot::aimed(piece(), DVec2::ZERO, 1.0, &c), Err(ShotError::ZeroSpeed));
-        assert_eq!(Shot::aimed(piece(), DVec2::Y, 0.0, &c), Err(ShotError::ZeroSpeed));
+        assert_eq!(
+            Shot::new(piece(), DVec2::ZERO, &c),
+            Err(ShotError::ZeroSpeed)
+        );
+        assert_eq!(
+            Shot::aimed(piece(), DVec2::ZERO, 1.0, &c),
+            Err(ShotError::ZeroSpeed)
+        );
+        assert_eq!(
+            Shot::aimed(piece(), DVec2::Y, 0.0, &c),
+            Err(ShotError::ZeroSpeed)
+        );
     }
 
     #[test]
@@ -162,8 +185,19 @@ mod tests {
 
     #[test]
     fn error_codes_are_stable_strings() {
-        assert_eq!(ShotError::NotYourTurn { side: Side::White, turn: Side::Black }.code().as_str(), "not-your-turn");
-        assert_eq!(ShotError::PieceOffBoard(piece()).code().as_str(), "piece-off-board");
+        assert_eq!(
+            ShotError::NotYourTurn {
+                side: Side::White,
+                turn: Side::Black
+            }
+            .code()
+            .as_str(),
+            "not-your-turn"
+        );
+        assert_eq!(
+            ShotError::PieceOffBoard(piece()).code().as_str(),
+            "piece-off-board"
+        );
         assert_eq!(ShotError::MatchOver.code().as_str(), "match-over");
     }
 }

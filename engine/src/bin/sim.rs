@@ -16,7 +16,10 @@ use std::process::ExitCode;
 const DEFAULT_SIM_MAX_EVENTS: u64 = 1_000_000;
 
 #[derive(Parser, Debug)]
-#[command(version, about = "Compute a scene with the a priori engine and print its events as JSON")]
+#[command(
+    version,
+    about = "Compute a scene with the a priori engine and print its events as JSON"
+)]
 struct Args {
     /// The scene file (JSON), or `-` for standard input.
     scene: String,

@@ -125,7 +125,10 @@ mod tests {
     #[test]
     fn closed_form_solves_simple_cases_exactly() {
         assert_eq!(ClosedForm.real_roots(&[-2.0, 1.0]).as_slice(), &[2.0]);
-        assert_eq!(ClosedForm.real_roots(&[2.0, -3.0, 1.0]).as_slice(), &[1.0, 2.0]);
+        assert_eq!(
+            ClosedForm.real_roots(&[2.0, -3.0, 1.0]).as_slice(),
+            &[1.0, 2.0]
+        );
         let r = ClosedForm.real_roots(&[-6.0, 11.0, -6.0, 1.0]);
         assert_eq!(r.len(), 3);
         for (x, e) in r.iter().zip([1.0, 2.0, 3.0]) {

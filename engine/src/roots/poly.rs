@@ -21,20 +21,33 @@ pub(super) const U: f64 = f64::EPSILON * 0.5;
 /// the polynomial has no roots to look for: a non-finite coefficient, the
 /// zero polynomial, a non-zero constant, or a non-zero coefficient beyond
 /// degree 4 (outside this module's contract).
+#[inline(always)]
 pub(super) fn normalize(c: &[f64]) -> Option<(Coeffs, usize)> {
-    let mut deg = c.len();
-    while deg > 0 && c[deg - 1] == 0.0 {
+    if c.len() > 5 && c[5..].iter().any(|&v| v != 0.0) {
+        return None;
+    }
+    // Fixed-size copy (no memcpy/memset calls for this hot path).
+    let mut a = [0.0; 5];
+    let m = c.len().min(5);
+    let mut finite = true;
+    for (i, slot) in a.iter_mut().enumerate() {
+        if i < m {
+            *slot = c[i];
+        }
+        finite &= slot.is_finite();
+    }
+    if !finite {
+        return None;
+    }
+    let mut deg = 4;
+    while deg > 0 && a[deg] == 0.0 {
         deg -= 1;
     }
-    if deg > 5 || c.iter().any(|v| !v.is_finite()) {
-        return None;
+    if deg == 0 {
+        None
+    } else {
+        Some((a, deg))
     }
-    if deg <= 1 {
-        return None;
-    }
-    let mut a = [0.0; 5];
-    a[..deg].copy_from_slice(&c[..deg]);
-    Some((a, deg - 1))
 }
 
 /// Coefficients of the derivative of a degree-`N` polynomial.
@@ -170,6 +183,8 @@ pub(super) fn horner_comp<const N: usize>(a: &Coeffs, x: f64) -> (f64, f64) {
 /// the sign is always right and the value is faithful (barring overflow or
 /// underflow in the products). About 30x the cost of compensated Horner, so
 /// it is only the last resort when the compensated bound cannot decide.
+#[cold]
+#[inline(never)]
 pub(super) fn horner_exact<const N: usize>(a: &Coeffs, x: f64) -> f64 {
     // Horner on expansions: lengths grow 1, 3, 7, 15, 31 at most.
     let mut e = [0.0f64; 32];
@@ -314,7 +329,10 @@ mod tests {
     #[test]
     fn normalize_trims_zero_high_coefficients_and_rejects_bad_input() {
         assert_eq!(normalize(&[1.0, 2.0, 0.0, 0.0]).map(|(_, n)| n), Some(1));
-        assert_eq!(normalize(&[1.0, 2.0, 3.0, 4.0, 5.0]).map(|(_, n)| n), Some(4));
+        assert_eq!(
+            normalize(&[1.0, 2.0, 3.0, 4.0, 5.0]).map(|(_, n)| n),
+            Some(4)
+        );
         assert!(normalize(&[]).is_none());
         assert!(normalize(&[0.0, 0.0]).is_none());
         assert!(normalize(&[3.0]).is_none());
@@ -381,7 +399,13 @@ mod tests {
 
     #[test]
     fn split_point_is_strictly_inside() {
-        for (a, b) in [(1.0, 2.0), (1e-300, 1e300), (-1e300, -1e-300), (-1.0, 3.0), (0.0, 1.0)] {
+        for (a, b) in [
+            (1.0, 2.0),
+            (1e-300, 1e300),
+            (-1e300, -1e-300),
+            (-1.0, 3.0),
+            (0.0, 1.0),
+        ] {
             let m = split_point(a, b);
             assert!(a < m && m < b, "{a} {m} {b}");
         }

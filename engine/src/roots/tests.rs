@@ -34,7 +34,11 @@ fn expand(real: &[f64], pairs: &[(f64, f64)]) -> Vec<f64> {
     }
     for &(re, im) in pairs {
         let (re, im) = (big(re), big(im));
-        let q = [re.clone() * &re + im.clone() * &im, -(re * big(2.0)), big(1.0)];
+        let q = [
+            re.clone() * &re + im.clone() * &im,
+            -(re * big(2.0)),
+            big(1.0),
+        ];
         c = mul(&c, &q);
     }
     c.iter().map(|v| v.to_f64().value()).collect()
@@ -75,67 +79,265 @@ pub(super) fn hard_table() -> Vec<Case> {
     vec![
         // --- Algorithm 1010 ---
         case("A1010 1: 1e9,1e6,1e3,1", expand(&[1e9, 1e6, 1e3, 1.0], &[])),
-        case("A1010 2: 2.003,2.002,2.001,2", expand(&[2.003, 2.002, 2.001, 2.0], &[])),
-        case("A1010 3: 1e53,1e50,1e49,1e47", expand(&[1e53, 1e50, 1e49, 1e47], &[])),
+        case(
+            "A1010 2: 2.003,2.002,2.001,2",
+            expand(&[2.003, 2.002, 2.001, 2.0], &[]),
+        ),
+        case(
+            "A1010 3: 1e53,1e50,1e49,1e47",
+            expand(&[1e53, 1e50, 1e49, 1e47], &[]),
+        ),
         case("A1010 4: 1e14,2,1,-1", expand(&[1e14, 2.0, 1.0, -1.0], &[])),
-        case("A1010 5: -2e7,1e7,1,-1", expand(&[-2e7, 1e7, 1.0, -1.0], &[])),
-        case("A1010 6: 1e7,-1e6,1+-i", expand(&[1e7, -1e6], &[(1.0, 1.0)])),
-        case("A1010 7: -7,-4,-1e6+-1e5i", expand(&[-7.0, -4.0], &[(-1e6, 1e5)])),
-        case("A1010 8: 1e8,11,1e3+-i", expand(&[1e8, 11.0], &[(1e3, 1.0)])),
-        case("A1010 9: complex only", expand(&[], &[(1e7, 1e6), (1.0, 2.0)])),
-        case("A1010 10: complex only", expand(&[], &[(1e4, 3.0), (-7.0, 1e3)])),
-        case("A1010 11: complex only", expand(&[], &[(1.001, 4.998), (1.0, 5.001)])),
-        case("A1010 12: complex only", expand(&[], &[(1e3, 3.0), (1e3, 1.0)])),
-        case("A1010 13: complex only", expand(&[], &[(2.0, 1e4), (1.0, 1e3)])),
+        case(
+            "A1010 5: -2e7,1e7,1,-1",
+            expand(&[-2e7, 1e7, 1.0, -1.0], &[]),
+        ),
+        case(
+            "A1010 6: 1e7,-1e6,1+-i",
+            expand(&[1e7, -1e6], &[(1.0, 1.0)]),
+        ),
+        case(
+            "A1010 7: -7,-4,-1e6+-1e5i",
+            expand(&[-7.0, -4.0], &[(-1e6, 1e5)]),
+        ),
+        case(
+            "A1010 8: 1e8,11,1e3+-i",
+            expand(&[1e8, 11.0], &[(1e3, 1.0)]),
+        ),
+        case(
+            "A1010 9: complex only",
+            expand(&[], &[(1e7, 1e6), (1.0, 2.0)]),
+        ),
+        case(
+            "A1010 10: complex only",
+            expand(&[], &[(1e4, 3.0), (-7.0, 1e3)]),
+        ),
+        case(
+            "A1010 11: complex only",
+            expand(&[], &[(1.001, 4.998), (1.0, 5.001)]),
+        ),
+        case(
+            "A1010 12: complex only",
+            expand(&[], &[(1e3, 3.0), (1e3, 1.0)]),
+        ),
+        case(
+            "A1010 13: complex only",
+            expand(&[], &[(2.0, 1e4), (1.0, 1e3)]),
+        ),
         case("A1010 14: 1000 x4", expand(&[1e3, 1e3, 1e3, 1e3], &[])),
-        case("A1010 15: 1000 x3, 2^-48", expand(&[1e3, 1e3, 1e3, 2f64.powi(-48)], &[])),
-        case("A1010 16: complex only", expand(&[], &[(1e16, 1e7), (1.0, 0.1)])),
-        case("A1010 17: 1e4,1e4+1,1e4+10,1e4+100", expand(&[1e4, 10001.0, 10010.0, 10100.0], &[])),
-        case("A1010 18: complex only", expand(&[], &[(4e5, 3e2), (3e4, 7e3)])),
-        case("A1010 19: 1e44,1e30,1e30,1", expand(&[1e44, 1e30, 1e30, 1.0], &[])),
-        case("A1010 20: 1e14,1e7,1e7,1", expand(&[1e14, 1e7, 1e7, 1.0], &[])),
-        case("A1010 21: 1e15,1e7,1e7,1", expand(&[1e15, 1e7, 1e7, 1.0], &[])),
-        case("A1010 22: 1e154,1e152,10,1", expand(&[1e154, 1e152, 10.0, 1.0], &[])),
-        case("A1010 23: x^4+x^3+x^2+3x/8+1e-3", vec![0.001, 0.375, 1.0, 1.0, 1.0]),
-        case("A1010 24: S=1e30", vec![-s, s * s + s, 1.0 / s - s * s, -(1.0 + 1.0 / s), 1.0]),
+        case(
+            "A1010 15: 1000 x3, 2^-48",
+            expand(&[1e3, 1e3, 1e3, 2f64.powi(-48)], &[]),
+        ),
+        case(
+            "A1010 16: complex only",
+            expand(&[], &[(1e16, 1e7), (1.0, 0.1)]),
+        ),
+        case(
+            "A1010 17: 1e4,1e4+1,1e4+10,1e4+100",
+            expand(&[1e4, 10001.0, 10010.0, 10100.0], &[]),
+        ),
+        case(
+            "A1010 18: complex only",
+            expand(&[], &[(4e5, 3e2), (3e4, 7e3)]),
+        ),
+        case(
+            "A1010 19: 1e44,1e30,1e30,1",
+            expand(&[1e44, 1e30, 1e30, 1.0], &[]),
+        ),
+        case(
+            "A1010 20: 1e14,1e7,1e7,1",
+            expand(&[1e14, 1e7, 1e7, 1.0], &[]),
+        ),
+        case(
+            "A1010 21: 1e15,1e7,1e7,1",
+            expand(&[1e15, 1e7, 1e7, 1.0], &[]),
+        ),
+        case(
+            "A1010 22: 1e154,1e152,10,1",
+            expand(&[1e154, 1e152, 10.0, 1.0], &[]),
+        ),
+        case(
+            "A1010 23: x^4+x^3+x^2+3x/8+1e-3",
+            vec![0.001, 0.375, 1.0, 1.0, 1.0],
+        ),
+        case(
+            "A1010 24: S=1e30",
+            vec![-s, s * s + s, 1.0 / s - s * s, -(1.0 + 1.0 / s), 1.0],
+        ),
         // --- Algorithm 954 (coefficients as published, highest first) ---
-        case("F954 cubic 1: 1,1e7,1e14", high_first(&[1.0, -1.00000010000001e14, 1.00000010000001e21, -1e21])),
-        case("F954 cubic 2: 1,1.000001,1.000002", high_first(&[1.0, -3.000003, 3.000006000002, -1.000003000002])),
-        case("F954 cubic 3: 1e80,1e77,-1e81", high_first(&[1.0, 8.999e80, -1.0009e161, 1e238])),
-        case("F954 cubic 4: 1,-1,-1e24", high_first(&[1.0, 1e24, -1.0, -1e24])),
-        case("F954 cubic 5: 1e14,1e14,-1", high_first(&[1.0, -1.99999999999999e14, 0.99999999999998e28, 1e28])),
-        case("F954 cubic 6: 1e5, 1e5+-i", high_first(&[1.0, -3e5, 3.0000000001e10, -1.0000000001e15])),
-        case("F954 cubic 7: 1, 1+-1e7i", high_first(&[1.0, -3.0, 1.00000000000003e14, -1.00000000000001e14])),
-        case("F954 cubic 8: 1, 1e7+-i", high_first(&[1.0, -2.0000001e7, 1.00000020000001e14, -1.00000000000001e14])),
-        case("F954 cubic 9: -1e14, 1+-i", high_first(&[1.0, 0.99999999999998e14, -1.99999999999998e14, 2e14])),
-        case("F954 quartic 1", high_first(&[1.0, -1001001001.0, 1001002001001000.0, -1001001001000000000.0, 1e18])),
-        case("F954 quartic 2", high_first(&[1.0, -4.006, 6.018011, -4.018022006, 1.006011006])),
-        case("F954 quartic 3: 1e80,-1e74,-1e76,-1e77", high_first(&[1.0, -9.98899e79, -1.1008989e157, -1.010999e233, -1e307])),
-        case("F954 quartic 4", high_first(&[1.0, -1.00000000000002e14, 1.99999999999999e14, 1.00000000000002e14, -2e14])),
-        case("F954 quartic 5", high_first(&[1.0, 1e7, -2.00000000000001e14, -1e7, 2e14])),
-        case("F954 quartic 6", high_first(&[1.0, -9.000002e6, -0.9999981999998e13, 1.9999982e13, -2e13])),
-        case("F954 quartic 7", high_first(&[1.0, 2.000011e6, 1.010022000028e12, 1.1110056e13, 2.828e13])),
-        case("F954 quartic 8", high_first(&[1.0, -1.00002011e8, 2.01101022001e11, -1.02200111000011e14, 1.1000011e15])),
-        case("F954 quartic 9", high_first(&[1.0, -2.0000002e7, 1.01000040000005e14, -2.020001e14, 5.05e14])),
-        case("F954 quartic 10", high_first(&[1.0, -1.9986e4, 1.00720058e8, -1.8600979874e10, 1.00004909000441e14])),
-        case("F954 quartic 11", high_first(&[1.0, -4.006, 5.6008018e1, -1.04148036024e2, 6.75896068064016e2])),
-        case("F954 quartic 12", high_first(&[1.0, -4e3, 6.00001e6, -4.00002e9, 1.000010000009e12])),
-        case("F954 quartic 13", high_first(&[1.0, -6.0, 1.01000013e8, -2.04000012e8, 1.00000104000004e14])),
+        case(
+            "F954 cubic 1: 1,1e7,1e14",
+            high_first(&[1.0, -1.00000010000001e14, 1.00000010000001e21, -1e21]),
+        ),
+        case(
+            "F954 cubic 2: 1,1.000001,1.000002",
+            high_first(&[1.0, -3.000003, 3.000006000002, -1.000003000002]),
+        ),
+        case(
+            "F954 cubic 3: 1e80,1e77,-1e81",
+            high_first(&[1.0, 8.999e80, -1.0009e161, 1e238]),
+        ),
+        case(
+            "F954 cubic 4: 1,-1,-1e24",
+            high_first(&[1.0, 1e24, -1.0, -1e24]),
+        ),
+        case(
+            "F954 cubic 5: 1e14,1e14,-1",
+            high_first(&[1.0, -1.99999999999999e14, 0.99999999999998e28, 1e28]),
+        ),
+        case(
+            "F954 cubic 6: 1e5, 1e5+-i",
+            high_first(&[1.0, -3e5, 3.0000000001e10, -1.0000000001e15]),
+        ),
+        case(
+            "F954 cubic 7: 1, 1+-1e7i",
+            high_first(&[1.0, -3.0, 1.00000000000003e14, -1.00000000000001e14]),
+        ),
+        case(
+            "F954 cubic 8: 1, 1e7+-i",
+            high_first(&[1.0, -2.0000001e7, 1.00000020000001e14, -1.00000000000001e14]),
+        ),
+        case(
+            "F954 cubic 9: -1e14, 1+-i",
+            high_first(&[1.0, 0.99999999999998e14, -1.99999999999998e14, 2e14]),
+        ),
+        case(
+            "F954 quartic 1",
+            high_first(&[
+                1.0,
+                -1001001001.0,
+                1001002001001000.0,
+                -1001001001000000000.0,
+                1e18,
+            ]),
+        ),
+        case(
+            "F954 quartic 2",
+            high_first(&[1.0, -4.006, 6.018011, -4.018022006, 1.006011006]),
+        ),
+        case(
+            "F954 quartic 3: 1e80,-1e74,-1e76,-1e77",
+            high_first(&[1.0, -9.98899e79, -1.1008989e157, -1.010999e233, -1e307]),
+        ),
+        case(
+            "F954 quartic 4",
+            high_first(&[
+                1.0,
+                -1.00000000000002e14,
+                1.99999999999999e14,
+                1.00000000000002e14,
+                -2e14,
+            ]),
+        ),
+        case(
+            "F954 quartic 5",
+            high_first(&[1.0, 1e7, -2.00000000000001e14, -1e7, 2e14]),
+        ),
+        case(
+            "F954 quartic 6",
+            high_first(&[1.0, -9.000002e6, -0.9999981999998e13, 1.9999982e13, -2e13]),
+        ),
+        case(
+            "F954 quartic 7",
+            high_first(&[1.0, 2.000011e6, 1.010022000028e12, 1.1110056e13, 2.828e13]),
+        ),
+        case(
+            "F954 quartic 8",
+            high_first(&[
+                1.0,
+                -1.00002011e8,
+                2.01101022001e11,
+                -1.02200111000011e14,
+                1.1000011e15,
+            ]),
+        ),
+        case(
+            "F954 quartic 9",
+            high_first(&[
+                1.0,
+                -2.0000002e7,
+                1.01000040000005e14,
+                -2.020001e14,
+                5.05e14,
+            ]),
+        ),
+        case(
+            "F954 quartic 10",
+            high_first(&[
+                1.0,
+                -1.9986e4,
+                1.00720058e8,
+                -1.8600979874e10,
+                1.00004909000441e14,
+            ]),
+        ),
+        case(
+            "F954 quartic 11",
+            high_first(&[
+                1.0,
+                -4.006,
+                5.6008018e1,
+                -1.04148036024e2,
+                6.75896068064016e2,
+            ]),
+        ),
+        case(
+            "F954 quartic 12",
+            high_first(&[1.0, -4e3, 6.00001e6, -4.00002e9, 1.000010000009e12]),
+        ),
+        case(
+            "F954 quartic 13",
+            high_first(&[1.0, -6.0, 1.01000013e8, -2.04000012e8, 1.00000104000004e14]),
+        ),
         // --- clustered, multiple, scaled ---
-        case("cluster 1,1+1e-7,1+2e-7,1+3e-7", expand(&[1.0, 1.0 + 1e-7, 1.0 + 2e-7, 1.0 + 3e-7], &[])),
-        case("cluster 1,1+1e-7 and 2,3", expand(&[1.0, 1.0 + 1e-7, 2.0, 3.0], &[])),
-        case("cluster 1e-3 +- 1e-12, -1, 5", expand(&[1e-3 - 1e-12, 1e-3 + 1e-12, -1.0, 5.0], &[])),
-        case("pair 0.5, 0.5+1e-4 above complex", expand(&[0.5, 0.5 + 1e-4], &[(0.5, 1e-3)])),
+        case(
+            "cluster 1,1+1e-7,1+2e-7,1+3e-7",
+            expand(&[1.0, 1.0 + 1e-7, 1.0 + 2e-7, 1.0 + 3e-7], &[]),
+        ),
+        case(
+            "cluster 1,1+1e-7 and 2,3",
+            expand(&[1.0, 1.0 + 1e-7, 2.0, 3.0], &[]),
+        ),
+        case(
+            "cluster 1e-3 +- 1e-12, -1, 5",
+            expand(&[1e-3 - 1e-12, 1e-3 + 1e-12, -1.0, 5.0], &[]),
+        ),
+        case(
+            "pair 0.5, 0.5+1e-4 above complex",
+            expand(&[0.5, 0.5 + 1e-4], &[(0.5, 1e-3)]),
+        ),
         case("double 1 (exact), 2, 3", vec![6.0, -17.0, 17.0, -7.0, 1.0]),
-        case("double 0.1 (rounded), 0.3, -0.7", expand(&[0.1, 0.1, 0.3, -0.7], &[])),
-        case("two doubles 1 and 2 (exact)", vec![4.0, -12.0, 13.0, -6.0, 1.0]),
+        case(
+            "double 0.1 (rounded), 0.3, -0.7",
+            expand(&[0.1, 0.1, 0.3, -0.7], &[]),
+        ),
+        case(
+            "two doubles 1 and 2 (exact)",
+            vec![4.0, -12.0, 13.0, -6.0, 1.0],
+        ),
         case("quadruple 1 (exact)", vec![1.0, -4.0, 6.0, -4.0, 1.0]),
         case("triple 2 (exact), -1", vec![8.0, -4.0, -6.0, 5.0, -1.0]),
-        case("quadruple 0.3 (rounded)", expand(&[0.3, 0.3, 0.3, 0.3], &[])),
-        case("scaled 1e-8,1e-3,1e3,1e8", expand(&[1e-8, 1e-3, 1e3, 1e8], &[])),
-        case("scaled -1e8,-1e-8,1e-4,1e4", expand(&[-1e8, -1e-8, 1e-4, 1e4], &[])),
-        case("zero root x(x-1)(x+2)(x-3)", expand(&[0.0, 1.0, -2.0, 3.0], &[])),
-        case("tiny leading 1e-12 x^4 + ...", vec![-1.0, 0.0, 1.0, 0.0, 1e-12]),
+        case(
+            "quadruple 0.3 (rounded)",
+            expand(&[0.3, 0.3, 0.3, 0.3], &[]),
+        ),
+        case(
+            "scaled 1e-8,1e-3,1e3,1e8",
+            expand(&[1e-8, 1e-3, 1e3, 1e8], &[]),
+        ),
+        case(
+            "scaled -1e8,-1e-8,1e-4,1e4",
+            expand(&[-1e8, -1e-8, 1e-4, 1e4], &[]),
+        ),
+        case(
+            "zero root x(x-1)(x+2)(x-3)",
+            expand(&[0.0, 1.0, -2.0, 3.0], &[]),
+        ),
+        case(
+            "tiny leading 1e-12 x^4 + ...",
+            vec![-1.0, 0.0, 1.0, 0.0, 1e-12],
+        ),
         // --- cubics, quadratics, linear, degenerate ---
         case("cubic 1,2,3", vec![-6.0, 11.0, -6.0, 1.0]),
         case("cubic triple 2 (exact)", vec![-8.0, 12.0, -6.0, 1.0]),
@@ -143,13 +345,19 @@ pub(super) fn hard_table() -> Vec<Case> {
         case("cubic one real, 1e3 +- i", expand(&[-2.0], &[(1e3, 1.0)])),
         case("quadratic double 1 (exact)", vec![1.0, -2.0, 1.0]),
         case("quadratic 1e-10, 1e10", expand(&[1e-10, 1e10], &[])),
-        case("quadratic 1/3 double (rounded)", expand(&[1.0 / 3.0, 1.0 / 3.0], &[])),
+        case(
+            "quadratic 1/3 double (rounded)",
+            expand(&[1.0 / 3.0, 1.0 / 3.0], &[]),
+        ),
         case("quadratic no real root", vec![1.0, 0.0, 1.0]),
         case("linear 2x - 1", vec![-1.0, 2.0]),
         case("constant 5", vec![5.0]),
         case("zero polynomial", vec![0.0, 0.0, 0.0]),
         case("empty", vec![]),
-        case("leading zeros: x^2 - 3x + 2 padded", vec![2.0, -3.0, 1.0, 0.0, 0.0]),
+        case(
+            "leading zeros: x^2 - 3x + 2 padded",
+            vec![2.0, -3.0, 1.0, 0.0, 0.0],
+        ),
         case("NaN coefficient", vec![1.0, f64::NAN, 1.0]),
         case("infinite coefficient", vec![-1.0, 0.0, 0.0, f64::INFINITY]),
     ]
@@ -192,7 +400,9 @@ fn report_hard_table_errors_per_method() {
 
 #[test]
 fn debug_case() {
-    let Ok(name) = std::env::var("CASE") else { return };
+    let Ok(name) = std::env::var("CASE") else {
+        return;
+    };
     for c in hard_table() {
         if c.name.starts_with(&name) {
             println!("{} {:?}", c.name, c.coeffs);
