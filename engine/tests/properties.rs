@@ -477,3 +477,32 @@ impl EventHandler for Log {
         self.0.push((event.t.to_bits(), event.kind));
     }
 }
+
+#[test]
+fn scratch_repro() {
+    let scene = Scene {
+        g: 9.81,
+        t: 0.0,
+        bodies: vec![
+            BodySpec::new(0, DVec2::new(0.7000000000000001, 0.5), 0.08483924427697022, 0.1536445301851759, 0.2910057958277648)
+                .with_velocity(DVec2::new(0.0, -1.8959052099413232)).with_restitution(0.3),
+            BodySpec::new(1, DVec2::new(0.7000000000000001, 0.9), 0.01, 1.0, 0.05)
+                .with_velocity(DVec2::new(-1.1556795368112232, 0.785746437034337)),
+        ],
+        points: vec![],
+        lines: square(),
+    };
+    struct P(u64);
+    impl EventHandler for P {
+        fn on_event(&mut self, world: &World, e: &Event) {
+            self.0 += 1;
+            if self.0 < 40 || self.0 % 1000 == 0 {
+                let b: Vec<_> = world.bodies().map(|b| (b.trajectory.position(e.t), b.trajectory.velocity(e.t))).collect();
+                println!("{} {:?} {:?}", self.0, e, b);
+            }
+        }
+    }
+    let mut world = World::new(&scene, WorldConfig::default()).unwrap();
+    let end = world.run(&Limits { until: 1e4, max_events: 50000, ..Limits::default() }, &mut P(0));
+    println!("{:?} {:?}", end, world.stats());
+}

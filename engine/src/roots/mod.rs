@@ -189,3 +189,5 @@ impl RootSolver for Method {
         }
     }
 }
+
+thread_local! { pub static COUNT: std::cell::RefCell<[u64; 6]> = const { std::cell::RefCell::new([0; 6]) }; }

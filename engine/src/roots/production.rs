@@ -83,13 +83,10 @@ fn solve(coeffs: &[f64], lo: f64, hi: f64, first: bool) -> Roots {
             if lo == 0.0 && descartes_at_zero(&a, n, hi, first, &mut out) {
                 return out;
             }
-            if n == 4 && no_real_roots(&a) {
-                return out;
-            }
             if n == 3 {
-                cubic(&a, lo, hi, first, &mut out)
-            } else {
-                quartic(&a, lo, hi, first, &mut out)
+                cubic(&a, lo, hi, first, &mut out);
+            } else if !no_real_roots(&a) {
+                quartic(&a, lo, hi, first, &mut out);
             }
         }
     }
@@ -198,7 +195,7 @@ fn no_real_roots(q: &Coeffs) -> bool {
 
 /// The one positive root of `p` (Descartes: one sign variation), if below
 /// `hi`.
-#[inline(always)]
+#[inline(never)]
 fn single_positive_root<const N: usize>(a: &Coeffs, hi: f64, out: &mut Roots) {
     let r = root_bound(a, N);
     let f0 = a[0];
@@ -317,7 +314,9 @@ fn newton<const N: usize>(
     let mut x = x0;
     let mut d = 0.0;
     for _ in 0..128 {
+        super::COUNT.with(|c| c.borrow_mut()[1] += 1);
         let (f, df) = horner_d::<N>(p, x);
+        if super::COUNT.with(|c| c.borrow()[5]) > 0 { eprintln!("   newton a={a:e} b={b:e} x={x:e} f={f:e} df={df:e}"); }
         d = df;
         if f == 0.0 {
             return (x, d);
@@ -372,8 +371,10 @@ fn polish<const N: usize>(p: &Coeffs, x: f64, mut a: f64, mut b: f64, fa: f64, d
     let mut x = x;
     let mut d = d;
     let (mut v, mut e) = certain_value::<N>(p, x);
+    super::COUNT.with(|c| c.borrow_mut()[4] += 1);
     let mut creep = 0;
     for _ in 0..200 {
+        super::COUNT.with(|c| c.borrow_mut()[0] += 1);
         if v == 0.0 {
             return x;
         }
@@ -574,6 +575,7 @@ fn finite_or(v: f64, s: f64) -> f64 {
     }
 }
 
+#[inline(never)]
 fn cubic(a: &Coeffs, lo: f64, hi: f64, first: bool, out: &mut Roots) {
     let Some((l, fl, h, fh)) = search_interval::<3>(a, lo, hi) else {
         return;
@@ -591,6 +593,65 @@ fn cubic(a: &Coeffs, lo: f64, hi: f64, first: bool, out: &mut Roots) {
     w.finish(h, fh);
 }
 
+/// The critical point of the quartic `p` in `(lo, hi)`, where its
+/// derivative `d` changes sign (`g_lo` = `p'(lo)`), located only as well as
+/// the walk needs. Newton on `p'` (kept in the bracket, bisection as
+/// fallback) also evaluates `p` at each iterate `y`: as soon as `p(y)`
+/// certainly has the sign opposite to `f_prev`, the value at the walk's
+/// current left end, a crossing is bracketed by `y` and the search stops.
+/// (That `y` is a valid breakpoint even though `p'(y) != 0`: between `y` and
+/// the true critical point `p` keeps the sign of `p(y)`, because the
+/// extremum lies beyond `p(y)` from zero.) Otherwise Newton converges and
+/// the critical point comes back with `p`'s trusted value there. Returns
+/// the point, `p` there and whether it is (to rounding) a critical point.
+#[inline(always)]
+fn critical_point(
+    p: &Coeffs,
+    d: &Coeffs,
+    (mut lo, mut hi): (f64, f64),
+    g_lo: f64,
+    start: f64,
+    f_prev: f64,
+) -> (f64, f64, bool) {
+    let neg_lo = g_lo < 0.0;
+    let mut y = start;
+    super::COUNT.with(|c| c.borrow_mut()[3] += 1);
+    for _ in 0..128 {
+        super::COUNT.with(|c| c.borrow_mut()[2] += 1);
+        let (g, dg) = horner_d::<3>(d, y);
+        if f_prev != 0.0 {
+            let (f, e) = horner_bounded::<4>(p, y);
+            if f.abs() > e && (f < 0.0) != (f_prev < 0.0) {
+                return (y, f, false);
+            }
+        }
+        if g == 0.0 {
+            break;
+        }
+        if (g < 0.0) == neg_lo {
+            lo = y;
+        } else {
+            hi = y;
+        }
+        let step = g / dg;
+        let yn = y - step;
+        if yn > lo && yn < hi {
+            y = yn;
+            if step.abs() <= CRIT_TOL * yn.abs() {
+                break;
+            }
+        } else {
+            let m = split_point(lo, hi);
+            if !(m > lo && m < hi) {
+                break;
+            }
+            y = m;
+        }
+    }
+    (y, signed_value::<4>(p, y), true)
+}
+
+#[inline(never)]
 fn quartic(a: &Coeffs, lo: f64, hi: f64, first: bool, out: &mut Roots) {
     let Some((l, fl, h, fh)) = search_interval::<4>(a, lo, hi) else {
         return;
@@ -619,8 +680,8 @@ fn quartic(a: &Coeffs, lo: f64, hi: f64, first: bool, out: &mut Roots) {
         };
         if gx != 0.0 && ge != 0.0 && (gx < 0.0) != (ge < 0.0) {
             let start = start_point::<3>(&d, (x, gx, x_infl), (e, ge, e_infl));
-            let (c, _) = newton::<3>(&d, x, e, gx, start, CRIT_TOL);
-            if w.visit(c) {
+            let (c, fc, exact) = critical_point(a, &d, (x, e), gx, start, w.f);
+            if c > w.x && w.advance(c, fc, exact) {
                 return;
             }
         } else if ge == 0.0 && e < h && w.visit(e) {

@@ -1,0 +1,1 @@
+//! Speed against accuracy (in progress).
