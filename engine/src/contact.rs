@@ -24,62 +24,121 @@ use glam::DVec2;
 /// gap is below rounding noise of the contact distance.
 const TOUCH: f64 = 1e-12;
 
-/// How a disc's path is parametrised from time `now`: position `P + w l`,
-/// where `l` is time (frictionless, `w` the velocity) or distance travelled
-/// (with friction, `w` the unit direction).
-struct Path {
-    now_pos: DVec2,
+/// A moving disc's path from time `now`, worked out once per prediction:
+/// position `pos + w l`, where `l` is time (frictionless, `w` the velocity)
+/// or distance travelled (with friction, `w` the unit direction).
+#[derive(Clone, Copy, Debug)]
+pub struct Mover<'a> {
+    pub tr: &'a Trajectory,
+    pub now: f64,
+    /// Position at `now`.
+    pub pos: DVec2,
     w: DVec2,
+    /// Distance travelled from the trajectory's start to `now` (friction only).
+    travelled: f64,
 }
 
-impl Path {
-    fn of(tr: &Trajectory, now: f64) -> Path {
-        let w = if tr.is_frictionless() {
-            tr.start_velocity()
-        } else {
-            tr.direction()
-        };
-        Path {
-            now_pos: tr.position(now),
-            w,
+impl<'a> Mover<'a> {
+    /// The path of `tr` from `now`, or `None` if the disc is at rest then.
+    #[inline]
+    pub fn new(tr: &'a Trajectory, now: f64) -> Option<Mover<'a>> {
+        if !tr.is_moving_at(now) {
+            return None;
         }
-    }
-
-    /// Absolute time at parameter `l` past `now` (None if the disc stops first).
-    fn time_at(tr: &Trajectory, now: f64, l: f64) -> Option<f64> {
-        if tr.is_frictionless() {
-            Some(now + l)
+        Some(if tr.is_frictionless() {
+            Mover {
+                tr,
+                now,
+                pos: tr.position(now),
+                w: tr.start_velocity(),
+                travelled: 0.0,
+            }
         } else {
             let travelled = tr.sigma(now - tr.start_time());
-            tr.time_at_distance(travelled + l).map(|t| t.max(now))
+            Mover {
+                tr,
+                now,
+                pos: tr.start_position() + tr.direction() * travelled,
+                w: tr.direction(),
+                travelled,
+            }
+        })
+    }
+
+    /// The direction of the path parameter: velocity without friction, unit
+    /// direction with it.
+    #[inline]
+    pub fn direction(&self) -> DVec2 {
+        self.w
+    }
+
+    /// Absolute time at path parameter `l >= 0` past `now` (None if the
+    /// disc stops first).
+    #[inline]
+    pub fn time_at(&self, l: f64) -> Option<f64> {
+        if self.tr.is_frictionless() {
+            Some(self.now + l)
+        } else {
+            self.tr
+                .time_at_distance(self.travelled + l)
+                .map(|t| t.max(self.now))
         }
     }
 }
 
-/// The first time `>= now` at which the disc on `tr` (moving) touches the
-/// fixed point `q` at centre distance `s`, approaching.
-pub fn disc_point(tr: &Trajectory, q: DVec2, s: f64, now: f64) -> Option<f64> {
-    if !tr.is_moving_at(now) {
-        return None;
-    }
-    let path = Path::of(tr, now);
-    let d = path.now_pos - q;
-    let b = d.dot(path.w);
+/// The first time `>= now` at which the moving disc touches the fixed point
+/// `q` at centre distance `s`, approaching.
+#[inline]
+pub fn disc_point(m: &Mover, q: DVec2, s: f64) -> Option<f64> {
+    let d = m.pos - q;
+    let (w, scale) = well_scaled(m.w);
+    let b = d.dot(w);
     if b >= 0.0 {
         return None; // moving away (or sideways): a straight path never returns
     }
     let c = d.length_squared() - s * s;
     if c <= 0.0 {
-        return Some(now);
+        return Some(m.now);
     }
-    let a = path.w.length_squared();
+    let l = entry(w.length_squared(), b, c)?;
+    m.time_at(l / scale)
+}
+
+/// `w` rescaled by a power of two into the range where its squared length
+/// neither underflows nor overflows, and the factor used (1 if none was).
+#[inline(always)]
+fn well_scaled(w: DVec2) -> (DVec2, f64) {
+    let a = w.length_squared();
+    if a.is_normal() && a < 1e300 {
+        return (w, 1.0);
+    }
+    let big = w.x.abs().max(w.y.abs());
+    if big == 0.0 || !big.is_finite() {
+        return (w, 1.0);
+    }
+    // 2^-e with big = m 2^e: exact scaling, no rounding.
+    let scale = f64::from_bits(((2046 - ((big.to_bits() >> 52) & 0x7ff).max(1)) as u64) << 52);
+    (w * scale, scale)
+}
+
+/// The entering root `l > 0` of `a l^2 + 2 b l + c = 0` (with `b < 0`,
+/// `c > 0`: approaching from outside), or `None` if the path misses or only
+/// grazes: a double root, within rounding of the discriminant, is a touch
+/// with no normal approach, not a contact.
+#[inline(always)]
+fn entry(a: f64, b: f64, c: f64) -> Option<f64> {
     let disc = b * b - a * c;
-    if disc < 0.0 {
+    if disc <= GRAZE * b * b {
         return None;
     }
-    let l = c / (-b + disc.sqrt());
-    Path::time_at(tr, now, l)
+    Some(c / (-b + disc.sqrt()))
 }
+
+/// Discriminants below this fraction of `b^2` are rounding noise around a
+/// double root (a tangent pass). Skipping such a touch leaves at most a
+/// rounding-level overlap: the normal approach speed there is below
+/// `sqrt(GRAZE)` (about 5e-8) of the speed.
+const GRAZE: f64 = 16.0 * f64::EPSILON;
 
 /// A predicted hit on a line: the time, and which end if it is a corner.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -88,16 +147,13 @@ pub struct LineHit {
     pub end: Option<u8>,
 }
 
-/// The first time `>= now` at which the disc of radius `r` on `tr` touches
+/// The first time `>= now` at which the moving disc of radius `r` touches
 /// the solid line (its straight part or one of its ends), approaching.
-pub fn disc_line(tr: &Trajectory, line: &LineGeom, r: f64, now: f64) -> Option<LineHit> {
-    if !tr.is_moving_at(now) {
-        return None;
-    }
-    let mut best = disc_line_body(tr, line, r, now).map(|t| LineHit { t, end: None });
+pub fn disc_line(m: &Mover, line: &LineGeom, r: f64) -> Option<LineHit> {
+    let mut best = disc_line_body(m, line, r).map(|t| LineHit { t, end: None });
     for (k, end) in line.ends.iter().enumerate() {
         if let Some(q) = end {
-            if let Some(t) = disc_point(tr, *q, r, now) {
+            if let Some(t) = disc_point(m, *q, r) {
                 if best.is_none_or(|b| t < b.t) {
                     best = Some(LineHit {
                         t,
@@ -110,10 +166,12 @@ pub fn disc_line(tr: &Trajectory, line: &LineGeom, r: f64, now: f64) -> Option<L
     best
 }
 
-fn disc_line_body(tr: &Trajectory, line: &LineGeom, r: f64, now: f64) -> Option<f64> {
-    let path = Path::of(tr, now);
-    let h = line.signed_distance(path.now_pos);
-    let rate = line.n.dot(path.w);
+/// The first time `>= now` at which the moving disc of radius `r` touches
+/// the straight part of the line (not its ends), approaching.
+#[inline]
+pub fn disc_line_body(m: &Mover, line: &LineGeom, r: f64) -> Option<f64> {
+    let h = line.signed_distance(m.pos);
+    let rate = line.n.dot(m.w);
     let side = if h > 0.0 || (h == 0.0 && rate < 0.0) {
         1.0
     } else {
@@ -123,69 +181,57 @@ fn disc_line_body(tr: &Trajectory, line: &LineGeom, r: f64, now: f64) -> Option<
         return None; // not approaching the line
     }
     let gap = side * h - r;
-    let l = if gap <= 0.0 {
-        0.0
-    } else {
-        gap / (-side * rate)
-    };
-    let at = path.now_pos + path.w * l;
-    if !line.covers(at) {
+    let l = if gap <= 0.0 { 0.0 } else { gap / (-side * rate) };
+    if line.is_bounded() && !line.covers(m.pos + m.w * l) {
         return None; // passes beyond the extent; the ends are checked as points
     }
-    Path::time_at(tr, now, l)
+    m.time_at(l)
 }
 
-/// The first time `>= now` at which the centre on `tr` crosses the sensor
+/// The first time `>= now` at which the moving centre crosses the sensor
 /// line, leaving its current side (`inside` = the left side, positive signed
 /// distance). Returns the time and whether the crossing is within the
 /// sensor's extent (a crossing outside a ray or segment is only bookkeeping).
-pub fn centre_crossing(
-    tr: &Trajectory,
-    line: &LineGeom,
-    inside: bool,
-    now: f64,
-) -> Option<(f64, bool)> {
-    if !tr.is_moving_at(now) {
-        return None;
-    }
-    let path = Path::of(tr, now);
-    let h = line.signed_distance(path.now_pos);
-    let rate = line.n.dot(path.w);
+pub fn centre_crossing(m: &Mover, line: &LineGeom, inside: bool) -> Option<(f64, bool)> {
+    let h = line.signed_distance(m.pos);
+    let rate = line.n.dot(m.w);
     let (h, rate) = if inside { (h, rate) } else { (-h, -rate) };
     if rate >= 0.0 {
         return None; // moving deeper into its side, or along the line
     }
     let l = if h <= 0.0 { 0.0 } else { h / -rate };
-    let t = Path::time_at(tr, now, l)?;
-    Some((t, line.covers(path.now_pos + path.w * l)))
+    let t = m.time_at(l)?;
+    Some((t, line.covers(m.pos + m.w * l)))
 }
 
 /// The first time `>= now` at which two discs at centre distance `s` touch
-/// while approaching. `ti` and `tj` are their trajectories; `solver` finds
-/// the roots of the quartic when both move with friction.
+/// while approaching. `mi` is the path of the first disc if it moves;
+/// `solver` finds the roots of the quartic when both move with friction.
+#[inline]
 pub fn disc_disc(
     ti: &Trajectory,
+    mi: Option<&Mover>,
     tj: &Trajectory,
     s: f64,
     now: f64,
     solver: &impl RootSolver,
 ) -> Option<f64> {
-    let mi = ti.is_moving_at(now);
-    let mj = tj.is_moving_at(now);
-    match (mi, mj) {
-        (false, false) => None,
-        (true, false) => disc_point(ti, tj.position(now), s, now),
-        (false, true) => disc_point(tj, ti.position(now), s, now),
-        (true, true) if ti.is_frictionless() && tj.is_frictionless() => linear_pair(ti, tj, s, now),
-        (true, true) => curved_pair(ti, tj, s, now, solver),
+    match (mi, tj.is_moving_at(now)) {
+        (None, false) => None,
+        (Some(m), false) => disc_point(m, tj.position(now), s),
+        (None, true) => disc_point(&Mover::new(tj, now)?, ti.position(now), s),
+        (Some(m), true) if ti.is_frictionless() && tj.is_frictionless() => {
+            linear_pair(m.pos, ti, tj, s, now)
+        }
+        (Some(m), true) => curved_pair(m.pos, ti, tj, s, now, solver),
     }
 }
 
 /// Both move without friction: relative motion is linear, the contact
 /// equation quadratic.
-fn linear_pair(ti: &Trajectory, tj: &Trajectory, s: f64, now: f64) -> Option<f64> {
-    let dp = ti.position(now) - tj.position(now);
-    let dv = ti.start_velocity() - tj.start_velocity();
+fn linear_pair(pi: DVec2, ti: &Trajectory, tj: &Trajectory, s: f64, now: f64) -> Option<f64> {
+    let dp = pi - tj.position(now);
+    let (dv, scale) = well_scaled(ti.start_velocity() - tj.start_velocity());
     let b = dp.dot(dv);
     if b >= 0.0 {
         return None;
@@ -194,24 +240,19 @@ fn linear_pair(ti: &Trajectory, tj: &Trajectory, s: f64, now: f64) -> Option<f64
     if c <= 0.0 {
         return Some(now);
     }
-    let a = dv.length_squared();
-    let disc = b * b - a * c;
-    if disc < 0.0 {
-        return None;
-    }
-    Some(now + c / (-b + disc.sqrt()))
+    Some(now + entry(dv.length_squared(), b, c)? / scale)
 }
 
 /// At least one of two moving discs slows down: solve the quartic on the
 /// interval until the first of them stops.
 fn curved_pair(
+    pi: DVec2,
     ti: &Trajectory,
     tj: &Trajectory,
     s: f64,
     now: f64,
     solver: &impl RootSolver,
 ) -> Option<f64> {
-    let pi = ti.position(now);
     let pj = tj.position(now);
     let horizon = ti.stop_time().min(tj.stop_time()) - now;
     if paths_never_within(ti, pi, tj, pj, s, now) {
@@ -311,7 +352,7 @@ mod tests {
     #[test]
     fn frictionless_disc_meets_a_point_at_the_geometric_time() {
         let tr = mover((0.0, 0.0), (2.0, 0.0), 0.0);
-        let t = disc_point(&tr, DVec2::new(5.0, 0.0), 1.0, 0.0).unwrap();
+        let t = disc_point(&Mover::new(&tr, 0.0).unwrap(), DVec2::new(5.0, 0.0), 1.0).unwrap();
         assert_eq!(t, 2.0);
     }
 
@@ -319,8 +360,8 @@ mod tests {
     fn sliding_disc_stopping_short_of_a_point_never_touches_it() {
         // Stops after v^2/(2 alpha) = 1.0; the point is 1.5 away at contact distance 0.4.
         let tr = mover((0.0, 0.0), (2.0, 0.0), 2.0);
-        assert_eq!(disc_point(&tr, DVec2::new(1.5, 0.0), 0.4, 0.0), None);
-        let t = disc_point(&tr, DVec2::new(1.3, 0.0), 0.4, 0.0).unwrap();
+        assert_eq!(disc_point(&Mover::new(&tr, 0.0).unwrap(), DVec2::new(1.5, 0.0), 0.4), None);
+        let t = disc_point(&Mover::new(&tr, 0.0).unwrap(), DVec2::new(1.3, 0.0), 0.4).unwrap();
         // Travels 0.9: 2t - t^2 = 0.9.
         let exact = 1.0 - (1.0f64 - 0.9).sqrt();
         assert!((t - exact).abs() < 1e-15, "{t} vs {exact}");
@@ -329,13 +370,13 @@ mod tests {
     #[test]
     fn touching_and_separating_gives_no_contact() {
         let tr = mover((0.0, 0.0), (-1.0, 0.0), 0.0);
-        assert_eq!(disc_point(&tr, DVec2::new(1.0, 0.0), 1.0, 0.0), None);
+        assert_eq!(disc_point(&Mover::new(&tr, 0.0).unwrap(), DVec2::new(1.0, 0.0), 1.0), None);
     }
 
     #[test]
     fn touching_and_approaching_is_a_contact_now() {
         let tr = mover((0.0, 0.0), (1.0, 0.0), 0.5);
-        assert_eq!(disc_point(&tr, DVec2::new(1.0, 0.0), 1.0, 0.0), Some(0.0));
+        assert_eq!(disc_point(&Mover::new(&tr, 0.0).unwrap(), DVec2::new(1.0, 0.0), 1.0), Some(0.0));
     }
 
     #[test]
@@ -347,10 +388,10 @@ mod tests {
         ))
         .unwrap();
         let tr = mover((0.0, 0.0), (1.0, 0.0), 0.0);
-        let hit = disc_line(&tr, &seg, 0.5, 0.0).unwrap();
+        let hit = disc_line(&Mover::new(&tr, 0.0).unwrap(), &seg, 0.5).unwrap();
         assert_eq!(hit, LineHit { t: 1.5, end: None });
         let tr = mover((0.0, 3.0), (1.0, 0.0), 0.0);
-        assert_eq!(disc_line(&tr, &seg, 0.5, 0.0), None);
+        assert_eq!(disc_line(&Mover::new(&tr, 0.0).unwrap(), &seg, 0.5), None);
     }
 
     #[test]
@@ -362,7 +403,7 @@ mod tests {
         ))
         .unwrap();
         let tr = mover((0.0, 1.3), (1.0, 0.0), 0.0);
-        let hit = disc_line(&tr, &seg, 0.5, 0.0).unwrap();
+        let hit = disc_line(&Mover::new(&tr, 0.0).unwrap(), &seg, 0.5).unwrap();
         assert_eq!(hit.end, Some(1));
         let expected = 2.0 - (0.25f64 - 0.09).sqrt();
         assert!((hit.t - expected).abs() < 1e-15);
@@ -372,7 +413,7 @@ mod tests {
     fn two_sliding_discs_meet_at_the_quartic_root() {
         let a = mover((0.0, 0.0), (2.0, 0.0), 1.0);
         let b = mover((1.5, 0.0), (-2.0, 0.0), 1.0);
-        let t = disc_disc(&a, &b, 0.5, 0.0, &Production).unwrap();
+        let t = disc_disc(&a, Mover::new(&a, 0.0).as_ref(), &b, 0.5, 0.0, &Production).unwrap();
         // 2(2t - t^2/2) = 1  =>  t^2 - 4t + 1 = 0
         let exact = 2.0 - 3.0f64.sqrt();
         assert!((t - exact).abs() < 1e-15, "{t} vs {exact}");
@@ -390,7 +431,7 @@ mod tests {
             1.0,
             0.0
         ));
-        assert_eq!(disc_disc(&a, &b, 1.0, 0.0, &Production), None);
+        assert_eq!(disc_disc(&a, Mover::new(&a, 0.0).as_ref(), &b, 1.0, 0.0, &Production), None);
     }
 
     #[test]
@@ -403,9 +444,9 @@ mod tests {
         .unwrap();
         // Left of (1,-1)->(1,1), walking north, is x < 1: the inside.
         let tr = mover((0.0, 0.0), (2.0, 0.0), 0.0);
-        assert_eq!(centre_crossing(&tr, &edge, true, 0.0), Some((0.5, true)));
+        assert_eq!(centre_crossing(&Mover::new(&tr, 0.0).unwrap(), &edge, true), Some((0.5, true)));
         // Once outside and moving out, no further crossing.
-        assert_eq!(centre_crossing(&tr, &edge, false, 0.5), None);
+        assert_eq!(centre_crossing(&Mover::new(&tr, 0.5).unwrap(), &edge, false), None);
     }
 
     #[test]

@@ -8,7 +8,7 @@
 //! infinity, so a disc that leaves the covered area is still filed (in a
 //! border cell) and nothing is missed, only less well pruned.
 
-use crate::trajectory::Trajectory;
+use crate::contact::Mover;
 use glam::DVec2;
 
 /// A uniform grid of body slots.
@@ -109,6 +109,26 @@ impl Grid {
         })
     }
 
+    /// After `slot` moved one cell by `step`, the cells that have just come
+    /// into its 3x3 block (the leading row or column; none at the border).
+    #[inline]
+    pub fn entered_cells(&self, slot: usize, step: Step) -> impl Iterator<Item = &[u32]> + '_ {
+        let c = self.cell_of[slot] as i32;
+        let (cx, cy) = (c % self.nx, c / self.nx);
+        let (dx, dy) = (step.0 as i32, step.1 as i32);
+        // The leading line of the block, at cx + dx (or cy + dy).
+        let (x0, x1, y0, y1) = if dx != 0 {
+            (cx + dx, cx + dx, cy - 1, cy + 1)
+        } else {
+            (cx - 1, cx + 1, cy + dy, cy + dy)
+        };
+        let xs = x0.max(0)..=x1.min(self.nx - 1);
+        (y0.max(0)..=y1.min(self.ny - 1)).flat_map(move |y| {
+            xs.clone()
+                .map(move |x| self.cells[self.index(x, y) as usize].as_slice())
+        })
+    }
+
     /// Calls `f` for every slot in the 3x3 block of cells around `slot`'s cell.
     pub fn for_neighbours(&self, slot: usize, mut f: impl FnMut(usize)) {
         for cell in self.neighbour_cells(slot) {
@@ -118,20 +138,12 @@ impl Grid {
         }
     }
 
-    /// When the disc on `tr` next leaves its cell (at or after `now`), and
+    /// When the moving disc next leaves its cell (at or after now), and
     /// which way. Border cells are unbounded outwards.
-    pub fn next_crossing(&self, slot: usize, tr: &Trajectory, now: f64) -> Option<(f64, Step)> {
-        if !tr.is_moving_at(now) {
-            return None;
-        }
+    pub fn next_crossing(&self, slot: usize, m: &Mover) -> Option<(f64, Step)> {
         let c = self.cell_of[slot] as i32;
         let (cx, cy) = (c % self.nx, c / self.nx);
-        let p = tr.position(now);
-        let w = if tr.is_frictionless() {
-            tr.start_velocity()
-        } else {
-            tr.direction()
-        };
+        let (p, w) = (m.pos, m.direction());
         let mut best: Option<(f64, Step)> = None;
         let mut consider = |l: f64, step: Step| {
             if best.is_none_or(|(b, _)| l < b) {
@@ -153,18 +165,14 @@ impl Grid {
             consider((edge - p.y) / w.y, (0, -1));
         }
         let (l, step) = best?;
-        let t = if tr.is_frictionless() {
-            now + l
-        } else {
-            tr.time_at_distance(tr.sigma(now - tr.start_time()) + l)?
-        };
-        Some((t.max(now), step))
+        Some((m.time_at(l)?, step))
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::trajectory::Trajectory;
 
     #[test]
     fn neighbours_are_the_surrounding_block_only() {
@@ -193,9 +201,10 @@ mod tests {
         let mut g = Grid::new(DVec2::ZERO, DVec2::splat(4.0), 1.0, 16);
         g.insert(0, DVec2::new(0.5, 0.5));
         let tr = Trajectory::new(0.0, DVec2::new(0.5, 0.5), DVec2::new(2.0, 0.5), 0.0);
-        assert_eq!(g.next_crossing(0, &tr, 0.0), Some((0.25, (1, 0))));
+        let at = |t: f64| Mover::new(&tr, t).unwrap();
+        assert_eq!(g.next_crossing(0, &at(0.0)), Some((0.25, (1, 0))));
         g.step(0, (1, 0));
-        let (t, step) = g.next_crossing(0, &tr, 0.25).unwrap();
+        let (t, step) = g.next_crossing(0, &at(0.25)).unwrap();
         assert_eq!((t, step), (0.75, (1, 0)));
     }
 }

@@ -417,16 +417,31 @@ impl<H: EventHandler> Model<H> {
     }
 
     /// Applies `action` at time `t`. A past time drops the later history.
-    /// On error nothing changes.
+    /// On error nothing changes (not even how far the chain is computed).
     pub fn apply(&mut self, t: f64, action: Action) -> Result<(), ActionError> {
         if !t.is_finite() || t < self.start.t {
             return Err(ActionError::BadTime(t));
         }
+        // Reaching a future time computes the chain up to it; keep what is
+        // needed to undo that if the action is refused.
+        let checkpoint = (t > self.world.time() && self.computed_to() < f64::INFINITY)
+            .then(|| (self.world.clone(), self.events.len() as u32, self.end));
         self.compute_through(t);
         let k = self.count_at(t);
         let mut snap = self.snapshot_after(k, t);
-        let changed = apply_to(&mut snap, t, &action)?;
-        snap.scene_at(t).validate()?;
+        let checked = apply_to(&mut snap, t, &action)
+            .and_then(|changed| Ok((changed, snap.scene_at(t).validate()?)));
+        let changed = match checked {
+            Ok((changed, ())) => changed,
+            Err(e) => {
+                if let Some((world, k0, end)) = checkpoint {
+                    self.truncate(k0);
+                    self.world = world;
+                    self.end = end;
+                }
+                return Err(e);
+            }
+        };
         // Accepted: commit.
         self.truncate(k);
         let index = self.actions.len() as u32;

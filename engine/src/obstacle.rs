@@ -113,6 +113,12 @@ impl LineGeom {
         self.n.dot(x) + self.c
     }
 
+    /// Whether the line ends somewhere (a ray or a segment).
+    #[inline]
+    pub fn is_bounded(&self) -> bool {
+        self.lo != f64::NEG_INFINITY || self.hi != f64::INFINITY
+    }
+
     /// Whether the foot of the perpendicular from `x` lies on the line's extent.
     pub fn covers(&self, x: DVec2) -> bool {
         let along = (x - self.a).dot(self.tangent);

@@ -15,7 +15,7 @@
 //! a disc whose centre leaves the board (a sensor line).
 
 use crate::calendar::Calendar;
-use crate::contact::{self, LineHit};
+use crate::contact::{self, Mover};
 use crate::event::{Event, EventKind};
 use crate::grid::{Grid, Step};
 use crate::id::{BodyId, LineId, PointId};
@@ -26,7 +26,6 @@ use crate::scene::{BodySpec, Scene, SceneError};
 use crate::trajectory::Trajectory;
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
-use std::collections::HashMap;
 
 /// What the rules decide for a disc whose centre left a region.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -216,7 +215,6 @@ enum Next {
     Point(u32),
     Line(u32, Option<u8>),
     Sensor { line: u32, bit: u8, reported: bool },
-    Cell(Step),
 }
 
 /// A body's pair whose time is already known (or is to be reported).
@@ -230,6 +228,11 @@ struct Best {
 }
 
 impl Best {
+    const NONE: Best = Best {
+        t: f64::INFINITY,
+        next: Next::None,
+    };
+
     /// Keeps `(t, next)` if it is strictly earlier (the first offered wins ties).
     #[inline(always)]
     fn offer(&mut self, t: f64, next: Next) {
@@ -240,6 +243,25 @@ impl Best {
     }
 }
 
+/// What the pair loop reads of each body, kept together.
+#[derive(Clone, Copy, Debug)]
+struct Slot {
+    traj: Trajectory,
+    radius: f64,
+    gen: u32,
+    alive: bool,
+    /// Bit k set: the centre is inside (left of) sensor k.
+    sides: u64,
+}
+
+/// A corner a disc can hit: the end of a ray or segment (shared ends once).
+#[derive(Clone, Copy, Debug)]
+struct Corner {
+    pos: DVec2,
+    line: u32,
+    end: u8,
+}
+
 /// The live state of a computation.
 #[derive(Clone, Debug)]
 pub struct World {
@@ -248,19 +270,20 @@ pub struct World {
     g: f64,
     config: WorldConfig,
     ids: Vec<BodyId>,
-    slot_of: HashMap<BodyId, usize>,
+    /// `(id, slot)` sorted by id, for lookups by id.
+    by_id: Vec<(BodyId, u32)>,
+    slots: Vec<Slot>,
     material: Vec<Material>,
-    traj: Vec<Trajectory>,
-    gen: Vec<u32>,
-    alive: Vec<bool>,
-    /// Bit k set: the centre is inside (left of) sensor k.
-    sides: Vec<u64>,
-    next: Vec<Next>,
+    /// Each body's earliest real event.
+    pending: Vec<Best>,
+    /// Each body's next grid-cell crossing (infinity without a grid).
+    cross: Vec<(f64, Step)>,
     calendar: Calendar,
     points: Vec<Point>,
     lines: Vec<Line>,
     geoms: Vec<LineGeom>,
     solid: Vec<u32>,
+    corners: Vec<Corner>,
     sensors: Vec<u32>,
     grid: Option<Grid>,
     stats: Stats,
@@ -305,11 +328,50 @@ impl World {
             .iter()
             .map(|l| LineGeom::new(l).expect("validated scenes have no degenerate lines"))
             .collect();
-        let solid = (0..lines.len() as u32)
+        let solid: Vec<u32> = (0..lines.len() as u32)
             .filter(|&k| !lines[k as usize].sensor)
             .collect();
         let sensors: Vec<u32> = (0..lines.len() as u32)
             .filter(|&k| lines[k as usize].sensor)
+            .collect();
+        let mut corners: Vec<Corner> = Vec::new();
+        for &k in &solid {
+            for (end, q) in geoms[k as usize].ends.iter().enumerate() {
+                if let Some(pos) = *q {
+                    if !corners.iter().any(|c| c.pos == pos) {
+                        corners.push(Corner {
+                            pos,
+                            line: k,
+                            end: end as u8,
+                        });
+                    }
+                }
+            }
+        }
+        let mut by_id: Vec<(BodyId, u32)> = bodies
+            .iter()
+            .enumerate()
+            .map(|(i, b)| (b.id, i as u32))
+            .collect();
+        by_id.sort_unstable();
+        let slots = bodies
+            .iter()
+            .map(|b| {
+                let p = b.trajectory.position(t);
+                let mut sides = 0u64;
+                for (bit, &k) in sensors.iter().enumerate() {
+                    if geoms[k as usize].signed_distance(p) >= 0.0 {
+                        sides |= 1 << bit;
+                    }
+                }
+                Slot {
+                    traj: b.trajectory,
+                    radius: b.material.radius,
+                    gen: 0,
+                    alive: true,
+                    sides,
+                }
+            })
             .collect();
         let mut w = World {
             t,
@@ -317,30 +379,21 @@ impl World {
             g,
             config,
             ids: bodies.iter().map(|b| b.id).collect(),
-            slot_of: bodies.iter().enumerate().map(|(i, b)| (b.id, i)).collect(),
+            by_id,
+            slots,
             material: bodies.iter().map(|b| b.material).collect(),
-            traj: bodies.iter().map(|b| b.trajectory).collect(),
-            gen: vec![0; n],
-            alive: vec![true; n],
-            sides: vec![0; n],
-            next: vec![Next::None; n],
+            pending: vec![Best::NONE; n],
+            cross: vec![(f64::INFINITY, (0, 0)); n],
             calendar: Calendar::new(n),
             points,
             lines,
             geoms,
             solid,
+            corners,
             sensors,
             grid: None,
             stats: Stats::default(),
         };
-        for i in 0..n {
-            let p = w.traj[i].position(t);
-            for (bit, &k) in w.sensors.iter().enumerate() {
-                if w.geoms[k as usize].signed_distance(p) >= 0.0 {
-                    w.sides[i] |= 1 << bit;
-                }
-            }
-        }
         let use_grid = match config.broad_phase {
             BroadPhase::AllPairs => false,
             BroadPhase::Grid => true,
@@ -349,8 +402,10 @@ impl World {
         if use_grid && n > 0 {
             w.grid = Some(w.build_grid());
         }
+        // Resting bodies need no prediction of their own: every contact with
+        // them is found by the moving body.
         for i in 0..n {
-            w.predict(i);
+            w.predict(i, false);
         }
         w
     }
@@ -360,28 +415,28 @@ impl World {
         let mut lo = DVec2::splat(f64::INFINITY);
         let mut hi = DVec2::splat(f64::NEG_INFINITY);
         let mut max_r: f64 = 0.0;
-        for (i, tr) in self.traj.iter().enumerate() {
+        for s in &self.slots {
+            let tr = &s.traj;
             let p = tr.position(t);
             let stop = if tr.stop_time().is_finite() {
                 tr.position(tr.stop_time())
             } else {
                 p
             };
-            let r = self.material[i].radius;
             for q in [p, stop] {
-                lo = lo.min(q - r);
-                hi = hi.max(q + r);
+                lo = lo.min(q - s.radius);
+                hi = hi.max(q + s.radius);
             }
-            max_r = max_r.max(r);
+            max_r = max_r.max(s.radius);
         }
         for l in &self.lines {
             lo = lo.min(l.a).min(l.b);
             hi = hi.max(l.a).max(l.b);
         }
-        let n = self.traj.len();
-        let mut grid = Grid::new(lo, hi, 2.0 * max_r * (1.0 + 1e-9), 2 * n);
-        for (i, tr) in self.traj.iter().enumerate() {
-            grid.insert(i, tr.position(t));
+        let n = self.slots.len();
+        let mut grid = Grid::new(lo, hi, 2.0 * max_r * (1.0 + 1e-9), n);
+        for (i, s) in self.slots.iter().enumerate() {
+            grid.insert(i, s.traj.position(t));
         }
         grid
     }
@@ -416,25 +471,26 @@ impl World {
         &self.lines
     }
 
+    fn state(&self, i: usize) -> BodyState {
+        BodyState {
+            id: self.ids[i],
+            material: self.material[i],
+            trajectory: self.slots[i].traj,
+        }
+    }
+
     /// The bodies still in the scene, in the order they were given.
     pub fn bodies(&self) -> impl Iterator<Item = BodyState> + '_ {
-        (0..self.ids.len())
-            .filter(|&i| self.alive[i])
-            .map(|i| BodyState {
-                id: self.ids[i],
-                material: self.material[i],
-                trajectory: self.traj[i],
-            })
+        (0..self.slots.len())
+            .filter(|&i| self.slots[i].alive)
+            .map(|i| self.state(i))
     }
 
     /// One body still in the scene.
     pub fn body(&self, id: BodyId) -> Option<BodyState> {
-        let &i = self.slot_of.get(&id)?;
-        self.alive[i].then(|| BodyState {
-            id,
-            material: self.material[i],
-            trajectory: self.traj[i],
-        })
+        let k = self.by_id.binary_search_by_key(&id, |e| e.0).ok()?;
+        let i = self.by_id[k].1 as usize;
+        self.slots[i].alive.then(|| self.state(i))
     }
 
     /// The scene at time `t >= last_event_time()` (positions and velocities
@@ -451,19 +507,23 @@ impl World {
 
     /// Whether any body still moves at the current time.
     pub fn any_moving(&self) -> bool {
-        (0..self.ids.len()).any(|i| self.alive[i] && self.traj[i].is_moving_at(self.t))
+        self.slots
+            .iter()
+            .any(|s| s.alive && s.traj.is_moving_at(self.t))
     }
 
     /// Advances the computation until a limit is reached or nothing more can
     /// happen, telling `handler` about every event.
     pub fn run<H: EventHandler + ?Sized>(&mut self, limits: &Limits, handler: &mut H) -> End {
-        let mut events = 0u64;
-        let mut collisions = 0u64;
+        let mut events_left = limits.max_events;
+        let mut collisions_left = limits.max_collisions;
         loop {
             let Some((slot, t)) = self.calendar.peek() else {
                 return self.end_at_rest();
             };
             if t == f64::INFINITY {
+                // Nothing can ever happen again: that moment comes before
+                // any horizon.
                 return self.end_at_rest();
             }
             if t > limits.until {
@@ -473,21 +533,15 @@ impl World {
                     reason: EndReason::Until,
                 };
             }
-            if events >= limits.max_events {
-                return End {
-                    t: self.last_event_t,
-                    reason: EndReason::MaxEvents,
-                };
+            if events_left == 0 {
+                return self.end_on(EndReason::MaxEvents);
             }
-            if collisions >= limits.max_collisions {
-                return End {
-                    t: self.last_event_t,
-                    reason: EndReason::MaxCollisions,
-                };
+            if collisions_left == 0 {
+                return self.end_on(EndReason::MaxCollisions);
             }
             if let Some(event) = self.process(slot, t, handler) {
-                events += 1;
-                collisions += event.kind.is_collision() as u64;
+                events_left -= 1;
+                collisions_left -= event.kind.is_collision() as u64;
                 handler.on_event(self, &event);
             }
         }
@@ -508,16 +562,19 @@ impl World {
         }
     }
 
-    fn end_at_rest(&self) -> End {
-        let reason = if self.any_moving() {
-            EndReason::Free
-        } else {
-            EndReason::Rest
-        };
+    fn end_on(&self, reason: EndReason) -> End {
         End {
             t: self.last_event_t,
             reason,
         }
+    }
+
+    fn end_at_rest(&self) -> End {
+        self.end_on(if self.any_moving() {
+            EndReason::Free
+        } else {
+            EndReason::Rest
+        })
     }
 
     /// Handles the calendar entry of `i` at time `t`; returns the event if a
@@ -529,16 +586,20 @@ impl World {
         handler: &mut H,
     ) -> Option<Event> {
         self.t = t;
-        let kind = match self.next[i] {
+        if self.cross[i].0 <= self.pending[i].t {
+            self.cross_cell(i);
+            return None;
+        }
+        let kind = match self.pending[i].next {
             Next::None => {
                 self.calendar.set(i, f64::INFINITY);
                 return None;
             }
             Next::Body { other, other_gen } => {
                 let j = other as usize;
-                if !self.alive[j] || self.gen[j] != other_gen {
+                if !self.slots[j].alive || self.slots[j].gen != other_gen {
                     self.stats.stale += 1;
-                    self.predict(i);
+                    self.predict(i, false);
                     return None;
                 }
                 self.collide(i, j, t);
@@ -549,24 +610,19 @@ impl World {
                 }
             }
             Next::Stop => {
-                let p = self.traj[i].position(t);
-                self.traj[i] = Trajectory::at_rest(t, p, self.traj[i].alpha());
+                let tr = &self.slots[i].traj;
+                self.slots[i].traj = Trajectory::at_rest(t, tr.position(t), tr.alpha());
                 self.changed(i);
                 self.stats.stops += 1;
                 EventKind::Stop { body: self.ids[i] }
             }
             Next::Line(k, end) => {
-                let geom = self.geoms[k as usize];
-                let p = self.traj[i].position(t);
+                let geom = &self.geoms[k as usize];
+                let p = self.slots[i].traj.position(t);
                 let n = match end {
                     Some(e) => (p - geom.ends[e as usize].unwrap_or(p)).normalize_or_zero(),
-                    None => {
-                        if geom.signed_distance(p) >= 0.0 {
-                            geom.n
-                        } else {
-                            -geom.n
-                        }
-                    }
+                    None if geom.signed_distance(p) >= 0.0 => geom.n,
+                    None => -geom.n,
                 };
                 self.bounce(i, t, n);
                 self.stats.body_line += 1;
@@ -577,7 +633,7 @@ impl World {
                 }
             }
             Next::Point(k) => {
-                let p = self.traj[i].position(t);
+                let p = self.slots[i].traj.position(t);
                 let n = (p - self.points[k as usize].pos).normalize_or_zero();
                 self.bounce(i, t, n);
                 self.stats.body_point += 1;
@@ -591,22 +647,22 @@ impl World {
                 bit,
                 reported,
             } => {
-                let was_inside = self.sides[i] & (1 << bit) != 0;
-                self.sides[i] ^= 1 << bit;
+                let was_inside = self.slots[i].sides & (1 << bit) != 0;
+                self.slots[i].sides ^= 1 << bit;
                 if !reported {
-                    self.predict(i);
+                    self.predict(i, true);
                     return None;
                 }
                 let (body, line) = (self.ids[i], LineId(line));
                 if !was_inside {
-                    self.predict(i);
+                    self.predict(i, true);
                     EventKind::RegionEntry { body, line }
                 } else {
                     let removed = handler.on_region_exit(t, body, line) == ExitResponse::Remove;
                     if removed {
                         self.remove_slot(i, t);
                     } else {
-                        self.predict(i);
+                        self.predict(i, true);
                     }
                     self.stats.region_exits += 1;
                     EventKind::RegionExit {
@@ -616,55 +672,78 @@ impl World {
                     }
                 }
             }
-            Next::Cell(step) => {
-                self.stats.cell_crossings += 1;
-                if let Some(grid) = self.grid.as_mut() {
-                    grid.step(i, step);
-                }
-                self.predict(i);
-                return None;
-            }
         };
         self.last_event_t = t;
         self.stats.events += 1;
         Some(Event { t, kind })
     }
 
+    /// Body `i` moves into the next grid cell: its pending event stays valid
+    /// (its motion did not change); only the cells that came into reach are
+    /// searched, and the next crossing is found.
+    fn cross_cell(&mut self, i: usize) {
+        self.stats.cell_crossings += 1;
+        let step = self.cross[i].1;
+        let Some(grid) = self.grid.as_mut() else {
+            self.cross[i].0 = f64::INFINITY;
+            return;
+        };
+        grid.step(i, step);
+        let mut best = self.pending[i];
+        let tr = self.slots[i].traj;
+        let mover = Mover::new(&tr, self.t);
+        let mut unused = None;
+        let grid = self.grid.as_ref().expect("checked above");
+        for cell in grid.entered_cells(i, step) {
+            for &j in cell {
+                self.offer_pair(i, mover.as_ref(), j as usize, None, &mut best, &mut unused);
+            }
+        }
+        self.cross[i] = mover
+            .and_then(|m| grid.next_crossing(i, &m))
+            .unwrap_or((f64::INFINITY, (0, 0)));
+        self.pending[i] = best;
+        self.calendar.set(i, best.t.min(self.cross[i].0));
+    }
+
     fn collide(&mut self, i: usize, j: usize, t: f64) {
-        let (pi, pj) = (self.traj[i].position(t), self.traj[j].position(t));
-        let (vi, vj) = (self.traj[i].velocity(t), self.traj[j].velocity(t));
+        let (ti, tj) = (self.slots[i].traj, self.slots[j].traj);
+        let (pi, pj) = (ti.position(t), tj.position(t));
         let (mi, mj) = (&self.material[i], &self.material[j]);
         let n = (pi - pj).normalize_or_zero();
         let e = mi.restitution.min(mj.restitution);
-        let (vi, vj) = impulse::body_body(vi, vj, mi.mass, mj.mass, e, n);
-        self.traj[i] = Trajectory::new(t, pi, vi, self.traj[i].alpha());
-        self.traj[j] = Trajectory::new(t, pj, vj, self.traj[j].alpha());
-        self.gen[i] = self.gen[i].wrapping_add(1);
-        self.gen[j] = self.gen[j].wrapping_add(1);
+        let (vi, vj) =
+            impulse::body_body(ti.velocity(t), tj.velocity(t), mi.mass, mj.mass, e, n);
+        self.slots[i].traj = Trajectory::new(t, pi, vi, ti.alpha());
+        self.slots[j].traj = Trajectory::new(t, pj, vj, tj.alpha());
+        self.slots[i].gen = self.slots[i].gen.wrapping_add(1);
+        self.slots[j].gen = self.slots[j].gen.wrapping_add(1);
         // The pair (i, j) is solved once, for both.
-        let pair = self.predict_with(i, Some((j, None)));
-        self.predict_with(j, Some((i, pair)));
+        let pair = self.predict_with(i, true, Some((j, None)));
+        self.predict_with(j, true, Some((i, pair)));
     }
 
     fn bounce(&mut self, i: usize, t: f64, n: DVec2) {
-        let p = self.traj[i].position(t);
-        let v = impulse::body_static(self.traj[i].velocity(t), self.material[i].restitution, n);
-        self.traj[i] = Trajectory::new(t, p, v, self.traj[i].alpha());
+        let tr = self.slots[i].traj;
+        let v = impulse::body_static(tr.velocity(t), self.material[i].restitution, n);
+        self.slots[i].traj = Trajectory::new(t, tr.position(t), v, tr.alpha());
         self.changed(i);
     }
 
     /// `i`'s trajectory was replaced: invalidate others' predictions about it
     /// and predict it afresh.
     fn changed(&mut self, i: usize) {
-        self.gen[i] = self.gen[i].wrapping_add(1);
-        self.predict(i);
+        self.slots[i].gen = self.slots[i].gen.wrapping_add(1);
+        self.predict(i, true);
     }
 
     fn remove_slot(&mut self, i: usize, t: f64) {
-        self.alive[i] = false;
-        self.gen[i] = self.gen[i].wrapping_add(1);
-        self.traj[i] = Trajectory::at_rest(t, self.traj[i].position(t), 0.0);
-        self.next[i] = Next::None;
+        let s = &mut self.slots[i];
+        s.alive = false;
+        s.gen = s.gen.wrapping_add(1);
+        s.traj = Trajectory::at_rest(t, s.traj.position(t), 0.0);
+        self.pending[i] = Best::NONE;
+        self.cross[i].0 = f64::INFINITY;
         self.calendar.set(i, f64::INFINITY);
         if let Some(grid) = self.grid.as_mut() {
             grid.remove(i);
@@ -672,109 +751,115 @@ impl World {
     }
 
     /// Recomputes the earliest event of body `i` from the current time.
-    fn predict(&mut self, i: usize) {
-        self.predict_with(i, None);
+    /// A resting body is only searched (for movers about to hit it) when
+    /// `scan_if_resting`: right after its own motion changed. Otherwise every
+    /// contact with it is already predicted by the moving body.
+    fn predict(&mut self, i: usize, scan_if_resting: bool) {
+        self.predict_with(i, scan_if_resting, None);
     }
 
     /// As `predict`; with `known = Some((j, t))` the pair `(i, j)` is not
     /// solved if `t` is given (it was, for `j`), and its time is returned.
-    fn predict_with(&mut self, i: usize, known: Known) -> Option<Option<f64>> {
-        let (best, pair) = self.earliest(i, known);
-        self.next[i] = best.next;
-        self.calendar.set(i, best.t);
+    fn predict_with(&mut self, i: usize, scan_if_resting: bool, known: Known) -> Option<Option<f64>> {
+        let tr = self.slots[i].traj;
+        let mover = Mover::new(&tr, self.t);
+        let mut pair = None;
+        let best = if mover.is_none() && !scan_if_resting {
+            Best::NONE
+        } else {
+            self.earliest(i, mover.as_ref(), known, &mut pair)
+        };
+        let cross = match (&self.grid, &mover) {
+            (Some(grid), Some(m)) => grid.next_crossing(i, m),
+            _ => None,
+        }
+        .unwrap_or((f64::INFINITY, (0, 0)));
+        self.pending[i] = best;
+        self.cross[i] = cross;
+        self.calendar.set(i, best.t.min(cross.0));
         pair
     }
 
-    /// The earliest event of body `i` from the current time (and the time
-    /// of its pair with `known`'s body, if that was asked for).
-    fn earliest(&self, i: usize, known: Known) -> (Best, Option<Option<f64>>) {
-        let now = self.t;
-        let tr = &self.traj[i];
-        let r = self.material[i].radius;
-        let moving = tr.is_moving_at(now);
-        let mut best = Best {
-            t: f64::INFINITY,
-            next: Next::None,
-        };
-        let mut pair = None;
+    /// The earliest real event of body `i` from the current time.
+    fn earliest(
+        &self,
+        i: usize,
+        mover: Option<&Mover>,
+        known: Known,
+        pair: &mut Option<Option<f64>>,
+    ) -> Best {
+        let mut best = Best::NONE;
         match &self.grid {
             Some(grid) => {
                 for cell in grid.neighbour_cells(i) {
                     for &j in cell {
-                        self.offer_pair(i, j as usize, moving, known, &mut best, &mut pair);
+                        self.offer_pair(i, mover, j as usize, known, &mut best, pair);
                     }
                 }
             }
             None => {
-                for j in 0..self.traj.len() {
-                    self.offer_pair(i, j, moving, known, &mut best, &mut pair);
+                for j in 0..self.slots.len() {
+                    self.offer_pair(i, mover, j, known, &mut best, pair);
                 }
             }
         }
-        if !moving {
-            return (best, pair);
-        }
+        let Some(m) = mover else {
+            return best;
+        };
+        let r = self.slots[i].radius;
         for &k in &self.solid {
-            if let Some(LineHit { t, end }) =
-                contact::disc_line(tr, &self.geoms[k as usize], r, now)
-            {
-                best.offer(t, Next::Line(k, end));
+            if let Some(t) = contact::disc_line_body(m, &self.geoms[k as usize], r) {
+                best.offer(t, Next::Line(k, None));
+            }
+        }
+        for c in &self.corners {
+            if let Some(t) = contact::disc_point(m, c.pos, r) {
+                best.offer(t, Next::Line(c.line, Some(c.end)));
             }
         }
         for (k, p) in self.points.iter().enumerate() {
-            if let Some(t) = contact::disc_point(tr, p.pos, r, now) {
+            if let Some(t) = contact::disc_point(m, p.pos, r) {
                 best.offer(t, Next::Point(k as u32));
             }
         }
+        let sides = self.slots[i].sides;
         for (bit, &k) in self.sensors.iter().enumerate() {
-            let inside = self.sides[i] & (1 << bit) != 0;
-            if let Some((t, reported)) =
-                contact::centre_crossing(tr, &self.geoms[k as usize], inside, now)
-            {
+            let inside = sides & (1 << bit) != 0;
+            if let Some((t, reported)) = contact::centre_crossing(m, &self.geoms[k as usize], inside) {
                 let bit = bit as u8;
-                best.offer(
-                    t,
-                    Next::Sensor {
-                        line: k,
-                        bit,
-                        reported,
-                    },
-                );
+                best.offer(t, Next::Sensor { line: k, bit, reported });
             }
         }
-        best.offer(tr.stop_time(), Next::Stop);
-        if let Some(grid) = &self.grid {
-            if let Some((t, step)) = grid.next_crossing(i, tr, now) {
-                best.offer(t, Next::Cell(step));
-            }
-        }
-        (best, pair)
+        best.offer(m.tr.stop_time(), Next::Stop);
+        best
     }
 
-    /// Offers the contact of bodies `i` and `j` as `i`'s next event.
+    /// Offers the contact of bodies `i` (on path `mover`, if moving) and `j`
+    /// as `i`'s next event.
     #[inline(always)]
     fn offer_pair(
         &self,
         i: usize,
+        mover: Option<&Mover>,
         j: usize,
-        i_moving: bool,
         known: Known,
         best: &mut Best,
         pair: &mut Option<Option<f64>>,
     ) {
-        if j == i || !self.alive[j] {
+        let sj = &self.slots[j];
+        if j == i || !sj.alive {
             return;
         }
         let now = self.t;
-        let tj = &self.traj[j];
-        if !i_moving && !tj.is_moving_at(now) {
+        if mover.is_none() && !sj.traj.is_moving_at(now) {
             return;
         }
         let hit = match known {
             Some((k, Some(t))) if k == j => t,
             _ => {
-                let s = self.material[i].radius + self.material[j].radius;
-                let t = contact::disc_disc(&self.traj[i], tj, s, now, &self.config.solver);
+                let si = &self.slots[i];
+                let s = si.radius + sj.radius;
+                let t = contact::disc_disc(&si.traj, mover, &sj.traj, s, now, &self.config.solver);
                 if matches!(known, Some((k, None)) if k == j) {
                     *pair = Some(t);
                 }
@@ -786,7 +871,7 @@ impl World {
                 t,
                 Next::Body {
                     other: j as u32,
-                    other_gen: self.gen[j],
+                    other_gen: sj.gen,
                 },
             );
         }

@@ -199,6 +199,18 @@ mod tests {
     }
 
     #[test]
+    fn noise_is_pinned_to_exact_bits_on_every_platform() {
+        // The same bits were obtained natively (x86_64) and in wasm32.
+        let n = NoiseConfig {
+            angle_sigma: 0.05,
+            speed_sigma: 0.1,
+        };
+        let v = perturb(&n, 77, 12, DVec2::new(0.3, -1.1), 2.0);
+        assert_eq!(v.x.to_bits(), 0x3fcb_2991_1e59_207b);
+        assert_eq!(v.y.to_bits(), 0xbfee_c0ab_cf47_1862);
+    }
+
+    #[test]
     fn zero_sigmas_play_the_shot_exactly_as_aimed() {
         let n = NoiseConfig {
             angle_sigma: 0.0,

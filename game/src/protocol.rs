@@ -347,6 +347,10 @@ mod tests {
             );
         }
         assert_eq!(ShotError::NotFinite.code().as_str(), "not-finite");
+        assert_eq!(
+            crate::game::GameError::NoPieDecision.code().as_str(),
+            "no-pie-decision"
+        );
     }
 
     #[test]

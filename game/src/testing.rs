@@ -85,19 +85,3 @@ pub(crate) fn variant_config(k: u64) -> Config {
     }
     c
 }
-
-#[test]
-fn zz_print_match_hash() {
-    for seed in 0..5 {
-        let (g, _) = random_match(variant_config(4), seed, 20_000);
-        let json = g.record().to_json();
-        let mut h: u64 = 0xcbf29ce484222325;
-        for b in json.bytes() {
-            h = (h ^ b as u64).wrapping_mul(0x100000001b3);
-        }
-        println!("HASH seed {seed} shots {} hash {h:016x}", g.shots());
-    }
-    let n = NoiseConfig { angle_sigma: 0.05, speed_sigma: 0.1 };
-    let v = crate::noise::perturb(&n, 77, 12, DVec2::new(0.3, -1.1), 2.0);
-    println!("HASH noise {:016x} {:016x}", v.x.to_bits(), v.y.to_bits());
-}

@@ -189,5 +189,3 @@ impl RootSolver for Method {
         }
     }
 }
-
-thread_local! { pub static COUNT: std::cell::RefCell<[u64; 6]> = const { std::cell::RefCell::new([0; 6]) }; }

@@ -64,6 +64,7 @@ pub(super) fn derivative<const N: usize>(a: &Coeffs) -> Coeffs {
 
 /// Plain Horner evaluation (no fused multiply-add, so results are the same
 /// on every target).
+#[cfg(test)]
 #[inline(always)]
 pub(super) fn horner<const N: usize>(a: &Coeffs, x: f64) -> f64 {
     let mut s = a[N];
@@ -312,14 +313,14 @@ pub(super) fn split_point(a: f64, b: f64) -> f64 {
     if a < 0.0 && b > 0.0 {
         return 0.0;
     }
-    let m = if a >= 0.0 && b > 4.0 * a.max(f64::MIN_POSITIVE) {
-        f64::from_bits((a.to_bits() / 2) + (b.to_bits() / 2))
+    // `abs` also clears the sign bit of a -0.0 end before the bit average.
+    if a >= 0.0 && b > 4.0 * a.max(f64::MIN_POSITIVE) {
+        f64::from_bits((a.abs().to_bits() / 2) + (b.to_bits() / 2))
     } else if b <= 0.0 && -a > 4.0 * (-b).max(f64::MIN_POSITIVE) {
-        -f64::from_bits(((-b).to_bits() / 2) + ((-a).to_bits() / 2))
+        -f64::from_bits((b.abs().to_bits() / 2) + (a.abs().to_bits() / 2))
     } else {
         a + 0.5 * (b - a)
-    };
-    m
+    }
 }
 
 #[cfg(test)]

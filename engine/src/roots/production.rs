@@ -32,7 +32,7 @@
 //! result is still returned without panicking but may miss roots.
 
 use super::poly::{
-    derivative, gamma, horner, horner_bounded, horner_comp, horner_d, horner_exact, normalize,
+    derivative, gamma, horner_bounded, horner_comp, horner_d, horner_exact, normalize,
     root_bound, split_point, two_prod, Coeffs, U,
 };
 use super::{RootSolver, Roots};
@@ -110,8 +110,8 @@ fn descartes_at_zero(a: &Coeffs, n: usize, hi: f64, first: bool, out: &mut Roots
     }
     let mut variations = 0;
     let mut last_neg = a[0] < 0.0;
-    for &c in &a[1..=n] {
-        if c != 0.0 {
+    for (i, &c) in a.iter().enumerate().skip(1) {
+        if i <= n && c != 0.0 {
             let neg = c < 0.0;
             variations += usize::from(neg != last_neg);
             last_neg = neg;
@@ -200,7 +200,7 @@ fn single_positive_root<const N: usize>(a: &Coeffs, hi: f64, out: &mut Roots) {
     let r = root_bound(a, N);
     let f0 = a[0];
     let (h, fh) = if hi >= r {
-        (r, finite_or(horner::<N>(a, r), a[N]))
+        (r, f64::MAX.copysign(a[N]))
     } else {
         (hi, signed_value::<N>(a, hi))
     };
@@ -213,7 +213,7 @@ fn single_positive_root<const N: usize>(a: &Coeffs, hi: f64, out: &mut Roots) {
     if !(start > 0.0 && start < h) {
         start = split_point(0.0, h);
     }
-    let (x, d) = newton::<N>(a, 0.0, h, f0, start, ROOT_TOL);
+    let (x, d) = halley::<N>(a, 0.0, h, f0, start, ROOT_TOL);
     out.push(polish::<N>(a, x, 0.0, h, f0, d));
 }
 
@@ -279,10 +279,10 @@ fn signed_value<const N: usize>(p: &Coeffs, x: f64) -> f64 {
     }
 }
 
-/// `p''(x) / 2` of a degree-`N` polynomial (for the quadratic model at a
-/// critical point).
+/// `p(x)`, `p'(x)` and `p''(x) / 2` of a degree-`N` polynomial (the
+/// quadratic Taylor model at `x`).
 #[inline(always)]
-fn half_second_derivative<const N: usize>(p: &Coeffs, x: f64) -> f64 {
+fn taylor2<const N: usize>(p: &Coeffs, x: f64) -> (f64, f64, f64) {
     let mut v = p[N];
     let mut d = 0.0;
     let mut h = 0.0;
@@ -293,30 +293,28 @@ fn half_second_derivative<const N: usize>(p: &Coeffs, x: f64) -> f64 {
         d = d * x + v;
         v = v * x + p[i];
     }
-    h
+    (v, d, h)
 }
 
-/// Newton iterations, kept inside the bracket `(a, b)` that holds the only
-/// root of the monotone `p`: a step leaving the bracket is replaced by a
-/// bisection. `fa` is `p(a)` (only its sign is used). Stops when a step is
-/// below `tol * |x|` (returning the stepped point) or when `p(x)` is within
-/// the rounding level of plain Horner. Returns the point and `p'` there.
+/// Halley iterations (cubic convergence: `x - f f' / (f'^2 - f f''/2)`),
+/// kept inside the bracket `(a, b)` that holds the only root of `p` there:
+/// a step leaving the bracket falls back to Newton, then to bisection
+/// (arithmetic first, in the floating-point sense after repeated failures,
+/// so any finite bracket is exhausted in about 64 more steps). `fa` is
+/// `p(a)` (only its sign is used). Stops when a step is below `tol * |x|`
+/// (returning the stepped point) or when `|p|` stops shrinking (rounding
+/// noise next to a cluster: the compensated polish takes over). Returns the
+/// point and `p'` near it.
 #[inline(always)]
-fn newton<const N: usize>(
-    p: &Coeffs,
-    mut a: f64,
-    mut b: f64,
-    fa: f64,
-    x0: f64,
-    tol: f64,
-) -> (f64, f64) {
+fn halley<const N: usize>(p: &Coeffs, mut a: f64, mut b: f64, fa: f64, x0: f64, tol: f64) -> (f64, f64) {
     let neg_a = fa < 0.0;
     let mut x = x0;
     let mut d = 0.0;
+    let mut last = f64::INFINITY;
+    let mut stalls = 0;
+    let mut fallbacks = 0;
     for _ in 0..128 {
-        super::COUNT.with(|c| c.borrow_mut()[1] += 1);
-        let (f, df) = horner_d::<N>(p, x);
-        if super::COUNT.with(|c| c.borrow()[5]) > 0 { eprintln!("   newton a={a:e} b={b:e} x={x:e} f={f:e} df={df:e}"); }
+        let (f, df, h2) = taylor2::<N>(p, x);
         d = df;
         if f == 0.0 {
             return (x, d);
@@ -326,15 +324,29 @@ fn newton<const N: usize>(
         } else {
             b = x;
         }
-        let step = f / df;
-        let xn = x - step;
-        if xn > a && xn < b {
-            if step.abs() <= tol * xn.abs() {
-                return (xn, d);
+        if f.abs() > 0.5 * last {
+            stalls += 1;
+            if stalls >= 3 {
+                return (x, d);
             }
+        }
+        last = f.abs();
+        let denom = df * df - f * h2;
+        let mut step = f * df / denom;
+        let mut xn = x - step;
+        if !(xn > a && xn < b) {
+            step = f / df;
+            xn = x - step;
+        }
+        if xn > a && xn < b {
+            fallbacks = 0;
             x = xn;
+            if step.abs() <= tol * xn.abs() {
+                return (x, d);
+            }
         } else {
-            let m = split_point(a, b);
+            fallbacks += 1;
+            let m = if fallbacks < 4 { a + 0.5 * (b - a) } else { split_point(a, b) };
             if !(m > a && m < b) {
                 return (x, d);
             }
@@ -360,21 +372,21 @@ fn certain_value<const N: usize>(p: &Coeffs, x: f64) -> (f64, f64) {
 
 /// Final polishing of a root of `p` near `x` inside the bracket `(a, b)`
 /// (`fa` = `p(a)`), which stays certified because every sign comes from
-/// [`certain_value`]. Newton corrections with that residual until the sign
-/// changes between two iterates at most an ulp or two apart or the
-/// correction vanishes; when Newton creeps (two corrections without a sign
-/// change, as next to a cluster) the bracket is bisected instead. `d`
-/// estimates `p'` near the root.
+/// [`certain_value`]. Newton corrections with that residual, then secant
+/// corrections through the last two certified values (plain derivatives are
+/// poor next to clusters), until the sign changes between two iterates at
+/// most an ulp or two apart or the correction vanishes. When the iterates
+/// creep towards the root from one side (as next to a cluster), each
+/// further correction is doubled until one overshoots and brackets the root
+/// tightly. `d` estimates `p'` near the root.
 #[inline(always)]
 fn polish<const N: usize>(p: &Coeffs, x: f64, mut a: f64, mut b: f64, fa: f64, d: f64) -> f64 {
     let neg_a = fa < 0.0;
     let mut x = x;
     let mut d = d;
     let (mut v, mut e) = certain_value::<N>(p, x);
-    super::COUNT.with(|c| c.borrow_mut()[4] += 1);
-    let mut creep = 0;
-    for _ in 0..200 {
-        super::COUNT.with(|c| c.borrow_mut()[0] += 1);
+    let mut mult = 1.0;
+    for _ in 0..100 {
         if v == 0.0 {
             return x;
         }
@@ -383,37 +395,47 @@ fn polish<const N: usize>(p: &Coeffs, x: f64, mut a: f64, mut b: f64, fa: f64, d
         } else {
             b = x;
         }
-        let mut xn = x - v / d;
-        if xn == x {
-            // The correction is below half an ulp.
-            return x;
-        }
-        if v.abs() > 16.0 * e && (xn - x).abs() <= 4.0 * f64::EPSILON * xn.abs() && xn > a && xn < b
-        {
-            // A correction of a few ulps from a residual known to better
-            // than 1/16: the corrected point is within an ulp of the root
-            // (the step's own error is below |v/d| (e/|v| + rel. error of
-            // d) plus a second-order term), so no second evaluation.
-            return xn;
-        }
-        if creep >= 2 || !(xn > a && xn < b) {
-            // Newton creeps or left the bracket: bisect it, unless it is
-            // already as tight as the format allows.
-            creep = 0;
-            xn = split_point(a, b);
-            if !(xn > a && xn < b) {
+        let correction = v / d;
+        if mult == 1.0 {
+            let xn = x - correction;
+            if xn == x {
+                // The correction is below half an ulp.
                 return x;
             }
-            d = horner_d::<N>(p, xn).1;
+            if v.abs() > 16.0 * e
+                && (xn - x).abs() <= 2.0 * f64::EPSILON * xn.abs()
+                && xn > a
+                && xn < b
+            {
+                // A correction of an ulp or two from a residual known to
+                // better than 1/16: even with `d` off by half, the corrected
+                // point is within about an ulp of the root, so no second
+                // evaluation.
+                return xn;
+            }
+        }
+        let mut xn = x - mult * correction;
+        if !(xn > a && xn < b) {
+            // Out of the certified bracket: go halfway to its far side.
+            let end = if xn <= a { a } else { b };
+            xn = x + 0.5 * (end - x);
+            if !(xn > a && xn < b) {
+                // The bracket is as tight as the format allows.
+                return x;
+            }
         }
         let (vn, en) = certain_value::<N>(p, xn);
-        if (vn < 0.0) != (v < 0.0) {
-            if (xn - x).abs() <= 2.0 * f64::EPSILON * xn.abs() {
+        let slope = (vn - v) / (xn - x);
+        if slope.is_finite() && slope != 0.0 && (slope < 0.0) == (d < 0.0) {
+            d = slope;
+        }
+        if (vn < 0.0) != (v < 0.0) || vn == 0.0 {
+            if (xn - x).abs() <= 2.0 * f64::EPSILON * xn.abs() || vn == 0.0 {
                 return if vn.abs() <= v.abs() { xn } else { x };
             }
-            creep = 0;
+            mult = 1.0;
         } else {
-            creep += 1;
+            mult *= 2.0;
         }
         x = xn;
         v = vn;
@@ -422,55 +444,53 @@ fn polish<const N: usize>(p: &Coeffs, x: f64, mut a: f64, mut b: f64, fa: f64, d
     x
 }
 
-/// Relative step below which Newton hands over: for the roots themselves
-/// the compensated polish does the last step; critical points only need to
-/// be good to a few ulps.
-const ROOT_TOL: f64 = 1e-9;
+/// Relative step below which Halley hands over (the error after such a step
+/// is of order its cube): for the roots themselves the compensated polish
+/// does the last correction; critical points only need a few ulps.
+const ROOT_TOL: f64 = 1e-6;
 const CRIT_TOL: f64 = 1e-9;
 
 /// A starting point for Newton in `(x0, x1)` where `p(x0) = f0` and
-/// `p(x1) = f1` have opposite signs: the root of the quadratic model at an
-/// end that is a critical point (`p' = 0` there), preferring the end with
-/// the smaller `|p|`; otherwise the secant point.
+/// `p(x1) = f1` have opposite signs: the root of the quadratic Taylor model
+/// at the end nearer the root by `|p|`, which is exact to second order and
+/// excellent next to an extremum (where `p'` vanishes and Newton alone would
+/// crawl); the secant point when the model has no root inside.
 #[inline(always)]
-fn start_point<const N: usize>(
-    p: &Coeffs,
-    (x0, f0, c0): (f64, f64, bool),
-    (x1, f1, c1): (f64, f64, bool),
-) -> f64 {
-    let use_right = c1 && (!c0 || f1.abs() <= f0.abs());
-    let guess = if use_right || c0 {
-        let (c, f) = if use_right { (x1, f1) } else { (x0, f0) };
-        let h2 = half_second_derivative::<N>(p, c);
-        let h = (-f / h2).sqrt();
-        if use_right {
-            x1 - h
-        } else {
-            x0 + h
+fn start_point<const N: usize>(p: &Coeffs, (x0, f0): (f64, f64), (x1, f1): (f64, f64)) -> f64 {
+    let right = f1.abs() <= f0.abs();
+    let (c, f) = if right { (x1, f1) } else { (x0, f0) };
+    if f.is_finite() {
+        let (_, d1, h2) = taylor2::<N>(p, c);
+        // Roots of h2 t^2 + d1 t + f = 0, the small one first (stable form).
+        let disc = d1 * d1 - 4.0 * h2 * f;
+        if disc >= 0.0 {
+            let q = -0.5 * (d1 + disc.sqrt().copysign(d1));
+            let small = f / q;
+            let guess = c + small;
+            if guess > x0 && guess < x1 {
+                return guess;
+            }
+            let guess = c + q / h2;
+            if guess > x0 && guess < x1 {
+                return guess;
+            }
         }
+    }
+    let s = x0 - f0 * ((x1 - x0) / (f1 - f0));
+    if s > x0 && s < x1 {
+        s
     } else {
-        x0 - f0 * ((x1 - x0) / (f1 - f0))
-    };
-    if guess > x0 && guess < x1 {
-        guess
-    } else {
-        let s = x0 - f0 * ((x1 - x0) / (f1 - f0));
-        if s > x0 && s < x1 {
-            s
-        } else {
-            split_point(x0, x1)
-        }
+        split_point(x0, x1)
     }
 }
 
 /// Walks the monotone pieces of a degree-`N` polynomial left to right.
 struct Walker<'a, const N: usize> {
     p: &'a Coeffs,
-    /// Left end of the current piece, `p` there (`0.0`: a root, already
-    /// reported), and whether it is a critical point.
+    /// Left end of the current piece and `p` there (`0.0`: a root, already
+    /// reported).
     x: f64,
     f: f64,
-    crit: bool,
     first: bool,
     out: &'a mut Roots,
 }
@@ -490,7 +510,6 @@ impl<'a, const N: usize> Walker<'a, N> {
             p,
             x: lo,
             f,
-            crit: false,
             first,
             out,
         })
@@ -500,15 +519,15 @@ impl<'a, const N: usize> Walker<'a, N> {
     /// solving the piece in between if it holds a root. Returns true when a
     /// `first_root` query is answered.
     #[inline(always)]
-    fn advance(&mut self, c: f64, fc: f64, crit: bool) -> bool {
+    fn advance(&mut self, c: f64, fc: f64) -> bool {
         if fc == 0.0 {
             self.out.push(c);
             if self.first {
                 return true;
             }
         } else if self.f != 0.0 && (self.f < 0.0) != (fc < 0.0) {
-            let start = start_point::<N>(self.p, (self.x, self.f, self.crit), (c, fc, crit));
-            let (x, d) = newton::<N>(self.p, self.x, c, self.f, start, ROOT_TOL);
+            let start = start_point::<N>(self.p, (self.x, self.f), (c, fc));
+            let (x, d) = halley::<N>(self.p, self.x, c, self.f, start, ROOT_TOL);
             let r = polish::<N>(self.p, x, self.x, c, self.f, d);
             self.out.push(r);
             if self.first {
@@ -517,7 +536,6 @@ impl<'a, const N: usize> Walker<'a, N> {
         }
         self.x = c;
         self.f = fc;
-        self.crit = crit;
         false
     }
 
@@ -528,14 +546,14 @@ impl<'a, const N: usize> Walker<'a, N> {
             return false;
         }
         let fc = signed_value::<N>(self.p, c);
-        self.advance(c, fc, true)
+        self.advance(c, fc)
     }
 
     /// Closes the walk at `hi` (exclusive) where `p(hi) = fh`.
     #[inline(always)]
     fn finish(&mut self, hi: f64, fh: f64) {
         if fh != 0.0 && hi > self.x {
-            self.advance(hi, fh, false);
+            self.advance(hi, fh);
         }
     }
 }
@@ -546,14 +564,18 @@ impl<'a, const N: usize> Walker<'a, N> {
 fn search_interval<const N: usize>(a: &Coeffs, lo: f64, hi: f64) -> Option<(f64, f64, f64, f64)> {
     let r = root_bound(a, N);
     let lead = a[N];
+    // Beyond the bound only the sign matters: the largest magnitude of that
+    // sign also tells `start_point` to model the function at the other end.
     let (l, fl) = if lo <= -r {
         let s = if N % 2 == 0 { lead } else { -lead };
-        (-r, finite_or(horner::<N>(a, -r), s))
+        (-r, f64::MAX.copysign(s))
+    } else if lo == 0.0 {
+        (lo, a[0])
     } else {
         (lo, signed_value::<N>(a, lo))
     };
     let (h, fh) = if hi >= r {
-        (r, finite_or(horner::<N>(a, r), lead))
+        (r, f64::MAX.copysign(lead))
     } else {
         (hi, signed_value::<N>(a, hi))
     };
@@ -561,17 +583,6 @@ fn search_interval<const N: usize>(a: &Coeffs, lo: f64, hi: f64) -> Option<(f64,
         Some((l, fl, h, fh))
     } else {
         None
-    }
-}
-
-/// `v` if it is a finite non-zero number of the sign of `s`, else `s`
-/// scaled to the largest finite magnitude.
-#[inline(always)]
-fn finite_or(v: f64, s: f64) -> f64 {
-    if v.is_finite() && v != 0.0 && (v < 0.0) == (s < 0.0) {
-        v
-    } else {
-        f64::MAX.copysign(s)
     }
 }
 
@@ -603,7 +614,7 @@ fn cubic(a: &Coeffs, lo: f64, hi: f64, first: bool, out: &mut Roots) {
 /// the true critical point `p` keeps the sign of `p(y)`, because the
 /// extremum lies beyond `p(y)` from zero.) Otherwise Newton converges and
 /// the critical point comes back with `p`'s trusted value there. Returns
-/// the point, `p` there and whether it is (to rounding) a critical point.
+/// the point and `p` there.
 #[inline(always)]
 fn critical_point(
     p: &Coeffs,
@@ -612,17 +623,15 @@ fn critical_point(
     g_lo: f64,
     start: f64,
     f_prev: f64,
-) -> (f64, f64, bool) {
+) -> (f64, f64) {
     let neg_lo = g_lo < 0.0;
     let mut y = start;
-    super::COUNT.with(|c| c.borrow_mut()[3] += 1);
     for _ in 0..128 {
-        super::COUNT.with(|c| c.borrow_mut()[2] += 1);
         let (g, dg) = horner_d::<3>(d, y);
         if f_prev != 0.0 {
             let (f, e) = horner_bounded::<4>(p, y);
             if f.abs() > e && (f < 0.0) != (f_prev < 0.0) {
-                return (y, f, false);
+                return (y, f);
             }
         }
         if g == 0.0 {
@@ -648,7 +657,7 @@ fn critical_point(
             y = m;
         }
     }
-    (y, signed_value::<4>(p, y), true)
+    (y, signed_value::<4>(p, y))
 }
 
 #[inline(never)]
@@ -660,15 +669,45 @@ fn quartic(a: &Coeffs, lo: f64, hi: f64, first: bool, out: &mut Roots) {
     let Some(mut w) = Walker::<4>::start(a, l, fl, first, out) else {
         return;
     };
+    if l == 0.0 {
+        // From exactly 0, Descartes' rule on p' = a1 + 2a2 x + 3a3 x^2 +
+        // 4a4 x^3 (the signs of a1..a4) bounds the positive critical points:
+        // with at most one sign variation there is at most one, and it needs
+        // no inflection points to isolate.
+        let mut variations = 0;
+        let mut last = 0.0f64;
+        for &c in &a[1..=4] {
+            if c != 0.0 {
+                variations += usize::from(last != 0.0 && (c < 0.0) != (last < 0.0));
+                last = c;
+            }
+        }
+        let g0 = d[0];
+        if variations == 0 || (variations == 1 && g0 != 0.0) {
+            let gh = if fh.abs() == f64::MAX {
+                f64::MAX.copysign(d[3])
+            } else {
+                signed_value::<3>(&d, h)
+            };
+            if variations == 1 && g0 != 0.0 && gh != 0.0 && (g0 < 0.0) != (gh < 0.0) {
+                let start = start_point::<3>(&d, (0.0, g0), (h, gh));
+                let (c, fc) = critical_point(a, &d, (0.0, h), g0, start, w.f);
+                if c > w.x && w.advance(c, fc) {
+                    return;
+                }
+            }
+            w.finish(h, fh);
+            return;
+        }
+    }
     // The critical points are the roots of the cubic p', which is monotone
     // between the roots of the quadratic p'' (the inflection points).
     let (k, infl) = quadratic(d[1], 2.0 * d[2], 3.0 * d[3]);
     let mut x = l;
     let mut gx = signed_value::<3>(&d, l);
-    let mut x_infl = false;
     let mut i = 0;
     loop {
-        let (e, ge, e_infl) = if i < k {
+        let (e, ge, is_infl) = if i < k {
             let e = infl[i];
             i += 1;
             if !(e > x && e < h) {
@@ -679,20 +718,19 @@ fn quartic(a: &Coeffs, lo: f64, hi: f64, first: bool, out: &mut Roots) {
             (h, signed_value::<3>(&d, h), false)
         };
         if gx != 0.0 && ge != 0.0 && (gx < 0.0) != (ge < 0.0) {
-            let start = start_point::<3>(&d, (x, gx, x_infl), (e, ge, e_infl));
-            let (c, fc, exact) = critical_point(a, &d, (x, e), gx, start, w.f);
-            if c > w.x && w.advance(c, fc, exact) {
+            let start = start_point::<3>(&d, (x, gx), (e, ge));
+            let (c, fc) = critical_point(a, &d, (x, e), gx, start, w.f);
+            if c > w.x && w.advance(c, fc) {
                 return;
             }
         } else if ge == 0.0 && e < h && w.visit(e) {
             return;
         }
-        if !e_infl {
+        if !is_infl {
             break;
         }
         x = e;
         gx = ge;
-        x_infl = true;
     }
     w.finish(h, fh);
 }
