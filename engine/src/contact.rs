@@ -181,7 +181,11 @@ pub fn disc_line_body(m: &Mover, line: &LineGeom, r: f64) -> Option<f64> {
         return None; // not approaching the line
     }
     let gap = side * h - r;
-    let l = if gap <= 0.0 { 0.0 } else { gap / (-side * rate) };
+    let l = if gap <= 0.0 {
+        0.0
+    } else {
+        gap / (-side * rate)
+    };
     if line.is_bounded() && !line.covers(m.pos + m.w * l) {
         return None; // passes beyond the extent; the ends are checked as points
     }
@@ -360,7 +364,10 @@ mod tests {
     fn sliding_disc_stopping_short_of_a_point_never_touches_it() {
         // Stops after v^2/(2 alpha) = 1.0; the point is 1.5 away at contact distance 0.4.
         let tr = mover((0.0, 0.0), (2.0, 0.0), 2.0);
-        assert_eq!(disc_point(&Mover::new(&tr, 0.0).unwrap(), DVec2::new(1.5, 0.0), 0.4), None);
+        assert_eq!(
+            disc_point(&Mover::new(&tr, 0.0).unwrap(), DVec2::new(1.5, 0.0), 0.4),
+            None
+        );
         let t = disc_point(&Mover::new(&tr, 0.0).unwrap(), DVec2::new(1.3, 0.0), 0.4).unwrap();
         // Travels 0.9: 2t - t^2 = 0.9.
         let exact = 1.0 - (1.0f64 - 0.9).sqrt();
@@ -370,13 +377,19 @@ mod tests {
     #[test]
     fn touching_and_separating_gives_no_contact() {
         let tr = mover((0.0, 0.0), (-1.0, 0.0), 0.0);
-        assert_eq!(disc_point(&Mover::new(&tr, 0.0).unwrap(), DVec2::new(1.0, 0.0), 1.0), None);
+        assert_eq!(
+            disc_point(&Mover::new(&tr, 0.0).unwrap(), DVec2::new(1.0, 0.0), 1.0),
+            None
+        );
     }
 
     #[test]
     fn touching_and_approaching_is_a_contact_now() {
         let tr = mover((0.0, 0.0), (1.0, 0.0), 0.5);
-        assert_eq!(disc_point(&Mover::new(&tr, 0.0).unwrap(), DVec2::new(1.0, 0.0), 1.0), Some(0.0));
+        assert_eq!(
+            disc_point(&Mover::new(&tr, 0.0).unwrap(), DVec2::new(1.0, 0.0), 1.0),
+            Some(0.0)
+        );
     }
 
     #[test]
@@ -431,7 +444,10 @@ mod tests {
             1.0,
             0.0
         ));
-        assert_eq!(disc_disc(&a, Mover::new(&a, 0.0).as_ref(), &b, 1.0, 0.0, &Production), None);
+        assert_eq!(
+            disc_disc(&a, Mover::new(&a, 0.0).as_ref(), &b, 1.0, 0.0, &Production),
+            None
+        );
     }
 
     #[test]
@@ -444,9 +460,15 @@ mod tests {
         .unwrap();
         // Left of (1,-1)->(1,1), walking north, is x < 1: the inside.
         let tr = mover((0.0, 0.0), (2.0, 0.0), 0.0);
-        assert_eq!(centre_crossing(&Mover::new(&tr, 0.0).unwrap(), &edge, true), Some((0.5, true)));
+        assert_eq!(
+            centre_crossing(&Mover::new(&tr, 0.0).unwrap(), &edge, true),
+            Some((0.5, true))
+        );
         // Once outside and moving out, no further crossing.
-        assert_eq!(centre_crossing(&Mover::new(&tr, 0.5).unwrap(), &edge, false), None);
+        assert_eq!(
+            centre_crossing(&Mover::new(&tr, 0.5).unwrap(), &edge, false),
+            None
+        );
     }
 
     #[test]

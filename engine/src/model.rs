@@ -199,6 +199,10 @@ impl<H: EventHandler> Model<H> {
     /// A model of `scene` whose region exits are decided by `rules`.
     pub fn with_rules(scene: Scene, rules: H, config: WorldConfig) -> Result<Self, SceneError> {
         let world = World::new(&scene, config)?;
+        Ok(Model::with_world(scene, rules, config, world))
+    }
+
+    fn with_world(scene: Scene, rules: H, config: WorldConfig, world: World) -> Self {
         let mut lanes = Vec::with_capacity(scene.bodies.len());
         let mut lane_of = HashMap::with_capacity(scene.bodies.len());
         for b in world.bodies() {
@@ -219,7 +223,7 @@ impl<H: EventHandler> Model<H> {
                 lines: scene.lines.clone(),
             },
         )];
-        Ok(Model {
+        Model {
             start: scene,
             config,
             rules,
@@ -230,7 +234,38 @@ impl<H: EventHandler> Model<H> {
             fixed,
             world,
             end: None,
-        })
+        }
+    }
+
+    /// A model that continues from a snapshot this engine produced (the
+    /// bodies keep their trajectories as they are). Unlike a scene from
+    /// outside, it is not checked for overlaps: contacts left touching by
+    /// rounding are the engine's own state, not bad input. Numbers must still
+    /// be finite and materials valid.
+    pub fn from_snapshot(
+        snapshot: Snapshot,
+        rules: H,
+        config: WorldConfig,
+    ) -> Result<Self, SceneError> {
+        let mut scene = snapshot.scene_at(snapshot.t);
+        let check_overlaps = false;
+        scene.validate_with(check_overlaps)?;
+        let world = World::from_parts(
+            snapshot.t,
+            snapshot.g,
+            snapshot.bodies.clone(),
+            snapshot.points.clone(),
+            snapshot.lines.clone(),
+            config,
+        );
+        scene.bodies.sort_by_key(|b| b.id);
+        let mut model = Model::with_world(scene, rules, config, world);
+        model.fixed[0].1 = Fixed {
+            g: snapshot.g,
+            points: snapshot.points,
+            lines: snapshot.lines,
+        };
+        Ok(model)
     }
 
     /// Rebuilds a model from its record, with `rules`, recomputing the chain.

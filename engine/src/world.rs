@@ -712,8 +712,7 @@ impl World {
         let (mi, mj) = (&self.material[i], &self.material[j]);
         let n = (pi - pj).normalize_or_zero();
         let e = mi.restitution.min(mj.restitution);
-        let (vi, vj) =
-            impulse::body_body(ti.velocity(t), tj.velocity(t), mi.mass, mj.mass, e, n);
+        let (vi, vj) = impulse::body_body(ti.velocity(t), tj.velocity(t), mi.mass, mj.mass, e, n);
         self.slots[i].traj = Trajectory::new(t, pi, vi, ti.alpha());
         self.slots[j].traj = Trajectory::new(t, pj, vj, tj.alpha());
         self.slots[i].gen = self.slots[i].gen.wrapping_add(1);
@@ -760,7 +759,12 @@ impl World {
 
     /// As `predict`; with `known = Some((j, t))` the pair `(i, j)` is not
     /// solved if `t` is given (it was, for `j`), and its time is returned.
-    fn predict_with(&mut self, i: usize, scan_if_resting: bool, known: Known) -> Option<Option<f64>> {
+    fn predict_with(
+        &mut self,
+        i: usize,
+        scan_if_resting: bool,
+        known: Known,
+    ) -> Option<Option<f64>> {
         let tr = self.slots[i].traj;
         let mover = Mover::new(&tr, self.t);
         let mut pair = None;
@@ -825,9 +829,18 @@ impl World {
         let sides = self.slots[i].sides;
         for (bit, &k) in self.sensors.iter().enumerate() {
             let inside = sides & (1 << bit) != 0;
-            if let Some((t, reported)) = contact::centre_crossing(m, &self.geoms[k as usize], inside) {
+            if let Some((t, reported)) =
+                contact::centre_crossing(m, &self.geoms[k as usize], inside)
+            {
                 let bit = bit as u8;
-                best.offer(t, Next::Sensor { line: k, bit, reported });
+                best.offer(
+                    t,
+                    Next::Sensor {
+                        line: k,
+                        bit,
+                        reported,
+                    },
+                );
             }
         }
         best.offer(m.tr.stop_time(), Next::Stop);

@@ -9,9 +9,10 @@ use crate::board::{edges, Board, Piece};
 use crate::config::Config;
 use crate::film::Film;
 use crate::piece::PieceId;
-use engine::world::{End, World};
+use engine::world::{BodyState, End, Material, World};
 use engine::{
-    BodyId, BodySpec, Event, EventHandler, ExitResponse, Limits, LineId, Model, Scene, WorldConfig,
+    BodyId, BodySpec, Event, EventHandler, ExitResponse, Limits, LineId, Model, Scene, Snapshot,
+    Trajectory, WorldConfig,
 };
 use glam::DVec2;
 
@@ -80,8 +81,26 @@ pub fn resolve(
     piece: PieceId,
     velocity: DVec2,
 ) -> Result<Resolution, String> {
+    // The board is the engine's own state from the previous shot: pieces
+    // left touching may overlap by rounding, which is not bad input, so the
+    // model continues from a snapshot rather than re-validating a scene.
     let scene = scene(config, board, piece, velocity);
-    let mut model = Model::with_rules(scene, FallOff::default(), WorldConfig::default())
+    let snapshot = Snapshot {
+        t: scene.t,
+        g: scene.g,
+        bodies: scene
+            .bodies
+            .iter()
+            .map(|b| BodyState {
+                id: b.id,
+                material: Material::of(b),
+                trajectory: Trajectory::new(scene.t, b.pos, b.vel, b.mu * scene.g),
+            })
+            .collect(),
+        points: scene.points,
+        lines: scene.lines,
+    };
+    let mut model = Model::from_snapshot(snapshot, FallOff::default(), WorldConfig::default())
         .map_err(|e| e.to_string())?;
     let end = model.compute(&Limits {
         max_events: config.max_events_per_shot,

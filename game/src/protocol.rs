@@ -23,7 +23,7 @@ use crate::game::MatchView;
 use crate::outcome::{MatchResult, ShotOutcome};
 use crate::piece::PieceId;
 use crate::record::MatchRecord;
-use crate::side::Seat;
+use crate::side::{Seat, Side};
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -108,6 +108,37 @@ pub enum ServerMessage {
     },
     /// A request was refused.
     Error { code: ErrorCode, message: String },
+    /// The empty seat was taken (the match starts).
+    PlayerJoined { seat: Seat, name: String },
+    /// A seated player's last connection dropped; the seat is kept for
+    /// `grace_ms`, then forfeited if nobody reconnects with its token.
+    PlayerLeft { seat: Seat, grace_ms: u64 },
+    /// A seated player is connected again.
+    PlayerBack { seat: Seat },
+    /// The turn clock: `seat` (playing `side`) must act within
+    /// `remaining_ms` (sent on connect and whenever the turn changes).
+    Clock {
+        seat: Seat,
+        side: Side,
+        remaining_ms: u64,
+    },
+    /// `seat` did not act in time: the turn passes (the server plays the
+    /// smallest legal nudge for it, announced as a normal `shot-played`).
+    /// `strikes` timeouts in a row; the third forfeits the match.
+    TurnTimedOut { seat: Seat, strikes: u32 },
+    /// `seat` lost the match without playing it out (a `match-over`
+    /// follows).
+    Forfeited { seat: Seat, reason: ForfeitReason },
+}
+
+/// Why a seat forfeited.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ForfeitReason {
+    /// Three turn-clock timeouts in a row.
+    Timeouts,
+    /// Disconnected for longer than the grace period.
+    Abandoned,
 }
 
 /// Stable error codes (kebab-case strings on the wire).
@@ -142,6 +173,16 @@ pub enum ErrorCode {
     ChatTooLong,
     /// The server failed; not the client's fault.
     Internal,
+    /// The seat token is not this match's.
+    BadToken,
+    /// Too many messages too fast; this one was dropped.
+    RateLimited,
+    /// A frame or message above the server's size limit.
+    MessageTooLarge,
+    /// A server limit (matches, connections) is reached; try later.
+    ServerBusy,
+    /// The record of a match is public only once it is over.
+    MatchNotOver,
 }
 
 impl ErrorCode {
@@ -169,6 +210,11 @@ impl ErrorCode {
             ErrorCode::NoRematchOffer => "no-rematch-offer",
             ErrorCode::ChatTooLong => "chat-too-long",
             ErrorCode::Internal => "internal",
+            ErrorCode::BadToken => "bad-token",
+            ErrorCode::RateLimited => "rate-limited",
+            ErrorCode::MessageTooLarge => "message-too-large",
+            ErrorCode::ServerBusy => "server-busy",
+            ErrorCode::MatchNotOver => "match-not-over",
         }
     }
 }

@@ -9,7 +9,9 @@ use crate::scenes::Case;
 use crate::LabError;
 use engine::roots::Method;
 use engine::world::BroadPhase;
-use engine::{BodyId, EndReason, Event, EventHandler, ExitResponse, Limits, LineId, World, WorldConfig};
+use engine::{
+    BodyId, EndReason, Event, EventHandler, ExitResponse, Limits, LineId, World, WorldConfig,
+};
 use std::time::Instant;
 
 /// Removes discs that leave the board, counts collisions, and (if asked)
@@ -47,7 +49,13 @@ pub fn run(
     check_overlap: bool,
 ) -> Result<Outcome, LabError> {
     let start = Instant::now();
-    let mut world = World::new(&case.scene, WorldConfig { solver, broad_phase })?;
+    let mut world = World::new(
+        &case.scene,
+        WorldConfig {
+            solver,
+            broad_phase,
+        },
+    )?;
     let mut rules = Rules {
         removed: Vec::new(),
         collisions: 0,
@@ -106,8 +114,13 @@ mod tests {
 
     #[test]
     fn break_shot_removes_discs_that_leave_the_board() {
-        let out = run(&scenes::hard_break().unwrap(), Method::Production, BroadPhase::Auto, true)
-            .unwrap();
+        let out = run(
+            &scenes::hard_break().unwrap(),
+            Method::Production,
+            BroadPhase::Auto,
+            true,
+        )
+        .unwrap();
         assert!(out.bodies.iter().any(|b| b.removed));
         assert!(out.max_overlap <= 1e-9);
     }

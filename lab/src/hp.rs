@@ -269,7 +269,10 @@ mod tests {
     fn first_root_of_well_separated_quartic_is_exact() {
         // (x-1)(x-2)(x-3)(x-4) = 24 - 50x + 35x^2 - 10x^3 + x^4
         let c = [24.0, -50.0, 35.0, -10.0, 1.0];
-        assert_eq!(first_root_f64(&c, f64::NEG_INFINITY, f64::INFINITY), Some(1.0));
+        assert_eq!(
+            first_root_f64(&c, f64::NEG_INFINITY, f64::INFINITY),
+            Some(1.0)
+        );
         assert_eq!(first_root_f64(&c, 1.5, f64::INFINITY), Some(2.0));
         assert_eq!(first_root_f64(&c, 1.5, 2.0), None);
     }

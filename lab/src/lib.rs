@@ -13,6 +13,7 @@ pub mod apriori;
 pub mod catalogue;
 pub mod error;
 pub mod failures;
+pub mod files;
 pub mod hp;
 pub mod outcome;
 pub mod pipeline;

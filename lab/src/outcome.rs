@@ -171,6 +171,9 @@ mod tests {
     fn overlap_is_a_fraction_of_the_contact_distance() {
         let o = overlap_of(&[(DVec2::ZERO, 1.0), (DVec2::new(1.5, 0.0), 1.0)]);
         assert!((o - 0.25).abs() < 1e-15);
-        assert_eq!(overlap_of(&[(DVec2::ZERO, 1.0), (DVec2::new(3.0, 0.0), 1.0)]), 0.0);
+        assert_eq!(
+            overlap_of(&[(DVec2::ZERO, 1.0), (DVec2::new(3.0, 0.0), 1.0)]),
+            0.0
+        );
     }
 }

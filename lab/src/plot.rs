@@ -96,7 +96,11 @@ pub fn log_log(path: &Path, axes: &Axes, series: &[Series]) -> Result<(), LabErr
         .draw()
         .map_err(|e| plot_err(path, e))?;
     let clamp = |(x, y): (f64, f64)| {
-        let y = if y.is_finite() && y > axes.y_floor { y } else { axes.y_floor };
+        let y = if y.is_finite() && y > axes.y_floor {
+            y
+        } else {
+            axes.y_floor
+        };
         (x, y)
     };
     for (k, s) in series.iter().enumerate() {
@@ -115,13 +119,16 @@ pub fn log_log(path: &Path, axes: &Axes, series: &[Series]) -> Result<(), LabErr
         }
         let marker = k % 3;
         chart
-            .draw_series(pts.iter().map(move |&p| -> DynElement<SVGBackend, (f64, f64)> {
-                match marker {
-                    0 => Circle::new(p, 5, color.filled()).into_dyn(),
-                    1 => TriangleMarker::new(p, 6, color.filled()).into_dyn(),
-                    _ => Cross::new(p, 5, color.stroke_width(2)).into_dyn(),
-                }
-            }))
+            .draw_series(
+                pts.iter()
+                    .map(move |&p| -> DynElement<SVGBackend, (f64, f64)> {
+                        match marker {
+                            0 => Circle::new(p, 5, color.filled()).into_dyn(),
+                            1 => TriangleMarker::new(p, 6, color.filled()).into_dyn(),
+                            _ => Cross::new(p, 5, color.stroke_width(2)).into_dyn(),
+                        }
+                    }),
+            )
             .map_err(|e| plot_err(path, e))?
             .label(s.name.as_str())
             .legend(move |(x, y)| Circle::new((x + 10, y), 5, color.filled()));

@@ -420,7 +420,7 @@ impl Reference {
 
     fn predict(&mut self, i: usize) {
         let mut best: (Option<F>, Kind) = (None, Kind::None);
-        let mut offer = |t: Option<F>, k: Kind, best: &mut (Option<F>, Kind)| {
+        let offer = |t: Option<F>, k: Kind, best: &mut (Option<F>, Kind)| {
             if let Some(t) = t {
                 if best.0.as_ref().is_none_or(|b| t < *b) {
                     *best = (Some(t), k);
@@ -514,8 +514,7 @@ impl Reference {
                     if w < F::ZERO {
                         let (bi, bj) = (&self.bodies[i], &self.bodies[j]);
                         let e = if bi.e < bj.e { &bi.e } else { &bj.e };
-                        let jmp =
-                            -(big(1.0) + e) * w / (bi.inv_m.clone() + &bj.inv_m);
+                        let jmp = -(big(1.0) + e) * w / (bi.inv_m.clone() + &bj.inv_m);
                         vi = add(&vi, &scale(&n, &(jmp.clone() * &bi.inv_m)));
                         vj = sub(&vj, &scale(&n, &(jmp * &bj.inv_m)));
                     }

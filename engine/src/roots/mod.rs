@@ -10,18 +10,30 @@
 //!   degree. The zero polynomial and non-zero constants have no roots, and
 //!   so has any input with a NaN or infinite coefficient, or with a non-zero
 //!   coefficient beyond degree four.
-//! - Roots come back sorted ascending. A multiple root is reported once per
-//!   root the method locates as a distinct number: `Production` reports an
-//!   even-multiplicity (touching) root once, and a root that it finds as a
-//!   sign change once.
+//! - Roots come back sorted ascending. A multiple root is repeated only as
+//!   often as the method finds it as a distinct number: [`Production`]
+//!   reports a crossing root (odd multiplicity) once and a touching root
+//!   (even multiplicity, `p` and `p'` vanish within rounding) once;
+//!   [`Bisection`] the same, but with plain evaluation it sees a touching
+//!   root only if the extremum evaluates to exactly zero; [`ClosedForm`]
+//!   returns whatever its formula branches produce (a zero discriminant
+//!   gives one value, two Ferrari factors may give the same value twice).
 //! - `roots_in(c, lo, hi)` returns the roots `r` with `lo <= r < hi`; `hi`
 //!   (and `lo`) may be infinite; a NaN bound or `lo >= hi` gives no roots.
 //! - Nothing allocates and nothing panics.
 //!
-//! The module depends only on `core`/`std`, so it can be compiled on its
-//! own (see `benches/roots.rs` for timings against peer crates).
+//! The module depends only on `core`/`std` (its tests also use the
+//! dev-dependencies `proptest` and `dashu-float`), so it can be compiled on
+//! its own; `benches/roots.rs` times it against peer crates.
+
+// Comparisons are written so that NaN falls on the safe side (`!(lo < hi)`
+// rejects a NaN bound, `!(x > a && x < b)` rejects a NaN iterate): the
+// negated forms are deliberate.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 mod bisection;
+#[cfg(test)]
+mod cases;
 mod closed_form;
 mod poly;
 mod production;

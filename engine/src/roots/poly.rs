@@ -28,15 +28,17 @@ pub(super) fn normalize(c: &[f64]) -> Option<(Coeffs, usize)> {
     }
     // Fixed-size copy (no memcpy/memset calls for this hot path).
     let mut a = [0.0; 5];
-    let m = c.len().min(5);
-    let mut finite = true;
-    for (i, slot) in a.iter_mut().enumerate() {
-        if i < m {
-            *slot = c[i];
+    if c.len() >= 5 {
+        a.copy_from_slice(&c[..5]);
+    } else {
+        let m = c.len();
+        for (i, slot) in a.iter_mut().enumerate() {
+            if i < m {
+                *slot = c[i];
+            }
         }
-        finite &= slot.is_finite();
     }
-    if !finite {
+    if !a.iter().all(|v| v.is_finite()) {
         return None;
     }
     let mut deg = 4;
@@ -60,20 +62,6 @@ pub(super) fn derivative<const N: usize>(a: &Coeffs) -> Coeffs {
         i += 1;
     }
     d
-}
-
-/// Plain Horner evaluation (no fused multiply-add, so results are the same
-/// on every target).
-#[cfg(test)]
-#[inline(always)]
-pub(super) fn horner<const N: usize>(a: &Coeffs, x: f64) -> f64 {
-    let mut s = a[N];
-    let mut i = N;
-    while i > 0 {
-        i -= 1;
-        s = s * x + a[i];
-    }
-    s
 }
 
 /// Horner evaluation of `p(x)` and `p'(x)` together.
@@ -254,8 +242,8 @@ pub(super) fn horner_exact<const N: usize>(a: &Coeffs, x: f64) -> f64 {
 pub(super) fn root_bound(a: &Coeffs, n: usize) -> f64 {
     let inv = 1.0 / a[n].abs();
     let mut e_max = i32::MIN;
-    for k in 0..n {
-        let mut t = a[k].abs() * inv;
+    for (k, &ak) in a.iter().enumerate().take(n) {
+        let mut t = ak.abs() * inv;
         if k == 0 {
             t *= 0.5;
         }
@@ -281,7 +269,7 @@ pub(super) fn root_bound(a: &Coeffs, n: usize) -> f64 {
 
 /// The smallest `e` with `t < 2^e`, for finite positive `t`.
 #[inline(always)]
-fn exponent_above(t: f64) -> i32 {
+pub(super) fn exponent_above(t: f64) -> i32 {
     let bits = t.to_bits();
     let biased = ((bits >> 52) & 0x7ff) as i32;
     if biased == 0 {

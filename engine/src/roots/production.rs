@@ -1,39 +1,49 @@
-//! The engine's default solver: exact-structure root isolation plus
-//! safeguarded Newton, after Yuksel ("High-Performance Polynomial Root
-//! Finding for Graphics", HPG 2022) with the accuracy safeguards of
-//! compensated arithmetic (Graillat, Langlois & Louvet 2005).
+//! The engine's default solver: exact root isolation by critical points
+//! plus safeguarded high-order iteration, after Yuksel ("High-Performance
+//! Polynomial Root Finding for Graphics", HPG 2022), with the accuracy of
+//! compensated arithmetic (Graillat, Langlois & Louvet 2005) and cheap
+//! certified shortcuts for the polynomials the engine mostly asks about.
 //!
 //! * Degree 1 is one division; degree 2 is the stable quadratic formula with
-//!   the discriminant computed with error-free products (Kahan), so a double
+//!   the discriminant computed from error-free products (Kahan), so a double
 //!   root or a near-tangency is classified from an almost exact `b^2 - 4ac`.
-//! * Degrees 3 and 4: the critical points (roots of `p'`) split the search
-//!   interval into pieces on which `p` is monotone; a piece holds a root iff
-//!   its ends have opposite signs. For a quartic the critical points are the
-//!   roots of the cubic `p'`, isolated in turn by the closed-form roots of
-//!   the quadratic `p''`. Everything is lazy: `first_root` walks the pieces
-//!   left to right, computes a critical point only when it reaches it, and
-//!   stops at the first piece with a sign change.
-//! * Signs at piece ends are decided by plain Horner when its running error
-//!   bound allows, otherwise by compensated Horner; a value that even the
-//!   compensated bound cannot separate from zero is a root there (a double
-//!   root at a critical point, reported once).
-//! * Inside a piece: Newton started from a quadratic model at the critical
-//!   end (or a secant point), kept inside the bracket, falling back to
-//!   bisection (in the floating-point sense, so at most ~64 halvings); then
-//!   one or two Newton corrections with a compensated residual, accepted once
-//!   the compensated sign changes between adjacent iterates, so the result
-//!   is within an ulp or two of the exact root of the `f64` polynomial even
-//!   for clustered roots.
-//! * Unbounded searches are closed with a Fujiwara bound (`poly::root_bound`),
-//!   whose end signs are known without evaluating.
-//!
-//! Range: coefficients and roots must keep `p` finite near the roots (for a
-//! monic quartic, roots below about `1e75` in magnitude); beyond that the
-//! result is still returned without panicking but may miss roots.
+//! * Shortcuts (each one exact or certified by an error bound): a search
+//!   from exactly `0` with `p(0) = 0` answers `first_root` at once; there,
+//!   Descartes' rule of signs on the coefficients proves "no positive root"
+//!   (no sign variation) or "exactly one" (one variation, solved directly).
+//!   For quartics, a discriminant test with an a-priori rounding bound
+//!   proves "no real root at all", which settles most separating contacts.
+//! * Otherwise the critical points (roots of `p'`) split the search interval
+//!   into pieces on which `p` is monotone; a piece holds a root iff its ends
+//!   have opposite signs. A quartic's critical points are the roots of the
+//!   cubic `p'`, isolated by the closed-form roots of the quadratic `p''`
+//!   (or, from `0`, by Descartes' rule on `p'`). The walk is lazy: pieces are
+//!   visited left to right, a critical point is only located as well as the
+//!   walk needs (Newton on `p'` stops as soon as `p` there has the sign that
+//!   proves a crossing), and `first_root` stops at the first crossing.
+//! * Signs at piece ends come from plain Horner when its running error bound
+//!   allows, else compensated Horner; a critical value that even the
+//!   compensated bound cannot separate from zero is a touching (double)
+//!   root, reported once and placed where the compensated `p'` vanishes.
+//! * Inside a piece: Halley's method (cubic convergence) from the root of the
+//!   quadratic Taylor model at the end nearer the root, kept inside the
+//!   bracket with Newton and bisection fallbacks; then the compensated polish:
+//!   Newton/secant corrections with residuals from compensated Horner (exact
+//!   expansion arithmetic when even that cannot decide), accepted when the
+//!   certified sign changes between neighbouring floats or the correction is
+//!   below an ulp. Results are within an ulp or two of the exact roots of
+//!   the `f64` polynomial, clustered roots included.
+//! * Unbounded searches are closed with a Fujiwara bound, whose end signs are
+//!   known without evaluating. Extreme coefficients are rescaled by a power
+//!   of two, and when evaluation near the roots could overflow, the roots
+//!   with `|x| >= 1` are found as reciprocals of the roots of the reversed
+//!   polynomial (so roots up to about `1e300` are handled; only the
+//!   underflow of sums like `sum |a_k|` is out of range).
+//! * No allocation: everything lives in fixed arrays on the stack.
 
 use super::poly::{
-    derivative, gamma, horner_bounded, horner_comp, horner_d, horner_exact, normalize,
-    root_bound, split_point, two_prod, Coeffs, U,
+    derivative, exponent_above, gamma, horner_bounded, horner_comp, horner_d, horner_exact,
+    normalize, root_bound, split_point, two_prod, Coeffs, U,
 };
 use super::{RootSolver, Roots};
 
@@ -80,15 +90,138 @@ fn solve(coeffs: &[f64], lo: f64, hi: f64, first: bool) -> Roots {
             }
         }
         _ => {
-            if lo == 0.0 && descartes_at_zero(&a, n, hi, first, &mut out) {
+            let mut single = false;
+            if lo == 0.0 {
+                match descartes_at_zero(&a, n, first, &mut out) {
+                    Some(true) => return out,
+                    Some(false) => single = true,
+                    None => {}
+                }
+            }
+            if n == 4 && !single && no_real_roots(&a) {
                 return out;
             }
-            if n == 3 {
-                cubic(&a, lo, hi, first, &mut out);
-            } else if !no_real_roots(&a) {
-                quartic(&a, lo, hi, first, &mut out);
+            general(&a, n, lo, hi, first, single, &mut out);
+        }
+    }
+    out
+}
+
+/// Everything past the fast paths: root bound, range safety, and the
+/// general walks (kept out of line so the fast paths stay small).
+#[inline(never)]
+fn general(a: &Coeffs, n: usize, lo: f64, hi: f64, first: bool, single: bool, out: &mut Roots) {
+    let r = root_bound(a, n);
+    let (a, extreme) = balanced(a, n, r);
+    if extreme {
+        split_at_unit_circle(&a, n, lo, hi, first, out);
+    } else if single {
+        if n == 3 {
+            single_positive_root::<3>(&a, r, hi, out);
+        } else {
+            single_positive_root::<4>(&a, r, hi, out);
+        }
+    } else if n == 3 {
+        cubic(&a, r, lo, hi, first, out);
+    } else {
+        quartic(&a, r, lo, hi, first, out);
+    }
+}
+
+/// The coefficients scaled by a power of two (exactly; the roots do not
+/// change) when their magnitudes are extreme, centring their exponent
+/// range on zero so that derivative coefficients and the error-free
+/// products of compensated evaluation (Dekker's split overflows above about
+/// `2^996`) stay finite and away from underflow; and whether Horner
+/// evaluation near the roots could still overflow (some term `a_k x^k`
+/// with `|x|` up to the root bound `r` above about `2^900`).
+#[inline(always)]
+fn balanced(a: &Coeffs, n: usize, r: f64) -> (Coeffs, bool) {
+    let er = exponent_above(r);
+    let (mut hi, mut lo, mut worst) = (i32::MIN, i32::MAX, i32::MIN);
+    for (k, &c) in a.iter().enumerate().take(n + 1) {
+        if c != 0.0 {
+            let e = exponent_above(c.abs());
+            hi = hi.max(e);
+            lo = lo.min(e);
+            worst = worst.max(e + k as i32 * er);
+        }
+    }
+    if hi <= 600 && lo >= -600 {
+        return (*a, worst > 900);
+    }
+    let shift = (hi + lo) / 2;
+    let s = super::poly::pow2(-shift);
+    let mut b = *a;
+    for c in b.iter_mut() {
+        *c *= s;
+    }
+    (b, worst - shift > 900)
+}
+
+/// Roots of a polynomial whose roots are so large that evaluating it near
+/// them would overflow: the roots inside the unit interval are found
+/// directly (there `|p(x)| <= sum |a_k|`), those with `|x| >= 1` as the
+/// reciprocals of the roots in `[-1, 1]` of the reversed polynomial
+/// `x^n p(1/x)` (same coefficients, reversed), whose values there are
+/// bounded the same way. The reciprocal costs at most half an ulp more.
+#[cold]
+#[inline(never)]
+fn split_at_unit_circle(a: &Coeffs, n: usize, lo: f64, hi: f64, first: bool, out: &mut Roots) {
+    let mut all = Roots::new();
+    let inner = solve_bounded(a, n, lo.max(-1.0), hi.min(1.0));
+    for &x in inner.as_slice() {
+        if x > -1.0 {
+            all.push(x);
+        }
+    }
+    let mut rev = [0.0; 5];
+    for k in 0..=n {
+        rev[k] = a[n - k];
+    }
+    if let Some((q, m)) = normalize(&rev[..=n]) {
+        let (q, _) = balanced(&q, m, 1.0);
+        let outer = solve_bounded(&q, m, -1.0, f64::from_bits(1.0f64.to_bits() + 1));
+        for &y in outer.as_slice() {
+            let x = 1.0 / y;
+            if y != 0.0 && x.abs() >= 1.0 && lo <= x && x < hi {
+                all.push(x);
             }
         }
+    }
+    all.sort();
+    for &x in all.as_slice() {
+        out.push(x);
+        if first {
+            return;
+        }
+    }
+}
+
+/// The general solver on `[lo, hi)` without the overflow split (used on
+/// the two halves of [`split_at_unit_circle`], where evaluation is safe).
+fn solve_bounded(a: &Coeffs, n: usize, lo: f64, hi: f64) -> Roots {
+    let mut out = Roots::new();
+    if !(lo < hi) {
+        return out;
+    }
+    match n {
+        1 => {
+            let r = -a[0] / a[1] + 0.0;
+            if lo <= r && r < hi {
+                out.push(r);
+            }
+        }
+        2 => {
+            let (k, r) = quadratic(a[0], a[1], a[2]);
+            for &x in &r[..k] {
+                if lo <= x && x < hi {
+                    out.push(x);
+                }
+            }
+        }
+        3 => cubic(a, root_bound(a, 3), lo, hi, false, &mut out),
+        _ => quartic(a, root_bound(a, 4), lo, hi, false, &mut out),
     }
     out
 }
@@ -97,16 +230,17 @@ fn solve(coeffs: &[f64], lo: f64, hi: f64, first: bool) -> Roots {
 /// query), where the coefficients themselves are the Taylor coefficients:
 /// `p(0) = 0` answers a `first_root` query at once, and by Descartes' rule
 /// of signs no sign variation means no positive root and one variation
-/// means exactly one (simple) positive root, which is then solved on its
-/// own without locating critical points. Returns true when `out` is final.
+/// means exactly one (simple) positive root, which can be solved on its own
+/// without locating critical points. Returns `Some(true)` when `out` is
+/// final, `Some(false)` for "exactly one positive root", `None` otherwise.
 #[inline(always)]
-fn descartes_at_zero(a: &Coeffs, n: usize, hi: f64, first: bool, out: &mut Roots) -> bool {
+fn descartes_at_zero(a: &Coeffs, n: usize, first: bool, out: &mut Roots) -> Option<bool> {
     if a[0] == 0.0 {
         if first {
             out.push(0.0);
-            return true;
+            return Some(true);
         }
-        return false;
+        return None;
     }
     let mut variations = 0;
     let mut last_neg = a[0] < 0.0;
@@ -118,16 +252,9 @@ fn descartes_at_zero(a: &Coeffs, n: usize, hi: f64, first: bool, out: &mut Roots
         }
     }
     match variations {
-        0 => true,
-        1 => {
-            if n == 3 {
-                single_positive_root::<3>(a, hi, out);
-            } else {
-                single_positive_root::<4>(a, hi, out);
-            }
-            true
-        }
-        _ => false,
+        0 => Some(true),
+        1 => Some(false),
+        _ => None,
     }
 }
 
@@ -135,69 +262,61 @@ fn descartes_at_zero(a: &Coeffs, n: usize, hi: f64, first: bool, out: &mut Roots
 /// positive and `P = 8ac - 3b^2` or `D = 64a^3e - 16a^2c^2 + 16ab^2c -
 /// 16a^2bd - 3b^4` is positive (two pairs of complex conjugate roots), every
 /// sign certified by an a-priori rounding-error bound on the monomial sums.
-/// About 70 flops and no division: it settles most separating contacts
+/// About 80 flops and no division: it settles most separating contacts
 /// without locating a single critical point. Inconclusive (false) near
 /// degenerate cases and when the degree-6 products over- or underflow.
 #[inline(always)]
 fn no_real_roots(q: &Coeffs) -> bool {
     let (a, b, c, d, e) = (q[4], q[3], q[2], q[1], q[0]);
-    let (b2, c2, d2, e2) = (b * b, c * c, d * d, e * e);
+    let (b2, c2, d2) = (b * b, c * c, d * d);
     let ae = a * e;
     let ac = a * c;
-    // P and D first: they are cheap and often decide alone that the
-    // discriminant is needed at all.
+    // P first, D only when P does not decide: one of them must be
+    // certainly positive before the discriminant is worth computing.
     let p1 = 8.0 * ac;
     let p2 = 3.0 * b2;
-    let pp = p1 - p2;
-    let p_pos = pp > gamma(4) * (p1.abs() + p2) * (1.0 + 4.0 * U);
+    let p_pos = p1 - p2 > gamma(4) * (p1.abs() + p2) * (1.0 + 4.0 * U);
     let a2 = a * a;
-    let dt = [
-        64.0 * a2 * ae,
-        -16.0 * a2 * c2,
-        16.0 * ac * b2,
-        -16.0 * a2 * b * d,
-        -3.0 * b2 * b2,
-    ];
-    let dd = dt[0] + dt[1] + dt[2] + dt[3] + dt[4];
-    let ds = dt[0].abs() + dt[1].abs() + dt[2].abs() + dt[3].abs() + dt[4].abs();
-    let d_pos = dd > gamma(10) * ds * (1.0 + 8.0 * U);
-    if !(p_pos || d_pos) {
-        return false;
+    if !p_pos {
+        let dt = [
+            64.0 * a2 * ae,
+            -16.0 * a2 * c2,
+            16.0 * ac * b2,
+            -16.0 * a2 * b * d,
+            -3.0 * b2 * b2,
+        ];
+        let dd = dt[0] + dt[1] + dt[2] + dt[3] + dt[4];
+        let ds = dt[0].abs() + dt[1].abs() + dt[2].abs() + dt[3].abs() + dt[4].abs();
+        if !(dd > gamma(10) * ds * (1.0 + 8.0 * U)) {
+            return false;
+        }
     }
+    // The discriminant grouped by powers of e (Horner in e), and the same
+    // expression on absolute values with every sign positive, which is the
+    // sum of the magnitudes of its 16 monomials: the rounding error of the
+    // first is below gamma(k) times the second, k the longest chain of
+    // roundings (Higham, Accuracy and Stability, 3.1).
     let bd = b * d;
-    let t = [
-        256.0 * ae * ae * ae,
-        -192.0 * ae * ae * bd,
-        -128.0 * ae * ae * c2,
-        144.0 * ae * ac * d2,
-        -27.0 * a2 * d2 * d2,
-        144.0 * ae * e * b2 * c,
-        -6.0 * ae * b2 * d2,
-        -80.0 * ae * bd * c2,
-        18.0 * ac * bd * d2,
-        16.0 * ae * c2 * c2,
-        -4.0 * ac * c2 * d2,
-        -27.0 * b2 * b2 * e2,
-        18.0 * b2 * bd * c * e,
-        -4.0 * b2 * bd * d2,
-        -4.0 * b2 * c2 * c * e,
-        b2 * c2 * d2,
-    ];
-    let mut disc = 0.0;
-    let mut mag = 0.0;
-    for v in t {
-        disc += v;
-        mag += v.abs();
-    }
-    // Each monomial carries at most 8 roundings, the sum 15 more.
+    let a3 = 256.0 * a2 * a;
+    let a2_ = a * (a * (-192.0 * bd - 128.0 * c2) + 144.0 * b2 * c) - 27.0 * b2 * b2;
+    let a1 = a * (d2 * (144.0 * ac - 6.0 * b2) + c2 * (16.0 * c2 - 80.0 * bd))
+        + b2 * c * (18.0 * bd - 4.0 * c2);
+    let a0 = d2 * (ac * (18.0 * bd - 4.0 * c2) - 27.0 * a2 * d2 + b2 * (c2 - 4.0 * bd));
+    let disc = ((a3 * e + a2_) * e + a1) * e + a0;
+    let (aa, ac_, bd_, cc, ee) = (a.abs(), ac.abs(), bd.abs(), c.abs(), e.abs());
+    let m3 = 256.0 * a2 * aa;
+    let m2 = aa * (aa * (192.0 * bd_ + 128.0 * c2) + 144.0 * b2 * cc) + 27.0 * b2 * b2;
+    let m1 = aa * (d2 * (144.0 * ac_ + 6.0 * b2) + c2 * (16.0 * c2 + 80.0 * bd_))
+        + b2 * cc * (18.0 * bd_ + 4.0 * c2);
+    let m0 = d2 * (ac_ * (18.0 * bd_ + 4.0 * c2) + 27.0 * a2 * d2 + b2 * (c2 + 4.0 * bd_));
+    let mag = ((m3 * ee + m2) * ee + m1) * ee + m0;
     disc > gamma(24) * mag * (1.0 + 32.0 * U) && mag < f64::INFINITY && mag > 1e-250
 }
 
 /// The one positive root of `p` (Descartes: one sign variation), if below
-/// `hi`.
+/// `hi`; `r` bounds the roots.
 #[inline(never)]
-fn single_positive_root<const N: usize>(a: &Coeffs, hi: f64, out: &mut Roots) {
-    let r = root_bound(a, N);
+fn single_positive_root<const N: usize>(a: &Coeffs, r: f64, hi: f64, out: &mut Roots) {
     let f0 = a[0];
     let (h, fh) = if hi >= r {
         (r, f64::MAX.copysign(a[N]))
@@ -306,7 +425,14 @@ fn taylor2<const N: usize>(p: &Coeffs, x: f64) -> (f64, f64, f64) {
 /// noise next to a cluster: the compensated polish takes over). Returns the
 /// point and `p'` near it.
 #[inline(always)]
-fn halley<const N: usize>(p: &Coeffs, mut a: f64, mut b: f64, fa: f64, x0: f64, tol: f64) -> (f64, f64) {
+fn halley<const N: usize>(
+    p: &Coeffs,
+    mut a: f64,
+    mut b: f64,
+    fa: f64,
+    x0: f64,
+    tol: f64,
+) -> (f64, f64) {
     let neg_a = fa < 0.0;
     let mut x = x0;
     let mut d = 0.0;
@@ -334,6 +460,10 @@ fn halley<const N: usize>(p: &Coeffs, mut a: f64, mut b: f64, fa: f64, x0: f64, 
         let denom = df * df - f * h2;
         let mut step = f * df / denom;
         let mut xn = x - step;
+        if xn == x {
+            // The step is below half an ulp: converged.
+            return (x, d);
+        }
         if !(xn > a && xn < b) {
             step = f / df;
             xn = x - step;
@@ -346,7 +476,11 @@ fn halley<const N: usize>(p: &Coeffs, mut a: f64, mut b: f64, fa: f64, x0: f64, 
             }
         } else {
             fallbacks += 1;
-            let m = if fallbacks < 4 { a + 0.5 * (b - a) } else { split_point(a, b) };
+            let m = if fallbacks < 4 {
+                a + 0.5 * (b - a)
+            } else {
+                split_point(a, b)
+            };
             if !(m > a && m < b) {
                 return (x, d);
             }
@@ -454,13 +588,25 @@ const CRIT_TOL: f64 = 1e-9;
 /// `p(x1) = f1` have opposite signs: the root of the quadratic Taylor model
 /// at the end nearer the root by `|p|`, which is exact to second order and
 /// excellent next to an extremum (where `p'` vanishes and Newton alone would
-/// crawl); the secant point when the model has no root inside.
+/// crawl); the secant point when the model has no root inside. `model1`
+/// may carry `p'(x1)` and `p''(x1) / 2` when the caller already has them.
 #[inline(always)]
-fn start_point<const N: usize>(p: &Coeffs, (x0, f0): (f64, f64), (x1, f1): (f64, f64)) -> f64 {
+fn start_point<const N: usize>(
+    p: &Coeffs,
+    (x0, f0): (f64, f64),
+    (x1, f1): (f64, f64),
+    model1: Option<(f64, f64)>,
+) -> f64 {
     let right = f1.abs() <= f0.abs();
     let (c, f) = if right { (x1, f1) } else { (x0, f0) };
     if f.is_finite() {
-        let (_, d1, h2) = taylor2::<N>(p, c);
+        let (d1, h2) = match model1 {
+            Some(m) if right => m,
+            _ => {
+                let (_, d1, h2) = taylor2::<N>(p, c);
+                (d1, h2)
+            }
+        };
         // Roots of h2 t^2 + d1 t + f = 0, the small one first (stable form).
         let disc = d1 * d1 - 4.0 * h2 * f;
         if disc >= 0.0 {
@@ -520,13 +666,19 @@ impl<'a, const N: usize> Walker<'a, N> {
     /// `first_root` query is answered.
     #[inline(always)]
     fn advance(&mut self, c: f64, fc: f64) -> bool {
+        self.advance_with(c, fc, None)
+    }
+
+    /// [`Walker::advance`] when `p'(c)` and `p''(c) / 2` are already known.
+    #[inline(always)]
+    fn advance_with(&mut self, c: f64, fc: f64, model: Option<(f64, f64)>) -> bool {
         if fc == 0.0 {
             self.out.push(c);
             if self.first {
                 return true;
             }
         } else if self.f != 0.0 && (self.f < 0.0) != (fc < 0.0) {
-            let start = start_point::<N>(self.p, (self.x, self.f), (c, fc));
+            let start = start_point::<N>(self.p, (self.x, self.f), (c, fc), model);
             let (x, d) = halley::<N>(self.p, self.x, c, self.f, start, ROOT_TOL);
             let r = polish::<N>(self.p, x, self.x, c, self.f, d);
             self.out.push(r);
@@ -561,13 +713,17 @@ impl<'a, const N: usize> Walker<'a, N> {
 /// Effective search interval: `[lo, hi)` clipped to the root bound, with
 /// `p` at both ends (the sign at a bound end is known: no evaluation).
 #[inline(always)]
-fn search_interval<const N: usize>(a: &Coeffs, lo: f64, hi: f64) -> Option<(f64, f64, f64, f64)> {
-    let r = root_bound(a, N);
+fn search_interval<const N: usize>(
+    a: &Coeffs,
+    r: f64,
+    lo: f64,
+    hi: f64,
+) -> Option<(f64, f64, f64, f64)> {
     let lead = a[N];
     // Beyond the bound only the sign matters: the largest magnitude of that
     // sign also tells `start_point` to model the function at the other end.
     let (l, fl) = if lo <= -r {
-        let s = if N % 2 == 0 { lead } else { -lead };
+        let s = if N & 1 == 0 { lead } else { -lead };
         (-r, f64::MAX.copysign(s))
     } else if lo == 0.0 {
         (lo, a[0])
@@ -587,8 +743,8 @@ fn search_interval<const N: usize>(a: &Coeffs, lo: f64, hi: f64) -> Option<(f64,
 }
 
 #[inline(never)]
-fn cubic(a: &Coeffs, lo: f64, hi: f64, first: bool, out: &mut Roots) {
-    let Some((l, fl, h, fh)) = search_interval::<3>(a, lo, hi) else {
+fn cubic(a: &Coeffs, r: f64, lo: f64, hi: f64, first: bool, out: &mut Roots) {
+    let Some((l, fl, h, fh)) = search_interval::<3>(a, r, lo, hi) else {
         return;
     };
     // Critical points: the roots of the quadratic p'.
@@ -614,7 +770,8 @@ fn cubic(a: &Coeffs, lo: f64, hi: f64, first: bool, out: &mut Roots) {
 /// the true critical point `p` keeps the sign of `p(y)`, because the
 /// extremum lies beyond `p(y)` from zero.) Otherwise Newton converges and
 /// the critical point comes back with `p`'s trusted value there. Returns
-/// the point and `p` there.
+/// the point, `p` there and, after an early stop, `p'` and `p''/2` there
+/// (for the quadratic model that starts the root search).
 #[inline(always)]
 fn critical_point(
     p: &Coeffs,
@@ -623,7 +780,7 @@ fn critical_point(
     g_lo: f64,
     start: f64,
     f_prev: f64,
-) -> (f64, f64) {
+) -> (f64, f64, Option<(f64, f64)>) {
     let neg_lo = g_lo < 0.0;
     let mut y = start;
     for _ in 0..128 {
@@ -631,7 +788,7 @@ fn critical_point(
         if f_prev != 0.0 {
             let (f, e) = horner_bounded::<4>(p, y);
             if f.abs() > e && (f < 0.0) != (f_prev < 0.0) {
-                return (y, f);
+                return (y, f, Some((g, 0.5 * dg)));
             }
         }
         if g == 0.0 {
@@ -644,6 +801,9 @@ fn critical_point(
         }
         let step = g / dg;
         let yn = y - step;
+        if yn == y {
+            break;
+        }
         if yn > lo && yn < hi {
             y = yn;
             if step.abs() <= CRIT_TOL * yn.abs() {
@@ -657,12 +817,28 @@ fn critical_point(
             y = m;
         }
     }
-    (y, signed_value::<4>(p, y))
+    let f = signed_value::<4>(p, y);
+    if f == 0.0 {
+        // A touching (double) root: place it where the compensated p'
+        // vanishes, to an ulp, rather than where plain Newton stopped.
+        for _ in 0..4 {
+            let (g, e) = horner_comp::<3>(d, y);
+            if g.abs() <= e {
+                break;
+            }
+            let yn = y - g / horner_d::<3>(d, y).1;
+            if yn == y || !(yn > lo && yn < hi) {
+                break;
+            }
+            y = yn;
+        }
+    }
+    (y, f, None)
 }
 
 #[inline(never)]
-fn quartic(a: &Coeffs, lo: f64, hi: f64, first: bool, out: &mut Roots) {
-    let Some((l, fl, h, fh)) = search_interval::<4>(a, lo, hi) else {
+fn quartic(a: &Coeffs, r: f64, lo: f64, hi: f64, first: bool, out: &mut Roots) {
+    let Some((l, fl, h, fh)) = search_interval::<4>(a, r, lo, hi) else {
         return;
     };
     let d = derivative::<4>(a);
@@ -690,9 +866,9 @@ fn quartic(a: &Coeffs, lo: f64, hi: f64, first: bool, out: &mut Roots) {
                 signed_value::<3>(&d, h)
             };
             if variations == 1 && g0 != 0.0 && gh != 0.0 && (g0 < 0.0) != (gh < 0.0) {
-                let start = start_point::<3>(&d, (0.0, g0), (h, gh));
-                let (c, fc) = critical_point(a, &d, (0.0, h), g0, start, w.f);
-                if c > w.x && w.advance(c, fc) {
+                let start = start_point::<3>(&d, (0.0, g0), (h, gh), None);
+                let (c, fc, model) = critical_point(a, &d, (0.0, h), g0, start, w.f);
+                if c > w.x && w.advance_with(c, fc, model) {
                     return;
                 }
             }
@@ -718,9 +894,9 @@ fn quartic(a: &Coeffs, lo: f64, hi: f64, first: bool, out: &mut Roots) {
             (h, signed_value::<3>(&d, h), false)
         };
         if gx != 0.0 && ge != 0.0 && (gx < 0.0) != (ge < 0.0) {
-            let start = start_point::<3>(&d, (x, gx), (e, ge));
-            let (c, fc) = critical_point(a, &d, (x, e), gx, start, w.f);
-            if c > w.x && w.advance(c, fc) {
+            let start = start_point::<3>(&d, (x, gx), (e, ge), None);
+            let (c, fc, model) = critical_point(a, &d, (x, e), gx, start, w.f);
+            if c > w.x && w.advance_with(c, fc, model) {
                 return;
             }
         } else if ge == 0.0 && e < h && w.visit(e) {
@@ -758,6 +934,59 @@ mod tests {
         assert_eq!(
             Production.roots_in(&[2.0, -3.0, 1.0], 1.0, 2.0).as_slice(),
             &[1.0]
+        );
+    }
+
+    #[test]
+    fn no_real_roots_is_never_wrong_and_usually_decides() {
+        // Products of two quadratic factors with random (mostly complex)
+        // roots, including near-real pairs: whenever the discriminant test
+        // claims "no real root", the f64-exact reference agrees.
+        let mut state = 0x1234_5678_9abc_def0u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let (mut clear, mut decided) = (0, 0);
+        for _ in 0..400 {
+            // (x - re)^2 + s: a complex pair when s > 0 (sometimes very
+            // close to the real axis), two real roots otherwise.
+            let mut factor = || {
+                let re = next() * 10.0;
+                let s = if next() > 0.0 {
+                    0.5 + 10.0 * next().abs()
+                } else {
+                    next() * next().abs().powi(6)
+                };
+                ([re * re + s, -2.0 * re, 1.0], s, re)
+            };
+            let ((q1, s1, re1), (q2, s2, re2)) = (factor(), factor());
+            let lead = 10f64.powf(next() * 3.0);
+            let mut c = [0.0; 5];
+            for i in 0..3 {
+                for j in 0..3 {
+                    c[i + j] += lead * q1[i] * q2[j];
+                }
+            }
+            let claims = no_real_roots(&c);
+            if claims {
+                let reference = super::super::reference::reference_roots(&c);
+                assert!(
+                    reference.is_empty(),
+                    "{c:?}: claimed no real root, reference {reference:?}"
+                );
+            }
+            if s1 >= 0.5 && s2 >= 0.5 && (re1 - re2).abs() > 1.0 {
+                clear += 1;
+                decided += usize::from(claims);
+            }
+        }
+        println!("decided {decided} of {clear} clearly complex quartics");
+        assert!(
+            decided * 10 >= clear * 9,
+            "decided only {decided} of {clear}"
         );
     }
 

@@ -1,0 +1,253 @@
+//! Per-query cost of `first_root(c, 0, +inf)` on quartics for every method
+//! of `roots` and two peer crates: `kurbo::common::solve_quartic` (a port of
+//! Orellana & De Michele's Algorithm 1010) and `roots::find_roots_quartic`.
+//! Peers return all roots; the query keeps the smallest one `>= 0`.
+//!
+//! A last group times `roots_in(c, 0, 10)` on the contact batch, the form
+//! the engine itself uses (every contact before a stop time).
+//!
+//! Batches: `contact` (polynomials `|dp + dv t + da t^2/2|^2 - S^2` from a
+//! fixed pseudo-random stream, a quarter of them touching at `t = 0`),
+//! `hard` (published hard quartics and clustered/scaled cases) and `mixed`
+//! (both). Throughput is set to the batch size, so criterion's time per
+//! element is the time per query.
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
+use engine::roots::{Bisection, ClosedForm, Production, RootSolver};
+
+/// A small deterministic generator (SplitMix64), so the batch is fixed.
+struct Rng(u64);
+
+impl Rng {
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * ((self.next_u64() >> 11) as f64 / (1u64 << 53) as f64)
+    }
+}
+
+/// `|dp + dv t + da t^2/2|^2 - s^2`, lowest degree first.
+fn contact(dp: [f64; 2], dv: [f64; 2], da: [f64; 2], s: f64) -> [f64; 5] {
+    let dot = |a: [f64; 2], b: [f64; 2]| a[0] * b[0] + a[1] * b[1];
+    [
+        dot(dp, dp) - s * s,
+        2.0 * dot(dp, dv),
+        dot(dv, dv) + dot(dp, da),
+        dot(dv, da),
+        0.25 * dot(da, da),
+    ]
+}
+
+fn contact_batch(n: usize) -> Vec<[f64; 5]> {
+    let mut rng = Rng(0x5EED);
+    (0..n)
+        .map(|i| {
+            let s = rng.uniform(0.5, 2.0);
+            let dp = if i % 4 == 0 {
+                // Exactly touching at t = 0: |(3k, 4k)| = 5k.
+                let k = (1 + rng.next_u64() % 8) as f64 * 0.125;
+                let sign = if rng.next_u64() & 1 == 0 { 1.0 } else { -1.0 };
+                return contact(
+                    [3.0 * k * sign, 4.0 * k],
+                    [rng.uniform(-5.0, 5.0), rng.uniform(-5.0, 5.0)],
+                    [rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0)],
+                    5.0 * k,
+                );
+            } else {
+                [rng.uniform(-10.0, 10.0), rng.uniform(-10.0, 10.0)]
+            };
+            let dv = [rng.uniform(-5.0, 5.0), rng.uniform(-5.0, 5.0)];
+            let da = [rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0)];
+            contact(dp, dv, da, s)
+        })
+        .collect()
+}
+
+/// Expands `prod (x - r)` in `f64` (lowest degree first).
+fn from_roots(r: [f64; 4]) -> [f64; 5] {
+    let mut c = [1.0, 0.0, 0.0, 0.0, 0.0];
+    for (k, &x) in r.iter().enumerate() {
+        for j in (0..=k + 1).rev() {
+            let lower = if j > 0 { c[j - 1] } else { 0.0 };
+            c[j] = lower - x * c[j];
+        }
+    }
+    c
+}
+
+fn hi_first(c: [f64; 5]) -> [f64; 5] {
+    [c[4], c[3], c[2], c[1], c[0]]
+}
+
+fn hard_batch() -> Vec<[f64; 5]> {
+    let mut v = vec![
+        // Flocke, Algorithm 954 (ACM TOMS 2015), published quartics.
+        hi_first([
+            1.0,
+            -1001001001.0,
+            1001002001001000.0,
+            -1001001001000000000.0,
+            1e18,
+        ]),
+        hi_first([1.0, -4.006, 6.018011, -4.018022006, 1.006011006]),
+        hi_first([
+            1.0,
+            -1.00000000000002e14,
+            1.99999999999999e14,
+            1.00000000000002e14,
+            -2e14,
+        ]),
+        hi_first([1.0, 1e7, -2.00000000000001e14, -1e7, 2e14]),
+        hi_first([1.0, -9.000002e6, -0.9999981999998e13, 1.9999982e13, -2e13]),
+        hi_first([1.0, 2.000011e6, 1.010022000028e12, 1.1110056e13, 2.828e13]),
+        hi_first([
+            1.0,
+            -1.00002011e8,
+            2.01101022001e11,
+            -1.02200111000011e14,
+            1.1000011e15,
+        ]),
+        hi_first([
+            1.0,
+            -2.0000002e7,
+            1.01000040000005e14,
+            -2.020001e14,
+            5.05e14,
+        ]),
+        hi_first([
+            1.0,
+            -1.9986e4,
+            1.00720058e8,
+            -1.8600979874e10,
+            1.00004909000441e14,
+        ]),
+        hi_first([
+            1.0,
+            -4.006,
+            5.6008018e1,
+            -1.04148036024e2,
+            6.75896068064016e2,
+        ]),
+        hi_first([1.0, -4e3, 6.00001e6, -4.00002e9, 1.000010000009e12]),
+        hi_first([1.0, -6.0, 1.01000013e8, -2.04000012e8, 1.00000104000004e14]),
+        // Orellana & De Michele, Algorithm 1010 (ACM TOMS 2020), cases 23, 24.
+        [0.001, 0.375, 1.0, 1.0, 1.0],
+        [-1e30, 1e60 + 1e30, 1e-30 - 1e60, -(1.0 + 1e-30), 1.0],
+        // Multiple and clustered roots.
+        [6.0, -17.0, 17.0, -7.0, 1.0],
+        [4.0, -12.0, 13.0, -6.0, 1.0],
+        [1.0, -4.0, 6.0, -4.0, 1.0],
+    ];
+    for r in [
+        [2.003, 2.002, 2.001, 2.0],
+        [1e14, 2.0, 1.0, -1.0],
+        [-2e7, 1e7, 1.0, -1.0],
+        [1e4, 10001.0, 10010.0, 10100.0],
+        [1e14, 1e7, 1e7, 1.0],
+        [1.0, 1.0 + 1e-7, 2.0, 3.0],
+        [0.1, 0.1, 0.3, -0.7],
+        [1e-8, 1e-3, 1e3, 1e8],
+        [1e3, 1e3, 1e3, 2f64.powi(-48)],
+    ] {
+        v.push(from_roots(r));
+    }
+    v
+}
+
+type Query = fn(&[f64; 5]) -> Option<f64>;
+
+fn smallest_nonneg(it: impl Iterator<Item = f64>) -> Option<f64> {
+    it.filter(|&x| x >= 0.0)
+        .fold(None, |m, x| Some(m.map_or(x, |m: f64| m.min(x))))
+}
+
+fn solvers() -> Vec<(&'static str, Query)> {
+    vec![
+        ("production", |c| {
+            Production.first_root(c, 0.0, f64::INFINITY)
+        }),
+        ("closed_form", |c| {
+            ClosedForm.first_root(c, 0.0, f64::INFINITY)
+        }),
+        ("bisection", |c| Bisection.first_root(c, 0.0, f64::INFINITY)),
+        ("kurbo", |c| {
+            smallest_nonneg(kurbo::common::solve_quartic(c[0], c[1], c[2], c[3], c[4]).into_iter())
+        }),
+        ("roots_crate", |c| {
+            let r = roots::find_roots_quartic(c[4], c[3], c[2], c[1], c[0]);
+            smallest_nonneg(r.as_ref().iter().copied())
+        }),
+    ]
+}
+
+type RangeQuery = fn(&[f64; 5]) -> usize;
+
+/// `roots_in(c, 0, 10)` as the engine calls it (all contacts before a stop
+/// time), returning the count.
+fn range_solvers() -> Vec<(&'static str, RangeQuery)> {
+    vec![
+        ("production", |c| Production.roots_in(c, 0.0, 10.0).len()),
+        ("closed_form", |c| ClosedForm.roots_in(c, 0.0, 10.0).len()),
+        ("bisection", |c| Bisection.roots_in(c, 0.0, 10.0).len()),
+        ("kurbo", |c| {
+            kurbo::common::solve_quartic(c[0], c[1], c[2], c[3], c[4])
+                .iter()
+                .filter(|x| (0.0..10.0).contains(*x))
+                .count()
+        }),
+        ("roots_crate", |c| {
+            let r = roots::find_roots_quartic(c[4], c[3], c[2], c[1], c[0]);
+            r.as_ref()
+                .iter()
+                .filter(|x| (0.0..10.0).contains(*x))
+                .count()
+        }),
+    ]
+}
+
+fn bench(c: &mut Criterion) {
+    let contact = contact_batch(512);
+    let hard = hard_batch();
+    let mixed: Vec<[f64; 5]> = contact.iter().chain(hard.iter()).copied().collect();
+    for (name, batch) in [("contact", &contact), ("hard", &hard), ("mixed", &mixed)] {
+        let mut g = c.benchmark_group(format!("first_root/{name}"));
+        g.throughput(Throughput::Elements(batch.len() as u64));
+        for (solver, query) in solvers() {
+            g.bench_function(solver, |b| {
+                b.iter(|| {
+                    let mut hits = 0usize;
+                    for p in batch.iter() {
+                        if query(black_box(p)).is_some() {
+                            hits += 1;
+                        }
+                    }
+                    hits
+                })
+            });
+        }
+        g.finish();
+    }
+    let mut g = c.benchmark_group("roots_in_0_10/contact");
+    g.throughput(Throughput::Elements(contact.len() as u64));
+    for (solver, query) in range_solvers() {
+        g.bench_function(solver, |b| {
+            b.iter(|| contact.iter().map(|p| query(black_box(p))).sum::<usize>())
+        });
+    }
+    g.finish();
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default()
+        .sample_size(30)
+        .warm_up_time(std::time::Duration::from_millis(500))
+        .measurement_time(std::time::Duration::from_secs(2));
+    targets = bench
+}
+criterion_main!(benches);

@@ -1,0 +1,140 @@
+//! Putting the server together: logging, the store, the game runtime (the
+//! threads that run match rooms: physics, bots, store writes), resuming
+//! every unfinished match, the HTTP server on its own workers, and a
+//! graceful shutdown on SIGTERM or Ctrl-C — rooms finish the move in hand
+//! (so every accepted move is stored), connections close, the write-ahead
+//! log is checkpointed.
+
+use crate::config::Config;
+use crate::hub::Hub;
+use crate::metrics::Metrics;
+use crate::store::{Store, StoreError};
+use actix_web::{web, App, HttpServer};
+use std::sync::Arc;
+use std::time::Duration;
+use tracing::{error, info};
+
+/// The server could not start or stop cleanly.
+#[derive(Debug, thiserror::Error)]
+pub enum AppError {
+    #[error("bad log filter {0:?}: {1}")]
+    Log(String, String),
+    #[error(transparent)]
+    Store(#[from] StoreError),
+    #[error("cannot listen on {addr}: {source}")]
+    Bind {
+        addr: String,
+        source: std::io::Error,
+    },
+    #[error("I/O: {0}")]
+    Io(#[from] std::io::Error),
+}
+
+/// Installs the tracing subscriber (logs go to standard error).
+pub fn init_logging(config: &Config) -> Result<(), AppError> {
+    let filter = tracing_subscriber::EnvFilter::try_new(&config.log)
+        .map_err(|e| AppError::Log(config.log.clone(), e.to_string()))?;
+    let builder = tracing_subscriber::fmt()
+        .with_env_filter(filter)
+        .with_writer(std::io::stderr);
+    let installed = if config.log_json {
+        builder.json().try_init()
+    } else {
+        builder.try_init()
+    };
+    // Already installed (tests): keep the first.
+    let _ = installed;
+    Ok(())
+}
+
+/// Runs the server until SIGTERM or Ctrl-C.
+pub fn run(config: Config) -> Result<(), AppError> {
+    init_logging(&config)?;
+    let store = Arc::new(Store::open(&config.data_dir, config.sync)?);
+    let metrics = Arc::new(Metrics::default());
+    let game_rt = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(config.game_threads as usize)
+        .thread_name("game")
+        .enable_all()
+        .build()?;
+    let hub = Hub::new(
+        store.clone(),
+        metrics,
+        config.limits(),
+        game_rt.handle().clone(),
+    );
+    let resumed = game_rt.block_on(hub.resume_all())?;
+    info!(resumed, data_dir = %config.data_dir.display(), "store opened; unfinished matches resumed");
+
+    let served = actix_web::rt::System::new().block_on(serve(&config, hub.clone(), &game_rt));
+    // Rooms were stopped by the signal handler; make sure of it.
+    game_rt.block_on(hub.shutdown(Duration::from_secs(config.shutdown_seconds)));
+    game_rt.shutdown_timeout(Duration::from_secs(config.shutdown_seconds));
+    if let Err(e) = store.checkpoint() {
+        error!(error = %e, "final checkpoint failed");
+    }
+    info!("stopped");
+    served
+}
+
+async fn serve(
+    config: &Config,
+    hub: Hub,
+    game_rt: &tokio::runtime::Runtime,
+) -> Result<(), AppError> {
+    let limit = config.max_message_bytes;
+    let data = web::Data::new(hub.clone());
+    let server = HttpServer::new(move || {
+        App::new()
+            .app_data(data.clone())
+            .app_data(web::PayloadConfig::new(limit))
+            .configure(crate::http::routes)
+    })
+    .workers(config.http_workers as usize)
+    .disable_signals()
+    .shutdown_timeout(config.shutdown_seconds)
+    .bind(&config.addr)
+    .map_err(|source| AppError::Bind {
+        addr: config.addr.clone(),
+        source,
+    })?;
+    for addr in server.addrs() {
+        info!(%addr, "listening");
+        // The one line on standard output: tools and tests read the address here.
+        println!("listening on http://{addr}");
+    }
+    let server = server.run();
+    let handle = server.handle();
+    let within = Duration::from_secs(config.shutdown_seconds);
+    game_rt.spawn(async move {
+        wait_for_signal().await;
+        info!("shutting down: finishing in-flight moves");
+        hub.shutdown(within).await;
+        handle.stop(true).await;
+    });
+    server.await?;
+    Ok(())
+}
+
+async fn wait_for_signal() {
+    #[cfg(unix)]
+    {
+        use tokio::signal::unix::{signal, SignalKind};
+        match signal(SignalKind::terminate()) {
+            Ok(mut term) => {
+                tokio::select! {
+                    _ = term.recv() => {},
+                    _ = tokio::signal::ctrl_c() => {},
+                }
+            }
+            Err(e) => {
+                error!(error = %e, "cannot watch SIGTERM; Ctrl-C only");
+                let _ = tokio::signal::ctrl_c().await;
+            }
+        }
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = tokio::signal::ctrl_c().await;
+    }
+}

@@ -1,0 +1,164 @@
+//! Command-line flags and environment variables (`clap`): where to listen,
+//! where the store lives, how much to log, and every limit that bounds the
+//! server's memory and protects it from abusive clients. Each flag has an
+//! environment variable of the same name in capitals with a `CHAPAEV_`
+//! prefix (`--max-matches` is `CHAPAEV_MAX_MATCHES`).
+
+use clap::{Parser, ValueEnum};
+use std::path::PathBuf;
+use std::time::Duration;
+
+/// Chapaev online match server: HTTP API, WebSocket play, built-in bots,
+/// turn clock and a crash-safe SQLite store.
+#[derive(Parser, Debug, Clone)]
+#[command(name = "server", version, about, long_about = None)]
+pub struct Config {
+    /// Address to listen on (`host:port`; port 0 picks a free port, printed on start).
+    #[arg(long, env = "CHAPAEV_ADDR", default_value = "127.0.0.1:8080")]
+    pub addr: String,
+
+    /// Folder of the SQLite store (`chapaev.sqlite3`), created if missing.
+    #[arg(long, env = "CHAPAEV_DATA_DIR", default_value = "./data")]
+    pub data_dir: PathBuf,
+
+    /// Log filter in tracing's EnvFilter syntax, e.g. `info` or `server=debug,warn`.
+    #[arg(long, env = "CHAPAEV_LOG", default_value = "info")]
+    pub log: String,
+
+    /// Logs as JSON lines instead of text.
+    #[arg(long, env = "CHAPAEV_LOG_JSON")]
+    pub log_json: bool,
+
+    /// HTTP/WebSocket worker threads.
+    #[arg(long, env = "CHAPAEV_HTTP_WORKERS", default_value_t = 2, value_parser = clap::value_parser!(u16).range(1..=64))]
+    pub http_workers: u16,
+
+    /// Game threads: shot resolution, bots, store writes.
+    #[arg(long, env = "CHAPAEV_GAME_THREADS", default_value_t = 2, value_parser = clap::value_parser!(u16).range(1..=64))]
+    pub game_threads: u16,
+
+    /// Most matches held in memory at once (open, live and recently
+    /// finished); creating one more is refused with `server-busy`.
+    #[arg(long, env = "CHAPAEV_MAX_MATCHES", default_value_t = 1000)]
+    pub max_matches: usize,
+
+    /// Most WebSocket connections at once; more are refused with HTTP 503.
+    #[arg(long, env = "CHAPAEV_MAX_CONNECTIONS", default_value_t = 5000)]
+    pub max_connections: usize,
+
+    /// Most WebSocket connections (players and spectators) on one match.
+    #[arg(long, env = "CHAPAEV_MAX_CONNECTIONS_PER_MATCH", default_value_t = 200)]
+    pub max_connections_per_match: usize,
+
+    /// Largest WebSocket message or HTTP body accepted, in bytes.
+    #[arg(long, env = "CHAPAEV_MAX_MESSAGE_BYTES", default_value_t = 16 * 1024)]
+    pub max_message_bytes: usize,
+
+    /// Messages a connection may send per second, sustained.
+    #[arg(long, env = "CHAPAEV_RATE_PER_SEC", default_value_t = 20.0)]
+    pub rate_per_sec: f64,
+
+    /// Messages a connection may send in a burst above the sustained rate.
+    #[arg(long, env = "CHAPAEV_RATE_BURST", default_value_t = 40.0)]
+    pub rate_burst: f64,
+
+    /// Default turn clock, seconds to shoot (a match may ask for its own
+    /// between 1 and 3600). Timing out passes the turn; three in a row forfeit.
+    #[arg(long, env = "CHAPAEV_TURN_SECONDS", default_value_t = 60, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    pub turn_seconds: u64,
+
+    /// Seconds a disconnected player keeps the seat before forfeiting.
+    #[arg(long, env = "CHAPAEV_GRACE_SECONDS", default_value_t = 60, value_parser = clap::value_parser!(u64).range(1..=86400))]
+    pub grace_seconds: u64,
+
+    /// Milliseconds a built-in bot waits before it shoots (so people can follow).
+    #[arg(long, env = "CHAPAEV_BOT_DELAY_MS", default_value_t = 400)]
+    pub bot_delay_ms: u64,
+
+    /// Seconds a finished (or still open) match with nobody connected stays in memory.
+    #[arg(long, env = "CHAPAEV_IDLE_SECONDS", default_value_t = 30)]
+    pub idle_seconds: u64,
+
+    /// How hard SQLite syncs each accepted move: `full` survives power loss,
+    /// `normal` survives a crash of the server process only.
+    #[arg(long, env = "CHAPAEV_SYNC", value_enum, default_value_t = SyncMode::Full)]
+    pub sync: SyncMode,
+
+    /// Seconds to let connections and writes finish on SIGTERM or Ctrl-C.
+    #[arg(long, env = "CHAPAEV_SHUTDOWN_SECONDS", default_value_t = 10)]
+    pub shutdown_seconds: u64,
+}
+
+/// SQLite's `synchronous` setting under the write-ahead log.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum SyncMode {
+    Full,
+    Normal,
+}
+
+/// The limits and timings the match rooms and sessions run under.
+#[derive(Clone, Debug)]
+pub struct Limits {
+    pub max_matches: usize,
+    pub max_connections: usize,
+    pub max_connections_per_match: usize,
+    pub max_message_bytes: usize,
+    pub rate_per_sec: f64,
+    pub rate_burst: f64,
+    pub turn: Duration,
+    pub grace: Duration,
+    pub bot_delay: Duration,
+    pub idle: Duration,
+    /// Messages queued for one connection before it is dropped as too slow.
+    pub outbound_queue: usize,
+}
+
+impl Config {
+    /// The limits part of the configuration.
+    pub fn limits(&self) -> Limits {
+        Limits {
+            max_matches: self.max_matches,
+            max_connections: self.max_connections,
+            max_connections_per_match: self.max_connections_per_match,
+            max_message_bytes: self.max_message_bytes,
+            rate_per_sec: self.rate_per_sec,
+            rate_burst: self.rate_burst,
+            turn: Duration::from_secs(self.turn_seconds),
+            grace: Duration::from_secs(self.grace_seconds),
+            bot_delay: Duration::from_millis(self.bot_delay_ms),
+            idle: Duration::from_secs(self.idle_seconds),
+            outbound_queue: 256,
+        }
+    }
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Config::parse_from(["server"]).limits()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    #[test]
+    fn defaults_listen_on_localhost_8080_with_data_under_data() {
+        let c = Config::parse_from(["server"]);
+        assert_eq!(c.addr, "127.0.0.1:8080");
+        assert_eq!(c.data_dir, PathBuf::from("./data"));
+        assert_eq!(c.sync, SyncMode::Full);
+        assert_eq!(c.limits().turn, Duration::from_secs(60));
+    }
+
+    #[test]
+    fn flags_override_defaults_and_bad_values_are_refused() {
+        let c = Config::parse_from(["server", "--addr", "0.0.0.0:9", "--turn-seconds", "5"]);
+        assert_eq!(c.addr, "0.0.0.0:9");
+        assert_eq!(c.turn_seconds, 5);
+        assert!(Config::try_parse_from(["server", "--turn-seconds", "0"]).is_err());
+        assert!(Config::try_parse_from(["server", "--sync", "sometimes"]).is_err());
+        Config::command().debug_assert();
+    }
+}

@@ -1,0 +1,303 @@
+//! The HTTP API: the page at `/` that explains how to play, `/healthz`,
+//! `/metrics`, and under `/api/matches` creating a match (against a person
+//! or a built-in bot), joining its empty seat, listing matches, one match's
+//! summary and its record for replay. Bodies are JSON; errors are the
+//! protocol's `error` message with a fitting HTTP status.
+
+use crate::bot::BotLevel;
+use crate::hub::{Hub, NewMatch, Opponent, SeatGrant};
+use crate::refusal::Refusal;
+use crate::store::{Status, StoreError};
+use actix_web::http::StatusCode;
+use actix_web::{web, HttpRequest, HttpResponse};
+use game::protocol::ErrorCode;
+use game::Config;
+use serde::{Deserialize, Serialize};
+use tracing::error;
+
+/// Longest player name, in characters.
+pub const MAX_NAME_CHARS: usize = 40;
+/// Most matches one listing returns.
+pub const MAX_LIST: usize = 100;
+
+/// Registers every route.
+pub fn routes(cfg: &mut web::ServiceConfig) {
+    cfg.route("/", web::get().to(index))
+        .route("/healthz", web::get().to(healthz))
+        .route("/metrics", web::get().to(metrics))
+        .route("/ws", web::get().to(crate::ws::handler))
+        .route("/api/matches", web::post().to(create))
+        .route("/api/matches", web::get().to(list))
+        .route("/api/matches/{id}", web::get().to(summary))
+        .route("/api/matches/{id}/join", web::post().to(join))
+        .route("/api/matches/{id}/record", web::get().to(record));
+}
+
+fn refused(r: &Refusal) -> HttpResponse {
+    let status = StatusCode::from_u16(r.http_status()).unwrap_or(StatusCode::BAD_REQUEST);
+    HttpResponse::build(status)
+        .content_type("application/json")
+        .body(r.to_message().to_json())
+}
+
+fn json<T: Serialize>(status: StatusCode, body: &T) -> HttpResponse {
+    match serde_json::to_string(body) {
+        Ok(text) => HttpResponse::build(status)
+            .content_type("application/json")
+            .body(text),
+        Err(e) => {
+            error!(error = %e, "serialising a response failed");
+            refused(&Refusal::internal())
+        }
+    }
+}
+
+/// Reads a JSON body (an empty body reads as `{}`).
+fn body<T: for<'de> Deserialize<'de>>(bytes: &[u8]) -> Result<T, Refusal> {
+    let text = if bytes.iter().all(u8::is_ascii_whitespace) {
+        &b"{}"[..]
+    } else {
+        bytes
+    };
+    serde_json::from_slice(text).map_err(|e| {
+        let code = if e.is_syntax() || e.is_eof() {
+            ErrorCode::BadJson
+        } else {
+            ErrorCode::BadMessage
+        };
+        Refusal::new(code, e.to_string())
+    })
+}
+
+fn name(n: Option<String>, default: &str) -> Result<String, Refusal> {
+    let n = n.unwrap_or_else(|| default.to_string());
+    let n = n.trim().to_string();
+    if n.is_empty() || n.chars().count() > MAX_NAME_CHARS || n.chars().any(char::is_control) {
+        return Err(Refusal::new(
+            ErrorCode::BadMessage,
+            format!("a name is 1 to {MAX_NAME_CHARS} printable characters"),
+        ));
+    }
+    Ok(n)
+}
+
+async fn blocking<T: Send + 'static>(
+    f: impl FnOnce() -> Result<T, StoreError> + Send + 'static,
+) -> Result<T, Refusal> {
+    match web::block(f).await {
+        Ok(Ok(t)) => Ok(t),
+        Ok(Err(e)) => {
+            error!(error = %e, "store failure");
+            Err(Refusal::internal())
+        }
+        Err(e) => {
+            error!(error = %e, "blocking task failed");
+            Err(Refusal::internal())
+        }
+    }
+}
+
+async fn index() -> HttpResponse {
+    HttpResponse::Ok()
+        .content_type("text/html; charset=utf-8")
+        .body(INDEX_HTML)
+}
+
+async fn healthz(hub: web::Data<Hub>) -> HttpResponse {
+    json(
+        StatusCode::OK,
+        &serde_json::json!({
+            "status": "ok",
+            "protocol": game::protocol::PROTOCOL_VERSION,
+            "matches_in_memory": hub.rooms_in_memory(),
+            "connections": hub.metrics().connections(),
+        }),
+    )
+}
+
+async fn metrics(hub: web::Data<Hub>) -> HttpResponse {
+    HttpResponse::Ok()
+        .content_type("text/plain; version=0.0.4")
+        .body(hub.metrics().render())
+}
+
+/// `POST /api/matches`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CreateBody {
+    name: Option<String>,
+    /// `person` (default) or `bot`.
+    opponent: Option<String>,
+    /// `easy` or `medium` (default) when the opponent is a bot.
+    bot_level: Option<String>,
+    #[serde(default)]
+    config: Config,
+    turn_seconds: Option<u64>,
+}
+
+/// A seat handed out, as JSON.
+#[derive(Debug, Serialize, Deserialize)]
+pub struct SeatResponse {
+    pub match_id: String,
+    pub seat: game::Seat,
+    pub token: String,
+    /// Path and query of the WebSocket to play on.
+    pub ws: String,
+}
+
+impl From<SeatGrant> for SeatResponse {
+    fn from(g: SeatGrant) -> SeatResponse {
+        SeatResponse {
+            ws: format!("/ws?match={}&token={}", g.match_id, g.token),
+            match_id: g.match_id,
+            seat: g.seat,
+            token: g.token,
+        }
+    }
+}
+
+async fn create(hub: web::Data<Hub>, bytes: web::Bytes) -> HttpResponse {
+    let result = async {
+        let b: CreateBody = body(&bytes)?;
+        let opponent = match b.opponent.as_deref().unwrap_or("person") {
+            "person" => Opponent::Person,
+            "bot" => {
+                let level = b.bot_level.as_deref().unwrap_or("medium");
+                Opponent::Bot(BotLevel::parse(level).ok_or_else(|| {
+                    Refusal::new(ErrorCode::BadMessage, "bot_level is easy or medium")
+                })?)
+            }
+            _ => {
+                return Err(Refusal::new(
+                    ErrorCode::BadMessage,
+                    "opponent is person or bot",
+                ))
+            }
+        };
+        let req = NewMatch {
+            name: name(b.name, "first")?,
+            opponent,
+            config: b.config,
+            turn_seconds: b.turn_seconds,
+        };
+        hub.create(req).await
+    }
+    .await;
+    match result {
+        Ok(g) => json(StatusCode::CREATED, &SeatResponse::from(g)),
+        Err(r) => refused(&r),
+    }
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct JoinBody {
+    name: Option<String>,
+}
+
+async fn join(hub: web::Data<Hub>, id: web::Path<String>, bytes: web::Bytes) -> HttpResponse {
+    let result = async {
+        let b: JoinBody = body(&bytes)?;
+        hub.join(&id, name(b.name, "second")?).await
+    }
+    .await;
+    match result {
+        Ok(g) => json(StatusCode::OK, &SeatResponse::from(g)),
+        Err(r) => refused(&r),
+    }
+}
+
+#[derive(Debug, Deserialize)]
+struct ListQuery {
+    status: Option<String>,
+    limit: Option<usize>,
+}
+
+async fn list(hub: web::Data<Hub>, req: HttpRequest) -> HttpResponse {
+    let q = match web::Query::<ListQuery>::from_query(req.query_string()) {
+        Ok(q) => q.into_inner(),
+        Err(e) => return refused(&Refusal::new(ErrorCode::BadMessage, e.to_string())),
+    };
+    let status = match q.status.as_deref() {
+        None => None,
+        Some(s) => match Status::parse(s) {
+            Some(s) => Some(s),
+            None => {
+                return refused(&Refusal::new(
+                    ErrorCode::BadMessage,
+                    "status is open, live or finished",
+                ))
+            }
+        },
+    };
+    let limit = q.limit.unwrap_or(50).min(MAX_LIST);
+    let store = hub.store().clone();
+    match blocking(move || store.list(status, limit)).await {
+        Ok(list) => json(StatusCode::OK, &serde_json::json!({ "matches": list })),
+        Err(r) => refused(&r),
+    }
+}
+
+fn no_such_match(id: &str) -> Refusal {
+    Refusal::new(ErrorCode::NoSuchMatch, format!("no match {id:?}"))
+}
+
+async fn summary(hub: web::Data<Hub>, id: web::Path<String>) -> HttpResponse {
+    let store = hub.store().clone();
+    let key = id.clone();
+    match blocking(move || store.summary(&key)).await {
+        Ok(Some(s)) => json(StatusCode::OK, &s),
+        Ok(None) => refused(&no_such_match(&id)),
+        Err(r) => refused(&r),
+    }
+}
+
+async fn record(hub: web::Data<Hub>, id: web::Path<String>) -> HttpResponse {
+    let store = hub.store().clone();
+    let key = id.clone();
+    match blocking(move || store.load(&key)).await {
+        Ok(Some((m, record))) if m.status == Status::Finished => HttpResponse::Ok()
+            .content_type("application/json")
+            .body(record.to_json()),
+        Ok(Some(_)) => refused(&Refusal::new(
+            ErrorCode::MatchNotOver,
+            "the record (with its seed) is public once the match is over",
+        )),
+        Ok(None) => refused(&no_such_match(&id)),
+        Err(r) => refused(&r),
+    }
+}
+
+const INDEX_HTML: &str = r#"<!doctype html>
+<html lang="en"><head><meta charset="utf-8"><title>Chapaev online</title>
+<style>body{font-family:sans-serif;max-width:50em;margin:2em auto;line-height:1.45;padding:0 1em}
+code,pre{background:#f3f3f3}pre{padding:.6em;overflow-x:auto}</style></head>
+<body>
+<h1>Chapaev online</h1>
+<p>Russian flick-checkers on an exact physics engine. The web client comes later;
+for now you play through the API, by hand or with a bot of your own, in any language.
+The full protocol is in <code>docs/protocol.md</code>.</p>
+<h2>1. Create a match</h2>
+<pre>curl -s -XPOST localhost:8080/api/matches -d '{"name":"Petka"}'
+curl -s -XPOST localhost:8080/api/matches -d '{"name":"Petka","opponent":"bot","bot_level":"easy"}'</pre>
+<p>The answer holds the <code>match_id</code>, your <code>seat</code> and a secret <code>token</code>:
+only that token can shoot for your seat. Share the match id (never the token) with your opponent.</p>
+<h2>2. Join the empty seat</h2>
+<pre>curl -s -XPOST localhost:8080/api/matches/MATCH_ID/join -d '{"name":"Anka"}'</pre>
+<h2>3. Play over the WebSocket</h2>
+<pre>websocat 'ws://localhost:8080/ws?match=MATCH_ID&amp;token=TOKEN'</pre>
+<p>The server first sends the whole <code>match-state</code>, then every update.
+Shoot by sending <code>{"type":"shot","piece":4,"velocity":[0.0,2.0]}</code>: pieces 0&ndash;7 are White's
+(files a&ndash;h), 8&ndash;15 Black's; velocity in m/s on a 0.32 m board, at most 2 m/s.
+Also: <code>{"type":"resign"}</code>, <code>{"type":"chat","text":"..."}</code>,
+<code>{"type":"offer-rematch"}</code>, <code>{"type":"accept-rematch"}</code>,
+<code>{"type":"pie-decision","swap":true}</code>. Without a token you watch.</p>
+<p>Each turn has a clock: miss it and the turn passes; three misses in a row forfeit.
+A dropped player keeps the seat for a grace period and reconnects with the same token.</p>
+<h2>Other endpoints</h2>
+<ul><li><code>GET /api/matches?status=open|live|finished</code> &mdash; list matches</li>
+<li><code>GET /api/matches/ID</code> &mdash; one match's summary</li>
+<li><code>GET /api/matches/ID/record</code> &mdash; the record of a finished match, for replay</li>
+<li><code>GET /healthz</code>, <code>GET /metrics</code> (Prometheus)</li></ul>
+</body></html>
+"#;

@@ -1,0 +1,590 @@
+//! The hub: the registry of match rooms held in memory. It creates matches
+//! (store first, then a room), finds a room by id — loading a match that is
+//! not in memory from the store and replaying its record through
+//! [`game::Replay`] — resumes every unfinished match on start, routes joins
+//! and connections to rooms, enforces the limit on matches in memory, and
+//! shuts every room down cleanly, each finishing the command in hand.
+
+use crate::bot::BotLevel;
+use crate::config::Limits;
+use crate::metrics::Metrics;
+use crate::refusal::Refusal;
+use crate::room::{Command, Connected, Room};
+use crate::store::{Status, Store, StoreError, StoredMatch, StoredSeat};
+use crate::token;
+use game::protocol::ErrorCode;
+use game::{Config, Game, Replay, Seat};
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
+use tokio::runtime::Handle;
+use tokio::sync::{mpsc, oneshot};
+use tracing::{error, info, warn};
+
+/// Commands queued for one room before senders wait.
+const ROOM_QUEUE: usize = 1024;
+
+/// A room's mailbox.
+#[derive(Clone, Debug)]
+pub struct RoomHandle {
+    pub tx: mpsc::Sender<Command>,
+    generation: u64,
+}
+
+/// Who plays the second seat of a new match.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Opponent {
+    Person,
+    Bot(BotLevel),
+}
+
+/// A request to create a match.
+#[derive(Clone, Debug)]
+pub struct NewMatch {
+    pub name: String,
+    pub opponent: Opponent,
+    pub config: Config,
+    pub turn_seconds: Option<u64>,
+}
+
+/// A seat handed out.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SeatGrant {
+    pub match_id: String,
+    pub seat: Seat,
+    pub token: String,
+}
+
+struct Inner {
+    store: Arc<Store>,
+    metrics: Arc<Metrics>,
+    limits: Limits,
+    rt: Handle,
+    rooms: Mutex<HashMap<String, RoomHandle>>,
+    /// Serialises loads so that one match never gets two rooms.
+    load_lock: tokio::sync::Mutex<()>,
+    next_conn: AtomicU64,
+    next_generation: AtomicU64,
+    closing: AtomicBool,
+}
+
+/// The registry of rooms (cheap to clone).
+#[derive(Clone)]
+pub struct Hub {
+    inner: Arc<Inner>,
+}
+
+fn random<T>(r: Result<T, token::RandomError>) -> Result<T, Refusal> {
+    r.map_err(|e| {
+        error!(error = %e, "no randomness");
+        Refusal::internal()
+    })
+}
+
+fn store_failed(e: StoreError) -> Refusal {
+    error!(error = %e, "store failure");
+    Refusal::internal()
+}
+
+impl Hub {
+    /// A hub whose rooms run on `rt`.
+    pub fn new(store: Arc<Store>, metrics: Arc<Metrics>, limits: Limits, rt: Handle) -> Hub {
+        Hub {
+            inner: Arc::new(Inner {
+                store,
+                metrics,
+                limits,
+                rt,
+                rooms: Mutex::new(HashMap::new()),
+                load_lock: tokio::sync::Mutex::new(()),
+                next_conn: AtomicU64::new(1),
+                next_generation: AtomicU64::new(1),
+                closing: AtomicBool::new(false),
+            }),
+        }
+    }
+
+    pub fn store(&self) -> &Arc<Store> {
+        &self.inner.store
+    }
+    pub fn metrics(&self) -> &Arc<Metrics> {
+        &self.inner.metrics
+    }
+    pub fn limits(&self) -> &Limits {
+        &self.inner.limits
+    }
+    pub fn next_conn_id(&self) -> u64 {
+        self.inner.next_conn.fetch_add(1, Ordering::Relaxed)
+    }
+
+    fn rooms(&self) -> std::sync::MutexGuard<'_, HashMap<String, RoomHandle>> {
+        // A panic while holding this lock cannot leave the map half-changed.
+        self.inner
+            .rooms
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+
+    /// Matches held in memory.
+    pub fn rooms_in_memory(&self) -> usize {
+        self.rooms().len()
+    }
+
+    /// Forgets a room that has stopped (unless a newer one took its id).
+    pub fn remove(&self, id: &str, generation: u64) {
+        let mut rooms = self.rooms();
+        if rooms.get(id).is_some_and(|h| h.generation == generation) {
+            rooms.remove(id);
+        }
+    }
+
+    fn check_capacity(&self) -> Result<(), Refusal> {
+        if self.inner.closing.load(Ordering::Relaxed) {
+            return Err(Refusal::new(
+                ErrorCode::ServerBusy,
+                "the server is shutting down",
+            ));
+        }
+        if self.rooms_in_memory() >= self.inner.limits.max_matches {
+            return Err(Refusal::new(
+                ErrorCode::ServerBusy,
+                "the server holds as many matches as it can; try later",
+            ));
+        }
+        Ok(())
+    }
+
+    /// Spawns the room of a stored match replayed into `game`.
+    fn spawn(&self, stored: &StoredMatch, game: Game) -> RoomHandle {
+        let generation = self.inner.next_generation.fetch_add(1, Ordering::Relaxed);
+        let (tx, rx) = mpsc::channel(ROOM_QUEUE);
+        let room = Room::new(stored, game, self.clone(), generation);
+        let handle = RoomHandle { tx, generation };
+        self.rooms().insert(stored.id.clone(), handle.clone());
+        self.inner.rt.spawn(room.run(rx));
+        handle
+    }
+
+    /// Stores and starts a new match; the creator gets the first seat.
+    pub async fn create(&self, req: NewMatch) -> Result<SeatGrant, Refusal> {
+        self.check_capacity()?;
+        let turn_seconds = req.turn_seconds.unwrap_or(self.inner.limits.turn.as_secs());
+        if !(1..=3600).contains(&turn_seconds) {
+            return Err(Refusal::new(
+                ErrorCode::BadConfig,
+                "turn_seconds must be between 1 and 3600",
+            ));
+        }
+        let token = random(token::seat_token())?;
+        let bot = match req.opponent {
+            Opponent::Person => None,
+            Opponent::Bot(level) => Some(level),
+        };
+        let seats = [
+            (Some(req.name), Some(token.clone()), None),
+            (None, None, bot),
+        ];
+        let id = self.start(None, req.config, turn_seconds, seats).await?;
+        Ok(SeatGrant {
+            match_id: id,
+            seat: Seat::First,
+            token,
+        })
+    }
+
+    /// Starts the rematch of `of`: the same configuration and clock, the
+    /// players' seats (and so their colours) exchanged; a bot keeps the
+    /// second seat. The players keep their tokens.
+    pub async fn create_rematch(
+        &self,
+        of: &str,
+        config: Config,
+        turn: Duration,
+        seats: [(Option<String>, Option<String>, Option<BotLevel>); 2],
+    ) -> Result<String, Refusal> {
+        self.check_capacity()?;
+        let [first, second] = seats;
+        let seats = if second.2.is_some() {
+            [first, second]
+        } else {
+            [second, first]
+        };
+        self.start(Some(of.to_string()), config, turn.as_secs(), seats)
+            .await
+    }
+
+    async fn start(
+        &self,
+        rematch_of: Option<String>,
+        config: Config,
+        turn_seconds: u64,
+        seats: [(Option<String>, Option<String>, Option<BotLevel>); 2],
+    ) -> Result<String, Refusal> {
+        let seed = random(token::seed())?;
+        let game = Game::new(config.clone(), seed)
+            .map_err(|e| Refusal::new(ErrorCode::BadConfig, e.to_string()))?;
+        let id = random(token::match_id())?;
+        let bot = seats[1].2.map(|b| b.as_str().to_string());
+        let both = seats.iter().all(|s| s.1.is_some() || s.2.is_some());
+        let stored = StoredMatch {
+            id: id.clone(),
+            created_at: 0,
+            config,
+            seed,
+            status: if both { Status::Live } else { Status::Open },
+            bot,
+            turn_seconds,
+            seats: seats.map(|(name, token, _)| StoredSeat { name, token }),
+            rematch_of,
+        };
+        let store = self.inner.store.clone();
+        let row = stored.clone();
+        tokio::task::spawn_blocking(move || store.create(&row))
+            .await
+            .map_err(|e| {
+                error!(error = %e, "store task failed");
+                Refusal::internal()
+            })?
+            .map_err(store_failed)?;
+        self.spawn(&stored, game);
+        info!(match_id = %id, bot = ?stored.bot, "match created");
+        Ok(id)
+    }
+
+    /// The room of match `id`, loading it from the store if needed.
+    pub async fn room(&self, id: &str) -> Result<RoomHandle, Refusal> {
+        if let Some(h) = self.rooms().get(id) {
+            return Ok(h.clone());
+        }
+        if !token::is_match_id(id) {
+            return Err(no_such_match(id));
+        }
+        let _loading = self.inner.load_lock.lock().await;
+        if let Some(h) = self.rooms().get(id) {
+            return Ok(h.clone());
+        }
+        self.check_capacity()?;
+        let store = self.inner.store.clone();
+        let key = id.to_string();
+        let loaded = tokio::task::spawn_blocking(move || -> Result<_, Refusal> {
+            let Some((stored, record)) = store.load(&key).map_err(store_failed)? else {
+                return Ok(None);
+            };
+            let replay = Replay::new(record).map_err(|e| {
+                error!(match_id = %key, error = %e, "a stored match does not replay");
+                Refusal::internal()
+            })?;
+            Ok(Some((stored, replay.game().clone())))
+        })
+        .await
+        .map_err(|e| {
+            error!(error = %e, "load task failed");
+            Refusal::internal()
+        })??;
+        let (stored, game) = loaded.ok_or_else(|| no_such_match(id))?;
+        Ok(self.spawn(&stored, game))
+    }
+
+    /// Asks the room of `id` something, once more if it stopped meanwhile.
+    async fn ask<T>(
+        &self,
+        id: &str,
+        make: impl Fn(oneshot::Sender<Result<T, Refusal>>) -> Command,
+    ) -> Result<(RoomHandle, T), Refusal> {
+        for _ in 0..3 {
+            let h = self.room(id).await?;
+            let (tx, rx) = oneshot::channel();
+            if h.tx.send(make(tx)).await.is_err() {
+                self.remove(id, h.generation);
+                continue;
+            }
+            match rx.await {
+                Ok(r) => return r.map(|t| (h, t)),
+                Err(_) => self.remove(id, h.generation),
+            }
+        }
+        Err(Refusal::internal())
+    }
+
+    /// Takes the empty second seat of `id`.
+    pub async fn join(&self, id: &str, name: String) -> Result<SeatGrant, Refusal> {
+        let token = random(token::seat_token())?;
+        let (_, seat) = self
+            .ask(id, |reply| Command::Join {
+                name: name.clone(),
+                token: token.clone(),
+                reply,
+            })
+            .await?;
+        Ok(SeatGrant {
+            match_id: id.to_string(),
+            seat,
+            token,
+        })
+    }
+
+    /// Admits a connection to `id` (with a seat token, or as a spectator).
+    pub async fn connect(
+        &self,
+        id: &str,
+        token: Option<String>,
+    ) -> Result<(RoomHandle, Connected), Refusal> {
+        self.ask(id, |reply| Command::Connect {
+            token: token.clone(),
+            reply,
+        })
+        .await
+    }
+
+    /// Loads and starts every unfinished match in the store.
+    pub async fn resume_all(&self) -> Result<usize, StoreError> {
+        let store = self.inner.store.clone();
+        let ids = tokio::task::spawn_blocking(move || store.unfinished())
+            .await
+            .map_err(|e| StoreError::Corrupt(e.to_string()))??;
+        let mut resumed = 0;
+        for id in ids {
+            match self.room(&id).await {
+                Ok(_) => resumed += 1,
+                Err(r) => warn!(match_id = %id, refusal = %r, "could not resume a match"),
+            }
+        }
+        Ok(resumed)
+    }
+
+    /// Stops every room once it has finished the command in hand (so every
+    /// accepted move is stored); refuses new matches from now on.
+    pub async fn shutdown(&self, within: Duration) {
+        self.inner.closing.store(true, Ordering::Relaxed);
+        let handles: Vec<RoomHandle> = self.rooms().values().cloned().collect();
+        let mut waits = Vec::new();
+        for h in handles {
+            let (done, rx) = oneshot::channel();
+            if h.tx.send(Command::Shutdown { done }).await.is_ok() {
+                waits.push(rx);
+            }
+        }
+        let all = async {
+            for w in waits {
+                let _ = w.await;
+            }
+        };
+        if tokio::time::timeout(within, all).await.is_err() {
+            warn!("some matches did not stop in time");
+        }
+    }
+}
+
+fn no_such_match(id: &str) -> Refusal {
+    Refusal::new(ErrorCode::NoSuchMatch, format!("no match {id:?}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::room::Outbound;
+    use game::protocol::{ClientMessage, ServerMessage};
+    use game::{PieceId, Side};
+    use glam::DVec2;
+
+    fn hub() -> Hub {
+        let limits = Limits {
+            bot_delay: Duration::ZERO,
+            ..Limits::default()
+        };
+        Hub::new(
+            Arc::new(Store::in_memory().unwrap()),
+            Arc::new(Metrics::default()),
+            limits,
+            Handle::current(),
+        )
+    }
+
+    async fn next(rx: &mut mpsc::Receiver<Outbound>) -> ServerMessage {
+        let text = tokio::time::timeout(Duration::from_secs(10), rx.recv())
+            .await
+            .expect("a message in time")
+            .expect("the room is open");
+        ServerMessage::from_json(&text).unwrap()
+    }
+
+    async fn next_of(rx: &mut mpsc::Receiver<Outbound>, kind: &str) -> ServerMessage {
+        loop {
+            let m = next(rx).await;
+            if m.to_json().contains(&format!("\"type\":\"{kind}\"")) {
+                return m;
+            }
+        }
+    }
+
+    fn person(name: &str) -> NewMatch {
+        NewMatch {
+            name: name.into(),
+            opponent: Opponent::Person,
+            config: Config::default(),
+            turn_seconds: None,
+        }
+    }
+
+    #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+    async fn a_shot_is_stored_before_it_is_broadcast_and_only_the_seat_token_can_shoot() {
+        let hub = hub();
+        let a = hub.create(person("Petka")).await.unwrap();
+        let b = hub.join(&a.match_id, "Anka".into()).await.unwrap();
+        assert_eq!(b.seat, Seat::Second);
+        assert_ne!(a.token, b.token);
+        let (room, mut white) = hub
+            .connect(&a.match_id, Some(a.token.clone()))
+            .await
+            .unwrap();
+        assert!(matches!(
+            next(&mut white.rx).await,
+            ServerMessage::MatchState {
+                you: Some(Seat::First),
+                ..
+            }
+        ));
+        let (_, mut watcher) = hub.connect(&a.match_id, None).await.unwrap();
+        assert!(matches!(
+            next(&mut watcher.rx).await,
+            ServerMessage::MatchState { you: None, .. }
+        ));
+        let bad = hub
+            .connect(&a.match_id, Some("f".repeat(32)))
+            .await
+            .unwrap_err();
+        assert_eq!(bad.code, ErrorCode::BadToken);
+        // A spectator cannot shoot.
+        let shot = ClientMessage::Shot {
+            piece: PieceId::new(Side::White, 4).unwrap(),
+            velocity: DVec2::new(0.0, 2.0),
+        };
+        room.tx
+            .send(Command::Message {
+                conn: watcher.conn,
+                msg: shot.clone(),
+            })
+            .await
+            .unwrap();
+        assert!(matches!(
+            next_of(&mut watcher.rx, "error").await,
+            ServerMessage::Error {
+                code: ErrorCode::NotInMatch,
+                ..
+            }
+        ));
+        room.tx
+            .send(Command::Message {
+                conn: white.conn,
+                msg: shot,
+            })
+            .await
+            .unwrap();
+        let played = next_of(&mut watcher.rx, "shot-played").await;
+        // By the time anyone hears of it, the store has it.
+        let moves = hub.store().moves(&a.match_id).unwrap();
+        assert_eq!(moves.len(), 1);
+        let ServerMessage::ShotPlayed { outcome, .. } = played else {
+            unreachable!()
+        };
+        assert_eq!(moves[0], game::RecordedMove::Shot(outcome));
+        assert_eq!(hub.metrics().shots(), 1);
+    }
+
+    #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+    async fn a_match_not_in_memory_is_loaded_from_the_store_with_its_moves() {
+        let store = Arc::new(Store::in_memory().unwrap());
+        let mk = |store: Arc<Store>| {
+            Hub::new(
+                store,
+                Arc::new(Metrics::default()),
+                Limits::default(),
+                Handle::current(),
+            )
+        };
+        let first = mk(store.clone());
+        let a = first.create(person("a")).await.unwrap();
+        first.join(&a.match_id, "b".into()).await.unwrap();
+        let (room, mut c) = first
+            .connect(&a.match_id, Some(a.token.clone()))
+            .await
+            .unwrap();
+        let msg = ClientMessage::Shot {
+            piece: PieceId::new(Side::White, 2).unwrap(),
+            velocity: DVec2::new(0.0, 0.5),
+        };
+        room.tx
+            .send(Command::Message { conn: c.conn, msg })
+            .await
+            .unwrap();
+        let ServerMessage::MatchState { view: before, .. } = next(&mut c.rx).await else {
+            panic!()
+        };
+        next_of(&mut c.rx, "shot-played").await;
+        first.shutdown(Duration::from_secs(5)).await;
+        // A second hub on the same store: the match comes back as it was.
+        let second = mk(store);
+        assert_eq!(second.resume_all().await.unwrap(), 1);
+        let (_, mut again) = second.connect(&a.match_id, Some(a.token)).await.unwrap();
+        let ServerMessage::MatchState { view, .. } = next(&mut again.rx).await else {
+            panic!()
+        };
+        assert_eq!(view.shots, 1);
+        assert_ne!(view, before);
+        assert_eq!(
+            second.connect("nope", None).await.unwrap_err().code,
+            ErrorCode::NoSuchMatch
+        );
+    }
+
+    #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+    async fn a_bot_answers_a_shot_and_a_full_server_refuses_new_matches() {
+        let hub = hub();
+        let a = hub
+            .create(NewMatch {
+                opponent: Opponent::Bot(BotLevel::Medium),
+                ..person("p")
+            })
+            .await
+            .unwrap();
+        assert_eq!(
+            hub.join(&a.match_id, "x".into()).await.unwrap_err().code,
+            ErrorCode::MatchFull
+        );
+        let (room, mut c) = hub.connect(&a.match_id, Some(a.token)).await.unwrap();
+        let msg = ClientMessage::Shot {
+            piece: PieceId::new(Side::White, 0).unwrap(),
+            velocity: DVec2::new(0.0, 0.5),
+        };
+        room.tx
+            .send(Command::Message { conn: c.conn, msg })
+            .await
+            .unwrap();
+        let ServerMessage::ShotPlayed { outcome, .. } = next_of(&mut c.rx, "shot-played").await
+        else {
+            panic!()
+        };
+        assert_eq!(outcome.shooter, Side::White);
+        let ServerMessage::ShotPlayed { outcome, .. } = next_of(&mut c.rx, "shot-played").await
+        else {
+            panic!()
+        };
+        assert_eq!(outcome.shooter, Side::Black);
+
+        let small = Hub::new(
+            Arc::new(Store::in_memory().unwrap()),
+            Arc::new(Metrics::default()),
+            Limits {
+                max_matches: 1,
+                ..Limits::default()
+            },
+            Handle::current(),
+        );
+        small.create(person("a")).await.unwrap();
+        assert_eq!(
+            small.create(person("b")).await.unwrap_err().code,
+            ErrorCode::ServerBusy
+        );
+    }
+}

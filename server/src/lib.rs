@@ -1,0 +1,30 @@
+//! # server — Chapaev online's match server
+//!
+//! Players create and join matches over HTTP, then play over a WebSocket:
+//! the server checks each shot against the rules, resolves it exactly with
+//! the [`game`] crate, writes it to SQLite, and only then broadcasts what it
+//! did to both players and every spectator. Built-in bots play from inside
+//! the server; a turn clock keeps matches moving; a dropped player keeps the
+//! seat for a grace period; a restarted server resumes every match from the
+//! store. The wire protocol is `docs/protocol.md`.
+//!
+//! Modules: [`config`] (flags and limits), [`token`] (seat tokens and ids),
+//! [`refusal`] (errors sent to clients), [`store`] (SQLite), [`metrics`]
+//! (Prometheus), [`ratelimit`] (per-connection token bucket), [`clock`]
+//! (turn clock), [`bot`] (built-in bots), [`room`] (one match in memory),
+//! [`hub`] (the registry of rooms), [`http`] (the HTTP API), [`ws`] (the
+//! WebSocket sessions) and [`app`] (startup and shutdown).
+
+pub mod app;
+pub mod bot;
+pub mod clock;
+pub mod config;
+pub mod http;
+pub mod hub;
+pub mod metrics;
+pub mod ratelimit;
+pub mod refusal;
+pub mod room;
+pub mod store;
+pub mod token;
+pub mod ws;

@@ -1,0 +1,167 @@
+//! Prometheus metrics in the text exposition format, kept in atomics (no
+//! locks on the hot path): connections, matches in memory and live, shots
+//! resolved, refused client messages, and a histogram of shot resolution
+//! time (physics and the store write, up to the broadcast).
+
+use std::fmt::Write as _;
+use std::sync::atomic::{AtomicI64, AtomicU64, Ordering};
+use std::time::Duration;
+
+/// Upper bounds of the resolution-time histogram buckets, seconds.
+pub const BUCKETS: [f64; 12] = [
+    0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1.0, 2.5,
+];
+
+/// The server's counters and gauges.
+#[derive(Debug, Default)]
+pub struct Metrics {
+    connections: AtomicI64,
+    rooms: AtomicI64,
+    live: AtomicI64,
+    shots: AtomicU64,
+    refused: AtomicU64,
+    buckets: [AtomicU64; BUCKETS.len()],
+    sum_nanos: AtomicU64,
+    count: AtomicU64,
+}
+
+impl Metrics {
+    pub fn connection_opened(&self) {
+        self.connections.fetch_add(1, Ordering::Relaxed);
+    }
+    pub fn connection_closed(&self) {
+        self.connections.fetch_sub(1, Ordering::Relaxed);
+    }
+    pub fn connections(&self) -> i64 {
+        self.connections.load(Ordering::Relaxed)
+    }
+    pub fn room_opened(&self) {
+        self.rooms.fetch_add(1, Ordering::Relaxed);
+    }
+    pub fn room_closed(&self) {
+        self.rooms.fetch_sub(1, Ordering::Relaxed);
+    }
+    /// A match became live (`+1`) or stopped being live (`-1`).
+    pub fn live_changed(&self, delta: i64) {
+        self.live.fetch_add(delta, Ordering::Relaxed);
+    }
+    pub fn live(&self) -> i64 {
+        self.live.load(Ordering::Relaxed)
+    }
+    pub fn refused(&self) {
+        self.refused.fetch_add(1, Ordering::Relaxed);
+    }
+    pub fn shots(&self) -> u64 {
+        self.shots.load(Ordering::Relaxed)
+    }
+
+    /// A shot was resolved and stored in `took`.
+    pub fn shot_resolved(&self, took: Duration) {
+        self.shots.fetch_add(1, Ordering::Relaxed);
+        let secs = took.as_secs_f64();
+        for (bound, bucket) in BUCKETS.iter().zip(&self.buckets) {
+            if secs <= *bound {
+                bucket.fetch_add(1, Ordering::Relaxed);
+            }
+        }
+        let nanos = u64::try_from(took.as_nanos()).unwrap_or(u64::MAX);
+        self.sum_nanos.fetch_add(nanos, Ordering::Relaxed);
+        self.count.fetch_add(1, Ordering::Relaxed);
+    }
+
+    /// The metrics as Prometheus text.
+    pub fn render(&self) -> String {
+        let mut out = String::new();
+        let mut gauge = |name: &str, help: &str, kind: &str, value: String| {
+            let _ = writeln!(
+                out,
+                "# HELP {name} {help}\n# TYPE {name} {kind}\n{name} {value}"
+            );
+        };
+        gauge(
+            "chapaev_connections",
+            "Open WebSocket connections.",
+            "gauge",
+            self.connections().to_string(),
+        );
+        gauge(
+            "chapaev_matches_in_memory",
+            "Matches held in memory (open, live, recently finished).",
+            "gauge",
+            self.rooms.load(Ordering::Relaxed).to_string(),
+        );
+        gauge(
+            "chapaev_live_matches",
+            "Matches with both seats taken and not over.",
+            "gauge",
+            self.live().to_string(),
+        );
+        gauge(
+            "chapaev_shots_resolved_total",
+            "Shots resolved and stored.",
+            "counter",
+            self.shots().to_string(),
+        );
+        gauge(
+            "chapaev_refused_messages_total",
+            "Client messages answered with an error.",
+            "counter",
+            self.refused.load(Ordering::Relaxed).to_string(),
+        );
+        if let Some(rss) = resident_bytes() {
+            gauge(
+                "process_resident_memory_bytes",
+                "Resident memory of the server process.",
+                "gauge",
+                rss.to_string(),
+            );
+        }
+        let name = "chapaev_shot_resolution_seconds";
+        let _ = writeln!(
+            out,
+            "# HELP {name} Time from a shot's arrival at its match to its broadcast (physics and store write).\n# TYPE {name} histogram"
+        );
+        for (bound, bucket) in BUCKETS.iter().zip(&self.buckets) {
+            let _ = writeln!(
+                out,
+                "{name}_bucket{{le=\"{bound}\"}} {}",
+                bucket.load(Ordering::Relaxed)
+            );
+        }
+        let count = self.count.load(Ordering::Relaxed);
+        let _ = writeln!(out, "{name}_bucket{{le=\"+Inf\"}} {count}");
+        let sum = self.sum_nanos.load(Ordering::Relaxed) as f64 / 1e9;
+        let _ = writeln!(out, "{name}_sum {sum}\n{name}_count {count}");
+        out
+    }
+}
+
+/// The process's resident memory, from `/proc/self/statm` (Linux only).
+pub fn resident_bytes() -> Option<u64> {
+    let statm = std::fs::read_to_string("/proc/self/statm").ok()?;
+    let pages: u64 = statm.split_whitespace().nth(1)?.parse().ok()?;
+    Some(pages * 4096)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn histogram_buckets_are_cumulative_and_text_is_prometheus() {
+        let m = Metrics::default();
+        m.shot_resolved(Duration::from_micros(700));
+        m.shot_resolved(Duration::from_millis(30));
+        m.connection_opened();
+        m.live_changed(1);
+        let text = m.render();
+        assert!(text.contains("chapaev_connections 1\n"), "{text}");
+        assert!(text.contains("chapaev_live_matches 1\n"));
+        assert!(text.contains("chapaev_shots_resolved_total 2\n"));
+        assert!(text.contains("chapaev_shot_resolution_seconds_bucket{le=\"0.0005\"} 0\n"));
+        assert!(text.contains("chapaev_shot_resolution_seconds_bucket{le=\"0.001\"} 1\n"));
+        assert!(text.contains("chapaev_shot_resolution_seconds_bucket{le=\"0.05\"} 2\n"));
+        assert!(text.contains("chapaev_shot_resolution_seconds_bucket{le=\"+Inf\"} 2\n"));
+        assert!(text.contains("chapaev_shot_resolution_seconds_count 2\n"));
+    }
+}

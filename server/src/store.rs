@@ -1,0 +1,581 @@
+//! The durable store: one SQLite file in write-ahead-log mode. A `matches`
+//! row holds each match's configuration, seed, seats (names and tokens),
+//! status and result; a `moves` row holds each accepted move as the JSON of
+//! its [`RecordedMove`]. Every accepted move is written in one transaction
+//! (the move and the match row together) before its outcome is broadcast,
+//! so the match record rebuilt from the store is exactly what players saw,
+//! and a restarted server replays it through [`game::Replay`].
+
+use crate::config::SyncMode;
+use game::{Config, MatchRecord, MatchResult, RecordedMove, RECORD_VERSION};
+use rusqlite::{params, Connection, OptionalExtension};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+use std::sync::{Mutex, MutexGuard};
+use std::time::{SystemTime, UNIX_EPOCH};
+
+/// A store operation failed.
+#[derive(Debug, thiserror::Error)]
+pub enum StoreError {
+    #[error("sqlite: {0}")]
+    Sqlite(#[from] rusqlite::Error),
+    #[error("cannot create the data folder {path}: {source}")]
+    DataDir {
+        path: String,
+        source: std::io::Error,
+    },
+    #[error("stored JSON is unreadable: {0}")]
+    Json(#[from] serde_json::Error),
+    #[error("the store is inconsistent: {0}")]
+    Corrupt(String),
+    #[error("the store's lock was poisoned by a panic")]
+    Poisoned,
+}
+
+/// Where a match stands, as listed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Status {
+    /// Waiting for a second player.
+    Open,
+    /// Both seats taken, being played.
+    Live,
+    /// Over.
+    Finished,
+}
+
+impl Status {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Status::Open => "open",
+            Status::Live => "live",
+            Status::Finished => "finished",
+        }
+    }
+    pub fn parse(s: &str) -> Option<Status> {
+        match s {
+            "open" => Some(Status::Open),
+            "live" => Some(Status::Live),
+            "finished" => Some(Status::Finished),
+            _ => None,
+        }
+    }
+}
+
+/// One seat as stored.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct StoredSeat {
+    pub name: Option<String>,
+    /// The seat token (`None`: empty seat, or a bot's seat).
+    pub token: Option<String>,
+}
+
+/// A match row.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StoredMatch {
+    pub id: String,
+    pub created_at: u64,
+    pub config: Config,
+    pub seed: u64,
+    pub status: Status,
+    /// The built-in bot playing the second seat, if any.
+    pub bot: Option<String>,
+    pub turn_seconds: u64,
+    pub seats: [StoredSeat; 2],
+    pub rematch_of: Option<String>,
+}
+
+/// What a listing shows of a match (no tokens).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Summary {
+    pub match_id: String,
+    pub status: Status,
+    pub created_at: u64,
+    pub updated_at: u64,
+    pub first: Option<String>,
+    pub second: Option<String>,
+    pub bot: Option<String>,
+    pub shots: u32,
+    pub turn_seconds: u64,
+    pub result: Option<MatchResult>,
+}
+
+/// The row update that goes with a move.
+#[derive(Clone, Debug)]
+pub struct AfterMove<'a> {
+    pub status: Status,
+    pub shots: u32,
+    pub result: Option<&'a MatchResult>,
+}
+
+/// The SQLite store (one connection; SQLite has one writer at a time anyway).
+pub struct Store {
+    conn: Mutex<Connection>,
+}
+
+const SCHEMA: &str = "
+CREATE TABLE IF NOT EXISTS matches (
+    id TEXT PRIMARY KEY,
+    created_at INTEGER NOT NULL,
+    updated_at INTEGER NOT NULL,
+    config TEXT NOT NULL,
+    seed INTEGER NOT NULL,
+    status TEXT NOT NULL,
+    bot TEXT,
+    turn_seconds INTEGER NOT NULL,
+    first_name TEXT,
+    first_token TEXT,
+    second_name TEXT,
+    second_token TEXT,
+    shots INTEGER NOT NULL DEFAULT 0,
+    result TEXT,
+    rematch_of TEXT
+);
+CREATE INDEX IF NOT EXISTS matches_by_status ON matches (status, updated_at);
+CREATE TABLE IF NOT EXISTS moves (
+    match_id TEXT NOT NULL REFERENCES matches (id),
+    idx INTEGER NOT NULL,
+    body TEXT NOT NULL,
+    PRIMARY KEY (match_id, idx)
+);
+";
+
+fn now() -> u64 {
+    SystemTime::now()
+        .duration_since(UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0)
+}
+
+impl Store {
+    /// Opens (creating if needed) `DIR/chapaev.sqlite3`.
+    pub fn open(dir: &Path, sync: SyncMode) -> Result<Store, StoreError> {
+        std::fs::create_dir_all(dir).map_err(|source| StoreError::DataDir {
+            path: dir.display().to_string(),
+            source,
+        })?;
+        Store::with_connection(Connection::open(dir.join("chapaev.sqlite3"))?, sync)
+    }
+
+    /// A store in memory (tests).
+    pub fn in_memory() -> Result<Store, StoreError> {
+        Store::with_connection(Connection::open_in_memory()?, SyncMode::Normal)
+    }
+
+    fn with_connection(conn: Connection, sync: SyncMode) -> Result<Store, StoreError> {
+        conn.pragma_update(None, "journal_mode", "WAL")?;
+        conn.pragma_update(
+            None,
+            "synchronous",
+            match sync {
+                SyncMode::Full => "FULL",
+                SyncMode::Normal => "NORMAL",
+            },
+        )?;
+        conn.pragma_update(None, "foreign_keys", "ON")?;
+        conn.busy_timeout(std::time::Duration::from_secs(5))?;
+        conn.execute_batch(SCHEMA)?;
+        Ok(Store {
+            conn: Mutex::new(conn),
+        })
+    }
+
+    fn lock(&self) -> Result<MutexGuard<'_, Connection>, StoreError> {
+        self.conn.lock().map_err(|_| StoreError::Poisoned)
+    }
+
+    /// Stores a new match (no moves yet).
+    pub fn create(&self, m: &StoredMatch) -> Result<(), StoreError> {
+        let conn = self.lock()?;
+        let t = now();
+        conn.execute(
+            "INSERT INTO matches (id, created_at, updated_at, config, seed, status, bot, turn_seconds,
+                                  first_name, first_token, second_name, second_token, rematch_of)
+             VALUES (?1, ?2, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)",
+            params![
+                m.id,
+                t as i64,
+                serde_json::to_string(&m.config)?,
+                m.seed as i64,
+                m.status.as_str(),
+                m.bot,
+                m.turn_seconds as i64,
+                m.seats[0].name,
+                m.seats[0].token,
+                m.seats[1].name,
+                m.seats[1].token,
+                m.rematch_of,
+            ],
+        )?;
+        Ok(())
+    }
+
+    /// Fills the second seat; the match becomes live.
+    pub fn seat_second(&self, id: &str, name: &str, token: &str) -> Result<(), StoreError> {
+        let conn = self.lock()?;
+        let n = conn.execute(
+            "UPDATE matches SET second_name = ?2, second_token = ?3, status = 'live', updated_at = ?4
+             WHERE id = ?1 AND second_token IS NULL AND bot IS NULL",
+            params![id, name, token, now() as i64],
+        )?;
+        if n != 1 {
+            return Err(StoreError::Corrupt(format!(
+                "match {id} has no empty second seat"
+            )));
+        }
+        Ok(())
+    }
+
+    /// Appends move number `index` and updates the match row, in one
+    /// transaction: both are stored, or neither.
+    pub fn append_move(
+        &self,
+        id: &str,
+        index: usize,
+        m: &RecordedMove,
+        after: &AfterMove<'_>,
+    ) -> Result<(), StoreError> {
+        let body = serde_json::to_string(m)?;
+        let result = after.result.map(serde_json::to_string).transpose()?;
+        let mut conn = self.lock()?;
+        let tx = conn.transaction()?;
+        tx.execute(
+            "INSERT INTO moves (match_id, idx, body) VALUES (?1, ?2, ?3)",
+            params![id, index as i64, body],
+        )?;
+        let n = tx.execute(
+            "UPDATE matches SET status = ?2, shots = ?3, result = ?4, updated_at = ?5 WHERE id = ?1",
+            params![
+                id,
+                after.status.as_str(),
+                after.shots as i64,
+                result,
+                now() as i64
+            ],
+        )?;
+        if n != 1 {
+            return Err(StoreError::Corrupt(format!("no match {id}")));
+        }
+        tx.commit()?;
+        Ok(())
+    }
+
+    fn row_to_match(row: &rusqlite::Row<'_>) -> rusqlite::Result<(StoredMatchRaw, String)> {
+        Ok((
+            StoredMatchRaw {
+                id: row.get(0)?,
+                created_at: row.get::<_, i64>(1)?,
+                seed: row.get::<_, i64>(3)?,
+                status: row.get(4)?,
+                bot: row.get(5)?,
+                turn_seconds: row.get::<_, i64>(6)?,
+                first_name: row.get(7)?,
+                first_token: row.get(8)?,
+                second_name: row.get(9)?,
+                second_token: row.get(10)?,
+                rematch_of: row.get(11)?,
+            },
+            row.get(2)?,
+        ))
+    }
+
+    const MATCH_COLUMNS: &'static str = "id, created_at, config, seed, status, bot, turn_seconds,
+        first_name, first_token, second_name, second_token, rematch_of";
+
+    /// One match row.
+    pub fn get(&self, id: &str) -> Result<Option<StoredMatch>, StoreError> {
+        let conn = self.lock()?;
+        let raw = conn
+            .query_row(
+                &format!("SELECT {} FROM matches WHERE id = ?1", Self::MATCH_COLUMNS),
+                params![id],
+                Self::row_to_match,
+            )
+            .optional()?;
+        raw.map(|(r, config)| r.finish(&config)).transpose()
+    }
+
+    /// Ids of every match not finished (to resume on start).
+    pub fn unfinished(&self) -> Result<Vec<String>, StoreError> {
+        let conn = self.lock()?;
+        let mut stmt = conn
+            .prepare("SELECT id FROM matches WHERE status != 'finished' ORDER BY created_at, id")?;
+        let ids = stmt
+            .query_map([], |r| r.get::<_, String>(0))?
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(ids)
+    }
+
+    /// The moves of a match, in order.
+    pub fn moves(&self, id: &str) -> Result<Vec<RecordedMove>, StoreError> {
+        let conn = self.lock()?;
+        let mut stmt =
+            conn.prepare("SELECT idx, body FROM moves WHERE match_id = ?1 ORDER BY idx")?;
+        let rows = stmt
+            .query_map(params![id], |r| {
+                Ok((r.get::<_, i64>(0)?, r.get::<_, String>(1)?))
+            })?
+            .collect::<Result<Vec<_>, _>>()?;
+        let mut moves = Vec::with_capacity(rows.len());
+        for (k, (idx, body)) in rows.into_iter().enumerate() {
+            if idx != k as i64 {
+                return Err(StoreError::Corrupt(format!(
+                    "match {id}: move {k} is missing (found {idx})"
+                )));
+            }
+            moves.push(serde_json::from_str(&body)?);
+        }
+        Ok(moves)
+    }
+
+    /// A match row and its record (config, seed, every move).
+    pub fn load(&self, id: &str) -> Result<Option<(StoredMatch, MatchRecord)>, StoreError> {
+        let Some(m) = self.get(id)? else {
+            return Ok(None);
+        };
+        let moves = self.moves(id)?;
+        let record = MatchRecord {
+            version: RECORD_VERSION,
+            config: m.config.clone(),
+            seed: m.seed,
+            moves,
+        };
+        Ok(Some((m, record)))
+    }
+
+    /// Summaries, newest first, optionally of one status only.
+    pub fn list(&self, status: Option<Status>, limit: usize) -> Result<Vec<Summary>, StoreError> {
+        let conn = self.lock()?;
+        let mut stmt = conn.prepare(&format!(
+            "SELECT {SUMMARY_COLUMNS} FROM matches WHERE (?1 IS NULL OR status = ?1)
+             ORDER BY updated_at DESC, id LIMIT ?2"
+        ))?;
+        let rows = stmt
+            .query_map(
+                params![status.map(Status::as_str), limit as i64],
+                SummaryRaw::read,
+            )?
+            .collect::<Result<Vec<_>, _>>()?;
+        rows.into_iter().map(SummaryRaw::finish).collect()
+    }
+
+    /// One match's summary.
+    pub fn summary(&self, id: &str) -> Result<Option<Summary>, StoreError> {
+        let conn = self.lock()?;
+        let raw = conn
+            .query_row(
+                &format!("SELECT {SUMMARY_COLUMNS} FROM matches WHERE id = ?1"),
+                params![id],
+                SummaryRaw::read,
+            )
+            .optional()?;
+        raw.map(SummaryRaw::finish).transpose()
+    }
+
+    /// Makes sure everything written is in the main database file (on shutdown).
+    pub fn checkpoint(&self) -> Result<(), StoreError> {
+        let conn = self.lock()?;
+        conn.query_row("PRAGMA wal_checkpoint(TRUNCATE)", [], |_| Ok(()))?;
+        Ok(())
+    }
+}
+
+const SUMMARY_COLUMNS: &str =
+    "id, status, created_at, updated_at, first_name, second_name, bot, shots, turn_seconds, result";
+
+struct SummaryRaw {
+    id: String,
+    status: String,
+    created_at: i64,
+    updated_at: i64,
+    first: Option<String>,
+    second: Option<String>,
+    bot: Option<String>,
+    shots: i64,
+    turn_seconds: i64,
+    result: Option<String>,
+}
+
+impl SummaryRaw {
+    fn read(r: &rusqlite::Row<'_>) -> rusqlite::Result<SummaryRaw> {
+        Ok(SummaryRaw {
+            id: r.get(0)?,
+            status: r.get(1)?,
+            created_at: r.get(2)?,
+            updated_at: r.get(3)?,
+            first: r.get(4)?,
+            second: r.get(5)?,
+            bot: r.get(6)?,
+            shots: r.get(7)?,
+            turn_seconds: r.get(8)?,
+            result: r.get(9)?,
+        })
+    }
+
+    fn finish(self) -> Result<Summary, StoreError> {
+        Ok(Summary {
+            status: Status::parse(&self.status).ok_or_else(|| {
+                StoreError::Corrupt(format!("match {}: status {}", self.id, self.status))
+            })?,
+            match_id: self.id,
+            created_at: self.created_at as u64,
+            updated_at: self.updated_at as u64,
+            first: self.first,
+            second: self.second,
+            bot: self.bot,
+            shots: self.shots as u32,
+            turn_seconds: self.turn_seconds as u64,
+            result: self.result.map(|r| serde_json::from_str(&r)).transpose()?,
+        })
+    }
+}
+
+struct StoredMatchRaw {
+    id: String,
+    created_at: i64,
+    seed: i64,
+    status: String,
+    bot: Option<String>,
+    turn_seconds: i64,
+    first_name: Option<String>,
+    first_token: Option<String>,
+    second_name: Option<String>,
+    second_token: Option<String>,
+    rematch_of: Option<String>,
+}
+
+impl StoredMatchRaw {
+    fn finish(self, config: &str) -> Result<StoredMatch, StoreError> {
+        let status = Status::parse(&self.status).ok_or_else(|| {
+            StoreError::Corrupt(format!("match {}: status {}", self.id, self.status))
+        })?;
+        Ok(StoredMatch {
+            config: serde_json::from_str(config)?,
+            created_at: self.created_at as u64,
+            // Stored as the i64 with the same bits.
+            seed: self.seed as u64,
+            status,
+            bot: self.bot,
+            turn_seconds: self.turn_seconds as u64,
+            seats: [
+                StoredSeat {
+                    name: self.first_name,
+                    token: self.first_token,
+                },
+                StoredSeat {
+                    name: self.second_name,
+                    token: self.second_token,
+                },
+            ],
+            rematch_of: self.rematch_of,
+            id: self.id,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use game::{Game, PieceId, Shot, Side};
+    use glam::DVec2;
+
+    fn stored(id: &str) -> StoredMatch {
+        StoredMatch {
+            id: id.into(),
+            created_at: 0,
+            config: Config::default(),
+            seed: u64::MAX - 1,
+            status: Status::Open,
+            bot: None,
+            turn_seconds: 60,
+            seats: [
+                StoredSeat {
+                    name: Some("Petka".into()),
+                    token: Some("t1".into()),
+                },
+                StoredSeat::default(),
+            ],
+            rematch_of: None,
+        }
+    }
+
+    #[test]
+    fn a_match_and_its_moves_come_back_as_a_replayable_record() {
+        let store = Store::in_memory().unwrap();
+        store.create(&stored("m1")).unwrap();
+        store.seat_second("m1", "Anka", "t2").unwrap();
+        let mut g = Game::new(Config::default(), u64::MAX - 1).unwrap();
+        let piece = PieceId::new(Side::White, 4).unwrap();
+        g.play(
+            Side::White,
+            Shot::new(piece, DVec2::new(0.0, 2.0), g.config()).unwrap(),
+        )
+        .unwrap();
+        let after = AfterMove {
+            status: Status::Live,
+            shots: 1,
+            result: None,
+        };
+        store
+            .append_move("m1", 0, &g.record().moves[0], &after)
+            .unwrap();
+        let (m, record) = store.load("m1").unwrap().unwrap();
+        assert_eq!(m.seed, u64::MAX - 1);
+        assert_eq!(m.status, Status::Live);
+        assert_eq!(m.seats[1].token.as_deref(), Some("t2"));
+        assert_eq!(&record, g.record());
+        let replay = game::Replay::new(record).unwrap();
+        assert_eq!(replay.game().view(), g.view());
+        assert_eq!(store.unfinished().unwrap(), vec!["m1".to_string()]);
+    }
+
+    #[test]
+    fn a_move_index_is_written_once_and_a_failed_move_changes_nothing() {
+        let store = Store::in_memory().unwrap();
+        store.create(&stored("m1")).unwrap();
+        let after = AfterMove {
+            status: Status::Live,
+            shots: 0,
+            result: None,
+        };
+        let resign = RecordedMove::Resign { side: Side::White };
+        store.append_move("m1", 0, &resign, &after).unwrap();
+        assert!(store.append_move("m1", 0, &resign, &after).is_err());
+        // An unknown match: the move insert fails on the foreign key, nothing is written.
+        assert!(store.append_move("nope", 0, &resign, &after).is_err());
+        assert!(store.moves("nope").unwrap().is_empty());
+        assert_eq!(store.moves("m1").unwrap(), vec![resign]);
+    }
+
+    #[test]
+    fn the_second_seat_is_taken_once_and_listing_filters_by_status() {
+        let store = Store::in_memory().unwrap();
+        store.create(&stored("a")).unwrap();
+        store.create(&stored("b")).unwrap();
+        store.seat_second("a", "x", "t").unwrap();
+        assert!(store.seat_second("a", "y", "u").is_err());
+        let open = store.list(Some(Status::Open), 10).unwrap();
+        assert_eq!(open.len(), 1);
+        assert_eq!(open[0].match_id, "b");
+        assert_eq!(store.list(None, 10).unwrap().len(), 2);
+        assert_eq!(
+            store.summary("a").unwrap().unwrap().second.as_deref(),
+            Some("x")
+        );
+        assert!(store.summary("zz").unwrap().is_none());
+    }
+
+    #[test]
+    fn the_store_survives_reopening_from_disk() {
+        let dir = tempfile::tempdir().unwrap();
+        {
+            let store = Store::open(dir.path(), SyncMode::Full).unwrap();
+            store.create(&stored("m")).unwrap();
+        }
+        let store = Store::open(dir.path(), SyncMode::Full).unwrap();
+        assert_eq!(
+            store.get("m").unwrap().unwrap().seats[0].name.as_deref(),
+            Some("Petka")
+        );
+    }
+}

@@ -1,0 +1,72 @@
+//! Secrets and identifiers from the operating system's random source: seat
+//! tokens (128 bits, hex), match ids (64 bits, hex) and match seeds.
+
+/// The OS random source failed.
+#[derive(Debug, thiserror::Error)]
+#[error("the operating system's random source failed: {0}")]
+pub struct RandomError(String);
+
+fn random_bytes<const N: usize>() -> Result<[u8; N], RandomError> {
+    let mut buf = [0u8; N];
+    getrandom::fill(&mut buf).map_err(|e| RandomError(e.to_string()))?;
+    Ok(buf)
+}
+
+fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// A seat token: 128 random bits as 32 hex digits.
+pub fn seat_token() -> Result<String, RandomError> {
+    Ok(hex(&random_bytes::<16>()?))
+}
+
+/// A match id: 64 random bits as 16 hex digits.
+pub fn match_id() -> Result<String, RandomError> {
+    Ok(hex(&random_bytes::<8>()?))
+}
+
+/// A match seed for the execution noise.
+pub fn seed() -> Result<u64, RandomError> {
+    Ok(u64::from_le_bytes(random_bytes::<8>()?))
+}
+
+/// Compares a presented token with the seat's in time that does not depend
+/// on where they differ.
+pub fn same_token(presented: &str, actual: &str) -> bool {
+    let (a, b) = (presented.as_bytes(), actual.as_bytes());
+    if a.len() != b.len() {
+        return false;
+    }
+    a.iter().zip(b).fold(0u8, |acc, (x, y)| acc | (x ^ y)) == 0
+}
+
+/// Whether `s` looks like a match id (so junk never reaches the store).
+pub fn is_match_id(s: &str) -> bool {
+    !s.is_empty() && s.len() <= 64 && s.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'-')
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tokens_carry_128_random_bits_and_differ() {
+        let a = seat_token().unwrap();
+        let b = seat_token().unwrap();
+        assert_eq!(a.len(), 32);
+        assert!(a.bytes().all(|c| c.is_ascii_hexdigit()));
+        assert_ne!(a, b);
+        assert_eq!(match_id().unwrap().len(), 16);
+    }
+
+    #[test]
+    fn token_comparison_is_exact() {
+        assert!(same_token("abc", "abc"));
+        assert!(!same_token("abd", "abc"));
+        assert!(!same_token("ab", "abc"));
+        assert!(is_match_id("0123abcd"));
+        assert!(!is_match_id("../x"));
+        assert!(!is_match_id(""));
+    }
+}
