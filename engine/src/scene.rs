@@ -135,6 +135,10 @@ pub enum Problem {
     Overlaps(String),
     #[error("its two points coincide")]
     Degenerate,
+    #[error("too large: the engine works with squares of lengths and speeds, so magnitudes must stay below 1e150")]
+    TooLarge,
+    #[error("mu * g overflows")]
+    Overflow,
     #[error("too many sensor lines (at most {0})")]
     TooManySensors(usize),
     #[error("{0}")]
@@ -155,6 +159,10 @@ pub enum SceneError {
     #[error("{object}: {problem}")]
     Shape { object: Object, problem: Problem },
 }
+
+/// Largest coordinate, speed or radius accepted: squares of these (contact
+/// equations) must stay finite.
+pub const MAX_MAGNITUDE: f64 = 1e150;
 
 /// Most sensor lines a scene may have (each body tracks its side of each).
 pub const MAX_SENSORS: usize = 64;
@@ -262,6 +270,18 @@ impl Scene {
             if !(0.0..=1.0).contains(&b.restitution) {
                 return Err(invalid(o, "restitution", Problem::OutOfUnitRange));
             }
+            if b.pos.abs().max_element() > MAX_MAGNITUDE {
+                return Err(invalid(o, "pos", Problem::TooLarge));
+            }
+            if b.vel.abs().max_element() > MAX_MAGNITUDE {
+                return Err(invalid(o, "vel", Problem::TooLarge));
+            }
+            if b.radius > MAX_MAGNITUDE {
+                return Err(invalid(o, "radius", Problem::TooLarge));
+            }
+            if !(b.mu * self.g).is_finite() {
+                return Err(invalid(o, "mu", Problem::Overflow));
+            }
             if let Some(first) = seen.insert(b.id, index) {
                 return Err(invalid(o, "id", Problem::DuplicateId(first)));
             }
@@ -277,6 +297,9 @@ impl Scene {
             for (v, f) in [(l.a, "a"), (l.b, "b")] {
                 finite(v.x, &o, f)?;
                 finite(v.y, &o, f)?;
+                if v.abs().max_element() > MAX_MAGNITUDE {
+                    return Err(invalid(o, f, Problem::TooLarge));
+                }
             }
             if LineGeom::new(l).is_none() {
                 return Err(SceneError::Shape {
@@ -492,6 +515,23 @@ mod tests {
         assert!(err(&text).starts_with("not valid JSON"), "{}", err(&text));
         let text = GOOD.replacen(r#""pos": [0.0, 0.0]"#, r#""pos": [0.0, null]"#, 1);
         assert!(err(&text).starts_with("bodies[0] (id 1)"), "{}", err(&text));
+    }
+
+    #[test]
+    fn magnitudes_whose_squares_overflow_are_rejected() {
+        let text = GOOD.replacen(r#""vel": [2.0, 0.0]"#, r#""vel": [1e200, 0.0]"#, 1);
+        assert!(
+            err(&text).starts_with(r#"bodies[0] (id 1): field "vel": too large"#),
+            "{}",
+            err(&text)
+        );
+        let text = GOOD
+            .replacen(r#""mu": 0.3"#, r#""mu": 1e300"#, 1)
+            .replace("9.81", "1e300");
+        assert_eq!(
+            err(&text),
+            r#"bodies[0] (id 1): field "mu": mu * g overflows"#
+        );
     }
 
     #[test]

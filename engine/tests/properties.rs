@@ -158,6 +158,11 @@ struct Checker {
 }
 
 impl Checker {
+    /// How far a velocity at absolute time `t` is known: alpha ulp(t).
+    fn time_slack(&self, id: &BodyId, t: f64) -> f64 {
+        8.0 * f64::EPSILON * self.prev[id].trajectory.alpha() * t.max(1.0)
+    }
+
     fn new(world: &World) -> Self {
         Checker {
             prev_t: world.time(),
@@ -271,17 +276,27 @@ impl Checker {
                 }
                 let n = (pa - pb) / d;
                 let (w0, w1) = ((va - vb).dot(n), (ua - ub).dot(n));
-                let rel = (va - vb).length();
-                if w0 > TOL * rel {
+                // Velocities are known to about eps |v|, and to alpha ulp(t)
+                // (absolute times): a contact may be found approaching by
+                // that much and then seen separating by that much.
+                let alphas = self.prev[&a].trajectory.alpha() + self.prev[&b].trajectory.alpha();
+                let rel =
+                    TOL * (va.length() + vb.length()) + 8.0 * f64::EPSILON * alphas * t.max(1.0);
+                if w0 > rel {
                     return Err(format!(
-                        "{a} and {b} collided while separating (w = {w0:e})"
+                        "{a} and {b} collided while separating (w = {w0:e}): \
+                         {pa} {va} (m {ma}, alpha {}) and {pb} {vb} (m {mb}, alpha {}), \
+                         gap {:e}",
+                        self.prev[&a].trajectory.alpha(),
+                        self.prev[&b].trajectory.alpha(),
+                        d - (ra + rb)
                     ));
                 }
-                if w0 < 0.0 && (w1 + e * w0).abs() > TOL * rel {
+                if w0 < 0.0 && (w1 + e * w0).abs() > rel {
                     return Err(format!("normal speed {w0:e} became {w1:e}, e = {e}"));
                 }
                 for (v0, v1, id) in [(va, ua, a), (vb, ub, b)] {
-                    if (v1 - v0).perp_dot(n).abs() > TOL * rel {
+                    if (v1 - v0).perp_dot(n).abs() > rel {
                         return Err(format!("{id}: the impulse is not along the normal"));
                     }
                 }
@@ -305,7 +320,8 @@ impl Checker {
                         "{body} hits {line} ({end:?}) at distance {d}, not {r}"
                     ));
                 }
-                obstacle_impulse(v, post(&body)?, n, e)
+                let slack = self.time_slack(&body, t);
+                obstacle_impulse(v, post(&body)?, n, e, slack)
                     .map_err(|m| format!("{body} on {line}: {m}"))?;
             }
             EventKind::BodyPoint { body, point } => {
@@ -316,7 +332,8 @@ impl Checker {
                 if (d - r).abs() > TOL * r {
                     return Err(format!("{body} hits {point} at distance {d}, not {r}"));
                 }
-                obstacle_impulse(v, post(&body)?, (p - q) / d, e)
+                let slack = self.time_slack(&body, t);
+                obstacle_impulse(v, post(&body)?, (p - q) / d, e, slack)
                     .map_err(|m| format!("{body} on {point}: {m}"))?;
             }
             EventKind::Stop { body } => {
@@ -368,16 +385,16 @@ impl Checker {
 
 /// An obstacle (infinite mass) with normal `n` turns `v` into `u`: the
 /// tangential part is kept, the normal part is scaled by `-e`.
-fn obstacle_impulse(v: DVec2, u: DVec2, n: DVec2, e: f64) -> Result<(), String> {
+fn obstacle_impulse(v: DVec2, u: DVec2, n: DVec2, e: f64, slack: f64) -> Result<(), String> {
     let w0 = v.dot(n);
-    let speed = v.length();
-    if w0 > TOL * speed {
+    let noise = TOL * v.length() + slack;
+    if w0 > noise {
         return Err(format!("hit while moving away (w = {w0:e})"));
     }
-    if (u.perp_dot(n) - v.perp_dot(n)).abs() > TOL * speed {
+    if (u.perp_dot(n) - v.perp_dot(n)).abs() > noise {
         return Err(format!("tangential velocity changed: {v} -> {u}"));
     }
-    if w0 < 0.0 && (u.dot(n) + e * w0).abs() > TOL * speed {
+    if w0 < 0.0 && (u.dot(n) + e * w0).abs() > noise {
         return Err(format!(
             "normal speed {w0:e} became {:e}, e = {e}",
             u.dot(n)

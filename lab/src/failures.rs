@@ -92,12 +92,15 @@ pub fn classify(case: &Case, run: &Outcome, reference: Option<&Outcome>) -> Stri
     "correct".into()
 }
 
+/// The largest Galperin n counted exactly, and the dt it took (steppers).
+pub type GalperinBest = (u32, Option<f64>);
+
 /// Case rows of the table and their methods' outcomes.
 pub struct Table {
     pub methods: Vec<String>,
     pub rows: Vec<(String, Vec<String>)>,
     /// Per method: the largest Galperin n counted exactly, and at which dt.
-    pub galperin: Vec<(String, Option<(u32, Option<f64>)>)>,
+    pub galperin: Vec<(String, Option<GalperinBest>)>,
 }
 
 impl Table {

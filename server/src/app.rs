@@ -34,16 +34,12 @@ pub enum AppError {
 pub fn init_logging(config: &Config) -> Result<(), AppError> {
     let filter = tracing_subscriber::EnvFilter::try_new(&config.log)
         .map_err(|e| AppError::Log(config.log.clone(), e.to_string()))?;
-    let builder = tracing_subscriber::fmt()
-        .with_env_filter(filter)
-        .with_writer(std::io::stderr);
-    let installed = if config.log_json {
-        builder.json().try_init()
-    } else {
-        builder.try_init()
-    };
     // Already installed (tests): keep the first.
-    let _ = installed;
+    let _ = tracing_subscriber::fmt()
+        .with_env_filter(filter)
+        .with_writer(std::io::stderr)
+        .with_ansi(std::io::IsTerminal::is_terminal(&std::io::stderr()))
+        .try_init();
     Ok(())
 }
 

@@ -25,10 +25,6 @@ pub struct Config {
     #[arg(long, env = "CHAPAEV_LOG", default_value = "info")]
     pub log: String,
 
-    /// Logs as JSON lines instead of text.
-    #[arg(long, env = "CHAPAEV_LOG_JSON")]
-    pub log_json: bool,
-
     /// HTTP/WebSocket worker threads.
     #[arg(long, env = "CHAPAEV_HTTP_WORKERS", default_value_t = 2, value_parser = clap::value_parser!(u16).range(1..=64))]
     pub http_workers: u16,

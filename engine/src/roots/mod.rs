@@ -93,6 +93,14 @@ impl Roots {
         }
     }
 
+    /// Keeps the first `n` roots (restoring the zeroed tail).
+    fn truncate(&mut self, n: usize) {
+        for i in n.min(4)..4 {
+            self.vals[i] = 0.0;
+        }
+        self.len = self.len.min(n.min(4) as u8);
+    }
+
     /// Sorts the roots ascending (insertion sort: at most four values).
     fn sort(&mut self) {
         let n = self.len as usize;

@@ -90,9 +90,12 @@ fn solve(coeffs: &[f64], lo: f64, hi: f64, first: bool) -> Roots {
             }
         }
         _ => {
+            if a[0] == 0.0 {
+                return deflated(&a, n, lo, hi, first);
+            }
             let mut single = false;
             if lo == 0.0 {
-                match descartes_at_zero(&a, n, first, &mut out) {
+                match descartes_at_zero(&a, n) {
                     Some(true) => return out,
                     Some(false) => single = true,
                     None => {}
@@ -103,6 +106,40 @@ fn solve(coeffs: &[f64], lo: f64, hi: f64, first: bool) -> Roots {
             }
             general(&a, n, lo, hi, first, single, &mut out);
         }
+    }
+    out
+}
+
+/// `p(0) = 0`: `p = x q(x)` with `q`'s coefficients those of `p` shifted
+/// down, an exact deflation. The roots are `0` and those of `q` (a root of
+/// `q` at `0` too is the same, multiple, root and is reported once).
+#[inline(never)]
+fn deflated(a: &Coeffs, n: usize, lo: f64, hi: f64, first: bool) -> Roots {
+    let zero_in = lo <= 0.0 && 0.0 < hi;
+    let mut out = Roots::new();
+    if first && zero_in && lo == 0.0 {
+        out.push(0.0);
+        return out;
+    }
+    let rest = solve(&a[1..=n], lo, hi, first);
+    let mut zero_done = !zero_in;
+    for &r in rest.as_slice() {
+        if !zero_done && r >= 0.0 {
+            out.push(0.0);
+            zero_done = true;
+            if first {
+                return out;
+            }
+        }
+        if r != 0.0 {
+            out.push(r);
+        }
+    }
+    if !zero_done {
+        out.push(0.0);
+    }
+    if first {
+        out.truncate(1);
     }
     out
 }
@@ -227,21 +264,14 @@ fn solve_bounded(a: &Coeffs, n: usize, lo: f64, hi: f64) -> Roots {
 }
 
 /// Fast paths for a search starting at exactly `0` (the engine's usual
-/// query), where the coefficients themselves are the Taylor coefficients:
-/// `p(0) = 0` answers a `first_root` query at once, and by Descartes' rule
-/// of signs no sign variation means no positive root and one variation
-/// means exactly one (simple) positive root, which can be solved on its own
-/// without locating critical points. Returns `Some(true)` when `out` is
-/// final, `Some(false)` for "exactly one positive root", `None` otherwise.
+/// query; `p(0) != 0` here), where the coefficients themselves are the
+/// Taylor coefficients: by Descartes' rule of signs no sign variation means
+/// no positive root and one variation means exactly one (simple) positive
+/// root, which can be solved on its own without locating critical points.
+/// Returns `Some(true)` for "no positive root", `Some(false)` for "exactly
+/// one", `None` when the rule does not decide.
 #[inline(always)]
-fn descartes_at_zero(a: &Coeffs, n: usize, first: bool, out: &mut Roots) -> Option<bool> {
-    if a[0] == 0.0 {
-        if first {
-            out.push(0.0);
-            return Some(true);
-        }
-        return None;
-    }
+fn descartes_at_zero(a: &Coeffs, n: usize) -> Option<bool> {
     let mut variations = 0;
     let mut last_neg = a[0] < 0.0;
     for (i, &c) in a.iter().enumerate().skip(1) {
@@ -987,6 +1017,24 @@ mod tests {
         assert!(
             decided * 10 >= clear * 9,
             "decided only {decided} of {clear}"
+        );
+    }
+
+    #[test]
+    fn zero_roots_are_deflated_exactly_and_reported_once() {
+        // x^2 (x - 1)(x + 2) = x^4 + x^3 - 2x^2
+        let c = [0.0, 0.0, -2.0, 1.0, 1.0];
+        assert_eq!(Production.real_roots(&c).as_slice(), &[-2.0, 0.0, 1.0]);
+        assert_eq!(Production.first_root(&c, -3.0, 9.0), Some(-2.0));
+        assert_eq!(Production.first_root(&c, -1.0, 9.0), Some(0.0));
+        assert_eq!(Production.first_root(&c, 0.0, 9.0), Some(0.0));
+        assert_eq!(Production.first_root(&c, 0.5, 9.0), Some(1.0));
+        assert_eq!(Production.roots_in(&c, -2.0, 0.0).as_slice(), &[-2.0]);
+        assert_eq!(Production.roots_in(&c, 0.0, 1.0).as_slice(), &[0.0]);
+        // x (x - 3): the quadratic path deflates too.
+        assert_eq!(
+            Production.roots_in(&[0.0, -3.0, 1.0], -1.0, 5.0).as_slice(),
+            &[0.0, 3.0]
         );
     }
 

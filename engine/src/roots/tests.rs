@@ -446,3 +446,30 @@ fn degenerate_inputs_never_panic_and_give_no_roots() {
         assert_eq!(m.roots_in(&c, 1.0, 1.0 + 1e-12).as_slice(), &[1.0]);
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 2000, .. ProptestConfig::default() })]
+
+    /// Arbitrary bit patterns (NaN, infinities, subnormals, huge values) and
+    /// arbitrary intervals: no panic, no overflow trap (tests run with debug
+    /// assertions), and the result is always sorted, finite and in range.
+    #[test]
+    fn arbitrary_input_never_panics(
+        c in prop::collection::vec(prop_oneof![
+            any::<f64>(),
+            -1e3..1e3f64,
+            Just(0.0),
+            (-300i32..300).prop_map(|e| 10f64.powi(e)),
+        ], 0..7),
+        lo in prop_oneof![any::<f64>(), Just(f64::NEG_INFINITY), Just(0.0), -10.0..10.0f64],
+        hi in prop_oneof![any::<f64>(), Just(f64::INFINITY), -10.0..10.0f64],
+    ) {
+        for m in Method::ALL {
+            let all = m.roots_in(&c, lo, hi);
+            prop_assert!(well_formed(&all));
+            prop_assert!(all.iter().all(|&r| lo <= r && r < hi));
+            prop_assert_eq!(m.first_root(&c, lo, hi), all.first());
+            prop_assert!(well_formed(&m.real_roots(&c)));
+        }
+    }
+}

@@ -1,0 +1,237 @@
+//! Bad input never hurts a match: malformed JSON, unknown messages,
+//! illegal shots, wrong tokens, oversized frames and floods are answered
+//! with an `error` of a stable code, the connection survives where that
+//! makes sense, and the match and the store are unchanged. Limits on
+//! matches and connections hold.
+
+mod common;
+
+use common::{shot, view, Client, Server};
+use game::protocol::ClientMessage;
+use std::time::Duration;
+
+#[tokio::test]
+async fn malformed_json_unknown_messages_and_illegal_shots_get_stable_codes_and_change_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &[]);
+    let (id, white_token, black_token) = server.two_player_match("").await;
+    let mut white = server.ws(&id, Some(&white_token)).await;
+    let mut black = server.ws(&id, Some(&black_token)).await;
+    let before = view(white.next().await);
+    view(black.next().await);
+
+    white.send_text("{not json").await;
+    assert_eq!(white.next_error().await, "bad-json");
+    white.send_text(r#"{"type":"teleport"}"#).await;
+    assert_eq!(white.next_error().await, "bad-message");
+    white
+        .send_text(r#"{"type":"shot","piece":99,"velocity":[0,1]}"#)
+        .await;
+    assert_eq!(white.next_error().await, "bad-message");
+    white
+        .send_text(r#"{"type":"hello","protocol":999,"name":"x"}"#)
+        .await;
+    assert_eq!(white.next_error().await, "unsupported-protocol");
+    white.send(&shot(12, 0.0, -1.0)).await;
+    assert_eq!(white.next_error().await, "not-your-piece");
+    white.send(&shot(4, 0.0, 2.5)).await;
+    assert_eq!(white.next_error().await, "too-fast");
+    white.send(&shot(4, 0.0, 0.0)).await;
+    assert_eq!(white.next_error().await, "zero-speed");
+    white.send_text(r#"{"type":"create-match"}"#).await;
+    assert_eq!(white.next_error().await, "bad-message");
+    black.send(&shot(12, 0.0, -1.0)).await;
+    assert_eq!(black.next_error().await, "not-your-turn");
+    black.send(&ClientMessage::PieDecision { swap: true }).await;
+    assert_eq!(black.next_error().await, "no-pie-decision");
+    black.send(&ClientMessage::AcceptRematch).await;
+    assert_eq!(black.next_error().await, "no-rematch-offer");
+    black
+        .send(&ClientMessage::Chat {
+            text: "x".repeat(501),
+        })
+        .await;
+    assert_eq!(black.next_error().await, "chat-too-long");
+    let mut watcher = server.ws(&id, None).await;
+    view(watcher.next().await);
+    watcher.send(&shot(4, 0.0, 2.0)).await;
+    assert_eq!(watcher.next_error().await, "not-in-match");
+
+    // Nothing changed, and the connection still plays.
+    let mut fresh = server.ws(&id, None).await;
+    assert_eq!(view(fresh.next().await), before);
+    white.send(&shot(4, 0.0, 2.0)).await;
+    white.next_of("shot-played").await;
+    let mut fresh = server.ws(&id, None).await;
+    assert_eq!(view(fresh.next().await).shots, 1);
+}
+
+#[tokio::test]
+async fn a_wrong_token_or_match_is_refused_with_a_stable_code() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &[]);
+    let (id, white_token, _) = server.two_player_match("").await;
+    let mut thief = server.ws(&id, Some(&"0".repeat(32))).await;
+    assert_eq!(thief.next_error().await, "bad-token");
+    assert!(thief.closes().await);
+    let (other, _) = server.create("{}").await;
+    // A real token, but of another match.
+    let mut wrong = server.ws(&other, Some(&white_token)).await;
+    assert_eq!(wrong.next_error().await, "bad-token");
+    let mut lost = server.ws("feedfacefeedface", None).await;
+    assert_eq!(lost.next_error().await, "no-such-match");
+    let mut fresh = server.ws(&id, None).await;
+    assert_eq!(view(fresh.next().await).shots, 0);
+}
+
+#[tokio::test]
+async fn an_oversized_frame_is_refused_with_message_too_large_and_changes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &["--max-message-bytes", "4096"]);
+    let (id, white_token, _) = server.two_player_match("").await;
+    let mut white = server.ws(&id, Some(&white_token)).await;
+    let before = view(white.next().await);
+    let padding = " ".repeat(10_000);
+    white
+        .send_text(format!(
+            r#"{{"type":"shot","piece":4,"velocity":[0,2]{padding}}}"#
+        ))
+        .await;
+    assert_eq!(white.next_error().await, "message-too-large");
+    assert!(white.closes().await);
+    let mut white = server.ws(&id, Some(&white_token)).await;
+    assert_eq!(view(white.next().await), before);
+    white.send(&shot(4, 0.0, 2.0)).await;
+    white.next_of("shot-played").await;
+}
+
+#[tokio::test]
+async fn a_flood_is_rate_limited_and_the_connection_survives() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &["--rate-per-sec", "10", "--rate-burst", "10"]);
+    let (id, white_token, _) = server.two_player_match("").await;
+    let mut white = server.ws(&id, Some(&white_token)).await;
+    view(white.next().await);
+    for k in 0..60 {
+        white
+            .send(&ClientMessage::Chat {
+                text: format!("spam {k}"),
+            })
+            .await;
+    }
+    assert_eq!(white.next_error().await, "rate-limited");
+    tokio::time::sleep(Duration::from_millis(1500)).await;
+    white
+        .send(&ClientMessage::Chat {
+            text: "still here".into(),
+        })
+        .await;
+    loop {
+        if let game::protocol::ServerMessage::Chat { text, .. } = white.next_of("chat").await {
+            if text == "still here" {
+                break;
+            }
+        }
+    }
+}
+
+#[tokio::test]
+async fn limits_on_matches_and_connections_hold() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(
+        dir.path(),
+        &["--max-matches", "1", "--max-connections", "2"],
+    );
+    let (id, _) = server.create("{}").await;
+    let (status, body) = server.http("POST", "/api/matches", "{}").await;
+    assert_eq!(status, 503);
+    assert!(body.contains(r#""code":"server-busy""#), "{body}");
+    let mut a = server.ws(&id, None).await;
+    let mut b = server.ws(&id, None).await;
+    view(a.next().await);
+    view(b.next().await);
+    assert!(Client::try_connect(&server.addr, &id, None).await.is_err());
+    drop(a);
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    let mut c = server.ws(&id, None).await;
+    view(c.next().await);
+}
+
+#[tokio::test]
+async fn bad_http_requests_get_error_bodies_with_stable_codes() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &[]);
+    let cases = [
+        ("POST", "/api/matches", "{", 400, "bad-json"),
+        (
+            "POST",
+            "/api/matches",
+            r#"{"colour":"red"}"#,
+            400,
+            "bad-message",
+        ),
+        (
+            "POST",
+            "/api/matches",
+            r#"{"config":{"mu":-1}}"#,
+            400,
+            "bad-config",
+        ),
+        (
+            "POST",
+            "/api/matches",
+            r#"{"opponent":"bot","bot_level":"godlike"}"#,
+            400,
+            "bad-message",
+        ),
+        (
+            "POST",
+            "/api/matches",
+            r#"{"turn_seconds":0}"#,
+            400,
+            "bad-config",
+        ),
+        (
+            "POST",
+            "/api/matches/deadbeefdeadbeef/join",
+            "{}",
+            404,
+            "no-such-match",
+        ),
+        (
+            "GET",
+            "/api/matches/deadbeefdeadbeef/record",
+            "",
+            404,
+            "no-such-match",
+        ),
+        (
+            "GET",
+            "/api/matches?status=sideways",
+            "",
+            400,
+            "bad-message",
+        ),
+    ];
+    for (method, path, body, status, code) in cases {
+        let (got, text) = server.http(method, path, body).await;
+        assert_eq!(got, status, "{method} {path} {body}: {text}");
+        assert!(
+            text.contains(&format!(r#""code":"{code}""#)),
+            "{method} {path} {body}: {text}"
+        );
+    }
+    let (id, _, _) = server.two_player_match("").await;
+    let (status, text) = server
+        .http("POST", &format!("/api/matches/{id}/join"), "{}")
+        .await;
+    assert_eq!((status, text.contains("match-full")), (409, true), "{text}");
+    let (status, text) = server
+        .http("GET", &format!("/api/matches/{id}/record"), "")
+        .await;
+    assert_eq!(
+        (status, text.contains("match-not-over")),
+        (409, true),
+        "{text}"
+    );
+}

@@ -1,0 +1,264 @@
+//! End-to-end test support: the real server binary on a free port with a
+//! temporary data folder, a raw HTTP/1.1 client and a WebSocket client.
+#![allow(dead_code)]
+
+use futures_util::{SinkExt, StreamExt};
+use game::protocol::{ClientMessage, ServerMessage};
+use std::io::{BufRead, BufReader};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::Duration;
+use tokio::io::{AsyncReadExt, AsyncWriteExt};
+use tokio::net::TcpStream;
+use tokio_tungstenite::tungstenite::Message;
+use tokio_tungstenite::{MaybeTlsStream, WebSocketStream};
+
+/// A running server process.
+pub struct Server {
+    child: Child,
+    pub addr: String,
+    pub dir: PathBuf,
+}
+
+impl Server {
+    /// Starts the server binary on `dir` with extra flags; waits until it listens.
+    pub fn start(dir: &Path, extra: &[&str]) -> Server {
+        let log = std::fs::File::create(dir.join(format!(
+            "server-{}.log",
+            std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .unwrap()
+                .as_nanos()
+        )))
+        .unwrap();
+        let mut child = Command::new(env!("CARGO_BIN_EXE_server"))
+            .args([
+                "--addr",
+                "127.0.0.1:0",
+                "--bot-delay-ms",
+                "0",
+                "--log",
+                "info,server=debug",
+            ])
+            .arg("--data-dir")
+            .arg(dir.join("data"))
+            .args(extra)
+            .stdout(Stdio::piped())
+            .stderr(log)
+            .spawn()
+            .expect("the server binary starts");
+        let stdout = child.stdout.take().unwrap();
+        let mut line = String::new();
+        BufReader::new(stdout).read_line(&mut line).unwrap();
+        let addr = line
+            .trim()
+            .strip_prefix("listening on http://")
+            .unwrap_or_else(|| panic!("unexpected first line {line:?}"))
+            .to_string();
+        Server {
+            child,
+            addr,
+            dir: dir.to_path_buf(),
+        }
+    }
+
+    /// SIGKILL: no chance to clean up.
+    pub fn kill(&mut self) {
+        self.child.kill().unwrap();
+        self.child.wait().unwrap();
+    }
+
+    /// SIGTERM, then waits for the exit; returns whether it exited cleanly.
+    pub fn terminate(&mut self) -> bool {
+        let pid = self.child.id().to_string();
+        Command::new("kill").args(["-TERM", &pid]).status().unwrap();
+        for _ in 0..200 {
+            if let Some(status) = self.child.try_wait().unwrap() {
+                return status.success();
+            }
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        panic!("the server did not stop within 10 s of SIGTERM");
+    }
+
+    pub async fn http(&self, method: &str, path: &str, body: &str) -> (u16, String) {
+        http(&self.addr, method, path, body).await
+    }
+
+    /// Creates a match; returns (match id, token).
+    pub async fn create(&self, body: &str) -> (String, String) {
+        let (status, text) = self.http("POST", "/api/matches", body).await;
+        assert_eq!(status, 201, "{text}");
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        (
+            v["match_id"].as_str().unwrap().to_string(),
+            v["token"].as_str().unwrap().to_string(),
+        )
+    }
+
+    /// Joins the second seat; returns its token.
+    pub async fn join(&self, id: &str) -> String {
+        let (status, text) = self
+            .http(
+                "POST",
+                &format!("/api/matches/{id}/join"),
+                r#"{"name":"Anka"}"#,
+            )
+            .await;
+        assert_eq!(status, 200, "{text}");
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        v["token"].as_str().unwrap().to_string()
+    }
+
+    /// A person-vs-person match with both seats taken: (id, first token, second token).
+    pub async fn two_player_match(&self, extra: &str) -> (String, String, String) {
+        let (id, a) = self.create(&format!(r#"{{"name":"Petka"{extra}}}"#)).await;
+        let b = self.join(&id).await;
+        (id, a, b)
+    }
+
+    pub async fn ws(&self, id: &str, token: Option<&str>) -> Client {
+        Client::connect(&self.addr, id, token).await
+    }
+}
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// One HTTP/1.1 request; returns the status and body.
+pub async fn http(addr: &str, method: &str, path: &str, body: &str) -> (u16, String) {
+    let mut s = TcpStream::connect(addr).await.unwrap();
+    let req = format!(
+        "{method} {path} HTTP/1.1\r\nHost: {addr}\r\nContent-Type: application/json\r\nContent-Length: {}\r\nConnection: close\r\n\r\n{body}",
+        body.len()
+    );
+    s.write_all(req.as_bytes()).await.unwrap();
+    let mut raw = Vec::new();
+    tokio::time::timeout(Duration::from_secs(10), s.read_to_end(&mut raw))
+        .await
+        .expect("an HTTP answer in time")
+        .unwrap();
+    let text = String::from_utf8_lossy(&raw).to_string();
+    let status: u16 = text.split_whitespace().nth(1).unwrap().parse().unwrap();
+    let (head, rest) = text.split_once("\r\n\r\n").unwrap();
+    let body = if head
+        .to_ascii_lowercase()
+        .contains("transfer-encoding: chunked")
+    {
+        dechunk(rest)
+    } else {
+        rest.to_string()
+    };
+    (status, body)
+}
+
+fn dechunk(mut s: &str) -> String {
+    let mut out = String::new();
+    while let Some((size, rest)) = s.split_once("\r\n") {
+        let n = usize::from_str_radix(size.trim(), 16).unwrap_or(0);
+        if n == 0 {
+            break;
+        }
+        out.push_str(&rest[..n]);
+        s = &rest[n + 2..];
+    }
+    out
+}
+
+/// A WebSocket client speaking the protocol.
+pub struct Client {
+    ws: WebSocketStream<MaybeTlsStream<TcpStream>>,
+}
+
+impl Client {
+    pub async fn connect(addr: &str, id: &str, token: Option<&str>) -> Client {
+        Client::try_connect(addr, id, token).await.unwrap()
+    }
+
+    pub async fn try_connect(
+        addr: &str,
+        id: &str,
+        token: Option<&str>,
+    ) -> Result<Client, tokio_tungstenite::tungstenite::Error> {
+        let url = match token {
+            Some(t) => format!("ws://{addr}/ws?match={id}&token={t}"),
+            None => format!("ws://{addr}/ws?match={id}"),
+        };
+        let (ws, _) = tokio_tungstenite::connect_async(url).await?;
+        Ok(Client { ws })
+    }
+
+    pub async fn send_text(&mut self, text: impl Into<String>) {
+        self.ws.send(Message::Text(text.into())).await.unwrap();
+    }
+
+    pub async fn send(&mut self, m: &ClientMessage) {
+        self.send_text(m.to_json()).await;
+    }
+
+    /// The next protocol message (`None`: the server closed the connection).
+    pub async fn try_next(&mut self) -> Option<ServerMessage> {
+        loop {
+            let frame = tokio::time::timeout(Duration::from_secs(15), self.ws.next())
+                .await
+                .expect("a message in time");
+            match frame {
+                Some(Ok(Message::Text(t))) => return Some(ServerMessage::from_json(&t).unwrap()),
+                Some(Ok(Message::Close(_))) | None | Some(Err(_)) => return None,
+                Some(Ok(_)) => continue,
+            }
+        }
+    }
+
+    pub async fn next(&mut self) -> ServerMessage {
+        self.try_next().await.expect("the connection is open")
+    }
+
+    /// The next message of type `kind` (kebab-case), skipping others.
+    pub async fn next_of(&mut self, kind: &str) -> ServerMessage {
+        loop {
+            let m = self.next().await;
+            if m.to_json().starts_with(&format!("{{\"type\":\"{kind}\"")) {
+                return m;
+            }
+        }
+    }
+
+    /// The error code of the next `error` message.
+    pub async fn next_error(&mut self) -> String {
+        match self.next_of("error").await {
+            ServerMessage::Error { code, .. } => code.as_str().to_string(),
+            _ => unreachable!(),
+        }
+    }
+
+    /// Whether the server closes the connection (skipping what comes before).
+    pub async fn closes(&mut self) -> bool {
+        for _ in 0..1000 {
+            if self.try_next().await.is_none() {
+                return true;
+            }
+        }
+        false
+    }
+}
+
+/// A shot message: piece number, velocity.
+pub fn shot(piece: u8, vx: f64, vy: f64) -> ClientMessage {
+    ClientMessage::Shot {
+        piece: piece.try_into().unwrap(),
+        velocity: glam::DVec2::new(vx, vy),
+    }
+}
+
+/// The view in a `match-state` message.
+pub fn view(m: ServerMessage) -> game::MatchView {
+    match m {
+        ServerMessage::MatchState { view, .. } => view,
+        other => panic!("expected match-state, got {}", other.to_json()),
+    }
+}

@@ -1,0 +1,77 @@
+//! Nothing accepted is lost: the real server, killed with SIGKILL in the
+//! middle of a match or stopped with SIGTERM, comes back with every shot it
+//! broadcast, and the match goes on.
+
+mod common;
+
+use common::{shot, view, Server};
+use game::protocol::ServerMessage;
+
+#[tokio::test]
+async fn a_match_survives_sigkill_and_resumes_with_the_same_state_and_the_next_shot_works() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut server = Server::start(dir.path(), &[]);
+    let (id, white_token, black_token) = server.two_player_match("").await;
+    let mut white = server.ws(&id, Some(&white_token)).await;
+    let mut black = server.ws(&id, Some(&black_token)).await;
+    view(white.next().await);
+    view(black.next().await);
+    // White knocks Black's e-piece off (and shoots again), then a gentle
+    // shot passes the turn; Black answers.
+    white.send(&shot(4, 0.0, 2.0)).await;
+    black.next_of("shot-played").await;
+    white.send(&shot(2, 0.0, 0.5)).await;
+    black.next_of("shot-played").await;
+    black.send(&shot(10, 0.0, -0.5)).await;
+    let ServerMessage::ShotPlayed { outcome, .. } = white.next_of("shot-played").await else {
+        unreachable!()
+    };
+    assert_eq!(outcome.number, 2);
+    // The state everyone sees now.
+    let mut watcher = server.ws(&id, None).await;
+    let before = view(watcher.next().await);
+    assert_eq!(before.shots, 3);
+
+    server.kill();
+    let server = Server::start(dir.path(), &[]);
+    let mut white = server.ws(&id, Some(&white_token)).await;
+    let after = view(white.next().await);
+    assert_eq!(
+        after, before,
+        "the resumed match is the very match that was broadcast"
+    );
+    // And it goes on: it is White's turn.
+    white.send(&shot(3, 0.0, 0.5)).await;
+    let ServerMessage::ShotPlayed { outcome, .. } = white.next_of("shot-played").await else {
+        unreachable!()
+    };
+    assert_eq!(outcome.number, 3);
+    let mut watcher = server.ws(&id, None).await;
+    assert_eq!(view(watcher.next().await).shots, 4);
+}
+
+#[tokio::test]
+async fn sigterm_stops_cleanly_and_a_finished_match_replays_after_restart() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut server = Server::start(dir.path(), &[]);
+    let (id, white_token, _) = server.two_player_match("").await;
+    let mut white = server.ws(&id, Some(&white_token)).await;
+    view(white.next().await);
+    white.send(&shot(4, 0.0, 2.0)).await;
+    white.next_of("shot-played").await;
+    white.send(&game::protocol::ClientMessage::Resign).await;
+    let ServerMessage::MatchOver { record, .. } = white.next_of("match-over").await else {
+        unreachable!()
+    };
+    assert!(server.terminate(), "SIGTERM ends the server with success");
+    let server = Server::start(dir.path(), &[]);
+    let (status, body) = server
+        .http("GET", &format!("/api/matches/{id}/record"), "")
+        .await;
+    assert_eq!(status, 200, "{body}");
+    let stored = game::MatchRecord::from_json(&body).unwrap();
+    assert_eq!(stored, record);
+    let replay = game::Replay::new(stored).unwrap();
+    assert!(replay.game().is_over());
+    assert_eq!(replay.shot_count(), 1);
+}

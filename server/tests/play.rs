@@ -1,0 +1,233 @@
+//! Playing through the real server: bots, chat, resignation, rematch, the
+//! turn clock, dropped players and their grace period, and the HTTP pages.
+
+mod common;
+
+use common::{shot, view, Server};
+use game::protocol::{ClientMessage, ForfeitReason, ServerMessage};
+use game::{MatchResult, Seat, Side, WinReason};
+
+#[tokio::test]
+async fn a_bot_answers_shots_over_the_websocket_at_both_strengths() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &[]);
+    for level in ["easy", "medium"] {
+        let (id, token) = server
+            .create(&format!(
+                r#"{{"name":"Petka","opponent":"bot","bot_level":"{level}"}}"#
+            ))
+            .await;
+        let mut me = server.ws(&id, Some(&token)).await;
+        let ServerMessage::MatchState { you, players, .. } = me.next().await else {
+            panic!("match-state first")
+        };
+        assert_eq!(you, Some(Seat::First));
+        assert_eq!(players.second, Some(format!("bot ({level})")));
+        me.send(&shot(0, 0.0, 0.4)).await;
+        let ServerMessage::ShotPlayed { outcome, .. } = me.next_of("shot-played").await else {
+            unreachable!()
+        };
+        assert_eq!(outcome.shooter, Side::White);
+        let ServerMessage::ShotPlayed { outcome, .. } = me.next_of("shot-played").await else {
+            unreachable!()
+        };
+        assert_eq!(outcome.shooter, Side::Black, "{level} bot answered");
+    }
+}
+
+#[tokio::test]
+async fn chat_resignation_and_rematch_between_two_players() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &[]);
+    let (id, a, b) = server.two_player_match("").await;
+    let mut white = server.ws(&id, Some(&a)).await;
+    let mut black = server.ws(&id, Some(&b)).await;
+    let mut watcher = server.ws(&id, None).await;
+    for c in [&mut white, &mut black, &mut watcher] {
+        view(c.next().await);
+    }
+    black
+        .send(&ClientMessage::Chat {
+            text: "Vasily Ivanovich!".into(),
+        })
+        .await;
+    for c in [&mut white, &mut watcher] {
+        let ServerMessage::Chat { from, name, text } = c.next_of("chat").await else {
+            unreachable!()
+        };
+        assert_eq!(
+            (from, name.as_str(), text.as_str()),
+            (Some(Seat::Second), "Anka", "Vasily Ivanovich!")
+        );
+    }
+    watcher
+        .send(&ClientMessage::Chat { text: "hi".into() })
+        .await;
+    assert_eq!(watcher.next_error().await, "not-in-match");
+    white.send(&ClientMessage::OfferRematch).await;
+    assert_eq!(white.next_error().await, "match-not-over");
+
+    black.send(&ClientMessage::Resign).await;
+    let ServerMessage::MatchOver { result, record } = watcher.next_of("match-over").await else {
+        unreachable!()
+    };
+    assert_eq!(
+        result,
+        MatchResult::Won {
+            side: Side::White,
+            reason: WinReason::Resignation
+        }
+    );
+    assert_eq!(record.moves.len(), 1);
+    white.send(&shot(4, 0.0, 2.0)).await;
+    assert_eq!(white.next_error().await, "match-over");
+
+    white.send(&ClientMessage::OfferRematch).await;
+    assert!(matches!(
+        black.next_of("rematch-offered").await,
+        ServerMessage::RematchOffered { by: Seat::First }
+    ));
+    black.send(&ClientMessage::AcceptRematch).await;
+    let ServerMessage::RematchStarted { match_id } = white.next_of("rematch-started").await else {
+        unreachable!()
+    };
+    assert_ne!(match_id, id);
+    // Same tokens, seats exchanged: the old Black now opens as White.
+    let mut new_white = server.ws(&match_id, Some(&b)).await;
+    let ServerMessage::MatchState { you, .. } = new_white.next().await else {
+        panic!()
+    };
+    assert_eq!(you, Some(Seat::First));
+    new_white.send(&shot(4, 0.0, 2.0)).await;
+    new_white.next_of("shot-played").await;
+}
+
+#[tokio::test]
+async fn the_turn_clock_passes_the_turn_and_three_timeouts_in_a_row_forfeit() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &[]);
+    let (id, a, _) = server.two_player_match(r#","turn_seconds":1"#).await;
+    let mut white = server.ws(&id, Some(&a)).await;
+    view(white.next().await);
+    // Nobody shoots: White, Black, White, Black time out, then White's third forfeits.
+    let expected = [
+        (Seat::First, 1),
+        (Seat::Second, 1),
+        (Seat::First, 2),
+        (Seat::Second, 2),
+        (Seat::First, 3),
+    ];
+    for (k, (seat, strikes)) in expected.into_iter().enumerate() {
+        let m = white.next_of("turn-timed-out").await;
+        assert_eq!(m, ServerMessage::TurnTimedOut { seat, strikes });
+        if k < 4 {
+            // The pass is a tiny flick that knocks nothing off.
+            let ServerMessage::ShotPlayed { outcome, .. } = white.next_of("shot-played").await
+            else {
+                unreachable!()
+            };
+            assert!(outcome.knocked_off.is_empty());
+        }
+    }
+    assert_eq!(
+        white.next_of("forfeited").await,
+        ServerMessage::Forfeited {
+            seat: Seat::First,
+            reason: ForfeitReason::Timeouts
+        }
+    );
+    let ServerMessage::MatchOver { result, .. } = white.next_of("match-over").await else {
+        unreachable!()
+    };
+    assert_eq!(result.winner(), Some(Side::Black));
+}
+
+#[tokio::test]
+async fn a_dropped_player_keeps_the_seat_reconnects_with_the_token_and_the_opponent_is_told() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &["--grace-seconds", "30"]);
+    let (id, a, b) = server.two_player_match("").await;
+    let mut white = server.ws(&id, Some(&a)).await;
+    let black = server.ws(&id, Some(&b)).await;
+    view(white.next().await);
+    drop(black);
+    let ServerMessage::PlayerLeft { seat, grace_ms } = white.next_of("player-left").await else {
+        unreachable!()
+    };
+    assert_eq!((seat, grace_ms), (Seat::Second, 30_000));
+    let mut black = server.ws(&id, Some(&b)).await;
+    let ServerMessage::MatchState { you, .. } = black.next().await else {
+        panic!()
+    };
+    assert_eq!(you, Some(Seat::Second));
+    assert_eq!(
+        white.next_of("player-back").await,
+        ServerMessage::PlayerBack { seat: Seat::Second }
+    );
+    white.send(&shot(2, 0.0, 0.5)).await;
+    black.next_of("shot-played").await;
+    black.send(&shot(10, 0.0, -0.5)).await;
+    white.next_of("shot-played").await;
+}
+
+#[tokio::test]
+async fn a_player_gone_past_the_grace_period_forfeits() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &["--grace-seconds", "1"]);
+    let (id, a, b) = server.two_player_match("").await;
+    let mut white = server.ws(&id, Some(&a)).await;
+    let black = server.ws(&id, Some(&b)).await;
+    view(white.next().await);
+    drop(black);
+    white.next_of("player-left").await;
+    assert_eq!(
+        white.next_of("forfeited").await,
+        ServerMessage::Forfeited {
+            seat: Seat::Second,
+            reason: ForfeitReason::Abandoned
+        }
+    );
+    let ServerMessage::MatchOver { result, .. } = white.next_of("match-over").await else {
+        unreachable!()
+    };
+    assert_eq!(result.winner(), Some(Side::White));
+}
+
+#[tokio::test]
+async fn the_page_health_metrics_and_match_listing_answer() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &[]);
+    let (status, page) = server.http("GET", "/", "").await;
+    assert_eq!(status, 200);
+    assert!(page.contains("/api/matches") && page.contains("/ws?match="));
+    let (status, health) = server.http("GET", "/healthz", "").await;
+    assert_eq!(status, 200);
+    assert!(health.contains(r#""status":"ok""#), "{health}");
+
+    let (open, _) = server.create(r#"{"name":"Petka"}"#).await;
+    let (live, a, _) = server.two_player_match("").await;
+    let mut white = server.ws(&live, Some(&a)).await;
+    view(white.next().await);
+    white.send(&shot(4, 0.0, 2.0)).await;
+    white.next_of("shot-played").await;
+
+    let (_, list) = server.http("GET", "/api/matches?status=open", "").await;
+    assert!(list.contains(&open) && !list.contains(&live), "{list}");
+    let (_, list) = server.http("GET", "/api/matches?status=live", "").await;
+    assert!(list.contains(&live) && !list.contains(&open), "{list}");
+    let (status, one) = server
+        .http("GET", &format!("/api/matches/{live}"), "")
+        .await;
+    assert_eq!(status, 200);
+    assert!(one.contains(r#""shots":1"#), "{one}");
+
+    let (_, metrics) = server.http("GET", "/metrics", "").await;
+    for line in [
+        "chapaev_connections 1",
+        "chapaev_live_matches 1",
+        "chapaev_shots_resolved_total 1",
+        "chapaev_shot_resolution_seconds_count 1",
+    ] {
+        assert!(metrics.contains(line), "{line} in\n{metrics}");
+    }
+}
