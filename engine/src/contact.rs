@@ -117,7 +117,7 @@ fn well_scaled(w: DVec2) -> (DVec2, f64) {
         return (w, 1.0);
     }
     // 2^-e with big = m 2^e: exact scaling, no rounding.
-    let scale = f64::from_bits(((2046 - ((big.to_bits() >> 52) & 0x7ff).max(1)) as u64) << 52);
+    let scale = f64::from_bits((2046 - ((big.to_bits() >> 52) & 0x7ff).max(1)) << 52);
     (w * scale, scale)
 }
 

@@ -192,7 +192,7 @@ mod tests {
         case.scene.bodies[0].vel = DVec2::new(1.0, 0.0);
         case.until = 0.5;
         let out = run(&case, 1e-4, false, u64::MAX);
-        let expected = 1.0 / (2.0 * 0.3 * 9.81);
+        let expected = case.scene.bodies[0].pos.x + 1.0 / (2.0 * 0.3 * 9.81);
         assert!(
             (out.bodies[0].pos.x - expected).abs() < 1e-3,
             "{:?}",
