@@ -888,6 +888,77 @@ fn very_slow_frictionless_disc_does_not_hit_a_far_away_disc() {
     assert_eq!(end.reason, EndReason::Free);
 }
 
+#[test]
+fn touching_discs_sliding_together_do_not_overlap_when_the_rear_one_slides_easier() {
+    // Both move at (1, 0) touching; the front disc brakes at 3 * 0.981, the
+    // rear one at 0.981, so the rear one pushes the front one (the distance
+    // has a double root at t = 0 and then would fall). Friction forces do
+    // not depend on the contact, so the pair's momentum falls linearly: if
+    // they stay together they stop at T = 2 m / (m (alpha_a + alpha_b)).
+    let sc = scene(
+        9.81,
+        vec![
+            disc(1, v(0.0, 0.0), v(1.0, 0.0), 0.5, 1.0, 0.1),
+            disc(2, v(1.0, 0.0), v(1.0, 0.0), 0.5, 1.0, 0.3),
+        ],
+        vec![],
+        vec![],
+    );
+    let limits = Limits {
+        max_events: 100_000,
+        ..Limits::default()
+    };
+    let (trace, end, _) = run_traced(&sc, limits);
+    let mut model = Model::new(sc).unwrap();
+    model.compute(&limits);
+    for k in 0..=40 {
+        let t = 0.6 * k as f64 / 40.0;
+        let ratio = min_pair_ratio(&model.scene_at(t));
+        assert!(
+            ratio >= 1.0 - 1e-9,
+            "overlap at t={t}: distance/(R+R) = {ratio}"
+        );
+    }
+    assert_eq!(
+        end.reason,
+        EndReason::Rest,
+        "after {} events",
+        trace.events.len()
+    );
+}
+
+#[test]
+fn a_disc_that_stopped_is_still_hit_after_its_first_predicted_partner_turns_away() {
+    // A slides briefly and stops at x = 0.1^2 / (2 * 0.5 * 9.81). C comes
+    // down towards A but bounces off a wall first; B comes along y = 0 and
+    // must hit A head on, when its centre reaches x_A - 0.2.
+    let (mu, g) = (0.5, 9.81);
+    let x_a = 0.01 / (2.0 * mu * g);
+    let sc = scene(
+        g,
+        vec![
+            disc(1, v(0.0, 0.0), v(0.1, 0.0), 0.1, 1.0, mu),
+            disc(2, v(-2.0, 0.0), v(1.0, 0.0), 0.1, 1.0, 0.0),
+            disc(3, v(0.0, 1.0), v(0.0, -1.0), 0.1, 1.0, 0.0),
+        ],
+        vec![Line::new(v(-0.3, 0.5), v(0.3, 0.5), LineKind::Segment)],
+        vec![],
+    );
+    let (trace, _, world) = run_traced(&sc, Limits::default());
+    let hit = trace
+        .events
+        .iter()
+        .find(|e| is_pair(&e.kind, 1, 2))
+        .unwrap_or_else(|| panic!("B passed through A: {:?}", trace.events));
+    assert_close(hit.t, 1.8 + x_a, 1e-12, "contact time");
+    // Equal masses head on: B stops, A slides 1 / (2 mu g) further.
+    let (p1, _) = state(&world, 1, 100.0);
+    let (p2, v2) = state(&world, 2, 100.0);
+    assert_vec_close(p1, v(x_a + 1.0 / (2.0 * mu * g), 0.0), 1e-12, "A at rest");
+    assert_vec_close(p2, v(x_a - 0.2, 0.0), 1e-12, "B at rest");
+    assert_eq!(v2, DVec2::ZERO);
+}
+
 /// A light disc (e = 0.3) squeezed between the floor of the unit box and a
 /// heavier disc: the contacts alternate faster and faster (inelastic
 /// collapse), and both have friction, so they must come to rest.

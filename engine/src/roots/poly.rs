@@ -1,9 +1,11 @@
-//! Polynomial arithmetic shared by every solver: normalising a coefficient
+//! Polynomial arithmetic shared by the solvers: normalising a coefficient
 //! slice (trimming zero high coefficients, rejecting NaN/inf), derivatives,
-//! plain Horner evaluation with its running error bound, the error-free
-//! transformations `two_sum`/`two_prod`, compensated Horner evaluation
-//! (Graillat, Langlois & Louvet 2005) with its a-priori error bound, and a
-//! cheap Fujiwara-type bound on the magnitude of all roots.
+//! Horner evaluation (plain, with its running error bound, and with the
+//! first derivative), the error-free transformations `two_sum`/`two_prod`,
+//! compensated Horner (Graillat, Langlois & Louvet 2005) with its a-priori
+//! error bound, exact evaluation with floating-point expansions (Shewchuk
+//! 1997) as the last resort, a Fujiwara-type bound on all roots from
+//! exponent arithmetic alone, and bisection in the floating-point sense.
 //!
 //! Coefficients are stored lowest degree first in a fixed `[f64; 5]`, so
 //! nothing here allocates. Evaluation routines are generic over the degree

@@ -47,7 +47,8 @@ use super::poly::{
 };
 use super::{RootSolver, Roots};
 
-/// Lazy critical-point walk + safeguarded Newton + compensated polishing.
+/// Certified shortcuts, lazy critical-point walk, safeguarded Halley and
+/// compensated polishing (the engine's default).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Production;
 
@@ -91,6 +92,11 @@ fn solve(coeffs: &[f64], lo: f64, hi: f64, first: bool) -> Roots {
         }
         _ => {
             if a[0] == 0.0 {
+                if first && lo == 0.0 {
+                    // Touching at the start of the search.
+                    out.push(0.0);
+                    return out;
+                }
                 return deflated(&a, n, lo, hi, first);
             }
             let mut single = false;
@@ -357,7 +363,7 @@ fn single_positive_root<const N: usize>(a: &Coeffs, r: f64, hi: f64, out: &mut R
         // p(hi) = 0 (excluded) or the root lies beyond hi.
         return;
     }
-    // Newton from 0 as the start, kept in the bracket (0, h).
+    // The Newton point from 0 as the start, kept in the bracket (0, h).
     let mut start = -a[0] / a[1];
     if !(start > 0.0 && start < h) {
         start = split_point(0.0, h);
@@ -614,7 +620,7 @@ fn polish<const N: usize>(p: &Coeffs, x: f64, mut a: f64, mut b: f64, fa: f64, d
 const ROOT_TOL: f64 = 1e-6;
 const CRIT_TOL: f64 = 1e-9;
 
-/// A starting point for Newton in `(x0, x1)` where `p(x0) = f0` and
+/// A starting point for iteration in `(x0, x1)` where `p(x0) = f0` and
 /// `p(x1) = f1` have opposite signs: the root of the quadratic Taylor model
 /// at the end nearer the root by `|p|`, which is exact to second order and
 /// excellent next to an extremum (where `p'` vanishes and Newton alone would

@@ -3,10 +3,10 @@
 //! floating point (`dashu-float`) by the same derivative-recursive isolation
 //! as the baseline (critical points split the line into monotone pieces,
 //! each sign change is bisected to ~300 bits, so that the value at a
-//! critical point is accurate enough to classify a double root) and rounded to the nearest
-//! `f64`. A value at a critical point within `2^-280` of the polynomial's
-//! scale counts as zero (a double root, listed twice). Also: helpers that
-//! measure errors in ulps.
+//! critical point is accurate enough to classify a double root) and rounded
+//! to the nearest `f64`. A value at a critical point within `2^-280` of the
+//! polynomial's scale counts as zero (a double root, listed twice). Also:
+//! helpers that measure errors in ulps.
 
 use dashu_float::round::mode::HalfEven;
 use dashu_float::FBig;

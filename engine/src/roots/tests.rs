@@ -1,9 +1,10 @@
 //! Cross-method tests: the hard-polynomial table of `cases.rs` (published
 //! cases from Algorithm 1010 and Algorithm 954, clustered, multiple and
 //! widely scaled roots, low degrees and degenerate input) checked against
-//! high-precision reference roots of the polynomial as rounded to `f64`; property tests on
-//! random products of linear factors; and contact polynomials
-//! `|dp + dv t + da t^2/2|^2 - S^2` as the engine builds them.
+//! high-precision reference roots of the polynomial as rounded to `f64`;
+//! property tests on random products of linear factors and on arbitrary
+//! input; and contact polynomials `|dp + dv t + da t^2/2|^2 - S^2` as the
+//! engine builds them.
 
 use super::cases::{hard_table, Expect, Expect::Rel, Expect::Ulps, Expect::Wrong};
 use super::reference::{reference_roots, set_distance_rel, set_distance_ulps};

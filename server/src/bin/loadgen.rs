@@ -1,1 +1,359 @@
-fn main() {}
+//! `loadgen`: a load generator for the match server. It creates M
+//! person-vs-person matches over HTTP, opens N WebSocket clients (two
+//! players per match, the rest spread over the matches as spectators), and
+//! lets the players shoot as fast as their turns come for a while. It
+//! reports the connections held, shots per second, the p50/p99 latency
+//! from sending a shot to receiving its `shot-played` broadcast, and the
+//! server's resident memory per connection (from `/metrics`).
+//!
+//! ```sh
+//! cargo run --release -p server -- --data-dir /tmp/chapaev-load &
+//! cargo run --release -p server --bin loadgen -- --matches 50 --clients 400 --seconds 20
+//! ```
+
+use clap::Parser;
+use futures_util::{SinkExt, StreamExt};
+use game::noise::SplitMix64;
+use game::protocol::{ClientMessage, ServerMessage};
+use game::{Next, Phase, PieceId, Seat, Side};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+use tokio::io::{AsyncReadExt, AsyncWriteExt};
+use tokio::net::TcpStream;
+use tokio_tungstenite::tungstenite::Message;
+
+/// Load generator for the Chapaev match server (loopback only).
+#[derive(Parser, Debug)]
+#[command(name = "loadgen", version, about)]
+struct Args {
+    /// Server address, `host:port`.
+    #[arg(long, default_value = "127.0.0.1:8080")]
+    addr: String,
+    /// Matches played at once.
+    #[arg(long, default_value_t = 20)]
+    matches: usize,
+    /// WebSocket clients in all (at least two per match; the rest watch).
+    #[arg(long, default_value_t = 100)]
+    clients: usize,
+    /// How long the players shoot, seconds.
+    #[arg(long, default_value_t = 20)]
+    seconds: u64,
+    /// Pause before each shot, milliseconds (0: shoot as soon as it is your turn).
+    #[arg(long, default_value_t = 0)]
+    think_ms: u64,
+}
+
+/// Failures that end the run.
+#[derive(Debug, thiserror::Error)]
+enum LoadError {
+    #[error("I/O: {0}")]
+    Io(#[from] std::io::Error),
+    #[error("HTTP: {0}")]
+    Http(String),
+    #[error("WebSocket: {0}")]
+    Ws(#[from] tokio_tungstenite::tungstenite::Error),
+    #[error("JSON: {0}")]
+    Json(#[from] serde_json::Error),
+}
+
+async fn http(addr: &str, method: &str, path: &str, body: &str) -> Result<String, LoadError> {
+    let mut s = TcpStream::connect(addr).await?;
+    let req = format!(
+        "{method} {path} HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\nConnection: close\r\n\r\n{body}",
+        body.len()
+    );
+    s.write_all(req.as_bytes()).await?;
+    let mut raw = Vec::new();
+    s.read_to_end(&mut raw).await?;
+    let text = String::from_utf8_lossy(&raw).to_string();
+    let (head, rest) = text
+        .split_once("\r\n\r\n")
+        .ok_or_else(|| LoadError::Http("no header end".into()))?;
+    if !head.starts_with("HTTP/1.1 2") {
+        return Err(LoadError::Http(format!(
+            "{method} {path}: {}",
+            head.lines().next().unwrap_or("")
+        )));
+    }
+    Ok(rest.to_string())
+}
+
+async fn resident_bytes(addr: &str) -> Option<u64> {
+    let text = http(addr, "GET", "/metrics", "").await.ok()?;
+    text.lines()
+        .find_map(|l| l.strip_prefix("process_resident_memory_bytes "))
+        .and_then(|v| v.trim().parse().ok())
+}
+
+#[derive(Default)]
+struct Totals {
+    shots: AtomicU64,
+    messages: AtomicU64,
+    errors: AtomicU64,
+    finished: AtomicU64,
+}
+
+type Ws = tokio_tungstenite::WebSocketStream<tokio_tungstenite::MaybeTlsStream<TcpStream>>;
+
+async fn connect(addr: &str, id: &str, token: Option<&str>) -> Result<Ws, LoadError> {
+    let url = match token {
+        Some(t) => format!("ws://{addr}/ws?match={id}&token={t}"),
+        None => format!("ws://{addr}/ws?match={id}"),
+    };
+    Ok(tokio_tungstenite::connect_async(url).await?.0)
+}
+
+/// A player: shoots a random own piece whenever its turn comes; returns
+/// its shot-to-broadcast latencies.
+async fn player(
+    mut ws: Ws,
+    seed: u64,
+    until: Instant,
+    think: Duration,
+    totals: Arc<Totals>,
+    counts_finish: bool,
+) -> Vec<Duration> {
+    let mut rng = SplitMix64::new(seed);
+    let mut latencies = Vec::new();
+    let mut me = Side::White;
+    let mut own: Vec<PieceId> = Vec::new();
+    let mut pending: Option<Instant> = None;
+    let mut my_turn = false;
+    loop {
+        if my_turn && pending.is_none() && Instant::now() < until {
+            if !think.is_zero() {
+                tokio::time::sleep(think).await;
+            }
+            let k = (rng.next_u64() % own.len().max(1) as u64) as usize;
+            let Some(piece) = own.get(k).copied() else {
+                break;
+            };
+            let a = rng.next_f64() * std::f64::consts::TAU;
+            let speed = 0.2 + 0.5 * rng.next_f64();
+            let m = ClientMessage::Shot {
+                piece,
+                velocity: glam::DVec2::new(a.cos(), a.sin()) * speed,
+            };
+            if ws.send(Message::Text(m.to_json())).await.is_err() {
+                break;
+            }
+            pending = Some(Instant::now());
+            my_turn = false;
+        }
+        if Instant::now() >= until && pending.is_none() {
+            break;
+        }
+        let frame = match tokio::time::timeout(Duration::from_secs(10), ws.next()).await {
+            Ok(Some(Ok(f))) => f,
+            _ => break,
+        };
+        let Message::Text(text) = frame else { continue };
+        totals.messages.fetch_add(1, Ordering::Relaxed);
+        let Ok(msg) = ServerMessage::from_json(&text) else {
+            continue;
+        };
+        match msg {
+            ServerMessage::MatchState { you, view, .. } => {
+                me = you.unwrap_or(Seat::First).side(view.swapped);
+                own = view.board.of(me).map(|p| p.id).collect();
+                my_turn = view.phase == Phase::Shooting && view.turn == me;
+            }
+            ServerMessage::ShotPlayed { outcome, .. } => {
+                if let Some(t) = pending.take() {
+                    if outcome.shooter == me {
+                        latencies.push(t.elapsed());
+                        totals.shots.fetch_add(1, Ordering::Relaxed);
+                    } else {
+                        pending = Some(t);
+                    }
+                }
+                own.retain(|p| !outcome.knocked_off.contains(p));
+                if outcome.round_end.is_some() {
+                    own = PieceId::of(me).collect();
+                }
+                match outcome.next {
+                    Next::Shoot { side } => my_turn = side == me,
+                    Next::PieDecision { .. } => my_turn = false,
+                    Next::MatchOver { .. } => {
+                        if counts_finish {
+                            totals.finished.fetch_add(1, Ordering::Relaxed);
+                        }
+                        break;
+                    }
+                }
+            }
+            ServerMessage::Error { .. } => {
+                totals.errors.fetch_add(1, Ordering::Relaxed);
+                pending = None;
+                my_turn = true;
+            }
+            ServerMessage::MatchOver { .. } => break,
+            _ => {}
+        }
+    }
+    let _ = ws.close(None).await;
+    latencies
+}
+
+/// A spectator: reads until the end.
+async fn spectator(mut ws: Ws, until: Instant, totals: Arc<Totals>) {
+    while Instant::now() < until {
+        match tokio::time::timeout(until.saturating_duration_since(Instant::now()), ws.next()).await
+        {
+            Ok(Some(Ok(Message::Text(_)))) => {
+                totals.messages.fetch_add(1, Ordering::Relaxed);
+            }
+            Ok(Some(Ok(_))) => {}
+            _ => break,
+        }
+    }
+    let _ = ws.close(None).await;
+}
+
+fn percentile(sorted: &[Duration], p: f64) -> Duration {
+    if sorted.is_empty() {
+        return Duration::ZERO;
+    }
+    let k = ((sorted.len() as f64 - 1.0) * p).round() as usize;
+    sorted[k.min(sorted.len() - 1)]
+}
+
+async fn run(args: Args) -> Result<(), LoadError> {
+    let matches = args.matches.max(1);
+    let clients = args.clients.max(2 * matches);
+    let rss_before = resident_bytes(&args.addr).await;
+    let mut seats = Vec::new();
+    for _ in 0..matches {
+        let created: serde_json::Value = serde_json::from_str(
+            &http(&args.addr, "POST", "/api/matches", r#"{"name":"load"}"#).await?,
+        )?;
+        let id = created["match_id"].as_str().unwrap_or_default().to_string();
+        let joined: serde_json::Value = serde_json::from_str(
+            &http(
+                &args.addr,
+                "POST",
+                &format!("/api/matches/{id}/join"),
+                r#"{"name":"load"}"#,
+            )
+            .await?,
+        )?;
+        let a = created["token"].as_str().unwrap_or_default().to_string();
+        let b = joined["token"].as_str().unwrap_or_default().to_string();
+        seats.push((id, a, b));
+    }
+    let started = Instant::now();
+    let mut players = Vec::new();
+    let mut watchers = Vec::new();
+    for (id, a, b) in &seats {
+        players.push(connect(&args.addr, id, Some(a)).await?);
+        players.push(connect(&args.addr, id, Some(b)).await?);
+    }
+    for k in 0..clients - 2 * matches {
+        watchers.push(connect(&args.addr, &seats[k % matches].0, None).await?);
+    }
+    let connect_time = started.elapsed();
+    // Let the server settle, then weigh it.
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    let rss_held = resident_bytes(&args.addr).await;
+    let metrics = http(&args.addr, "GET", "/metrics", "").await?;
+    let held = metrics
+        .lines()
+        .find_map(|l| l.strip_prefix("chapaev_connections "))
+        .unwrap_or("?")
+        .to_string();
+
+    let totals = Arc::new(Totals::default());
+    let until = Instant::now() + Duration::from_secs(args.seconds);
+    let play_start = Instant::now();
+    let think = Duration::from_millis(args.think_ms);
+    let mut tasks = Vec::new();
+    for (k, ws) in players.into_iter().enumerate() {
+        tasks.push(tokio::spawn(player(
+            ws,
+            k as u64 + 1,
+            until,
+            think,
+            totals.clone(),
+            k % 2 == 0,
+        )));
+    }
+    let mut watch_tasks = Vec::new();
+    for ws in watchers {
+        watch_tasks.push(tokio::spawn(spectator(ws, until, totals.clone())));
+    }
+    let mut latencies = Vec::new();
+    for t in tasks {
+        if let Ok(l) = t.await {
+            latencies.extend(l);
+        }
+    }
+    for t in watch_tasks {
+        let _ = t.await;
+    }
+    let elapsed = play_start.elapsed().as_secs_f64();
+    latencies.sort();
+    let shots = totals.shots.load(Ordering::Relaxed);
+    println!("matches:                {matches}");
+    println!(
+        "clients:                {clients} ({} players, {} spectators), opened in {:.2} s",
+        2 * matches,
+        clients - 2 * matches,
+        connect_time.as_secs_f64()
+    );
+    println!("connections held:       {held} (server gauge)");
+    println!(
+        "shots resolved:         {shots} in {elapsed:.1} s = {:.1} shots/s",
+        shots as f64 / elapsed
+    );
+    println!(
+        "messages received:      {} ({:.0}/s)",
+        totals.messages.load(Ordering::Relaxed),
+        totals.messages.load(Ordering::Relaxed) as f64 / elapsed
+    );
+    println!(
+        "shot-to-broadcast:      p50 {:.2} ms, p99 {:.2} ms, max {:.2} ms",
+        percentile(&latencies, 0.5).as_secs_f64() * 1e3,
+        percentile(&latencies, 0.99).as_secs_f64() * 1e3,
+        latencies.last().copied().unwrap_or_default().as_secs_f64() * 1e3
+    );
+    println!(
+        "errors answered:        {}",
+        totals.errors.load(Ordering::Relaxed)
+    );
+    println!(
+        "matches finished:       {}",
+        totals.finished.load(Ordering::Relaxed)
+    );
+    match (rss_before, rss_held) {
+        (Some(a), Some(b)) => println!(
+            "server memory:          {:.1} MiB before, {:.1} MiB with the clients connected: {:.1} KiB per connection (matches included)",
+            a as f64 / 1048576.0,
+            b as f64 / 1048576.0,
+            (b.saturating_sub(a)) as f64 / 1024.0 / clients as f64
+        ),
+        _ => println!("server memory:          not reported by /metrics"),
+    }
+    Ok(())
+}
+
+fn main() -> std::process::ExitCode {
+    let args = Args::parse();
+    let rt = match tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()
+    {
+        Ok(rt) => rt,
+        Err(e) => {
+            eprintln!("loadgen: {e}");
+            return std::process::ExitCode::FAILURE;
+        }
+    };
+    match rt.block_on(run(args)) {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("loadgen: {e}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}
