@@ -98,14 +98,17 @@ pub fn disc_point(m: &Mover, q: DVec2, s: f64) -> Option<f64> {
     }
     let c = d.length_squared() - s * s;
     if c <= 0.0 {
-        return Some(m.now);
+        // Touching now: a contact only if the approach is more than noise.
+        return (b < -APPROACH * s * w.length()).then_some(m.now);
     }
     let l = entry(w.length_squared(), b, c)?;
-    m.time_at(l / scale)
+    m.time_at(l * scale)
 }
 
 /// `w` rescaled by a power of two into the range where its squared length
-/// neither underflows nor overflows, and the factor used (1 if none was).
+/// neither underflows nor overflows, and the factor used (1 if none was):
+/// a path `p + w l` is `p + (w * scale) (l / scale)`, so a parameter found
+/// with the scaled vector is multiplied by `scale` to get back to `l`.
 #[inline(always)]
 fn well_scaled(w: DVec2) -> (DVec2, f64) {
     let a = w.length_squared();
@@ -133,6 +136,14 @@ fn entry(a: f64, b: f64, c: f64) -> Option<f64> {
     }
     Some(c / (-b + disc.sqrt()))
 }
+
+/// Touching objects whose normal approach speed is below this fraction of
+/// their speeds are not colliding: the approach is rounding noise (an
+/// impulse that small would not change the velocities, and the same contact
+/// would fire again at the same instant for ever, as in an inelastic
+/// collapse). Ignoring it lets a pair drift into contact by at most this
+/// fraction of the distance travelled.
+const APPROACH: f64 = 1e-12;
 
 /// Discriminants below this fraction of `b^2` are rounding noise around a
 /// double root (a tangent pass). Skipping such a touch leaves at most a
@@ -181,6 +192,9 @@ pub fn disc_line_body(m: &Mover, line: &LineGeom, r: f64) -> Option<f64> {
         return None; // not approaching the line
     }
     let gap = side * h - r;
+    if gap <= 0.0 && side * rate > -APPROACH * m.w.length() {
+        return None; // touching, approaching by no more than rounding noise
+    }
     let l = if gap <= 0.0 {
         0.0
     } else {
@@ -242,9 +256,10 @@ fn linear_pair(pi: DVec2, ti: &Trajectory, tj: &Trajectory, s: f64, now: f64) ->
     }
     let c = dp.length_squared() - s * s;
     if c <= 0.0 {
-        return Some(now);
+        let noise = APPROACH * s * scale * (ti.speed() + tj.speed());
+        return (b < -noise).then_some(now);
     }
-    Some(now + entry(dv.length_squared(), b, c)? / scale)
+    Some(now + entry(dv.length_squared(), b, c)? * scale)
 }
 
 /// At least one of two moving discs slows down: solve the quartic on the
@@ -270,15 +285,19 @@ fn curved_pair(
     let c2 = dv.length_squared() + dp.dot(da);
     let c3 = dv.dot(da);
     let c4 = 0.25 * da.length_squared();
+    // f' = 2 (dp . dv) at a contact: an approach slower than `APPROACH` of
+    // the speeds is rounding noise, not a contact.
+    let min_slope = -2.0 * s * APPROACH * (ti.speed() + tj.speed());
     let touching = c0 <= 2.0 * TOUCH * s * s;
-    if touching && c1 < 0.0 {
+    if touching && c1 < min_slope {
         return Some(now);
     }
     if touching {
-        // f(t) = t g(t) with g the cubic below; f crosses downwards where g does.
+        // f(t) = t g(t) with g the cubic below; f crosses downwards where g
+        // does, with slope f'(r) = r g'(r).
         let g = [c1, c2, c3, c4];
         for &r in solver.roots_in(&g, 0.0, horizon).iter() {
-            if r > 0.0 && c2 + r * (2.0 * c3 + r * 3.0 * c4) < 0.0 {
+            if r > 0.0 && r * (c2 + r * (2.0 * c3 + r * 3.0 * c4)) < min_slope {
                 return Some(now + r);
             }
         }
@@ -287,7 +306,7 @@ fn curved_pair(
     let f = [c0, c1, c2, c3, c4];
     for &r in solver.roots_in(&f, 0.0, horizon).iter() {
         let slope = c1 + r * (2.0 * c2 + r * (3.0 * c3 + r * 4.0 * c4));
-        if slope < 0.0 {
+        if slope < min_slope {
             return Some(now + r);
         }
     }
@@ -372,6 +391,18 @@ mod tests {
         // Travels 0.9: 2t - t^2 = 0.9.
         let exact = 1.0 - (1.0f64 - 0.9).sqrt();
         assert!((t - exact).abs() < 1e-15, "{t} vs {exact}");
+    }
+
+    #[test]
+    fn a_creeping_disc_meets_a_point_at_the_geometric_time() {
+        // Speeds whose squares underflow are rescaled, and scaled back.
+        let tr = mover((0.0, 0.0), (1e-170, 0.0), 0.0);
+        let t = disc_point(&Mover::new(&tr, 0.0).unwrap(), DVec2::new(5.0, 0.0), 1.0).unwrap();
+        assert!((t - 4e170).abs() <= 4e170 * 1e-15, "{t}");
+        let a = mover((0.0, 0.0), (1e-170, 0.0), 0.0);
+        let b = mover((5.0, 0.0), (-1e-170, 0.0), 0.0);
+        let t = disc_disc(&a, Mover::new(&a, 0.0).as_ref(), &b, 1.0, 0.0, &Production).unwrap();
+        assert!((t - 2e170).abs() <= 2e170 * 1e-15, "{t}");
     }
 
     #[test]

@@ -598,8 +598,11 @@ impl World {
             Next::Body { other, other_gen } => {
                 let j = other as usize;
                 if !self.slots[j].alive || self.slots[j].gen != other_gen {
+                    // Re-predict, scanning even if `i` rests: a mover may have
+                    // predicted against `i` while `i` still moved (only up to
+                    // its stop) and be relying on `i`'s entry for the rest.
                     self.stats.stale += 1;
-                    self.predict(i, false);
+                    self.predict(i, true);
                     return None;
                 }
                 self.collide(i, j, t);
@@ -751,8 +754,9 @@ impl World {
 
     /// Recomputes the earliest event of body `i` from the current time.
     /// A resting body is only searched (for movers about to hit it) when
-    /// `scan_if_resting`: right after its own motion changed. Otherwise every
-    /// contact with it is already predicted by the moving body.
+    /// `scan_if_resting`: whenever its motion changed or its entry went
+    /// stale. Only at the start, when every mover predicts against it as a
+    /// fixed obstacle, can a resting body skip that.
     fn predict(&mut self, i: usize, scan_if_resting: bool) {
         self.predict_with(i, scan_if_resting, None);
     }
