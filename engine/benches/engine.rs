@@ -21,8 +21,8 @@ use criterion::{
 use engine::roots::Method;
 use engine::world::{Counter, Stats};
 use engine::{
-    BodyId, BodySpec, End, EndReason, Event, EventHandler, ExitResponse, Limits, Line, LineId,
-    LineKind, Scene, World, WorldConfig,
+    BodyId, End, EndReason, Event, EventHandler, ExitResponse, Limits, LineId, Scene, World,
+    WorldConfig,
 };
 use glam::DVec2;
 use std::time::Duration;
@@ -73,24 +73,8 @@ fn run_break(scene: &Scene, config: WorldConfig) -> (u64, End) {
     (handler.0.events, end)
 }
 
-/// Galperin's billiard for `n` digits: a wall at x = 0, a disc of mass 1
-/// at x = 1, a disc of mass 100^(n-1) at x = 3 moving towards them.
 fn galperin_scene(n: u32) -> Scene {
-    Scene {
-        g: 9.81,
-        t: 0.0,
-        bodies: vec![
-            BodySpec::new(1, DVec2::new(1.0, 0.0), 0.1, 1.0, 0.0),
-            BodySpec::new(2, DVec2::new(3.0, 0.0), 0.5, 100f64.powi(n as i32 - 1), 0.0)
-                .with_velocity(DVec2::new(-1.0, 0.0)),
-        ],
-        points: Vec::new(),
-        lines: vec![Line::new(
-            DVec2::new(0.0, -1.0),
-            DVec2::new(0.0, 1.0),
-            LineKind::Line,
-        )],
-    }
+    engine::presets::galperin(n)
 }
 
 fn run_galperin(scene: &Scene) -> (Counter, Stats) {
@@ -105,59 +89,10 @@ fn run_galperin(scene: &Scene) -> (Counter, Stats) {
     (counter, *world.stats())
 }
 
-/// xorshift64*: a tiny deterministic generator for the scenes.
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-
-    /// Uniform in `[-1, 1)`.
-    fn symmetric(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-}
-
 /// `n` discs of radius 1 cm with random velocities (|v_x|, |v_y| < 1 m/s) in
 /// a closed square box of four segments, area fraction 10%, restitution 1.
 fn box_scene(n: usize, mu: f64) -> Scene {
-    let r = 0.01;
-    let side = (n as f64 * std::f64::consts::PI * r * r / 0.10).sqrt();
-    let per_row = (n as f64).sqrt().ceil() as usize;
-    let spacing = side / per_row as f64;
-    let jitter = 0.9 * (0.5 * spacing - r);
-    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
-    let bodies = (0..n)
-        .map(|k| {
-            let (i, j) = (k % per_row, k / per_row);
-            let pos = DVec2::new(
-                (i as f64 + 0.5) * spacing + jitter * rng.symmetric(),
-                (j as f64 + 0.5) * spacing + jitter * rng.symmetric(),
-            );
-            let vel = DVec2::new(rng.symmetric(), rng.symmetric());
-            BodySpec::new(k as u64 + 1, pos, r, 0.01, mu).with_velocity(vel)
-        })
-        .collect();
-    let corners = [
-        DVec2::new(0.0, 0.0),
-        DVec2::new(side, 0.0),
-        DVec2::new(side, side),
-        DVec2::new(0.0, side),
-    ];
-    let lines = (0..4)
-        .map(|k| Line::new(corners[k], corners[(k + 1) % 4], LineKind::Segment))
-        .collect();
-    Scene {
-        g: 9.81,
-        t: 0.0,
-        bodies,
-        points: Vec::new(),
-        lines,
-    }
+    engine::presets::box_of_discs(n, mu, 1)
 }
 
 /// The benchmark groups of this file.

@@ -4,28 +4,15 @@
 //! `cargo run --release -p engine --example galperin -- 7`
 
 use engine::world::Counter;
-use engine::{BodySpec, Limits, Line, LineKind, Scene, World, WorldConfig};
-use glam::DVec2;
+use engine::{presets, Limits, World, WorldConfig};
 use std::time::Instant;
 
 fn main() {
-    let n: i32 = std::env::args()
+    let n: u32 = std::env::args()
         .nth(1)
         .and_then(|a| a.parse().ok())
         .unwrap_or(7);
-    let scene = Scene {
-        bodies: vec![
-            BodySpec::new(1, DVec2::new(1.0, 0.0), 0.1, 1.0, 0.0),
-            BodySpec::new(2, DVec2::new(3.0, 0.0), 0.5, 100f64.powi(n - 1), 0.0)
-                .with_velocity(DVec2::new(-1.0, 0.0)),
-        ],
-        lines: vec![Line::new(
-            DVec2::new(0.0, -1.0),
-            DVec2::new(0.0, 1.0),
-            LineKind::Line,
-        )],
-        ..Scene::default()
-    };
+    let scene = presets::galperin(n);
     let mut world = World::new(&scene, WorldConfig::default()).expect("a valid scene");
     let mut counter = Counter::default();
     let limits = Limits {

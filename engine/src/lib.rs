@@ -42,6 +42,7 @@ pub mod id;
 pub mod impulse;
 pub mod model;
 pub mod obstacle;
+pub mod presets;
 pub mod roots;
 pub mod scene;
 pub mod trajectory;

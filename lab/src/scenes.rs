@@ -102,26 +102,13 @@ pub fn hard_break() -> Result<Case, LabError> {
 
 /// The first `n` digits of pi as a number: Galperin's collision count.
 pub fn pi_digits(n: u32) -> u64 {
-    const PI: &str = "314159265358979";
-    PI[..n as usize].parse().unwrap_or(0)
+    engine::presets::pi_digits(n)
 }
 
 /// Galperin's billiard for `n` digits (as `engine/examples/galperin.rs`):
 /// a wall at x = 0, mass 1 at x = 1, mass `100^(n-1)` at x = 3 moving at -1.
 pub fn galperin(n: u32) -> Case {
-    let scene = Scene {
-        bodies: vec![
-            BodySpec::new(1, DVec2::new(1.0, 0.0), 0.1, 1.0, 0.0),
-            BodySpec::new(2, DVec2::new(3.0, 0.0), 0.5, 100f64.powi(n as i32 - 1), 0.0)
-                .with_velocity(DVec2::new(-1.0, 0.0)),
-        ],
-        lines: vec![Line::new(
-            DVec2::new(0.0, -1.0),
-            DVec2::new(0.0, 1.0),
-            LineKind::Line,
-        )],
-        ..Scene::default()
-    };
+    let scene = engine::presets::galperin(n);
     Case {
         name: format!("galperin-{n}"),
         scene,
@@ -181,18 +168,9 @@ pub fn random_box(n: usize, mu: f64, seed: u64) -> Scene {
                 .with_velocity(DVec2::new(a.cos(), a.sin()))
         })
         .collect();
-    let corners = [
-        DVec2::new(0.0, 0.0),
-        DVec2::new(side, 0.0),
-        DVec2::new(side, side),
-        DVec2::new(0.0, side),
-    ];
-    let lines = (0..4)
-        .map(|i| Line::new(corners[i], corners[(i + 1) % 4], LineKind::Segment))
-        .collect();
     Scene {
         bodies,
-        lines,
+        lines: engine::presets::square_walls(side),
         ..Scene::default()
     }
 }
