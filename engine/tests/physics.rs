@@ -1880,3 +1880,26 @@ fn grid_broad_phase_gives_the_same_events_as_all_pairs_for_200_discs() {
     );
     assert_same_events(&logs[0], &logs[1], 1e-9);
 }
+
+#[test]
+fn recomputing_every_body_after_every_event_gives_the_same_events_as_the_calendar() {
+    let sc = lattice_scene(60, 7, 0.3, 0.9, 1.0);
+    let mut logs = Vec::new();
+    for recompute_all in [false, true] {
+        let config = WorldConfig {
+            recompute_all,
+            ..WorldConfig::default()
+        };
+        let mut world = World::new(&sc, config).unwrap();
+        let mut log = Log::default();
+        let end = world.run(&Limits::default(), &mut log);
+        assert_eq!(
+            end.reason,
+            EndReason::Rest,
+            "recompute_all = {recompute_all}"
+        );
+        logs.push(log.0);
+    }
+    assert!(collisions(&logs[0]) > 20, "the scene must be busy");
+    assert_same_events(&logs[0], &logs[1], 1e-9);
+}

@@ -4,8 +4,10 @@
 //! every pair (`BroadPhase::AllPairs`). Each run processes up to a fixed
 //! number of events after the world is built; the build time is recorded
 //! separately. All-pairs is skipped once its projected time (quadratic
-//! from the previous size) passes the budget. The event calendar cannot be
-//! switched off through the engine's public API, so every run has it.
+//! from the previous size) passes the budget. A third series runs without
+//! the event calendar's bookkeeping (`WorldConfig::recompute_all`: every
+//! body re-predicted after every event, the naive a priori loop), on the
+//! grid, skipped the same way.
 
 use crate::files::{self, Csv};
 use crate::plot::{self, Axes, Series, Style};
@@ -41,16 +43,17 @@ pub fn run(
     let mut rows = Vec::new();
     let mut series = Vec::new();
     for friction in [false, true] {
-        for (bp, bp_name) in [
-            (BroadPhase::Grid, "grid"),
-            (BroadPhase::AllPairs, "all pairs"),
+        for (bp, recompute_all, bp_name) in [
+            (BroadPhase::Grid, false, "grid"),
+            (BroadPhase::AllPairs, false, "all pairs"),
+            (BroadPhase::Grid, true, "grid, no calendar"),
         ] {
             let mut pts = Vec::new();
             let mut last: Option<(usize, f64)> = None;
             for &n in sizes {
                 let projected = last.map_or(0.0, |(m, s)| s * (n as f64 / m as f64).powi(2));
                 let fr = if friction { "friction" } else { "frictionless" };
-                if bp == BroadPhase::AllPairs && projected > budget_s {
+                if (bp == BroadPhase::AllPairs || recompute_all) && projected > budget_s {
                     rows.push(Row {
                         n,
                         friction,
@@ -70,6 +73,7 @@ pub fn run(
                     &scene,
                     WorldConfig {
                         broad_phase: bp,
+                        recompute_all,
                         ..WorldConfig::default()
                     },
                 )?;
