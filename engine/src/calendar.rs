@@ -45,14 +45,6 @@ impl Calendar {
         self.heap.is_empty()
     }
 
-    /// Adds a slot (numbered `len()`) at infinity.
-    pub fn push_slot(&mut self) -> usize {
-        let s = self.heap.len();
-        self.heap.push((f64::INFINITY, s as u32));
-        self.pos.push(s as u32);
-        s
-    }
-
     /// The slot with the earliest time, and that time.
     #[inline]
     pub fn peek(&self) -> Option<(usize, f64)> {

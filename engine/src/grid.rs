@@ -129,15 +129,6 @@ impl Grid {
         })
     }
 
-    /// Calls `f` for every slot in the 3x3 block of cells around `slot`'s cell.
-    pub fn for_neighbours(&self, slot: usize, mut f: impl FnMut(usize)) {
-        for cell in self.neighbour_cells(slot) {
-            for &s in cell {
-                f(s as usize);
-            }
-        }
-    }
-
     /// When the moving disc next leaves its cell (at or after now), and
     /// which way. Border cells are unbounded outwards.
     pub fn next_crossing(&self, slot: usize, m: &Mover) -> Option<(f64, Step)> {
@@ -180,10 +171,25 @@ mod tests {
         g.insert(0, DVec2::new(5.5, 5.5));
         g.insert(1, DVec2::new(6.5, 6.5));
         g.insert(2, DVec2::new(7.5, 5.5));
-        let mut seen = Vec::new();
-        g.for_neighbours(0, |s| seen.push(s));
+        let mut seen: Vec<u32> = g.neighbour_cells(0).flatten().copied().collect();
         seen.sort();
         assert_eq!(seen, vec![0, 1]);
+    }
+
+    #[test]
+    fn a_step_brings_exactly_the_leading_column_into_reach() {
+        let mut g = Grid::new(DVec2::ZERO, DVec2::splat(10.0), 1.0, 100);
+        g.insert(0, DVec2::new(4.5, 4.5));
+        g.insert(1, DVec2::new(6.5, 3.5)); // two columns right: out of reach
+        g.insert(2, DVec2::new(3.5, 4.5)); // already a neighbour
+        assert_eq!(
+            g.neighbour_cells(0).flatten().filter(|&&s| s == 1).count(),
+            0
+        );
+        g.step(0, (1, 0));
+        let entered: Vec<u32> = g.entered_cells(0, (1, 0)).flatten().copied().collect();
+        assert_eq!(entered, vec![1]);
+        assert!(g.neighbour_cells(0).flatten().any(|&s| s == 1));
     }
 
     #[test]
@@ -191,9 +197,7 @@ mod tests {
         let mut g = Grid::new(DVec2::ZERO, DVec2::splat(4.0), 1.0, 16);
         g.insert(0, DVec2::new(100.0, -50.0));
         g.insert(1, DVec2::new(3.5, 0.5));
-        let mut seen = Vec::new();
-        g.for_neighbours(0, |s| seen.push(s));
-        assert_eq!(seen.len(), 2);
+        assert_eq!(g.neighbour_cells(0).flatten().count(), 2);
     }
 
     #[test]
