@@ -488,8 +488,15 @@ fn halley<const N: usize>(
         }
         if f.abs() > 0.5 * last {
             stalls += 1;
+            // Stop only in rounding noise (|p| within a few times the
+            // error bound of its Horner evaluation): slow progress far from
+            // the root is bisection at work, and the walk must go on.
             if stalls >= 3 {
-                return (x, d);
+                let mag = (0..=N).rev().fold(0.0, |m, k| m * x.abs() + p[k].abs());
+                if f.abs() <= 8.0 * gamma(2 * N) * mag {
+                    return (x, d);
+                }
+                stalls = 0;
             }
         }
         last = f.abs();

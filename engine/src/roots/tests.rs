@@ -474,3 +474,26 @@ proptest! {
         }
     }
 }
+
+/// Found by the contact property test: the one positive root of a deflated
+/// contact cubic on `[0, 10)`. Bisection steps far from the root once
+/// looked like a stall in rounding noise and a non-root (where p = -12.9)
+/// came back.
+#[test]
+fn roots_in_a_finite_interval_never_returns_a_point_where_bisection_paused() {
+    let c = [
+        0.0,
+        -8.681208096070977,
+        -0.09135777362785058,
+        -1.1602515661065396,
+        0.3134908614437712,
+    ];
+    let exact = reference_roots(&c);
+    let got = Production.roots_in(&c, 0.0, 10.0);
+    assert_eq!(got.len(), 2, "{got:?}");
+    assert_eq!(got[0], 0.0);
+    assert!(
+        set_distance_ulps(&got[1..], &exact[1..]) <= 2,
+        "{got:?} vs {exact:?}"
+    );
+}
