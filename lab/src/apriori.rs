@@ -54,6 +54,7 @@ pub fn run(
         WorldConfig {
             solver,
             broad_phase,
+            ..WorldConfig::default()
         },
     )?;
     let mut rules = Rules {
