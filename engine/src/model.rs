@@ -554,11 +554,7 @@ fn apply_to(snap: &mut Snapshot, t: f64, action: &Action) -> Result<Vec<BodyId>,
             .position(|b| b.id == id)
             .ok_or(ActionError::NoSuchBody(id))
     };
-    let state = |spec: &BodySpec, g: f64| BodyState {
-        id: spec.id,
-        material: Material::of(spec),
-        trajectory: Trajectory::new(t, spec.pos, spec.vel, spec.mu * g),
-    };
+    let state = |spec: &BodySpec, g: f64| BodyState::from_spec(spec, t, g);
     let changed = match action {
         Action::AddBody { body } => {
             if snap.bodies.iter().any(|b| b.id == body.id) {

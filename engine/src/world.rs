@@ -197,6 +197,15 @@ pub struct BodyState {
 }
 
 impl BodyState {
+    /// A scene body moving from time `t` under gravity `g`.
+    pub fn from_spec(spec: &BodySpec, t: f64, g: f64) -> Self {
+        BodyState {
+            id: spec.id,
+            material: Material::of(spec),
+            trajectory: Trajectory::new(t, spec.pos, spec.vel, spec.mu * g),
+        }
+    }
+
     /// The body as a scene would describe it at time `t`.
     pub fn spec_at(&self, t: f64) -> BodySpec {
         BodySpec {
@@ -301,11 +310,7 @@ impl World {
         let bodies = scene
             .bodies
             .iter()
-            .map(|b| BodyState {
-                id: b.id,
-                material: Material::of(b),
-                trajectory: Trajectory::new(scene.t, b.pos, b.vel, b.mu * scene.g),
-            })
+            .map(|b| BodyState::from_spec(b, scene.t, scene.g))
             .collect();
         Ok(World::from_parts(
             scene.t,

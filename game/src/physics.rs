@@ -9,10 +9,10 @@ use crate::board::{edges, Board, Piece};
 use crate::config::Config;
 use crate::film::Film;
 use crate::piece::PieceId;
-use engine::world::{BodyState, End, Material, World};
+use engine::world::{BodyState, End, World};
 use engine::{
     BodyId, BodySpec, Event, EventHandler, ExitResponse, Limits, LineId, Model, Scene, Snapshot,
-    Trajectory, WorldConfig,
+    WorldConfig,
 };
 use glam::DVec2;
 
@@ -91,11 +91,7 @@ pub fn resolve(
         bodies: scene
             .bodies
             .iter()
-            .map(|b| BodyState {
-                id: b.id,
-                material: Material::of(b),
-                trajectory: Trajectory::new(scene.t, b.pos, b.vel, b.mu * scene.g),
-            })
+            .map(|b| BodyState::from_spec(b, scene.t, scene.g))
             .collect(),
         points: scene.points,
         lines: scene.lines,

@@ -239,33 +239,6 @@ pub fn hard_quartics() -> Vec<Query> {
     v
 }
 
-/// Distance between segments `[a0, a1]` and `[b0, b1]`.
-fn segment_distance(a0: DVec2, a1: DVec2, b0: DVec2, b1: DVec2) -> f64 {
-    fn point_seg(p: DVec2, a: DVec2, b: DVec2) -> f64 {
-        let d = b - a;
-        let l = d.length_squared();
-        let t = if l > 0.0 {
-            ((p - a).dot(d) / l).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        (a + d * t - p).length()
-    }
-    let (da, db) = (a1 - a0, b1 - b0);
-    let den = da.perp_dot(db);
-    if den != 0.0 {
-        let s = (b0 - a0).perp_dot(db) / den;
-        let t = (b0 - a0).perp_dot(da) / den;
-        if (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t) {
-            return 0.0;
-        }
-    }
-    point_seg(a0, b0, b1)
-        .min(point_seg(a1, b0, b1))
-        .min(point_seg(b0, a0, a1))
-        .min(point_seg(b1, a0, a1))
-}
-
 /// Up to `limit` contact quartics from running `case` with the engine.
 pub fn contact_quartics(case: &Case, limit: usize) -> Vec<Query> {
     let mut out = Vec::new();
@@ -296,7 +269,9 @@ pub fn contact_quartics(case: &Case, limit: usize) -> Vec<Query> {
                         e
                     }
                 };
-                if segment_distance(pa, reach(ta, pa, ea), pb, reach(tb, pb, eb)) > s {
+                if engine::contact::segment_distance(pa, reach(ta, pa, ea), pb, reach(tb, pb, eb))
+                    > s
+                {
                     continue;
                 }
                 let dp = pa - pb;
