@@ -76,20 +76,7 @@ fn solve(coeffs: &[f64], lo: f64, hi: f64, first: bool) -> Roots {
         return out;
     };
     match n {
-        1 => {
-            let r = -a[0] / a[1] + 0.0;
-            if lo <= r && r < hi {
-                out.push(r);
-            }
-        }
-        2 => {
-            let (k, r) = quadratic(a[0], a[1], a[2]);
-            for &x in &r[..k] {
-                if lo <= x && x < hi {
-                    out.push(x);
-                }
-            }
-        }
+        1 | 2 => low_degree(&a[..=n], lo, hi, &mut out),
         _ => {
             if a[0] == 0.0 {
                 if first && lo == 0.0 {
@@ -114,6 +101,22 @@ fn solve(coeffs: &[f64], lo: f64, hi: f64, first: bool) -> Roots {
         }
     }
     out
+}
+
+/// The roots in `[lo, hi)` of a linear or quadratic `a` (closed form; the
+/// quadratic's discriminant from error-free products).
+#[inline]
+fn low_degree(a: &[f64], lo: f64, hi: f64, out: &mut Roots) {
+    let (k, r) = if a.len() == 2 {
+        (1, [-a[0] / a[1] + 0.0, 0.0])
+    } else {
+        quadratic(a[0], a[1], a[2])
+    };
+    for &x in &r[..k] {
+        if lo <= x && x < hi {
+            out.push(x);
+        }
+    }
 }
 
 /// `p(0) = 0`: `p = x q(x)` with `q`'s coefficients those of `p` shifted
@@ -249,20 +252,7 @@ fn solve_bounded(a: &Coeffs, n: usize, lo: f64, hi: f64) -> Roots {
         return out;
     }
     match n {
-        1 => {
-            let r = -a[0] / a[1] + 0.0;
-            if lo <= r && r < hi {
-                out.push(r);
-            }
-        }
-        2 => {
-            let (k, r) = quadratic(a[0], a[1], a[2]);
-            for &x in &r[..k] {
-                if lo <= x && x < hi {
-                    out.push(x);
-                }
-            }
-        }
+        1 | 2 => low_degree(&a[..=n], lo, hi, &mut out),
         3 => cubic(a, root_bound(a, 3), lo, hi, false, &mut out),
         _ => quartic(a, root_bound(a, 4), lo, hi, false, &mut out),
     }
