@@ -1,0 +1,204 @@
+// The web client's miniquad plugin: what the wasm needs from the browser
+// beyond macroquad's own bundle. WebSockets, HTTP requests, the page
+// address, localStorage, file download and upload, and the readiness flag
+// and state report that the end-to-end test reads.
+//
+// Strings and bytes cross the boundary by copy: Rust passes (pointer,
+// length) into its memory; JS results are queued and Rust asks for their
+// length, allocates, then asks JS to copy them in. Everything is polled
+// from the frame loop, so no callback ever re-enters the wasm.
+"use strict";
+(function () {
+    const enc = new TextEncoder();
+    const dec = new TextDecoder();
+    function bytes(ptr, len) {
+        return new Uint8Array(wasm_memory.buffer, ptr, len);
+    }
+    function str(ptr, len) {
+        return dec.decode(bytes(ptr, len));
+    }
+    // Copies `data` (a Uint8Array) into wasm memory at `ptr` (capacity `cap`).
+    function put(data, ptr, cap) {
+        const n = Math.min(data.length, cap);
+        bytes(ptr, n).set(data.subarray(0, n));
+        return n;
+    }
+
+    // The last string a `*_len` call measured, waiting for its `*_take`.
+    let staged = new Uint8Array(0);
+    function stage(s) {
+        staged = typeof s === "string" ? enc.encode(s) : s;
+        return staged.length;
+    }
+
+    // ---- WebSockets --------------------------------------------------
+    const sockets = new Map();
+    let next_socket = 1;
+
+    function ws_open(ptr, len) {
+        const id = next_socket++;
+        const entry = { state: 0, inbox: [], ws: null };
+        sockets.set(id, entry);
+        try {
+            const ws = new WebSocket(str(ptr, len));
+            ws.binaryType = "arraybuffer";
+            ws.onopen = () => { entry.state = 1; };
+            ws.onmessage = (e) => {
+                entry.inbox.push(typeof e.data === "string" ? enc.encode(e.data) : new Uint8Array(e.data));
+            };
+            ws.onerror = () => { entry.state = 2; };
+            ws.onclose = () => { entry.state = 2; };
+            entry.ws = ws;
+        } catch (e) {
+            console.error(e);
+            entry.state = 2;
+        }
+        return id;
+    }
+    // 0 connecting, 1 open, 2 closed or failed, 3 no such socket.
+    function ws_state(id) {
+        const s = sockets.get(id);
+        return s ? s.state : 3;
+    }
+    function ws_send(id, ptr, len) {
+        const s = sockets.get(id);
+        if (!s || s.state !== 1) return 0;
+        s.ws.send(str(ptr, len));
+        return 1;
+    }
+    // Length of the next message, or -1 when none is waiting.
+    function ws_next_len(id) {
+        const s = sockets.get(id);
+        if (!s || s.inbox.length === 0) return -1;
+        return s.inbox[0].length;
+    }
+    function ws_take(id, ptr, cap) {
+        const s = sockets.get(id);
+        if (!s || s.inbox.length === 0) return 0;
+        return put(s.inbox.shift(), ptr, cap);
+    }
+    function ws_close(id) {
+        const s = sockets.get(id);
+        if (!s) return;
+        try { if (s.ws) s.ws.close(); } catch (e) { /* already closed */ }
+        sockets.delete(id);
+    }
+
+    // ---- HTTP --------------------------------------------------------
+    const requests = new Map();
+    let next_request = 1;
+
+    function http_start(mptr, mlen, uptr, ulen, bptr, blen) {
+        const id = next_request++;
+        const entry = { status: 0, body: new Uint8Array(0) };
+        requests.set(id, entry);
+        const init = { method: str(mptr, mlen) };
+        if (blen > 0) {
+            init.body = str(bptr, blen);
+            init.headers = { "content-type": "application/json" };
+        }
+        fetch(str(uptr, ulen), init)
+            .then(async (r) => {
+                entry.body = new Uint8Array(await r.arrayBuffer());
+                entry.status = r.status;
+            })
+            .catch((e) => {
+                entry.body = enc.encode(String(e));
+                entry.status = -1;
+            });
+        return id;
+    }
+    // 0 pending, -1 network failure, else the HTTP status.
+    function http_status(id) {
+        const r = requests.get(id);
+        return r ? r.status : -1;
+    }
+    function http_body_len(id) {
+        const r = requests.get(id);
+        return r ? r.body.length : 0;
+    }
+    function http_take(id, ptr, cap) {
+        const r = requests.get(id);
+        if (!r) return 0;
+        requests.delete(id);
+        return put(r.body, ptr, cap);
+    }
+
+    // ---- Page, storage, files ------------------------------------------
+    function location_len() {
+        return stage(window.location.href);
+    }
+    function staged_take(ptr, cap) {
+        return put(staged, ptr, cap);
+    }
+    function set_hash(ptr, len) {
+        const hash = str(ptr, len);
+        if (window.location.hash !== hash) history.replaceState(null, "", hash || "#");
+    }
+    function storage_get_len(kptr, klen) {
+        let v = null;
+        try { v = window.localStorage.getItem(str(kptr, klen)); } catch (e) { v = null; }
+        return v === null ? -1 : stage(v);
+    }
+    function storage_set(kptr, klen, vptr, vlen) {
+        try { window.localStorage.setItem(str(kptr, klen), str(vptr, vlen)); } catch (e) { /* private mode */ }
+    }
+    function download(nptr, nlen, dptr, dlen) {
+        const blob = new Blob([bytes(dptr, dlen).slice()], { type: "application/json" });
+        const a = document.createElement("a");
+        a.href = URL.createObjectURL(blob);
+        a.download = str(nptr, nlen);
+        document.body.appendChild(a);
+        a.click();
+        setTimeout(() => { URL.revokeObjectURL(a.href); a.remove(); }, 1000);
+    }
+    let picked = null;
+    function pick_file() {
+        const input = document.createElement("input");
+        input.type = "file";
+        input.accept = ".json,application/json";
+        input.onchange = async () => {
+            if (input.files.length > 0) picked = new Uint8Array(await input.files[0].arrayBuffer());
+        };
+        input.click();
+    }
+    function picked_len() {
+        if (picked === null) return -1;
+        const n = stage(picked);
+        picked = null;
+        return n;
+    }
+
+    // ---- Test hooks ------------------------------------------------------
+    function set_ready() {
+        window.chapaev_ready = true;
+    }
+    function report(ptr, len) {
+        try { window.chapaev_state = JSON.parse(str(ptr, len)); } catch (e) { console.error(e); }
+    }
+
+    function register_plugin(importObject) {
+        const env = importObject.env;
+        env.chapaev_ws_open = ws_open;
+        env.chapaev_ws_state = ws_state;
+        env.chapaev_ws_send = ws_send;
+        env.chapaev_ws_next_len = ws_next_len;
+        env.chapaev_ws_take = ws_take;
+        env.chapaev_ws_close = ws_close;
+        env.chapaev_http_start = http_start;
+        env.chapaev_http_status = http_status;
+        env.chapaev_http_body_len = http_body_len;
+        env.chapaev_http_take = http_take;
+        env.chapaev_location_len = location_len;
+        env.chapaev_staged_take = staged_take;
+        env.chapaev_set_hash = set_hash;
+        env.chapaev_storage_get_len = storage_get_len;
+        env.chapaev_storage_set = storage_set;
+        env.chapaev_download = download;
+        env.chapaev_pick_file = pick_file;
+        env.chapaev_picked_len = picked_len;
+        env.chapaev_set_ready = set_ready;
+        env.chapaev_report = report;
+    }
+    miniquad_add_plugin({ register_plugin, version: 1, name: "chapaev" });
+})();

@@ -1,0 +1,354 @@
+//! The outside world as the client sees it, one API on both targets: a
+//! WebSocket, HTTP requests, the page address, persistent key-value
+//! storage, saving and opening files, and the readiness flag and state
+//! report that the browser test reads.
+//!
+//! In the browser every call goes to the small miniquad plugin in
+//! `js/chapaev.js` (loaded after macroquad's `mq_js_bundle.js`); on the
+//! desktop the same calls run a blocking WebSocket and HTTP client on
+//! background threads, files live in the working folder and the storage in
+//! memory. Everything is polled from the frame loop: nothing blocks a frame.
+
+/// Where a WebSocket stands.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SocketState {
+    Connecting,
+    Open,
+    /// Closed by either side, or failed to connect.
+    Closed,
+}
+
+/// What an HTTP request came to.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum HttpReply {
+    /// The server answered with this status and body.
+    Done { status: u16, body: String },
+    /// No answer (the server is unreachable).
+    Failed(String),
+}
+
+#[cfg(target_arch = "wasm32")]
+mod imp {
+    use super::{HttpReply, SocketState};
+
+    extern "C" {
+        fn chapaev_ws_open(ptr: *const u8, len: usize) -> i32;
+        fn chapaev_ws_state(id: i32) -> i32;
+        fn chapaev_ws_send(id: i32, ptr: *const u8, len: usize) -> i32;
+        fn chapaev_ws_next_len(id: i32) -> i32;
+        fn chapaev_ws_take(id: i32, ptr: *mut u8, cap: usize) -> i32;
+        fn chapaev_ws_close(id: i32);
+        fn chapaev_http_start(
+            m: *const u8,
+            ml: usize,
+            u: *const u8,
+            ul: usize,
+            b: *const u8,
+            bl: usize,
+        ) -> i32;
+        fn chapaev_http_status(id: i32) -> i32;
+        fn chapaev_http_body_len(id: i32) -> i32;
+        fn chapaev_http_take(id: i32, ptr: *mut u8, cap: usize) -> i32;
+        fn chapaev_location_len() -> i32;
+        fn chapaev_staged_take(ptr: *mut u8, cap: usize) -> i32;
+        fn chapaev_set_hash(ptr: *const u8, len: usize);
+        fn chapaev_storage_get_len(k: *const u8, kl: usize) -> i32;
+        fn chapaev_storage_set(k: *const u8, kl: usize, v: *const u8, vl: usize);
+        fn chapaev_download(n: *const u8, nl: usize, d: *const u8, dl: usize);
+        fn chapaev_pick_file();
+        fn chapaev_picked_len() -> i32;
+        fn chapaev_set_ready();
+        fn chapaev_report(ptr: *const u8, len: usize);
+    }
+
+    /// The plugin's version, checked by miniquad's loader against `chapaev.js`.
+    #[no_mangle]
+    pub extern "C" fn chapaev_crate_version() -> u32 {
+        1
+    }
+
+    fn take(len: i32, fill: impl FnOnce(*mut u8, usize) -> i32) -> String {
+        let mut buf = vec![0u8; len.max(0) as usize];
+        let n = fill(buf.as_mut_ptr(), buf.len()).max(0) as usize;
+        buf.truncate(n);
+        String::from_utf8_lossy(&buf).into_owned()
+    }
+
+    pub struct Socket(i32);
+
+    impl Socket {
+        pub fn open(url: &str) -> Socket {
+            Socket(unsafe { chapaev_ws_open(url.as_ptr(), url.len()) })
+        }
+        pub fn state(&self) -> SocketState {
+            match unsafe { chapaev_ws_state(self.0) } {
+                0 => SocketState::Connecting,
+                1 => SocketState::Open,
+                _ => SocketState::Closed,
+            }
+        }
+        pub fn send(&self, text: &str) -> bool {
+            unsafe { chapaev_ws_send(self.0, text.as_ptr(), text.len()) == 1 }
+        }
+        pub fn recv(&self) -> Option<String> {
+            let len = unsafe { chapaev_ws_next_len(self.0) };
+            if len < 0 {
+                return None;
+            }
+            Some(take(len, |p, c| unsafe { chapaev_ws_take(self.0, p, c) }))
+        }
+    }
+
+    impl Drop for Socket {
+        fn drop(&mut self) {
+            unsafe { chapaev_ws_close(self.0) }
+        }
+    }
+
+    pub struct Request(i32);
+
+    impl Request {
+        pub fn start(method: &str, url: &str, body: Option<&str>) -> Request {
+            let b = body.unwrap_or("");
+            Request(unsafe {
+                chapaev_http_start(
+                    method.as_ptr(),
+                    method.len(),
+                    url.as_ptr(),
+                    url.len(),
+                    b.as_ptr(),
+                    b.len(),
+                )
+            })
+        }
+        pub fn poll(&mut self) -> Option<HttpReply> {
+            let status = unsafe { chapaev_http_status(self.0) };
+            if status == 0 {
+                return None;
+            }
+            let len = unsafe { chapaev_http_body_len(self.0) };
+            let body = take(len, |p, c| unsafe { chapaev_http_take(self.0, p, c) });
+            Some(match u16::try_from(status) {
+                Ok(status) => HttpReply::Done { status, body },
+                Err(_) => HttpReply::Failed(body),
+            })
+        }
+    }
+
+    pub fn location() -> String {
+        let len = unsafe { chapaev_location_len() };
+        take(len, |p, c| unsafe { chapaev_staged_take(p, c) })
+    }
+
+    pub fn set_hash(hash: &str) {
+        unsafe { chapaev_set_hash(hash.as_ptr(), hash.len()) }
+    }
+
+    pub fn storage_get(key: &str) -> Option<String> {
+        let len = unsafe { chapaev_storage_get_len(key.as_ptr(), key.len()) };
+        (len >= 0).then(|| take(len, |p, c| unsafe { chapaev_staged_take(p, c) }))
+    }
+
+    pub fn storage_set(key: &str, value: &str) {
+        unsafe { chapaev_storage_set(key.as_ptr(), key.len(), value.as_ptr(), value.len()) }
+    }
+
+    pub fn save_file(name: &str, contents: &str) -> Result<String, String> {
+        unsafe { chapaev_download(name.as_ptr(), name.len(), contents.as_ptr(), contents.len()) }
+        Ok(format!("downloaded {name}"))
+    }
+
+    pub fn request_file() {
+        unsafe { chapaev_pick_file() }
+    }
+
+    pub fn picked_file() -> Option<String> {
+        let len = unsafe { chapaev_picked_len() };
+        (len >= 0).then(|| take(len, |p, c| unsafe { chapaev_staged_take(p, c) }))
+    }
+
+    pub fn set_ready() {
+        unsafe { chapaev_set_ready() }
+    }
+
+    pub fn report(json: &str) {
+        unsafe { chapaev_report(json.as_ptr(), json.len()) }
+    }
+}
+
+#[cfg(not(target_arch = "wasm32"))]
+mod imp {
+    use super::{HttpReply, SocketState};
+    use std::cell::RefCell;
+    use std::collections::HashMap;
+    use std::sync::mpsc::{channel, Receiver, Sender, TryRecvError};
+    use std::sync::{Arc, Mutex};
+    use std::thread;
+    use std::time::Duration;
+
+    /// A WebSocket served by a thread: frames in and out through channels.
+    pub struct Socket {
+        state: Arc<Mutex<SocketState>>,
+        outbox: Sender<String>,
+        inbox: Receiver<String>,
+    }
+
+    impl Socket {
+        pub fn open(url: &str) -> Socket {
+            let state = Arc::new(Mutex::new(SocketState::Connecting));
+            let (outbox, out_rx) = channel::<String>();
+            let (in_tx, inbox) = channel::<String>();
+            let url = url.to_string();
+            let st = state.clone();
+            thread::spawn(move || {
+                let set = |s| {
+                    if let Ok(mut g) = st.lock() {
+                        *g = s
+                    }
+                };
+                let Ok((mut ws, _)) = tungstenite::connect(url.as_str()) else {
+                    set(SocketState::Closed);
+                    return;
+                };
+                if let tungstenite::stream::MaybeTlsStream::Plain(s) = ws.get_ref() {
+                    let _ = s.set_read_timeout(Some(Duration::from_millis(5)));
+                }
+                set(SocketState::Open);
+                loop {
+                    loop {
+                        match out_rx.try_recv() {
+                            Ok(text) => {
+                                if ws.send(tungstenite::Message::text(text)).is_err() {
+                                    set(SocketState::Closed);
+                                    return;
+                                }
+                            }
+                            Err(TryRecvError::Empty) => break,
+                            Err(TryRecvError::Disconnected) => {
+                                let _ = ws.close(None);
+                                return;
+                            }
+                        }
+                    }
+                    match ws.read() {
+                        Ok(tungstenite::Message::Text(t)) => {
+                            let _ = in_tx.send(t.to_string());
+                        }
+                        Ok(_) => {}
+                        Err(tungstenite::Error::Io(e))
+                            if e.kind() == std::io::ErrorKind::WouldBlock
+                                || e.kind() == std::io::ErrorKind::TimedOut => {}
+                        Err(_) => {
+                            set(SocketState::Closed);
+                            return;
+                        }
+                    }
+                }
+            });
+            Socket {
+                state,
+                outbox,
+                inbox,
+            }
+        }
+        pub fn state(&self) -> SocketState {
+            self.state
+                .lock()
+                .map(|g| *g)
+                .unwrap_or(SocketState::Closed)
+        }
+        pub fn send(&self, text: &str) -> bool {
+            self.state() == SocketState::Open && self.outbox.send(text.to_string()).is_ok()
+        }
+        pub fn recv(&self) -> Option<String> {
+            self.inbox.try_recv().ok()
+        }
+    }
+
+    /// An HTTP request run on a thread.
+    pub struct Request(Receiver<HttpReply>);
+
+    impl Request {
+        pub fn start(method: &str, url: &str, body: Option<&str>) -> Request {
+            let (tx, rx) = channel();
+            let (method, url, body) = (method.to_string(), url.to_string(), body.map(String::from));
+            thread::spawn(move || {
+                let req = ureq::request(&method, &url).set("content-type", "application/json");
+                let res = match body {
+                    Some(b) => req.send_string(&b),
+                    None => req.call(),
+                };
+                let reply = match res {
+                    Ok(r) | Err(ureq::Error::Status(_, r)) => HttpReply::Done {
+                        status: r.status(),
+                        body: r.into_string().unwrap_or_default(),
+                    },
+                    Err(e) => HttpReply::Failed(e.to_string()),
+                };
+                let _ = tx.send(reply);
+            });
+            Request(rx)
+        }
+        pub fn poll(&mut self) -> Option<HttpReply> {
+            match self.0.try_recv() {
+                Ok(r) => Some(r),
+                Err(TryRecvError::Empty) => None,
+                Err(TryRecvError::Disconnected) => {
+                    Some(HttpReply::Failed("the request thread ended".into()))
+                }
+            }
+        }
+    }
+
+    thread_local! {
+        static STORAGE: RefCell<HashMap<String, String>> = RefCell::new(HashMap::new());
+        static HASH: RefCell<String> = const { RefCell::new(String::new()) };
+        static PICKED: RefCell<Option<String>> = const { RefCell::new(None) };
+    }
+
+    /// The server to talk to: `CHAPAEV_SERVER` (default `http://127.0.0.1:8080`)
+    /// with the address hash the app last set.
+    pub fn location() -> String {
+        let base =
+            std::env::var("CHAPAEV_SERVER").unwrap_or_else(|_| "http://127.0.0.1:8080".into());
+        let hash = HASH.with(|h| h.borrow().clone());
+        format!("{}/{}", base.trim_end_matches('/'), hash)
+    }
+
+    pub fn set_hash(hash: &str) {
+        HASH.with(|h| *h.borrow_mut() = hash.to_string());
+    }
+
+    pub fn storage_get(key: &str) -> Option<String> {
+        STORAGE.with(|s| s.borrow().get(key).cloned())
+    }
+
+    pub fn storage_set(key: &str, value: &str) {
+        STORAGE.with(|s| s.borrow_mut().insert(key.to_string(), value.to_string()));
+    }
+
+    pub fn save_file(name: &str, contents: &str) -> Result<String, String> {
+        std::fs::write(name, contents)
+            .map(|()| format!("saved {name}"))
+            .map_err(|e| format!("could not save {name}: {e}"))
+    }
+
+    /// On the desktop "opening" reads `scene.json` from the working folder.
+    pub fn request_file() {
+        let text = std::fs::read_to_string("scene.json").ok();
+        PICKED.with(|p| *p.borrow_mut() = text);
+    }
+
+    pub fn picked_file() -> Option<String> {
+        PICKED.with(|p| p.borrow_mut().take())
+    }
+
+    pub fn set_ready() {}
+
+    pub fn report(_json: &str) {}
+}
+
+pub use imp::{
+    location, picked_file, report, request_file, save_file, set_hash, set_ready, storage_get,
+    storage_set, Request, Socket,
+};
