@@ -13,7 +13,7 @@ use crate::film::Film;
 use crate::noise;
 use crate::outcome::{MatchResult, Next, RoundEnd, ShotOutcome, WinReason};
 use crate::physics;
-use crate::piece::PIECES_PER_SIDE;
+use crate::piece::{PieceId, PIECES_PER_SIDE};
 use crate::record::{MatchRecord, RecordedMove};
 use crate::rows::{Advance, Rows};
 use crate::rules::{judge, RoundResult, Verdict};
@@ -79,6 +79,66 @@ pub struct MatchView {
     pub board: Board,
     /// Shots played in the match so far.
     pub shots: u32,
+}
+
+impl MatchView {
+    /// The view after an announced shot: what a client that saw only the
+    /// `shot-played` message (no seed, no physics) needs to follow the
+    /// match. The board is the film's final scene, which is bit for bit the
+    /// board the server's [`Game`] kept.
+    pub fn after_shot(&self, outcome: &ShotOutcome, film: &Film) -> MatchView {
+        let mut v = self.clone();
+        v.shots = outcome.number + 1;
+        let after = film.scene_at(film.end);
+        v.board = Board::from_pieces(after.bodies.iter().filter_map(|b| {
+            PieceId::from_body(b.id)
+                .ok()
+                .map(|id| crate::board::Piece { id, pos: b.pos })
+        }));
+        if let Some(RoundEnd {
+            next_rows: Some(rows),
+            ..
+        }) = outcome.round_end
+        {
+            v.round += 1;
+            v.rows = rows;
+            v.board = Board::setup(&v.config, rows);
+        }
+        match outcome.next {
+            Next::Shoot { side } => {
+                v.phase = Phase::Shooting;
+                v.turn = side;
+            }
+            Next::PieDecision { then } => {
+                v.phase = Phase::PieDecision;
+                v.turn = then;
+            }
+            Next::MatchOver { result } => v.phase = Phase::Over { result },
+        }
+        v
+    }
+
+    /// The view after Black's announced pie decision.
+    pub fn after_pie(&self, swap: bool) -> MatchView {
+        let mut v = self.clone();
+        v.swapped ^= swap;
+        if v.phase == Phase::PieDecision {
+            v.phase = Phase::Shooting;
+        }
+        v
+    }
+
+    /// The view once the match is over with `result`.
+    pub fn after_result(&self, result: MatchResult) -> MatchView {
+        let mut v = self.clone();
+        v.phase = Phase::Over { result };
+        v
+    }
+
+    /// The side that may shoot now, if any.
+    pub fn to_shoot(&self) -> Option<Side> {
+        (self.phase == Phase::Shooting).then_some(self.turn)
+    }
 }
 
 /// A match in progress (or over).
@@ -418,6 +478,34 @@ mod tests {
         pieces.extend_from_slice(extra);
         g.set_position(Board::from_pieces(pieces), g.rows(), Side::White);
         shot(g, w(0), c.max_speed, 0.0)
+    }
+
+    #[test]
+    fn a_view_followed_through_announcements_alone_equals_the_games_own_view() {
+        use crate::noise::SplitMix64;
+        use crate::testing::{random_shot, variant_config};
+        for k in 0..6u64 {
+            let mut g = Game::new(variant_config(k), 100 + k).unwrap();
+            let mut rng = SplitMix64::new(k);
+            let mut view = g.view();
+            for _ in 0..300 {
+                match g.phase() {
+                    Phase::Over { .. } => break,
+                    Phase::PieDecision => {
+                        let swap = k % 2 == 0;
+                        g.decide_pie(Side::Black, swap).unwrap();
+                        view = view.after_pie(swap);
+                    }
+                    Phase::Shooting => {
+                        let side = g.to_shoot().unwrap();
+                        let shot = random_shot(&g, side, &mut rng);
+                        let p = g.play(side, shot).unwrap();
+                        view = view.after_shot(&p.outcome, &p.film);
+                    }
+                }
+                assert_eq!(view, g.view(), "variant {k} after {} shots", g.shots());
+            }
+        }
     }
 
     #[test]
