@@ -1,7 +1,23 @@
-//! Chapaev online in the browser (skeleton; the screens are being written).
+//! Chapaev online in the browser: the lobby, live play against people or
+//! the server's bots, the replay viewer and the offline physics sandbox,
+//! drawn with macroquad and compiled to `wasm32-unknown-unknown` (the
+//! server embeds the build and serves it at `/`). The same code runs on
+//! the desktop against `CHAPAEV_SERVER` (default `http://127.0.0.1:8080`).
+
+mod api;
+mod draw;
+mod lobby;
 mod platform;
+mod route;
+mod sandbox;
+mod screen;
+mod ui;
+mod viewport;
 
 use macroquad::prelude::*;
+use route::Route;
+use screen::Screen;
+use ui::{Input, Ui};
 
 fn conf() -> Conf {
     Conf {
@@ -9,25 +25,50 @@ fn conf() -> Conf {
         window_width: 1024,
         window_height: 720,
         high_dpi: false,
+        sample_count: 4,
         ..Default::default()
+    }
+}
+
+/// Opens the screen for `route`.
+fn open(route: &Route) -> Box<dyn Screen> {
+    match route {
+        Route::Sandbox => Box::new(sandbox::Sandbox::new()),
+        _ => Box::new(lobby::Lobby::new()),
     }
 }
 
 #[macroquad::main(conf)]
 async fn main() {
+    let mut route = Route::parse(&platform::location());
+    let mut screen = open(&route);
+    platform::set_hash(&route.hash());
+    let mut ui = Ui::default();
     let mut ready = false;
     loop {
-        clear_background(Color::from_rgba(40, 30, 24, 255));
-        draw_text("Chapaev online", 20.0, 40.0, 32.0, WHITE);
-        let w = screen_width();
-        platform::report(&format!(
-            r#"{{"screen":"lobby","buttons":{{"vs-computer-easy":[{},{},200,40]}}}}"#,
-            w / 2.0 - 100.0,
-            200
-        ));
+        clear_background(ui::colors::BACKGROUND);
+        ui.begin(Input::read());
+        let dt = (get_frame_time() as f64).min(0.1);
+        let next = screen.frame(&mut ui, dt);
+        ui.end();
+        let mut state = screen.report();
+        state.insert("screen".into(), screen.name().into());
+        state.insert("buttons".into(), ui.layout());
+        state.insert("fps".into(), get_fps().into());
+        platform::report(&serde_json::Value::Object(state).to_string());
         if !ready {
             platform::set_ready();
             ready = true;
+        }
+        // Follow the address bar (back button, edited links) and the screen's wishes.
+        let from_address = Route::parse(&platform::location());
+        if let Some(r) = next {
+            route = r;
+            platform::set_hash(&route.hash());
+            screen = open(&route);
+        } else if from_address != route {
+            route = from_address;
+            screen = open(&route);
         }
         next_frame().await
     }

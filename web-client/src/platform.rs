@@ -252,10 +252,7 @@ mod imp {
             }
         }
         pub fn state(&self) -> SocketState {
-            self.state
-                .lock()
-                .map(|g| *g)
-                .unwrap_or(SocketState::Closed)
+            self.state.lock().map(|g| *g).unwrap_or(SocketState::Closed)
         }
         pub fn send(&self, text: &str) -> bool {
             self.state() == SocketState::Open && self.outbox.send(text.to_string()).is_ok()
