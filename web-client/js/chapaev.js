@@ -169,6 +169,13 @@
         return n;
     }
 
+    function copy_text(ptr, len) {
+        const text = str(ptr, len);
+        if (navigator.clipboard && navigator.clipboard.writeText) {
+            navigator.clipboard.writeText(text).catch((e) => console.warn(e));
+        }
+    }
+
     // ---- Test hooks ------------------------------------------------------
     function set_ready() {
         window.chapaev_ready = true;
@@ -197,6 +204,7 @@
         env.chapaev_download = download;
         env.chapaev_pick_file = pick_file;
         env.chapaev_picked_len = picked_len;
+        env.chapaev_copy = copy_text;
         env.chapaev_set_ready = set_ready;
         env.chapaev_report = report;
     }

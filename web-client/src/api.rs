@@ -5,7 +5,7 @@
 
 use crate::platform::{HttpReply, Request};
 use game::protocol::ServerMessage;
-use game::{MatchResult, Seat};
+use game::MatchResult;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::marker::PhantomData;
@@ -14,7 +14,6 @@ use std::marker::PhantomData;
 #[derive(Clone, Debug, Deserialize)]
 pub struct SeatGrant {
     pub match_id: String,
-    pub seat: Seat,
     pub token: String,
 }
 
@@ -22,7 +21,6 @@ pub struct SeatGrant {
 #[derive(Clone, Debug, Deserialize)]
 pub struct Summary {
     pub match_id: String,
-    pub status: String,
     pub first: Option<String>,
     pub second: Option<String>,
     pub bot: Option<String>,
@@ -135,12 +133,6 @@ impl Api {
     pub fn list(&self, status: &str, limit: usize) -> Pending<Vec<Summary>> {
         let url = format!("{}/api/matches?status={status}&limit={limit}", self.origin);
         Pending::start("GET", &url, None, listing)
-    }
-
-    /// One match's summary.
-    pub fn summary(&self, match_id: &str) -> Pending<Summary> {
-        let url = format!("{}/api/matches/{match_id}", self.origin);
-        Pending::start("GET", &url, None, json)
     }
 
     /// The record of a finished match, as its JSON text.

@@ -189,3 +189,34 @@ pub fn point(c: Vec2, color: Color) {
     draw_circle(c.x, c.y, 4.0, color);
     draw_circle_lines(c.x, c.y, 6.0, 1.0, color);
 }
+
+/// Everything of one moment of a shot: pieces, pieces dropping off the
+/// edge, hit rings; `halo_of` may ring a piece in a colour.
+pub fn frame(
+    v: &Viewport,
+    radius: f64,
+    f: &crate::clip::Frame,
+    halo_of: impl Fn(game::PieceId) -> Option<Color>,
+) {
+    let r = v.px(radius);
+    for &(piece, pos, k) in &f.falling {
+        let c = v.to_screen(pos);
+        let shrink = 1.0 - 0.55 * k;
+        checker(
+            c + vec2(0.0, r * k * 0.8),
+            r * shrink,
+            piece.side(),
+            1.0 - k,
+        );
+    }
+    for &(piece, pos) in &f.pieces {
+        let c = v.to_screen(pos);
+        checker(c, r, piece.side(), 1.0);
+        if let Some(color) = halo_of(piece) {
+            halo(c, r, color);
+        }
+    }
+    for &(at, k) in &f.hits {
+        hit_ring(v.to_screen(at), r, k);
+    }
+}

@@ -4,13 +4,19 @@
 //! server embeds the build and serves it at `/`). The same code runs on
 //! the desktop against `CHAPAEV_SERVER` (default `http://127.0.0.1:8080`).
 
+mod aim;
 mod api;
+mod clip;
+mod connection;
 mod draw;
 mod lobby;
 mod platform;
+mod play;
+mod replay;
 mod route;
 mod sandbox;
 mod screen;
+mod timeline;
 mod ui;
 mod viewport;
 
@@ -32,9 +38,23 @@ fn conf() -> Conf {
 
 /// Opens the screen for `route`.
 fn open(route: &Route) -> Box<dyn Screen> {
+    let api = api::Api {
+        origin: route::origin(&platform::location()),
+    };
+    let name = lobby::saved_name();
     match route {
+        Route::Lobby => Box::new(lobby::Lobby::new(api)),
+        Route::Play { match_id } => {
+            Box::new(play::Play::new(api, match_id.clone(), name, false, false))
+        }
+        Route::Join { match_id } => {
+            Box::new(play::Play::new(api, match_id.clone(), name, true, false))
+        }
+        Route::Watch { match_id } => {
+            Box::new(play::Play::new(api, match_id.clone(), name, false, true))
+        }
+        Route::Replay { match_id } => Box::new(replay::Replay::new(api, match_id.clone())),
         Route::Sandbox => Box::new(sandbox::Sandbox::new()),
-        _ => Box::new(lobby::Lobby::new()),
     }
 }
 

@@ -57,6 +57,7 @@ mod imp {
         fn chapaev_download(n: *const u8, nl: usize, d: *const u8, dl: usize);
         fn chapaev_pick_file();
         fn chapaev_picked_len() -> i32;
+        fn chapaev_copy(ptr: *const u8, len: usize);
         fn chapaev_set_ready();
         fn chapaev_report(ptr: *const u8, len: usize);
     }
@@ -165,6 +166,10 @@ mod imp {
     pub fn picked_file() -> Option<String> {
         let len = unsafe { chapaev_picked_len() };
         (len >= 0).then(|| take(len, |p, c| unsafe { chapaev_staged_take(p, c) }))
+    }
+
+    pub fn copy_text(text: &str) {
+        unsafe { chapaev_copy(text.as_ptr(), text.len()) }
     }
 
     pub fn set_ready() {
@@ -340,12 +345,17 @@ mod imp {
         PICKED.with(|p| p.borrow_mut().take())
     }
 
+    /// On the desktop the text goes to the log (no clipboard crate).
+    pub fn copy_text(text: &str) {
+        println!("{text}");
+    }
+
     pub fn set_ready() {}
 
     pub fn report(_json: &str) {}
 }
 
 pub use imp::{
-    location, picked_file, report, request_file, save_file, set_hash, set_ready, storage_get,
-    storage_set, Request, Socket,
+    copy_text, location, picked_file, report, request_file, save_file, set_hash, set_ready,
+    storage_get, storage_set, Request, Socket,
 };

@@ -1,0 +1,266 @@
+//! The replay viewer: a finished match's record, replayed bit for bit by
+//! the game crate, shown on one timeline that can be scrubbed, played
+//! forwards or backwards at -2x to 4x, and jumped shot by shot. Every
+//! moment is computed from the exact films, so scrubbing is instant.
+
+use crate::api::{Api, Pending};
+use crate::clip::{Clip, Frame};
+use crate::draw;
+use crate::route::Route;
+use crate::screen::Screen;
+use crate::timeline::Timeline;
+use crate::ui::{self, colors, Ui};
+use crate::viewport::Viewport;
+use game::{MatchView, Replay as GameReplay, Side};
+use macroquad::prelude::*;
+
+/// The speeds offered.
+pub const SPEEDS: [f64; 7] = [-2.0, -1.0, -0.5, 0.5, 1.0, 2.0, 4.0];
+
+struct Loaded {
+    replay: GameReplay,
+    clips: Vec<Clip>,
+    timeline: Timeline,
+}
+
+enum State {
+    Fetching(Pending<String>),
+    Ready(Box<Loaded>),
+    Failed(String),
+}
+
+pub struct Replay {
+    match_id: String,
+    state: State,
+    t: f64,
+    speed: f64,
+    playing: bool,
+    scrubbing: bool,
+}
+
+impl Replay {
+    pub fn new(api: Api, match_id: String) -> Replay {
+        Replay {
+            state: State::Fetching(api.record(&match_id)),
+            match_id,
+            t: 0.0,
+            speed: 1.0,
+            playing: true,
+            scrubbing: false,
+        }
+    }
+
+    /// Replays a record's JSON text.
+    fn load(text: &str) -> Result<Loaded, String> {
+        let replay = GameReplay::from_json(text).map_err(|e| format!("cannot replay: {e}"))?;
+        let clips: Vec<Clip> = (0..replay.shot_count())
+            .filter_map(|n| {
+                Some(Clip::new(
+                    replay.outcome(n)?.clone(),
+                    replay.film(n)?.clone(),
+                ))
+            })
+            .collect();
+        let timeline = Timeline::new(clips.iter().map(Clip::duration));
+        Ok(Loaded {
+            replay,
+            clips,
+            timeline,
+        })
+    }
+}
+
+/// What to show at match time `t`: the view of the match then and the frame.
+fn at(l: &Loaded, t: f64) -> (MatchView, Frame, Option<usize>) {
+    match l.timeline.locate(t) {
+        Some((n, within)) => {
+            let view = l
+                .replay
+                .view_before_shot(n)
+                .cloned()
+                .unwrap_or_else(|| l.replay.game().view());
+            (view, l.clips[n].frame(within), Some(n))
+        }
+        None => {
+            let view = l.replay.game().view();
+            let frame = Frame {
+                pieces: view.board.pieces().iter().map(|p| (p.id, p.pos)).collect(),
+                ..Frame::default()
+            };
+            (view, frame, None)
+        }
+    }
+}
+
+impl Screen for Replay {
+    fn frame(&mut self, ui: &mut Ui, dt: f64) -> Option<Route> {
+        if let State::Fetching(p) = &mut self.state {
+            if let Some(r) = p.poll() {
+                self.state = match r.and_then(|text| Replay::load(&text)) {
+                    Ok(l) => State::Ready(Box::new(l)),
+                    Err(e) => State::Failed(e),
+                };
+            }
+        }
+        let (w, h) = (screen_width(), screen_height());
+        let bar_h = 120.0;
+        let lobby = Rect::new(w - 120.0, 10.0, 110.0, 32.0);
+        let l = match &self.state {
+            State::Ready(l) => l,
+            State::Fetching(_) => {
+                ui::text_centred(
+                    "Loading the record…",
+                    Rect::new(0.0, 0.0, w, h),
+                    24.0,
+                    colors::MUTED,
+                );
+                return ui.button("lobby", "Lobby", lobby).then_some(Route::Lobby);
+            }
+            State::Failed(e) => {
+                ui::text_centred(e, Rect::new(0.0, 0.0, w, h), 20.0, colors::DANGER);
+                return ui.button("lobby", "Lobby", lobby).then_some(Route::Lobby);
+            }
+        };
+        if self.playing && !self.scrubbing {
+            self.t = l.timeline.step(self.t, dt, self.speed);
+            let at_end = self.speed > 0.0 && self.t >= l.timeline.total();
+            let at_start = self.speed < 0.0 && self.t <= 0.0;
+            if at_end || at_start {
+                self.playing = false;
+            }
+        }
+        let (view, frame, shot) = at(l, self.t);
+        let board = Rect::new(0.0, 0.0, w, h - bar_h);
+        let vp = Viewport::fit_square(view.config.board_size(), board, 40.0, false);
+        draw::board(&vp, view.config.board_size());
+        let shooter = shot.map(|n| l.clips[n].outcome.piece);
+        draw::frame(&vp, view.config.piece_radius, &frame, |p| {
+            (Some(p) == shooter).then_some(colors::ACCENT)
+        });
+        // Heading: which shot, who, the round, pieces left.
+        let count = |s: Side| frame.pieces.iter().filter(|(p, _)| p.side() == s).count();
+        let head = match shot {
+            Some(n) => {
+                let o = &l.clips[n].outcome;
+                format!(
+                    "Shot {} of {} · round {} · {} plays {} · White {} / Black {}",
+                    n + 1,
+                    l.clips.len(),
+                    o.round,
+                    if o.shooter == Side::White {
+                        "White"
+                    } else {
+                        "Black"
+                    },
+                    o.piece,
+                    count(Side::White),
+                    count(Side::Black)
+                )
+            }
+            None => "No shots were played".to_string(),
+        };
+        ui::text(
+            &format!("Replay of {}", self.match_id),
+            12.0,
+            10.0,
+            20.0,
+            colors::ACCENT,
+        );
+        ui::text(&head, 12.0, 36.0, 16.0, colors::TEXT);
+        let mut go = ui.button("lobby", "Lobby", lobby).then_some(Route::Lobby);
+        // The control bar: timeline, play/pause, shot jumps, speeds.
+        let bar = Rect::new(0.0, h - bar_h, w, bar_h);
+        ui::panel(bar);
+        let track = Rect::new(20.0, bar.y + 14.0, w - 40.0, 26.0);
+        let total = l.timeline.total().max(1e-9);
+        for n in 0..l.timeline.shots() {
+            let x = track.x + track.w * (l.timeline.start(n) / total) as f32;
+            draw_line(
+                x,
+                track.y + 4.0,
+                x,
+                track.y + track.h - 4.0,
+                1.0,
+                colors::MUTED,
+            );
+        }
+        let before = self.t;
+        let t = ui.slider("timeline", self.t, 0.0, total, track);
+        self.scrubbing = ui.input.down && t != before;
+        self.t = t;
+        let y = bar.y + 56.0;
+        let mut x = 20.0;
+        let mut next = |wdt: f32| {
+            let r = Rect::new(x, y, wdt, 34.0);
+            x += wdt + 8.0;
+            r
+        };
+        if ui.button("previous-shot", "|<", next(44.0)) {
+            self.t = l.timeline.previous_shot(self.t);
+        }
+        let label = if self.playing { "Pause" } else { "Play" };
+        if ui.button("play-pause", label, next(80.0)) {
+            if !self.playing && self.speed > 0.0 && self.t >= l.timeline.total() {
+                self.t = 0.0;
+            }
+            self.playing = !self.playing;
+        }
+        if ui.button("next-shot", ">|", next(44.0)) {
+            self.t = l.timeline.next_shot(self.t);
+        }
+        next(8.0);
+        for s in SPEEDS {
+            let r = next(56.0);
+            if ui.button_styled(
+                &format!("speed{s}"),
+                &format!("{s}x"),
+                r,
+                true,
+                self.speed == s,
+            ) {
+                self.speed = s;
+                self.playing = true;
+            }
+        }
+        let x = next(0.0).x;
+        ui::text(
+            &format!("{:.1} / {:.1} s", self.t, l.timeline.total()),
+            x + 12.0,
+            y + 8.0,
+            18.0,
+            colors::TEXT,
+        );
+        if is_key_pressed(KeyCode::Space) {
+            self.playing = !self.playing;
+        }
+        if is_key_pressed(KeyCode::Right) {
+            self.t = l.timeline.next_shot(self.t);
+        }
+        if is_key_pressed(KeyCode::Left) {
+            self.t = l.timeline.previous_shot(self.t);
+        }
+        if go.is_none() && is_key_pressed(KeyCode::Escape) {
+            go = Some(Route::Lobby);
+        }
+        go
+    }
+
+    fn name(&self) -> &'static str {
+        "replay"
+    }
+
+    fn animating(&self) -> bool {
+        self.playing
+    }
+
+    fn report(&self) -> serde_json::Map<String, serde_json::Value> {
+        let mut m = serde_json::Map::new();
+        m.insert("match_id".into(), self.match_id.clone().into());
+        m.insert("t".into(), self.t.into());
+        if let State::Ready(l) = &self.state {
+            m.insert("shots".into(), l.clips.len().into());
+            m.insert("total".into(), l.timeline.total().into());
+        }
+        m
+    }
+}
