@@ -1,8 +1,9 @@
-//! The HTTP API: the page at `/` that explains how to play, `/healthz`,
-//! `/metrics`, and under `/api/matches` creating a match (against a person
-//! or a built-in bot), joining its empty seat, listing matches, one match's
-//! summary and its record for replay. Bodies are JSON; errors are the
-//! protocol's `error` message with a fitting HTTP status.
+//! The HTTP API: the page at `/api` that explains how to play through it,
+//! `/healthz`, `/metrics`, and under `/api/matches` creating a match
+//! (against a person or a built-in bot), joining its empty seat, listing
+//! matches, one match's summary and its record for replay. Bodies are JSON;
+//! errors are the protocol's `error` message with a fitting HTTP status.
+//! The game itself (`/` and its files) is [`crate::assets`].
 
 use crate::bot::BotLevel;
 use crate::hub::{Hub, NewMatch, Opponent, SeatGrant};
@@ -22,7 +23,8 @@ pub const MAX_LIST: usize = 100;
 
 /// Registers every route.
 pub fn routes(cfg: &mut web::ServiceConfig) {
-    cfg.route("/", web::get().to(index))
+    crate::assets::routes(cfg);
+    cfg.route("/api", web::get().to(api_page))
         .route("/healthz", web::get().to(healthz))
         .route("/metrics", web::get().to(metrics))
         .route("/ws", web::get().to(crate::ws::handler))
@@ -97,10 +99,10 @@ async fn blocking<T: Send + 'static>(
     }
 }
 
-async fn index() -> HttpResponse {
+async fn api_page() -> HttpResponse {
     HttpResponse::Ok()
         .content_type("text/html; charset=utf-8")
-        .body(INDEX_HTML)
+        .body(API_HTML)
 }
 
 async fn healthz(hub: web::Data<Hub>) -> HttpResponse {
@@ -268,14 +270,16 @@ async fn record(hub: web::Data<Hub>, id: web::Path<String>) -> HttpResponse {
     }
 }
 
-const INDEX_HTML: &str = r#"<!doctype html>
+/// The page at `/api`: how to play through the API (and, when the build
+/// embedded no web client, the page at `/`).
+pub(crate) const API_HTML: &str = r#"<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><title>Chapaev online</title>
 <style>body{font-family:sans-serif;max-width:50em;margin:2em auto;line-height:1.45;padding:0 1em}
 code,pre{background:#f3f3f3}pre{padding:.6em;overflow-x:auto}</style></head>
 <body>
 <h1>Chapaev online</h1>
-<p>Russian flick-checkers on an exact physics engine. The web client comes later;
-for now you play through the API, by hand or with a bot of your own, in any language.
+<p>Russian flick-checkers on an exact physics engine. <a href="/">Play in the browser</a>;
+this page is about playing through the API, by hand or with a bot of your own, in any language.
 The full protocol is in <code>docs/protocol.md</code>.</p>
 <h2>1. Create a match</h2>
 <pre>curl -s -XPOST localhost:8080/api/matches -d '{"name":"Petka"}'
@@ -295,7 +299,8 @@ Also: <code>{"type":"resign"}</code>, <code>{"type":"chat","text":"..."}</code>,
 <p>Each turn has a clock: miss it and the turn passes; three misses in a row forfeit.
 A dropped player keeps the seat for a grace period and reconnects with the same token.</p>
 <h2>Other endpoints</h2>
-<ul><li><code>GET /api/matches?status=open|live|finished</code> &mdash; list matches</li>
+<ul><li><code>GET /</code> &mdash; the game in the browser; <code>GET /api</code> &mdash; this page</li>
+<li><code>GET /api/matches?status=open|live|finished</code> &mdash; list matches</li>
 <li><code>GET /api/matches/ID</code> &mdash; one match's summary</li>
 <li><code>GET /api/matches/ID/record</code> &mdash; the record of a finished match, for replay</li>
 <li><code>GET /healthz</code>, <code>GET /metrics</code> (Prometheus)</li></ul>

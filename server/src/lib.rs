@@ -12,10 +12,12 @@
 //! [`refusal`] (errors sent to clients), [`store`] (SQLite), [`metrics`]
 //! (Prometheus), [`ratelimit`] (per-connection token bucket), [`clock`]
 //! (turn clock), [`bot`] (built-in bots), [`room`] (one match in memory),
-//! [`hub`] (the registry of rooms), [`http`] (the HTTP API), [`ws`] (the
-//! WebSocket sessions) and [`app`] (startup and shutdown).
+//! [`hub`] (the registry of rooms), [`http`] (the HTTP API), [`assets`] (the
+//! embedded web client at `/`), [`ws`] (the WebSocket sessions) and [`app`]
+//! (startup and shutdown).
 
 pub mod app;
+pub mod assets;
 pub mod bot;
 pub mod clock;
 pub mod config;

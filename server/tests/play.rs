@@ -197,9 +197,11 @@ async fn a_player_gone_past_the_grace_period_forfeits() {
 async fn the_page_health_metrics_and_match_listing_answer() {
     let dir = tempfile::tempdir().unwrap();
     let server = Server::start(dir.path(), &[]);
-    let (status, page) = server.http("GET", "/", "").await;
+    let (status, page) = server.http("GET", "/api", "").await;
     assert_eq!(status, 200);
     assert!(page.contains("/api/matches") && page.contains("/ws?match="));
+    let (status, _) = server.http("GET", "/", "").await;
+    assert_eq!(status, 200);
     let (status, health) = server.http("GET", "/healthz", "").await;
     assert_eq!(status, 200);
     assert!(health.contains(r#""status":"ok""#), "{health}");

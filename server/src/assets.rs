@@ -1,0 +1,246 @@
+//! The web client, served from inside the server binary: `build.rs` builds
+//! `web-client` for wasm32 and embeds the page, macroquad's loader, our
+//! miniquad plugin and the wasm, which this module serves at `/`,
+//! `/mq_js_bundle.js`, `/chapaev.js` and `/chapaev.wasm` (as
+//! `application/wasm`, or browsers refuse to stream-compile it). Each
+//! answer carries an ETag computed at build time and `Cache-Control:
+//! no-cache`, so browsers revalidate (a `304` when nothing changed) and
+//! never mix files of two builds. When the build could not embed the client
+//! (no wasm target, a compile error, or `CHAPAEV_SKIP_WEB_CLIENT=1`), `/`
+//! serves the API page with a note saying why, and the client's files are
+//! `404`.
+
+use actix_web::http::header;
+use actix_web::{web, HttpRequest, HttpResponse};
+
+/// One embedded file.
+#[derive(Debug, Clone, Copy)]
+pub struct Asset {
+    pub bytes: &'static [u8],
+    /// A quoted entity tag, unique to this build of the file.
+    pub etag: &'static str,
+    pub content_type: &'static str,
+}
+
+/// The web client's files.
+#[derive(Debug, Clone, Copy)]
+pub struct Bundle {
+    pub index_html: Asset,
+    pub chapaev_js: Asset,
+    pub mq_js_bundle: Asset,
+    pub wasm: Asset,
+}
+
+/// Why the build embedded no client.
+#[derive(Debug, Clone, Copy)]
+pub struct NotBuilt {
+    pub reason: &'static str,
+    /// Skipped on purpose with `CHAPAEV_SKIP_WEB_CLIENT`.
+    pub skipped: bool,
+}
+
+// Defines `WEB_CLIENT: Result<Bundle, NotBuilt>`.
+include!(concat!(env!("OUT_DIR"), "/web_client.rs"));
+
+/// The embedded client, or why there is none.
+pub fn web_client() -> Result<&'static Bundle, &'static NotBuilt> {
+    const CLIENT: &Result<Bundle, NotBuilt> = &WEB_CLIENT;
+    CLIENT.as_ref()
+}
+
+/// Registers `/` and the client's files.
+pub fn routes(cfg: &mut web::ServiceConfig) {
+    cfg.route("/", web::get().to(index))
+        .route(
+            "/chapaev.wasm",
+            web::get().to(|r: HttpRequest| file(r, |b| &b.wasm)),
+        )
+        .route(
+            "/chapaev.js",
+            web::get().to(|r: HttpRequest| file(r, |b| &b.chapaev_js)),
+        )
+        .route(
+            "/mq_js_bundle.js",
+            web::get().to(|r: HttpRequest| file(r, |b| &b.mq_js_bundle)),
+        );
+}
+
+async fn index(req: HttpRequest) -> HttpResponse {
+    match web_client() {
+        Ok(bundle) => serve(&req, &bundle.index_html),
+        Err(why) => HttpResponse::Ok()
+            .content_type("text/html; charset=utf-8")
+            .insert_header((header::CACHE_CONTROL, "no-cache"))
+            .body(fallback_page(why)),
+    }
+}
+
+async fn file(req: HttpRequest, pick: fn(&'static Bundle) -> &'static Asset) -> HttpResponse {
+    match web_client() {
+        Ok(bundle) => serve(&req, pick(bundle)),
+        Err(_) => HttpResponse::NotFound()
+            .content_type("text/plain; charset=utf-8")
+            .body("the web client was not built into this server; see /\n"),
+    }
+}
+
+fn serve(req: &HttpRequest, asset: &Asset) -> HttpResponse {
+    let unchanged = req
+        .headers()
+        .get_all(header::IF_NONE_MATCH)
+        .filter_map(|v| v.to_str().ok())
+        .flat_map(|v| v.split(','))
+        .map(|tag| tag.trim().trim_start_matches("W/"))
+        .any(|tag| tag == asset.etag || tag == "*");
+    let mut answer = if unchanged {
+        HttpResponse::NotModified()
+    } else {
+        HttpResponse::Ok()
+    };
+    answer
+        .insert_header((header::ETAG, asset.etag))
+        .insert_header((header::CACHE_CONTROL, "no-cache"));
+    if unchanged {
+        answer.finish()
+    } else {
+        answer.content_type(asset.content_type).body(asset.bytes)
+    }
+}
+
+/// The API page, headed by a note saying why the game is not here.
+fn fallback_page(why: &NotBuilt) -> String {
+    let reason = escape(why.reason);
+    let note = format!(
+        "<h1>Chapaev online</h1>\n<p style=\"border:2px solid #c60;padding:.6em\"><b>The web client \
+         was not built into this server</b>, so this is the API page.<br><code>{reason}</code><br>To \
+         play in the browser, run <code>rustup target add wasm32-unknown-unknown</code> and build \
+         the server again (<code>cargo run --release -p server</code>) without \
+         <code>CHAPAEV_SKIP_WEB_CLIENT</code>.</p>"
+    );
+    crate::http::API_HTML.replacen("<h1>Chapaev online</h1>", &note, 1)
+}
+
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('\n', "<br>")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use actix_web::test as web_test;
+    use actix_web::App;
+
+    /// Whether a missing client is acceptable: the build or this run skipped it on purpose.
+    fn skipped(why: &NotBuilt) -> bool {
+        why.skipped
+            || std::env::var_os("CHAPAEV_SKIP_WEB_CLIENT")
+                .is_some_and(|v| !v.is_empty() && v != "0")
+    }
+
+    async fn get(path: &str, etag: Option<&str>) -> (u16, Vec<(String, String)>, Vec<u8>) {
+        let app = web_test::init_service(App::new().configure(crate::http::routes)).await;
+        let mut req = web_test::TestRequest::get().uri(path);
+        if let Some(tag) = etag {
+            req = req.insert_header((header::IF_NONE_MATCH, tag));
+        }
+        let res = web_test::call_service(&app, req.to_request()).await;
+        let status = res.status().as_u16();
+        let headers = res
+            .headers()
+            .iter()
+            .map(|(k, v)| (k.to_string(), v.to_str().unwrap_or("").to_string()))
+            .collect();
+        let body = web_test::read_body(res).await.to_vec();
+        (status, headers, body)
+    }
+
+    fn header<'a>(headers: &'a [(String, String)], name: &str) -> &'a str {
+        headers
+            .iter()
+            .find(|(k, _)| k.eq_ignore_ascii_case(name))
+            .map(|(_, v)| v.as_str())
+            .unwrap_or_else(|| panic!("no {name} header in {headers:?}"))
+    }
+
+    #[actix_web::test]
+    async fn the_game_is_served_at_the_root_with_its_wasm_and_scripts() {
+        let bundle = match web_client() {
+            Ok(bundle) => bundle,
+            Err(why) if skipped(why) => {
+                eprintln!(
+                    "web client skipped ({}); checking the fallback page",
+                    why.reason
+                );
+                let (status, _, body) = get("/", None).await;
+                assert_eq!(status, 200);
+                let page = String::from_utf8(body).unwrap();
+                assert!(page.contains("was not built") && page.contains("/api/matches"));
+                assert_eq!(get("/chapaev.wasm", None).await.0, 404);
+                return;
+            }
+            Err(why) => panic!(
+                "the server was built without the web client: {}\n\
+                 (install the target with `rustup target add wasm32-unknown-unknown` and \
+                 rebuild, or set CHAPAEV_SKIP_WEB_CLIENT=1 to test the server alone)",
+                why.reason
+            ),
+        };
+
+        let (status, headers, body) = get("/", None).await;
+        assert_eq!(status, 200);
+        assert!(header(&headers, "content-type").starts_with("text/html"));
+        assert_eq!(header(&headers, "cache-control"), "no-cache");
+        let page = String::from_utf8(body).unwrap();
+        for needed in ["glcanvas", "mq_js_bundle.js", "chapaev.js", "chapaev.wasm"] {
+            assert!(page.contains(needed), "the page loads {needed}");
+        }
+
+        let (status, headers, body) = get("/chapaev.wasm", None).await;
+        assert_eq!(status, 200);
+        assert_eq!(header(&headers, "content-type"), "application/wasm");
+        assert!(body.starts_with(b"\0asm"), "a wasm module");
+        assert_eq!(body.len(), bundle.wasm.bytes.len());
+
+        for (path, marker) in [
+            ("/mq_js_bundle.js", "miniquad_add_plugin"),
+            ("/chapaev.js", "register_plugin"),
+        ] {
+            let (status, headers, body) = get(path, None).await;
+            assert_eq!(status, 200, "{path}");
+            assert!(header(&headers, "content-type").starts_with("text/javascript"));
+            assert!(String::from_utf8(body).unwrap().contains(marker), "{path}");
+        }
+
+        // Revalidation: the same ETag gets a 304 without a body.
+        let etag = bundle.wasm.etag;
+        let (status, headers, body) = get("/chapaev.wasm", Some(etag)).await;
+        assert_eq!(status, 304);
+        assert_eq!(header(&headers, "etag"), etag);
+        assert!(body.is_empty());
+        assert_eq!(get("/chapaev.wasm", Some("\"other\"")).await.0, 200);
+    }
+
+    #[actix_web::test]
+    async fn the_api_page_moved_to_api_and_says_where_the_game_is() {
+        let (status, headers, body) = get("/api", None).await;
+        assert_eq!(status, 200);
+        assert!(header(&headers, "content-type").starts_with("text/html"));
+        let page = String::from_utf8(body).unwrap();
+        assert!(page.contains("/api/matches") && page.contains("/ws?match="));
+        assert!(page.contains("href=\"/\""), "links to the game");
+    }
+
+    #[test]
+    fn the_fallback_page_says_why_and_what_to_run() {
+        let page = fallback_page(&NotBuilt {
+            reason: "the <wasm32> target is not installed",
+            skipped: false,
+        });
+        assert!(page.contains("&lt;wasm32&gt;"));
+        assert!(page.contains("rustup target add wasm32-unknown-unknown"));
+        assert!(page.contains("/api/matches"));
+    }
+}
