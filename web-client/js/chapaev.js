@@ -208,5 +208,26 @@
         env.chapaev_set_ready = set_ready;
         env.chapaev_report = report;
     }
-    miniquad_add_plugin({ register_plugin, version: 1, name: "chapaev" });
+    // macroquad listens for the mouse on the canvas only: a slingshot pulled
+    // past the page's edge would never be released. Forward what happens
+    // elsewhere during a drag.
+    function on_init() {
+        const canvas = document.querySelector("#glcanvas");
+        const at = (e) => {
+            const r = canvas.getBoundingClientRect();
+            return [e.clientX - r.left, e.clientY - r.top];
+        };
+        window.addEventListener("mousemove", (e) => {
+            if (e.target === canvas) return;
+            const [x, y] = at(e);
+            wasm_exports.mouse_move(Math.floor(x), Math.floor(y));
+        });
+        window.addEventListener("mouseup", (e) => {
+            if (e.target === canvas) return;
+            const [x, y] = at(e);
+            wasm_exports.mouse_up(x, y, e.button === 2 ? 1 : e.button === 1 ? 2 : e.button);
+        });
+    }
+
+    miniquad_add_plugin({ register_plugin, on_init, version: 1, name: "chapaev" });
 })();

@@ -69,7 +69,7 @@ impl Lobby {
         if self.creating.is_none() {
             platform::storage_set(NAME_KEY, self.name.trim());
             self.creating = Some(self.api.create(&self.player_name(), opponent));
-            self.message = Some("creating the match…".into());
+            self.message = Some("creating the match...".into());
         }
     }
 
@@ -136,7 +136,7 @@ fn describe(s: &Summary) -> String {
     let second = match (&s.second, &s.bot) {
         (_, Some(level)) => format!("computer ({level})"),
         (Some(n), None) => n.clone(),
-        (None, None) => "…".to_string(),
+        (None, None) => "...".to_string(),
     };
     let mut d = format!("{first} vs {second}");
     if s.shots > 0 {

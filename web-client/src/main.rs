@@ -65,7 +65,10 @@ async fn main() {
     platform::set_hash(&route.hash());
     let mut ui = Ui::default();
     let mut ready = false;
+    // Time spent in our own frame code (update and draw calls), averaged.
+    let mut work_ms = 0.0f64;
     loop {
+        let started = get_time();
         clear_background(ui::colors::BACKGROUND);
         ui.begin(Input::read());
         let dt = (get_frame_time() as f64).min(0.1);
@@ -75,6 +78,7 @@ async fn main() {
         state.insert("screen".into(), screen.name().into());
         state.insert("buttons".into(), ui.layout());
         state.insert("fps".into(), get_fps().into());
+        state.insert("work_ms".into(), work_ms.into());
         platform::report(&serde_json::Value::Object(state).to_string());
         if !ready {
             platform::set_ready();
@@ -90,6 +94,7 @@ async fn main() {
             route = from_address;
             screen = open(&route);
         }
+        work_ms = 0.95 * work_ms + 0.05 * (get_time() - started) * 1000.0;
         next_frame().await
     }
 }

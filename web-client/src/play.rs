@@ -292,7 +292,7 @@ impl Play {
     /// The board, the pieces and the slingshot.
     fn board(&mut self, ui: &mut Ui, area: Rect) {
         let Some(v) = self.view.clone() else {
-            ui::text_centred("Connecting to the match…", area, 24.0, colors::MUTED);
+            ui::text_centred("Connecting to the match...", area, 24.0, colors::MUTED);
             return;
         };
         let flipped = self.my_side() == Some(Side::Black);
@@ -429,7 +429,7 @@ impl Play {
         );
         let link = match self.conn.as_ref().map(Connection::link) {
             Some(Link::Open) => ("connected".to_string(), colors::GOOD),
-            Some(Link::Connecting) => ("connecting…".to_string(), colors::MUTED),
+            Some(Link::Connecting) => ("connecting...".to_string(), colors::MUTED),
             Some(Link::Retrying { at, attempt }) => (
                 format!(
                     "reconnecting in {:.0} s (try {attempt})",
@@ -487,8 +487,10 @@ impl Play {
         let status = match v.phase {
             Phase::Over { result } => result_text(result, self.my_side()),
             Phase::PieDecision => "Black decides: swap seats or not".to_string(),
-            Phase::Shooting if self.playing.is_some() || !self.queue.is_empty() => "…".to_string(),
-            Phase::Shooting if self.awaiting => "shooting…".to_string(),
+            Phase::Shooting if self.playing.is_some() || !self.queue.is_empty() => {
+                "...".to_string()
+            }
+            Phase::Shooting if self.awaiting => "shooting...".to_string(),
             Phase::Shooting if self.my_turn() => "Your turn: drag back from a piece".to_string(),
             Phase::Shooting => format!("{} to shoot", side_name(v.turn)),
         };
@@ -565,7 +567,7 @@ impl Play {
                 let label = if theirs {
                     "Accept the rematch"
                 } else if mine {
-                    "Rematch offered…"
+                    "Rematch offered..."
                 } else {
                     "Offer a rematch"
                 };
@@ -605,7 +607,7 @@ impl Play {
                 "chat",
                 &mut self.chat_draft,
                 field,
-                "say something…",
+                "say something...",
                 MAX_CHAT_CHARS,
             );
             let send = ui.button("chat-send", "Send", Rect::new(x + w - 62.0, y, 62.0, 32.0));

@@ -109,7 +109,7 @@ impl Screen for Replay {
             State::Ready(l) => l,
             State::Fetching(_) => {
                 ui::text_centred(
-                    "Loading the record…",
+                    "Loading the record...",
                     Rect::new(0.0, 0.0, w, h),
                     24.0,
                     colors::MUTED,
