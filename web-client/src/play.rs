@@ -148,6 +148,7 @@ impl Play {
         self.playing.is_none()
             && self.queue.is_empty()
             && !self.awaiting
+            && self.conn.as_ref().is_some_and(Connection::is_open)
             && self.my_side().is_some()
             && v.to_shoot() == self.my_side()
     }

@@ -11,7 +11,7 @@ use crate::screen::Screen;
 use crate::timeline::Timeline;
 use crate::ui::{self, colors, Ui};
 use crate::viewport::Viewport;
-use game::{MatchView, Replay as GameReplay, Side};
+use game::{MatchResult, MatchView, Replay as GameReplay, Side, WinReason};
 use macroquad::prelude::*;
 
 /// The speeds offered.
@@ -88,6 +88,26 @@ fn at(l: &Loaded, t: f64) -> (MatchView, Frame, Option<usize>) {
                 ..Frame::default()
             };
             (view, frame, None)
+        }
+    }
+}
+
+/// How the match ended, in words.
+fn result_line(r: MatchResult) -> String {
+    match r {
+        MatchResult::Draw => "drawn".to_string(),
+        MatchResult::Won { side, reason } => {
+            let who = if side == Side::White {
+                "White"
+            } else {
+                "Black"
+            };
+            let how = match reason {
+                WinReason::FarEdge => "reaching the far edge",
+                WinReason::QuickMatch => "winning the round",
+                WinReason::Resignation => "resignation",
+            };
+            format!("{who} won by {how}")
         }
     }
 }
