@@ -469,8 +469,15 @@ impl Play {
             );
             ui::text(&format!("{left}/8"), x + w - 40.0, y, 20.0, colors::TEXT);
             y += 24.0;
+            // Rows count from the side's own edge.
+            let rank = v.rows.rank(side);
+            let row = if side == Side::White {
+                rank + 1
+            } else {
+                8 - rank
+            };
             ui::text(
-                &format!("row {} of 8", v.rows.rank(side) + 1),
+                &format!("on row {row} of 8 from its edge"),
                 x + 26.0,
                 y,
                 15.0,
