@@ -96,8 +96,7 @@ fn main() {
                     println!("cargo:warning=web client not embedded: {line}");
                 }
                 println!(
-                    "cargo:warning=the server will serve the API page at / instead of the game; \
-                     to get the game: rustup target add {WASM_TARGET} && cargo build -p server"
+                    "cargo:warning=the server will serve the API page at / instead of the game"
                 );
             }
             fallback(&why)
@@ -278,8 +277,17 @@ fn cargo_build(cargo: &OsString, workspace: &Path, target_dir: &Path) -> Result<
     })?;
     if !out.status.success() {
         let stderr = String::from_utf8_lossy(&out.stderr);
+        if stderr.contains("target may not be installed") {
+            return Err(NotBuilt::NoTarget);
+        }
+        // From the first error on (warnings before it are noise here).
         let lines: Vec<&str> = stderr.lines().collect();
-        let tail = lines[lines.len().saturating_sub(20)..].join("\n");
+        let first_error = lines.iter().position(|l| l.starts_with("error"));
+        let shown = match first_error {
+            Some(i) => &lines[i..(i + 20).min(lines.len())],
+            None => &lines[lines.len().saturating_sub(20)..],
+        };
+        let tail = shown.join("\n");
         return Err(NotBuilt::BuildFailed {
             command,
             status: out.status.to_string(),
