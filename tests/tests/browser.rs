@@ -1,0 +1,208 @@
+//! A person's first game, in a real browser: the server serves the web
+//! client; headless Chromium loads it, the app draws its lobby (a
+//! screenshot shows it is not blank), "vs computer (easy)" is clicked, and
+//! one of the player's pieces is pulled back with the mouse and let go —
+//! the server's API then counts the shot. Screenshots and logs are left in
+//! the artifacts folder (`target/e2e-artifacts` or `$CHAPAEV_E2E_ARTIFACTS`).
+
+use e2e::browser::{self, Driver};
+use e2e::process::Server;
+use e2e::{api, artifacts_dir, picture, E2eError, Result};
+use fantoccini::Client;
+use serde_json::Value;
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+const STATE: &str = "return window.chapaev_state || null;";
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_player_opens_the_page_starts_a_game_against_the_easy_bot_and_shoots() {
+    let Some(programs) = browser::find_programs().unwrap() else {
+        return;
+    };
+    let artifacts = artifacts_dir().unwrap();
+    let scratch = tempfile::tempdir().unwrap();
+    let server = Server::start(
+        Path::new(env!("CARGO_BIN_EXE_e2e-server")),
+        &scratch.path().join("data"),
+        &artifacts.join("server.log"),
+    )
+    .unwrap();
+    let driver = Driver::start(&programs, &artifacts.join("chromedriver.log")).unwrap();
+    let client = driver
+        .session(&programs, &scratch.path().join("profile"))
+        .await
+        .unwrap();
+
+    let outcome = play(&client, &server, &artifacts).await;
+    if outcome.is_err() {
+        // What the page showed when it went wrong.
+        let _ = browser::screenshot(&client, &artifacts.join("failure.png")).await;
+        if let Ok(state) = browser::eval(&client, STATE).await {
+            eprintln!("e2e: chapaev_state at the failure: {state}");
+        }
+    }
+    let _ = client.close().await;
+    drop(driver);
+    drop(server);
+    if let Err(e) = outcome {
+        panic!(
+            "{e}\n(screenshots and the server's and chromedriver's logs are in {})",
+            artifacts.display()
+        );
+    }
+}
+
+async fn play(client: &Client, server: &Server, artifacts: &Path) -> Result<()> {
+    // 1. The page loads and the app draws its first frame.
+    let (w, h) = browser::fit_viewport(client, 1024, 720).await?;
+    eprintln!("e2e: viewport {w}x{h}");
+    let started = Instant::now();
+    client.goto(&server.url("/")).await?;
+    let ready = browser::poll(
+        client,
+        "window.chapaev_ready",
+        "return window.chapaev_ready === true \
+           ? (typeof window.chapaev_ready_ms === 'number' ? window.chapaev_ready_ms : performance.now()) \
+           : null;",
+        Duration::from_secs(30),
+        Duration::from_millis(20),
+        |v| v.is_number(),
+    )
+    .await?;
+    let waited = started.elapsed();
+    let ready_ms = ready.as_f64().unwrap_or(f64::NAN);
+    eprintln!(
+        "e2e: the app was ready {ready_ms:.0} ms after navigation start \
+         ({:.0} ms after the test asked for the page)",
+        waited.as_secs_f64() * 1000.0
+    );
+    std::fs::write(
+        artifacts.join("timings.json"),
+        format!(
+            "{{\"ready_ms_since_navigation\":{ready_ms:.1},\"ready_ms_since_goto\":{:.1}}}\n",
+            waited.as_secs_f64() * 1000.0
+        ),
+    )
+    .map_err(|source| E2eError::Io {
+        what: "writing timings.json".into(),
+        source,
+    })?;
+
+    // 2. The lobby is drawn: WebGL works and the app draws something.
+    tokio::time::sleep(Duration::from_millis(300)).await;
+    let shot = browser::screenshot(client, &artifacts.join("01-lobby.png")).await?;
+    let stats = picture::stats(&shot)?;
+    eprintln!("e2e: lobby screenshot: {stats}");
+    stats.check_drawn("lobby", 8, 0.001)?;
+
+    // 3. "vs computer (easy)".
+    let lobby = browser::poll(
+        client,
+        "the lobby's vs-computer-easy button",
+        STATE,
+        Duration::from_secs(10),
+        Duration::from_millis(50),
+        |s| s["screen"] == "lobby" && s["buttons"]["vs-computer-easy"].is_array(),
+    )
+    .await?;
+    let (x, y) = centre(&lobby["buttons"]["vs-computer-easy"])?;
+    eprintln!("e2e: clicking vs-computer-easy at ({x:.0}, {y:.0})");
+    browser::click(client, x, y).await?;
+
+    // 4. The match is on, connected, and it is our turn.
+    let play = browser::poll(
+        client,
+        "the play screen, connected, on our turn, nothing moving",
+        STATE,
+        Duration::from_secs(30),
+        Duration::from_millis(50),
+        |s| {
+            s["screen"] == "play"
+                && s["connected"] == true
+                && s["my_turn"] == true
+                && s["animating"] == false
+        },
+    )
+    .await?;
+    let match_id = play["match_id"]
+        .as_str()
+        .ok_or_else(|| E2eError::Check(format!("no match_id on the play screen: {play}")))?
+        .to_string();
+    eprintln!("e2e: playing match {match_id} as {}", play["seat"]);
+
+    // 5. Pull one of our pieces straight down and let go: it shoots up the
+    // board. 80 px, or as far as the window allows (at least 40).
+    const PULL: f64 = 80.0;
+    const MIN_PULL: f64 = 40.0;
+    let height = browser::eval(client, "return window.innerHeight;")
+        .await?
+        .as_f64()
+        .unwrap_or(720.0);
+    let width = browser::eval(client, "return window.innerWidth;")
+        .await?
+        .as_f64()
+        .unwrap_or(1024.0);
+    let piece = play["pieces"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter(|p| p["mine"] == true)
+        .filter_map(|p| Some((p["x"].as_f64()?, p["y"].as_f64()?)))
+        .filter(|&(_, y)| y + MIN_PULL < height - 2.0)
+        .min_by(|a, b| {
+            let off = |p: &(f64, f64)| (p.0 - width / 2.0).abs();
+            off(a).total_cmp(&off(b))
+        })
+        .ok_or_else(|| {
+            E2eError::Check(format!(
+                "no piece of ours with {MIN_PULL} px of room below it: {}",
+                play["pieces"]
+            ))
+        })?;
+    let pull = PULL.min(height - 2.0 - piece.1);
+    eprintln!(
+        "e2e: pulling the piece at ({:.0}, {:.0}) down {pull:.0} px",
+        piece.0, piece.1
+    );
+    browser::drag(client, piece, (piece.0, piece.1 + pull), 8).await?;
+
+    // 6. The server counts the shot.
+    let start = Instant::now();
+    let path = format!("/api/matches/{match_id}");
+    loop {
+        let (status, summary) = api::get_json(&server.addr, &path).await?;
+        if status == 200 && summary["shots"].as_u64().is_some_and(|n| n >= 1) {
+            eprintln!("e2e: the server counted the shot: {summary}");
+            break;
+        }
+        if start.elapsed() > Duration::from_secs(15) {
+            let state = browser::eval(client, STATE).await.unwrap_or(Value::Null);
+            return Err(E2eError::Timeout {
+                what: format!("GET {path} to count a shot"),
+                seconds: 15,
+                last: format!("{status} {summary}; page state {state}"),
+            });
+        }
+        tokio::time::sleep(Duration::from_millis(200)).await;
+    }
+
+    // 7. The board after the shot.
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    let shot = browser::screenshot(client, &artifacts.join("02-after-shot.png")).await?;
+    let stats = picture::stats(&shot)?;
+    eprintln!("e2e: play screenshot: {stats}");
+    stats.check_drawn("play", 8, 0.01)?;
+    Ok(())
+}
+
+/// The centre of a `[x, y, w, h]` rectangle.
+fn centre(rect: &Value) -> Result<(f64, f64)> {
+    let n = |i: usize| rect[i].as_f64();
+    match (n(0), n(1), n(2), n(3)) {
+        (Some(x), Some(y), Some(w), Some(h)) => Ok((x + w / 2.0, y + h / 2.0)),
+        _ => Err(E2eError::Check(format!(
+            "not an [x, y, w, h] rectangle: {rect}"
+        ))),
+    }
+}
