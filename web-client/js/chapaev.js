@@ -213,6 +213,8 @@
     // elsewhere during a drag.
     function on_init() {
         const canvas = document.querySelector("#glcanvas");
+        // The right button aims and pans in the sandbox: no context menu.
+        canvas.addEventListener("contextmenu", (e) => e.preventDefault());
         const at = (e) => {
             const r = canvas.getBoundingClientRect();
             return [e.clientX - r.left, e.clientY - r.top];
