@@ -92,11 +92,10 @@ impl Connection {
             }
         }
         let fatal = out.iter().find_map(|m| match m {
-            ServerMessage::Error { code, message }
-                if matches!(code, ErrorCode::BadToken | ErrorCode::NoSuchMatch) =>
-            {
-                Some(message.clone())
-            }
+            ServerMessage::Error {
+                code: ErrorCode::BadToken | ErrorCode::NoSuchMatch,
+                message,
+            } => Some(message.clone()),
             _ => None,
         });
         if fatal.is_some() {

@@ -77,6 +77,9 @@ async fn main() {
         let mut state = screen.report();
         state.insert("screen".into(), screen.name().into());
         state.insert("buttons".into(), ui.layout());
+        state
+            .entry("animating")
+            .or_insert_with(|| screen.animating().into());
         state.insert("fps".into(), get_fps().into());
         state.insert("work_ms".into(), work_ms.into());
         platform::report(&serde_json::Value::Object(state).to_string());

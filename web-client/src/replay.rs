@@ -179,6 +179,10 @@ impl Screen for Replay {
             }
             None => "No shots were played".to_string(),
         };
+        let head = match l.replay.game().result() {
+            Some(r) if self.t >= l.timeline.total() => format!("{head} · {}", result_line(r)),
+            _ => head,
+        };
         ui::text(
             &format!("Replay of {}", self.match_id),
             12.0,

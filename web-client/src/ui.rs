@@ -128,11 +128,6 @@ impl Ui {
         }
     }
 
-    /// Whether the pointer is over a button drawn this frame so far.
-    pub fn over_control(&self, p: Vec2) -> bool {
-        self.buttons.values().any(|r| r.contains(p))
-    }
-
     /// The buttons drawn this frame, as `{"name": [x, y, w, h]}`.
     pub fn layout(&self) -> serde_json::Value {
         serde_json::Value::Object(

@@ -34,13 +34,13 @@ impl Viewport {
     }
 
     /// Screen position of world point `p`.
-    pub fn to_screen(&self, p: DVec2) -> Vec2 {
+    pub fn to_screen(self, p: DVec2) -> Vec2 {
         let d = self.turn(p - self.centre) * self.scale;
         vec2(self.anchor.x + d.x as f32, self.anchor.y - d.y as f32)
     }
 
     /// World point under screen position `s`.
-    pub fn to_world(&self, s: Vec2) -> DVec2 {
+    pub fn to_world(self, s: Vec2) -> DVec2 {
         let d = DVec2::new((s.x - self.anchor.x) as f64, (self.anchor.y - s.y) as f64);
         self.centre + self.turn(d / self.scale)
     }
