@@ -10,6 +10,7 @@ use crate::{E2eError, Result};
 use fantoccini::actions::{InputSource, MouseActions, PointerAction, MOUSE_BUTTON_LEFT};
 use fantoccini::{Client, ClientBuilder};
 use serde_json::{json, Value};
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -41,10 +42,21 @@ pub struct Programs {
 }
 
 /// Finds Chromium and chromedriver (`$CHROMIUM`, `$CHROMEDRIVER`, else
-/// `/usr/bin/…`, else the `PATH`). `Ok(None)`: missing, and
-/// `CHAPAEV_SKIP_BROWSER=1` says to skip (after a loud message); missing
-/// without it is an error saying what to install.
+/// `/usr/bin/…`, else the `PATH`). `Ok(None)`: `CHAPAEV_SKIP_BROWSER=1`
+/// says to skip (a loud message on standard error, past the test harness's
+/// capture, says so); missing programs without it are an error saying what
+/// to install.
 pub fn find_programs() -> Result<Option<Programs>> {
+    if std::env::var_os(SKIP_VAR).is_some_and(|v| !v.is_empty() && v != "0") {
+        let bar = "!".repeat(72);
+        let _ = writeln!(
+            std::io::stderr(),
+            "{bar}\n!! SKIPPED: the browser end-to-end test ({SKIP_VAR} is set).\n\
+             !! Nothing was checked in a browser. It needs Chromium and chromedriver:\n\
+             !!     apt-get install chromium chromium-driver\n{bar}"
+        );
+        return Ok(None);
+    }
     let chromium = find(
         "CHROMIUM",
         &["chromium", "chromium-browser", "google-chrome"],
@@ -62,15 +74,6 @@ pub fn find_programs() -> Result<Option<Programs>> {
         .map(|(n, _)| *n)
         .collect::<Vec<_>>()
         .join(" and ");
-    if std::env::var_os(SKIP_VAR).is_some_and(|v| !v.is_empty() && v != "0") {
-        let bar = "!".repeat(72);
-        eprintln!(
-            "{bar}\n!! SKIPPED: the browser end-to-end test ({missing} not found, {SKIP_VAR} is set).\n\
-             !! Nothing was checked in a browser. Install them with:\n\
-             !!     apt-get install chromium chromium-driver\n{bar}"
-        );
-        return Ok(None);
-    }
     Err(E2eError::Setup(format!(
         "{missing} not found: the browser end-to-end test needs Chromium and its WebDriver; \
          install them with `apt-get install chromium chromium-driver` (CI does), or set \
@@ -80,7 +83,8 @@ pub fn find_programs() -> Result<Option<Programs>> {
 
 fn find(var: &str, names: &[&str]) -> Option<PathBuf> {
     if let Some(p) = std::env::var_os(var).filter(|p| !p.is_empty()) {
-        return Some(PathBuf::from(p));
+        // An explicit choice: that program or none.
+        return Some(PathBuf::from(p)).filter(|p| p.is_file());
     }
     let path = std::env::var_os("PATH").unwrap_or_default();
     names.iter().find_map(|name| {

@@ -17,22 +17,23 @@ const STATE: &str = "return window.chapaev_state || null;";
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_player_opens_the_page_starts_a_game_against_the_easy_bot_and_shoots() {
-    let Some(programs) = browser::find_programs().unwrap() else {
+    let Some(programs) = browser::find_programs().unwrap_or_else(|e| panic!("{e}")) else {
         return;
     };
-    let artifacts = artifacts_dir().unwrap();
+    let artifacts = artifacts_dir().unwrap_or_else(|e| panic!("{e}"));
     let scratch = tempfile::tempdir().unwrap();
     let server = Server::start(
         Path::new(env!("CARGO_BIN_EXE_e2e-server")),
         &scratch.path().join("data"),
         &artifacts.join("server.log"),
     )
-    .unwrap();
-    let driver = Driver::start(&programs, &artifacts.join("chromedriver.log")).unwrap();
+    .unwrap_or_else(|e| panic!("{e}"));
+    let driver = Driver::start(&programs, &artifacts.join("chromedriver.log"))
+        .unwrap_or_else(|e| panic!("{e}"));
     let client = driver
         .session(&programs, &scratch.path().join("profile"))
         .await
-        .unwrap();
+        .unwrap_or_else(|e| panic!("{e}"));
 
     let outcome = play(&client, &server, &artifacts).await;
     if outcome.is_err() {
