@@ -11,7 +11,7 @@ use crate::board::Board;
 use crate::config::{Config, ConfigError};
 use crate::film::Film;
 use crate::noise;
-use crate::outcome::{MatchResult, Next, RoundEnd, ShotOutcome, WinReason};
+use crate::outcome::{ForfeitReason, MatchResult, Next, RoundEnd, ShotOutcome, WinReason};
 use crate::physics;
 use crate::piece::{PieceId, PIECES_PER_SIDE};
 use crate::record::{MatchRecord, RecordedMove};
@@ -42,6 +42,10 @@ pub enum GameError {
     NoPieDecision,
     #[error("the pie-rule decision is black's, not {0}'s")]
     NotYourDecision(Side),
+    #[error("it is not {0}'s turn")]
+    NotYourTurn(Side),
+    #[error("black's pie-rule decision comes first")]
+    PieDecisionPending,
 }
 
 impl GameError {
@@ -52,6 +56,8 @@ impl GameError {
             GameError::MatchOver => C::MatchOver,
             GameError::NoPieDecision => C::NoPieDecision,
             GameError::NotYourDecision(_) => C::NotYourDecision,
+            GameError::NotYourTurn(_) => C::NotYourTurn,
+            GameError::PieDecisionPending => C::PieDecisionPending,
         }
     }
 }
@@ -124,6 +130,15 @@ impl MatchView {
         v.swapped ^= swap;
         if v.phase == Phase::PieDecision {
             v.phase = Phase::Shooting;
+        }
+        v
+    }
+
+    /// The view after the side to shoot passed its turn.
+    pub fn after_pass(&self) -> MatchView {
+        let mut v = self.clone();
+        if v.phase == Phase::Shooting {
+            v.turn = v.turn.opponent();
         }
         v
     }
@@ -418,6 +433,38 @@ impl Game {
         Ok(result)
     }
 
+    /// `side`'s turn passes without a shot (its turn clock ran out).
+    pub fn pass(&mut self, side: Side) -> Result<(), GameError> {
+        match self.phase {
+            Phase::Over { .. } => return Err(GameError::MatchOver),
+            Phase::PieDecision => return Err(GameError::PieDecisionPending),
+            Phase::Shooting => {}
+        }
+        if side != self.turn {
+            return Err(GameError::NotYourTurn(side));
+        }
+        self.turn = side.opponent();
+        self.record.moves.push(RecordedMove::Pass { side });
+        Ok(())
+    }
+
+    /// `side` loses without playing on (`reason` says why): the other side
+    /// wins the match.
+    pub fn forfeit(&mut self, side: Side, reason: ForfeitReason) -> Result<MatchResult, GameError> {
+        if self.is_over() {
+            return Err(GameError::MatchOver);
+        }
+        let result = MatchResult::Won {
+            side: side.opponent(),
+            reason: reason.win_reason(),
+        };
+        self.phase = Phase::Over { result };
+        self.record
+            .moves
+            .push(RecordedMove::Forfeit { side, reason });
+        Ok(result)
+    }
+
     /// Sets up a position by hand (tests of particular situations).
     #[cfg(test)]
     pub(crate) fn set_position(&mut self, board: Board, rows: Rows, turn: Side) {
@@ -506,6 +553,48 @@ mod tests {
                 assert_eq!(view, g.view(), "variant {k} after {} shots", g.shots());
             }
         }
+    }
+
+    #[test]
+    fn a_pass_hands_the_turn_over_without_moving_anything_and_is_recorded() {
+        let mut g = Game::new(Config::default(), 0).unwrap();
+        let before = g.board().clone();
+        assert_eq!(
+            g.pass(Side::Black),
+            Err(GameError::NotYourTurn(Side::Black))
+        );
+        let view = g.view();
+        g.pass(Side::White).unwrap();
+        assert_eq!(g.to_shoot(), Some(Side::Black));
+        assert_eq!(g.board(), &before);
+        assert_eq!(g.shots(), 0);
+        assert_eq!(g.view(), view.after_pass());
+        assert_eq!(
+            g.record().moves.last(),
+            Some(&RecordedMove::Pass { side: Side::White })
+        );
+        let replayed = crate::Replay::new(g.record().clone()).unwrap();
+        assert_eq!(replayed.game().view(), g.view());
+    }
+
+    #[test]
+    fn a_forfeit_ends_the_match_for_the_other_side_with_its_reason() {
+        let mut g = Game::new(Config::default(), 0).unwrap();
+        let r = g.forfeit(Side::White, ForfeitReason::Timeouts).unwrap();
+        assert_eq!(
+            r,
+            MatchResult::Won {
+                side: Side::Black,
+                reason: WinReason::Timeouts
+            }
+        );
+        assert_eq!(g.pass(Side::White), Err(GameError::MatchOver));
+        assert_eq!(
+            g.forfeit(Side::Black, ForfeitReason::Abandoned),
+            Err(GameError::MatchOver)
+        );
+        let replayed = crate::Replay::new(g.record().clone()).unwrap();
+        assert_eq!(replayed.game().result(), Some(r));
     }
 
     #[test]

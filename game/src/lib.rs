@@ -63,7 +63,7 @@ pub use board::{Board, Piece};
 pub use config::{Config, ConfigError, NoiseConfig, Variants};
 pub use film::Film;
 pub use game::{Game, GameError, MatchView, Phase, Played};
-pub use outcome::{MatchResult, Next, RoundEnd, ShotOutcome, WinReason};
+pub use outcome::{ForfeitReason, MatchResult, Next, RoundEnd, ShotOutcome, WinReason};
 pub use piece::PieceId;
 pub use record::{MatchRecord, RecordError, RecordedMove, RECORD_VERSION};
 pub use replay::{Replay, ReplayError};

@@ -19,6 +19,30 @@ pub enum WinReason {
     QuickMatch,
     /// The other side resigned.
     Resignation,
+    /// The other side let its turn clock run out three times in a row.
+    Timeouts,
+    /// The other side stayed disconnected past the grace period.
+    Abandoned,
+}
+
+/// Why a side forfeited (lost without playing the match out).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ForfeitReason {
+    /// Three turn-clock timeouts in a row.
+    Timeouts,
+    /// Disconnected for longer than the grace period.
+    Abandoned,
+}
+
+impl ForfeitReason {
+    /// The winner's reason when the other side forfeits for this one.
+    pub fn win_reason(self) -> WinReason {
+        match self {
+            ForfeitReason::Timeouts => WinReason::Timeouts,
+            ForfeitReason::Abandoned => WinReason::Abandoned,
+        }
+    }
 }
 
 /// How a match ended.

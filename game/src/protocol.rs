@@ -122,24 +122,19 @@ pub enum ServerMessage {
         side: Side,
         remaining_ms: u64,
     },
-    /// `seat` did not act in time: the turn passes (the server plays the
-    /// smallest legal nudge for it, announced as a normal `shot-played`).
+    /// `seat` did not act in time: the turn passes (`turn-passed` follows;
+    /// a pending pie decision is taken as "keep", `pie-decided`).
     /// `strikes` timeouts in a row; the third forfeits the match.
     TurnTimedOut { seat: Seat, strikes: u32 },
+    /// `side`'s turn passed without a shot (its clock ran out); the other
+    /// side shoots next.
+    TurnPassed { side: Side },
     /// `seat` lost the match without playing it out (a `match-over`
     /// follows).
     Forfeited { seat: Seat, reason: ForfeitReason },
 }
 
-/// Why a seat forfeited.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum ForfeitReason {
-    /// Three turn-clock timeouts in a row.
-    Timeouts,
-    /// Disconnected for longer than the grace period.
-    Abandoned,
-}
+pub use crate::outcome::ForfeitReason;
 
 /// Stable error codes (kebab-case strings on the wire).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]

@@ -4,12 +4,16 @@
 //! clear error rather than misread.
 
 use crate::config::Config;
-use crate::outcome::ShotOutcome;
+use crate::outcome::{ForfeitReason, ShotOutcome};
 use crate::side::Side;
 use serde::{Deserialize, Serialize};
 
-/// The record format this crate writes and reads.
-pub const RECORD_VERSION: u32 = 1;
+/// The record format this crate writes. Version 1 (without passes and
+/// forfeits) is still read.
+pub const RECORD_VERSION: u32 = 2;
+
+/// The oldest record format this crate reads.
+pub const OLDEST_RECORD_VERSION: u32 = 1;
 
 /// One move of a match.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -21,6 +25,10 @@ pub enum RecordedMove {
     Pie { swap: bool },
     /// A side resigned.
     Resign { side: Side },
+    /// A side's turn clock ran out: its turn passed without a shot.
+    Pass { side: Side },
+    /// A side lost without playing on.
+    Forfeit { side: Side, reason: ForfeitReason },
 }
 
 /// A whole match.
@@ -40,8 +48,12 @@ pub enum RecordError {
     Json(String),
     #[error("the record has no \"version\" field")]
     MissingVersion,
-    #[error("record version {found} is not supported (this build reads version {supported})")]
-    UnsupportedVersion { found: String, supported: u32 },
+    #[error("record version {found} is not supported (this build reads versions {oldest} to {supported})")]
+    UnsupportedVersion {
+        found: String,
+        oldest: u32,
+        supported: u32,
+    },
 }
 
 impl MatchRecord {
@@ -73,9 +85,11 @@ impl MatchRecord {
         let value: serde_json::Value =
             serde_json::from_str(text).map_err(|e| RecordError::Json(e.to_string()))?;
         let version = value.get("version").ok_or(RecordError::MissingVersion)?;
-        if version.as_u64() != Some(RECORD_VERSION as u64) {
+        let readable = OLDEST_RECORD_VERSION as u64..=RECORD_VERSION as u64;
+        if !version.as_u64().is_some_and(|v| readable.contains(&v)) {
             return Err(RecordError::UnsupportedVersion {
                 found: version.to_string(),
+                oldest: OLDEST_RECORD_VERSION,
                 supported: RECORD_VERSION,
             });
         }
@@ -92,9 +106,14 @@ mod tests {
     fn a_record_round_trips_through_json() {
         let mut r = MatchRecord::new(Config::default(), u64::MAX - 3);
         r.moves.push(RecordedMove::Pie { swap: true });
-        r.moves.push(RecordedMove::Resign { side: Side::Black });
+        r.moves.push(RecordedMove::Pass { side: Side::White });
+        r.moves.push(RecordedMove::Forfeit {
+            side: Side::Black,
+            reason: ForfeitReason::Abandoned,
+        });
         let json = r.to_json();
-        assert!(json.contains(r#""version":1"#), "{json}");
+        assert!(json.contains(r#""version":2"#), "{json}");
+        assert!(json.contains(r#"{"move":"pass","side":"white"}"#), "{json}");
         assert!(json.contains(r#""move":"pie""#), "{json}");
         assert_eq!(MatchRecord::from_json(&json).unwrap(), r);
     }
@@ -103,21 +122,33 @@ mod tests {
     fn an_unknown_version_is_refused_with_a_clear_error() {
         let mut v: serde_json::Value =
             serde_json::from_str(&MatchRecord::new(Config::default(), 1).to_json()).unwrap();
-        v["version"] = serde_json::json!(2);
+        v["version"] = serde_json::json!(3);
         let err = MatchRecord::from_json(&v.to_string()).unwrap_err();
         assert_eq!(
             err,
             RecordError::UnsupportedVersion {
-                found: "2".into(),
-                supported: 1
+                found: "3".into(),
+                oldest: 1,
+                supported: 2
             }
         );
-        assert!(err.to_string().contains("version 2 is not supported"));
+        assert!(err.to_string().contains("version 3 is not supported"));
         v["version"] = serde_json::json!("one");
         assert!(matches!(
             MatchRecord::from_json(&v.to_string()),
             Err(RecordError::UnsupportedVersion { .. })
         ));
+    }
+
+    #[test]
+    fn a_version_1_record_is_still_read() {
+        let mut v: serde_json::Value =
+            serde_json::from_str(&MatchRecord::new(Config::default(), 1).to_json()).unwrap();
+        v["version"] = serde_json::json!(1);
+        v["moves"] = serde_json::json!([{"move": "resign", "side": "white"}]);
+        let r = MatchRecord::from_json(&v.to_string()).unwrap();
+        assert_eq!(r.version, 1);
+        assert_eq!(r.moves, vec![RecordedMove::Resign { side: Side::White }]);
     }
 
     #[test]

@@ -65,6 +65,13 @@ impl Replay {
                 RecordedMove::Pie { swap } => game
                     .decide_pie(crate::side::Side::Black, *swap)
                     .map_err(|error| ReplayError::IllegalMove { index, error })?,
+                RecordedMove::Pass { side } => game
+                    .pass(*side)
+                    .map_err(|error| ReplayError::IllegalMove { index, error })?,
+                RecordedMove::Forfeit { side, reason } => {
+                    game.forfeit(*side, *reason)
+                        .map_err(|error| ReplayError::IllegalMove { index, error })?;
+                }
                 RecordedMove::Resign { side } => {
                     game.resign(*side)
                         .map_err(|error| ReplayError::IllegalMove { index, error })?;

@@ -88,6 +88,9 @@ enum Action {
     Shot(Side, Shot),
     Pie(Side, bool),
     Resign(Side),
+    /// The turn clock ran out: the turn passes.
+    Pass(Side),
+    Forfeit(Side, ForfeitReason),
 }
 
 /// Why applying a move failed.
@@ -598,6 +601,14 @@ impl Room {
                     game.resign(side)?;
                     None
                 }
+                Action::Pass(side) => {
+                    game.pass(side)?;
+                    None
+                }
+                Action::Forfeit(side, reason) => {
+                    game.forfeit(side, reason)?;
+                    None
+                }
             };
             let moves = &game.record().moves;
             let (index, last) = (moves.len() - 1, &moves[moves.len() - 1]);
@@ -630,6 +641,7 @@ impl Room {
                 });
             }
             (Action::Pie(_, swap), _) => self.broadcast(&ServerMessage::PieDecided { swap }),
+            (Action::Pass(side), _) => self.broadcast(&ServerMessage::TurnPassed { side }),
             _ => {}
         }
         if let Some(result) = self.game.result() {
@@ -725,14 +737,11 @@ impl Room {
                 seat,
                 reason: ForfeitReason::Timeouts,
             });
-            Action::Resign(side)
+            Action::Forfeit(side, ForfeitReason::Timeouts)
         } else if self.game.phase() == Phase::PieDecision {
             Action::Pie(Side::Black, false)
         } else {
-            match clock::nudge(&self.game, side) {
-                Some(shot) => Action::Shot(side, shot),
-                None => Action::Resign(side),
-            }
+            Action::Pass(side)
         };
         if let Err(r) = self.apply(action).await {
             warn!(match_id = %self.id, refusal = %r, "the timeout move was refused");
@@ -749,7 +758,11 @@ impl Room {
             seat,
             reason: ForfeitReason::Abandoned,
         });
-        if let Err(r) = self.apply(Action::Resign(self.game.side_of(seat))).await {
+        let side = self.game.side_of(seat);
+        if let Err(r) = self
+            .apply(Action::Forfeit(side, ForfeitReason::Abandoned))
+            .await
+        {
             warn!(match_id = %self.id, refusal = %r, "forfeiting an abandoned seat failed");
         }
     }

@@ -121,12 +121,16 @@ async fn the_turn_clock_passes_the_turn_and_three_timeouts_in_a_row_forfeit() {
         let m = white.next_of("turn-timed-out").await;
         assert_eq!(m, ServerMessage::TurnTimedOut { seat, strikes });
         if k < 4 {
-            // The pass is a tiny flick that knocks nothing off.
-            let ServerMessage::ShotPlayed { outcome, .. } = white.next_of("shot-played").await
-            else {
-                unreachable!()
+            // The turn passes without a shot.
+            let side = if seat == Seat::First {
+                Side::White
+            } else {
+                Side::Black
             };
-            assert!(outcome.knocked_off.is_empty());
+            assert_eq!(
+                white.next_of("turn-passed").await,
+                ServerMessage::TurnPassed { side }
+            );
         }
     }
     assert_eq!(
@@ -139,7 +143,13 @@ async fn the_turn_clock_passes_the_turn_and_three_timeouts_in_a_row_forfeit() {
     let ServerMessage::MatchOver { result, .. } = white.next_of("match-over").await else {
         unreachable!()
     };
-    assert_eq!(result.winner(), Some(Side::Black));
+    assert_eq!(
+        result,
+        MatchResult::Won {
+            side: Side::Black,
+            reason: WinReason::Timeouts
+        }
+    );
 }
 
 #[tokio::test]
@@ -190,7 +200,13 @@ async fn a_player_gone_past_the_grace_period_forfeits() {
     let ServerMessage::MatchOver { result, .. } = white.next_of("match-over").await else {
         unreachable!()
     };
-    assert_eq!(result.winner(), Some(Side::White));
+    assert_eq!(
+        result,
+        MatchResult::Won {
+            side: Side::White,
+            reason: WinReason::Abandoned
+        }
+    );
 }
 
 #[tokio::test]

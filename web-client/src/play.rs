@@ -169,6 +169,7 @@ impl Play {
             }
             m @ (ServerMessage::ShotPlayed { .. }
             | ServerMessage::PieDecided { .. }
+            | ServerMessage::TurnPassed { .. }
             | ServerMessage::MatchOver { .. }) => {
                 if matches!(m, ServerMessage::ShotPlayed { .. }) {
                     self.awaiting = false;
@@ -258,6 +259,11 @@ impl Play {
                 ServerMessage::PieDecided { swap } => {
                     if let Some(v) = &self.view {
                         self.view = Some(v.after_pie(swap));
+                    }
+                }
+                ServerMessage::TurnPassed { .. } => {
+                    if let Some(v) = &self.view {
+                        self.view = Some(v.after_pass());
                     }
                 }
                 ServerMessage::MatchOver { result, .. } => {
@@ -637,6 +643,8 @@ fn result_text(r: MatchResult, me: Option<Side>) -> String {
                 WinReason::FarEdge => "reached the far edge",
                 WinReason::QuickMatch => "won the round",
                 WinReason::Resignation => "wins by resignation",
+                WinReason::Timeouts => "wins: the other side ran out of time three times",
+                WinReason::Abandoned => "wins: the other side left",
             };
             match me {
                 Some(m) if m == side => format!("You won: {how}"),

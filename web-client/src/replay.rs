@@ -106,6 +106,8 @@ fn result_line(r: MatchResult) -> String {
                 WinReason::FarEdge => "reaching the far edge",
                 WinReason::QuickMatch => "winning the round",
                 WinReason::Resignation => "resignation",
+                WinReason::Timeouts => "the other side's timeouts",
+                WinReason::Abandoned => "the other side's abandoning",
             };
             format!("{who} won by {how}")
         }
