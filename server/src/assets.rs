@@ -223,6 +223,25 @@ mod tests {
         assert_eq!(get("/chapaev.wasm", Some("\"other\"")).await.0, 200);
     }
 
+    /// The size budget of the browser build (the web client issue's target).
+    const WASM_BUDGET_BYTES: usize = 1_500_000;
+
+    #[test]
+    fn the_embedded_wasm_stays_within_its_size_budget() {
+        match web_client() {
+            Ok(bundle) => {
+                let n = bundle.wasm.bytes.len();
+                println!("web client wasm: {n} bytes (budget {WASM_BUDGET_BYTES})");
+                assert!(n <= WASM_BUDGET_BYTES, "the wasm grew to {n} bytes");
+            }
+            Err(not_built) => assert!(
+                not_built.skipped,
+                "the web client was not built: {}",
+                not_built.reason
+            ),
+        }
+    }
+
     #[actix_web::test]
     async fn the_api_page_moved_to_api_and_says_where_the_game_is() {
         let (status, headers, body) = get("/api", None).await;

@@ -168,6 +168,31 @@ async fn play(client: &Client, server: &Server, artifacts: &Path) -> Result<()> 
     );
     browser::drag(client, piece, (piece.0, piece.1 + pull), 8).await?;
 
+    // While the shot animates: the frame rate the browser reaches and the
+    // time our own frame code takes (reported, not asserted: timings belong
+    // in benchmarks, and headless Chromium draws WebGL in software).
+    let mut fps = Vec::new();
+    let mut work = Vec::new();
+    let sampling = Instant::now();
+    while sampling.elapsed() < Duration::from_millis(1500) {
+        let s = browser::eval(client, STATE).await?;
+        if s["animating"] == true {
+            fps.extend(s["fps"].as_f64());
+            work.extend(s["work_ms"].as_f64());
+        }
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+    let median = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
+    };
+    eprintln!(
+        "e2e: while the shot animated: {} samples, median {:.0} fps, our frame code {:.2} ms",
+        fps.len(),
+        median(&mut fps),
+        median(&mut work)
+    );
+
     // 6. The server counts the shot.
     let start = Instant::now();
     let path = format!("/api/matches/{match_id}");

@@ -178,6 +178,7 @@
 
     // ---- Test hooks ------------------------------------------------------
     function set_ready() {
+        window.chapaev_ready_ms = performance.now();
         window.chapaev_ready = true;
     }
     function report(ptr, len) {

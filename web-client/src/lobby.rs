@@ -214,13 +214,20 @@ impl Screen for Lobby {
             ui::text(m, x0 + 480.0, y + 8.0, 16.0, colors::MUTED);
         }
         y += 54.0;
+        ui::text(
+            "Writing a bot? The HTTP and WebSocket protocol is described at /api",
+            x0,
+            h - 20.0,
+            14.0,
+            colors::MUTED,
+        );
         // The three lists side by side (or stacked on a narrow screen).
         let narrow = col < 700.0;
         let lw = if narrow { col } else { (col - 24.0) / 3.0 };
         let top = y;
         for (i, l) in self.lists.iter().enumerate() {
             let (lx, mut ly) = if narrow {
-                (x0, top + i as f32 * ((h - top) / 3.0))
+                (x0, top + i as f32 * ((h - top - 24.0) / 3.0))
             } else {
                 (x0 + i as f32 * (lw + 12.0), top)
             };
