@@ -77,7 +77,6 @@ pub fn to_act(game: &Game) -> Option<Seat> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use game::{Config, Next};
 
     #[test]
     fn strikes_count_in_a_row_and_acting_clears_them() {
