@@ -139,12 +139,12 @@ fn describe(s: &Summary) -> String {
         (None, None) => "...".to_string(),
     };
     let mut d = format!("{first} vs {second}");
-    if s.shots > 0 {
-        d.push_str(&format!(" · {} shots", s.shots));
-    }
     if let Some(r) = s.result.and_then(|r| r.winner()) {
         let w = if r == Side::White { "White" } else { "Black" };
         d.push_str(&format!(" · {w} won"));
+    }
+    if s.shots > 0 {
+        d.push_str(&format!(" · {} shots", s.shots));
     }
     d
 }
@@ -232,9 +232,9 @@ impl Screen for Lobby {
                 (x0 + i as f32 * (lw + 12.0), top)
             };
             let lh = if narrow {
-                (h - top) / 3.0 - 8.0
+                (h - top - 24.0) / 3.0 - 8.0
             } else {
-                h - top - 16.0
+                h - top - 36.0
             };
             ui::panel(Rect::new(lx, ly, lw, lh));
             ui::text(l.title, lx + 10.0, ly + 8.0, 20.0, colors::ACCENT);
@@ -246,7 +246,10 @@ impl Screen for Lobby {
                 if ly + 30.0 > top + lh {
                     break;
                 }
-                let text: String = describe(s).chars().take((lw / 8.5) as usize).collect();
+                let text: String = describe(s)
+                    .chars()
+                    .take(((lw - 98.0) / 6.8).max(8.0) as usize)
+                    .collect();
                 ui::text(&text, lx + 10.0, ly + 6.0, 15.0, colors::TEXT);
                 let name = format!("{}-{k}", l.status);
                 if ui.button(&name, l.action, Rect::new(lx + lw - 78.0, ly, 68.0, 26.0)) {
