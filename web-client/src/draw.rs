@@ -220,3 +220,24 @@ pub fn frame(
         hit_ring(v.to_screen(at), r, k);
     }
 }
+
+/// An arrow from `from` to `to` (pixels), at most 300 px long.
+pub fn arrow(from: Vec2, to: Vec2, color: Color, width: f32) {
+    let d = to - from;
+    let len = d.length();
+    if len < 1.0 {
+        return;
+    }
+    let to = if len > 300.0 {
+        from + d * (300.0 / len)
+    } else {
+        to
+    };
+    let dir = (to - from).normalize();
+    let side = vec2(-dir.y, dir.x);
+    let head = (6.0 + width * 2.0).min(len * 0.5);
+    draw_line(from.x, from.y, to.x, to.y, width, color);
+    let a = to - dir * head + side * head * 0.5;
+    let b = to - dir * head - side * head * 0.5;
+    draw_triangle(to, a, b, color);
+}

@@ -375,10 +375,7 @@ impl Play {
                 let dir = velocity / velocity.length();
                 let tip = vp.to_screen(drag.from + dir * v.config.square * (0.8 + 3.2 * power));
                 let col = Color::new(1.0, 0.85 - 0.6 * power as f32, 0.25, 0.95);
-                draw_line(c.x, c.y, tip.x, tip.y, 5.0, col);
-                let back = (c - tip).normalize_or_zero() * 16.0;
-                let side = vec2(-back.y, back.x) * 0.5;
-                draw_triangle(tip, tip + back + side, tip + back - side, col);
+                draw::arrow(c, tip, col, 5.0);
                 // The power meter beside the pointer.
                 let (mx, my) = (p.x + 18.0, p.y - 40.0);
                 draw_rectangle(mx, my, 10.0, 60.0, Color::new(0.0, 0.0, 0.0, 0.5));

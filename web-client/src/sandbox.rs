@@ -331,7 +331,7 @@ impl Sandbox {
                 if b.vel != DVec2::ZERO && (few || self.selected == Some(b.id)) {
                     let from = v.to_screen(b.pos);
                     let to = v.to_screen(b.pos + tools::arrow_of(b.vel));
-                    arrow(from, to, Color::new(0.55, 0.85, 1.0, 0.8), 2.0);
+                    draw::arrow(from, to, Color::new(0.55, 0.85, 1.0, 0.8), 2.0);
                 }
             }
         }
@@ -407,7 +407,7 @@ impl Sandbox {
                 if let Some(b) = find(id) {
                     let from = v.to_screen(b.pos);
                     let tip = v.to_screen(to);
-                    arrow(from, tip, colors::ACCENT, 3.0);
+                    draw::arrow(from, tip, colors::ACCENT, 3.0);
                     let speed = tools::velocity_from_drag(to - b.pos).length();
                     ui::text(
                         &format!("{speed:.2} m/s"),
@@ -1057,26 +1057,6 @@ fn stepper(ui: &mut Ui, name: &str, label: &str, x: f32, y: f32, w: f32) -> Opti
 }
 
 /// A line with an arrow head, clamped to 300 pixels.
-fn arrow(from: Vec2, to: Vec2, color: Color, width: f32) {
-    let d = to - from;
-    let len = d.length();
-    if len < 1.0 {
-        return;
-    }
-    let to = if len > 300.0 {
-        from + d * (300.0 / len)
-    } else {
-        to
-    };
-    let dir = (to - from).normalize();
-    let side = vec2(-dir.y, dir.x);
-    let head = (6.0 + width * 2.0).min(len * 0.5);
-    draw_line(from.x, from.y, to.x, to.y, width, color);
-    let a = to - dir * head + side * head * 0.5;
-    let b = to - dir * head - side * head * 0.5;
-    draw_triangle(to, a, b, color);
-}
-
 /// A faint metric grid (lines every 1, 2 or 5 times a power of ten metres,
 /// at least 40 pixels apart) with its step written in the corner.
 fn grid(v: &Viewport, area: Rect) {
