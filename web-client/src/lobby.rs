@@ -33,6 +33,8 @@ pub struct Lobby {
     refreshed: f64,
     now: f64,
     message: Option<String>,
+    /// The rules are open over the lobby.
+    help: bool,
 }
 
 impl Lobby {
@@ -57,6 +59,7 @@ impl Lobby {
             refreshed: f64::NEG_INFINITY,
             now: 0.0,
             message: None,
+            help: false,
         }
     }
 
@@ -152,6 +155,22 @@ fn describe(s: &Summary) -> String {
 impl Screen for Lobby {
     fn frame(&mut self, ui: &mut Ui, dt: f64) -> Option<Route> {
         self.now += dt;
+        if self.help {
+            ui.without_input(|ui| self.lists_and_controls(ui));
+            self.help = !crate::help::show(ui);
+            return None;
+        }
+        self.lists_and_controls(ui)
+    }
+
+    fn name(&self) -> &'static str {
+        "lobby"
+    }
+}
+
+impl Lobby {
+    /// The lobby itself (drawn under the rules when they are open).
+    fn lists_and_controls(&mut self, ui: &mut Ui) -> Option<Route> {
         let mut go = self.poll();
         let (w, h) = (screen_width(), screen_height());
         let col = (w - 40.0).min(980.0);
@@ -168,6 +187,13 @@ impl Screen for Lobby {
             18.0,
             colors::MUTED,
         );
+        if ui.button(
+            "help",
+            "How to play",
+            Rect::new(x0 + col - 140.0, y + 6.0, 140.0, 34.0),
+        ) {
+            self.help = true;
+        }
         y += 86.0;
         ui::text("Your name", x0, y + 8.0, 18.0, colors::TEXT);
         ui.text_field(
@@ -264,9 +290,5 @@ impl Screen for Lobby {
             }
         }
         go
-    }
-
-    fn name(&self) -> &'static str {
-        "lobby"
     }
 }

@@ -9,6 +9,7 @@ mod api;
 mod clip;
 mod connection;
 mod draw;
+mod help;
 mod lobby;
 mod platform;
 mod play;

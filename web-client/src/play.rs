@@ -58,6 +58,8 @@ pub struct Play {
     /// A shot was sent; waiting for the server's answer.
     awaiting: bool,
     confirm_resign: bool,
+    /// The rules are open over the board.
+    help: bool,
     rematch_offer: Option<Seat>,
     now: f64,
     /// Where the pieces were drawn this frame (for the test report).
@@ -106,6 +108,7 @@ impl Play {
             drag: None,
             awaiting: false,
             confirm_resign: false,
+            help: false,
             rematch_offer: None,
             now: 0.0,
             drawn: Vec::new(),
@@ -601,6 +604,9 @@ impl Play {
         if ui.button("lobby", "Lobby", Rect::new(x, y, half, 34.0)) {
             go = Some(Route::Lobby);
         }
+        if ui.button("help", "Rules", Rect::new(x + half + 8.0, y, half, 34.0)) {
+            self.help = true;
+        }
         y += 46.0;
         // Chat between the seats (spectators read it).
         let chat_top = y;
@@ -710,9 +716,23 @@ impl Screen for Play {
             let bh = (h * 0.62).min(w);
             (Rect::new(0.0, 0.0, w, bh), Rect::new(0.0, bh, w, h - bh))
         };
-        // The panel first, so its buttons take presses before the board does.
-        let nav = self.panel(ui, panel);
-        self.board(ui, board);
+        // The panel first, so its buttons take presses before the board does;
+        // with the rules open, neither sees the pointer.
+        let help = self.help;
+        let nav = if help {
+            ui.without_input(|ui| {
+                let nav = self.panel(ui, panel);
+                self.board(ui, board);
+                nav
+            })
+        } else {
+            let nav = self.panel(ui, panel);
+            self.board(ui, board);
+            nav
+        };
+        if help {
+            self.help = !crate::help::show(ui);
+        }
         if let Some((text, until)) = &self.notice {
             if self.now < *until {
                 let tw = ui::text_width(text, 18.0) + 24.0;

@@ -128,6 +128,16 @@ impl Ui {
         }
     }
 
+    /// Runs `f` with the pointer and keyboard hidden from it: a modal
+    /// panel is open above what `f` draws.
+    pub fn without_input<R>(&mut self, f: impl FnOnce(&mut Ui) -> R) -> R {
+        let input = std::mem::take(&mut self.input);
+        self.input.pointer = vec2(f32::NEG_INFINITY, f32::NEG_INFINITY);
+        let r = f(self);
+        self.input = input;
+        r
+    }
+
     /// The buttons drawn this frame, as `{"name": [x, y, w, h]}`.
     pub fn layout(&self) -> serde_json::Value {
         serde_json::Value::Object(
