@@ -2,7 +2,9 @@
 //! client; headless Chromium loads it, the app draws its lobby (a
 //! screenshot shows it is not blank), "vs computer (easy)" is clicked, and
 //! one of the player's pieces is pulled back with the mouse and let go —
-//! the server's API then counts the shot. Screenshots and logs are left in
+//! the server's API then counts the shot. The player resigns, opens the
+//! replay and scrubs it, then opens the sandbox and plays its break.
+//! Screenshots and logs are left in
 //! the artifacts folder (`target/e2e-artifacts` or `$CHAPAEV_E2E_ARTIFACTS`).
 
 use e2e::browser::{self, Driver};
@@ -16,7 +18,8 @@ use std::time::{Duration, Instant};
 const STATE: &str = "return window.chapaev_state || null;";
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn a_player_opens_the_page_starts_a_game_against_the_easy_bot_and_shoots() {
+async fn a_player_opens_the_page_shoots_against_the_easy_bot_resigns_scrubs_the_replay_and_plays_the_sandbox(
+) {
     let Some(programs) = browser::find_programs().unwrap_or_else(|e| panic!("{e}")) else {
         return;
     };
@@ -219,7 +222,87 @@ async fn play(client: &Client, server: &Server, artifacts: &Path) -> Result<()> 
     let stats = picture::stats(&shot)?;
     eprintln!("e2e: play screenshot: {stats}");
     stats.check_drawn("play", 8, 0.01)?;
+
+    // 8. Resign (with its confirmation), then open the replay of the match.
+    click_button(client, "resign").await?;
+    click_button(client, "resign-yes").await?;
+    click_button(client, "replay").await?;
+    let replay = browser::poll(
+        client,
+        "the replay screen with the match loaded",
+        STATE,
+        Duration::from_secs(15),
+        Duration::from_millis(50),
+        |s| s["screen"] == "replay" && s["shots"].as_u64().is_some_and(|n| n >= 1),
+    )
+    .await?;
+    eprintln!(
+        "e2e: the replay holds {} shots over {:.1} s",
+        replay["shots"], replay["total"]
+    );
+    // Scrub: clicking the middle of the timeline jumps there.
+    let (x, y) = centre(&replay["buttons"]["timeline"])?;
+    browser::click(client, x, y).await?;
+    let total = replay["total"].as_f64().unwrap_or(0.0);
+    browser::poll(
+        client,
+        "the replay's time near the middle after a click on the timeline",
+        STATE,
+        Duration::from_secs(5),
+        Duration::from_millis(50),
+        |s| {
+            s["t"]
+                .as_f64()
+                .is_some_and(|t| (t - total / 2.0).abs() < total * 0.2 + 0.5)
+        },
+    )
+    .await?;
+    let shot = browser::screenshot(client, &artifacts.join("03-replay.png")).await?;
+    picture::stats(&shot)?.check_drawn("replay", 8, 0.01)?;
+
+    // 9. Back to the lobby and into the sandbox: its break plays and counts events.
+    click_button(client, "lobby").await?;
+    click_button(client, "sandbox").await?;
+    let sandbox = browser::poll(
+        client,
+        "the sandbox with its bodies",
+        STATE,
+        Duration::from_secs(10),
+        Duration::from_millis(50),
+        |s| s["screen"] == "sandbox" && s["bodies"].as_u64().is_some_and(|n| n > 0),
+    )
+    .await?;
+    eprintln!("e2e: the sandbox opened with {} bodies", sandbox["bodies"]);
+    click_button(client, "play").await?;
+    let played = browser::poll(
+        client,
+        "the sandbox's events after Play",
+        STATE,
+        Duration::from_secs(10),
+        Duration::from_millis(50),
+        |s| s["events"].as_u64().is_some_and(|n| n > 0),
+    )
+    .await?;
+    eprintln!("e2e: the sandbox played {} events", played["events"]);
+    let shot = browser::screenshot(client, &artifacts.join("04-sandbox.png")).await?;
+    picture::stats(&shot)?.check_drawn("sandbox", 8, 0.01)?;
     Ok(())
+}
+
+/// Waits for the button `name` to be drawn, then clicks its centre.
+async fn click_button(client: &Client, name: &str) -> Result<()> {
+    let state = browser::poll(
+        client,
+        &format!("the {name} button"),
+        STATE,
+        Duration::from_secs(15),
+        Duration::from_millis(50),
+        |s| s["buttons"][name].is_array(),
+    )
+    .await?;
+    let (x, y) = centre(&state["buttons"][name])?;
+    eprintln!("e2e: clicking {name} at ({x:.0}, {y:.0})");
+    browser::click(client, x, y).await
 }
 
 /// The centre of a `[x, y, w, h]` rectangle.
