@@ -39,7 +39,8 @@ struct Args {
     /// How long the players shoot, seconds.
     #[arg(long, default_value_t = 20)]
     seconds: u64,
-    /// Pause before each shot, milliseconds (0: shoot as soon as it is your turn).
+    /// Mean pause before each shot, milliseconds: each pause is drawn between
+    /// half and one and a half times it (0: shoot as soon as it is your turn).
     #[arg(long, default_value_t = 0)]
     think_ms: u64,
 }
@@ -101,7 +102,12 @@ async fn connect(addr: &str, id: &str, token: Option<&str>) -> Result<Ws, LoadEr
         Some(t) => format!("ws://{addr}/ws?match={id}&token={t}"),
         None => format!("ws://{addr}/ws?match={id}"),
     };
-    Ok(tokio_tungstenite::connect_async(url).await?.0)
+    // No Nagle: a shot is one small frame and must leave at once.
+    Ok(
+        tokio_tungstenite::connect_async_with_config(url, None, true)
+            .await?
+            .0,
+    )
 }
 
 /// A player: shoots a random own piece whenever its turn comes; returns
@@ -123,7 +129,9 @@ async fn player(
     loop {
         if my_turn && pending.is_none() && Instant::now() < until {
             if !think.is_zero() {
-                tokio::time::sleep(think).await;
+                // Players aim for a while, not in lockstep: between half and
+                // one and a half times the mean thinking time.
+                tokio::time::sleep(think.mul_f64(0.5 + rng.next_f64())).await;
             }
             let k = (rng.next_u64() % own.len().max(1) as u64) as usize;
             let Some(piece) = own.get(k).copied() else {
