@@ -421,15 +421,25 @@ impl Game {
 
     /// `side` resigns: the other side wins the match.
     pub fn resign(&mut self, side: Side) -> Result<MatchResult, GameError> {
+        self.concede(side, WinReason::Resignation, RecordedMove::Resign { side })
+    }
+
+    /// Ends the match with a win for `side`'s opponent, recording `recorded`.
+    fn concede(
+        &mut self,
+        side: Side,
+        reason: WinReason,
+        recorded: RecordedMove,
+    ) -> Result<MatchResult, GameError> {
         if self.is_over() {
             return Err(GameError::MatchOver);
         }
         let result = MatchResult::Won {
             side: side.opponent(),
-            reason: WinReason::Resignation,
+            reason,
         };
         self.phase = Phase::Over { result };
-        self.record.moves.push(RecordedMove::Resign { side });
+        self.record.moves.push(recorded);
         Ok(result)
     }
 
@@ -451,18 +461,11 @@ impl Game {
     /// `side` loses without playing on (`reason` says why): the other side
     /// wins the match.
     pub fn forfeit(&mut self, side: Side, reason: ForfeitReason) -> Result<MatchResult, GameError> {
-        if self.is_over() {
-            return Err(GameError::MatchOver);
-        }
-        let result = MatchResult::Won {
-            side: side.opponent(),
-            reason: reason.win_reason(),
-        };
-        self.phase = Phase::Over { result };
-        self.record
-            .moves
-            .push(RecordedMove::Forfeit { side, reason });
-        Ok(result)
+        self.concede(
+            side,
+            reason.win_reason(),
+            RecordedMove::Forfeit { side, reason },
+        )
     }
 
     /// Sets up a position by hand (tests of particular situations).
