@@ -101,26 +101,19 @@ async fn play(client: &Client, server: &Server, artifacts: &Path) -> Result<()> 
     stats.check_drawn("lobby", 8, 0.001)?;
 
     // 3. "vs computer (easy)".
-    let lobby = browser::poll(
-        client,
-        "the lobby's vs-computer-easy button",
-        STATE,
-        Duration::from_secs(10),
-        Duration::from_millis(50),
-        |s| s["screen"] == "lobby" && s["buttons"]["vs-computer-easy"].is_array(),
-    )
+    let lobby = state_until(client, "the lobby's vs-computer-easy button", 10, |s| {
+        s["screen"] == "lobby" && s["buttons"]["vs-computer-easy"].is_array()
+    })
     .await?;
     let (x, y) = centre(&lobby["buttons"]["vs-computer-easy"])?;
     eprintln!("e2e: clicking vs-computer-easy at ({x:.0}, {y:.0})");
     browser::click(client, x, y).await?;
 
     // 4. The match is on, connected, and it is our turn.
-    let play = browser::poll(
+    let play = state_until(
         client,
         "the play screen, connected, on our turn, nothing moving",
-        STATE,
-        Duration::from_secs(30),
-        Duration::from_millis(50),
+        30,
         |s| {
             s["screen"] == "play"
                 && s["connected"] == true
@@ -227,14 +220,9 @@ async fn play(client: &Client, server: &Server, artifacts: &Path) -> Result<()> 
     click_button(client, "resign").await?;
     click_button(client, "resign-yes").await?;
     click_button(client, "replay").await?;
-    let replay = browser::poll(
-        client,
-        "the replay screen with the match loaded",
-        STATE,
-        Duration::from_secs(15),
-        Duration::from_millis(50),
-        |s| s["screen"] == "replay" && s["shots"].as_u64().is_some_and(|n| n >= 1),
-    )
+    let replay = state_until(client, "the replay screen with the match loaded", 15, |s| {
+        s["screen"] == "replay" && s["shots"].as_u64().is_some_and(|n| n >= 1)
+    })
     .await?;
     eprintln!(
         "e2e: the replay holds {} shots over {:.1} s",
@@ -244,12 +232,10 @@ async fn play(client: &Client, server: &Server, artifacts: &Path) -> Result<()> 
     let (x, y) = centre(&replay["buttons"]["timeline"])?;
     browser::click(client, x, y).await?;
     let total = replay["total"].as_f64().unwrap_or(0.0);
-    browser::poll(
+    state_until(
         client,
         "the replay's time near the middle after a click on the timeline",
-        STATE,
-        Duration::from_secs(5),
-        Duration::from_millis(50),
+        5,
         |s| {
             s["t"]
                 .as_f64()
@@ -263,25 +249,15 @@ async fn play(client: &Client, server: &Server, artifacts: &Path) -> Result<()> 
     // 9. Back to the lobby and into the sandbox: its break plays and counts events.
     click_button(client, "lobby").await?;
     click_button(client, "sandbox").await?;
-    let sandbox = browser::poll(
-        client,
-        "the sandbox with its bodies",
-        STATE,
-        Duration::from_secs(10),
-        Duration::from_millis(50),
-        |s| s["screen"] == "sandbox" && s["bodies"].as_u64().is_some_and(|n| n > 0),
-    )
+    let sandbox = state_until(client, "the sandbox with its bodies", 10, |s| {
+        s["screen"] == "sandbox" && s["bodies"].as_u64().is_some_and(|n| n > 0)
+    })
     .await?;
     eprintln!("e2e: the sandbox opened with {} bodies", sandbox["bodies"]);
     click_button(client, "play").await?;
-    let played = browser::poll(
-        client,
-        "the sandbox's events after Play",
-        STATE,
-        Duration::from_secs(10),
-        Duration::from_millis(50),
-        |s| s["events"].as_u64().is_some_and(|n| n > 0),
-    )
+    let played = state_until(client, "the sandbox's events after Play", 10, |s| {
+        s["events"].as_u64().is_some_and(|n| n > 0)
+    })
     .await?;
     eprintln!("e2e: the sandbox played {} events", played["events"]);
     let shot = browser::screenshot(client, &artifacts.join("04-sandbox.png")).await?;
@@ -289,16 +265,29 @@ async fn play(client: &Client, server: &Server, artifacts: &Path) -> Result<()> 
     Ok(())
 }
 
+/// Polls the app's state every 50 ms until `done` holds (at most `secs` seconds).
+async fn state_until(
+    client: &Client,
+    what: &str,
+    secs: u64,
+    done: impl FnMut(&Value) -> bool,
+) -> Result<Value> {
+    browser::poll(
+        client,
+        what,
+        STATE,
+        Duration::from_secs(secs),
+        Duration::from_millis(50),
+        done,
+    )
+    .await
+}
+
 /// Waits for the button `name` to be drawn, then clicks its centre.
 async fn click_button(client: &Client, name: &str) -> Result<()> {
-    let state = browser::poll(
-        client,
-        &format!("the {name} button"),
-        STATE,
-        Duration::from_secs(15),
-        Duration::from_millis(50),
-        |s| s["buttons"][name].is_array(),
-    )
+    let state = state_until(client, &format!("the {name} button"), 15, |s| {
+        s["buttons"][name].is_array()
+    })
     .await?;
     let (x, y) = centre(&state["buttons"][name])?;
     eprintln!("e2e: clicking {name} at ({x:.0}, {y:.0})");
