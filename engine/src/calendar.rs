@@ -69,6 +69,7 @@ impl Calendar {
         }
     }
 
+    #[inline]
     fn sift_up(&mut self, mut i: usize, entry: (f64, u32)) {
         while i > 0 {
             let parent = (i - 1) / ARITY;
@@ -84,6 +85,7 @@ impl Calendar {
         self.pos[entry.1 as usize] = i as u32;
     }
 
+    #[inline]
     fn sift_down(&mut self, mut i: usize, entry: (f64, u32)) {
         let n = self.heap.len();
         loop {

@@ -791,8 +791,7 @@ impl World {
         scan_if_resting: bool,
         known: Known,
     ) -> Option<Option<f64>> {
-        let tr = self.slots[i].traj;
-        let mover = Mover::new(&tr, self.t);
+        let mover = Mover::new(&self.slots[i].traj, self.t);
         let mut pair = None;
         let best = if mover.is_none() && !scan_if_resting {
             Best::NONE
