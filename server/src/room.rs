@@ -12,12 +12,12 @@ use crate::bot::{self, BotLevel, BotMove};
 use crate::clock::{self, TurnClock, STRIKES_TO_FORFEIT};
 use crate::hub::Hub;
 use crate::refusal::Refusal;
-use crate::store::{AfterMove, Status, StoredMatch};
+use crate::store::{AfterMove, MoveWrite, Status, StoredMatch};
 use game::noise::SplitMix64;
 use game::protocol::{
     ClientMessage, ErrorCode, ForfeitReason, Players, ServerMessage, MAX_CHAT_CHARS,
 };
-use game::{Game, Phase, Seat, Shot, Side};
+use game::{Game, Phase, Played, Seat, Shot, Side};
 use std::collections::HashMap;
 use std::sync::Arc;
 use std::time::Duration;
@@ -583,46 +583,59 @@ impl Room {
 
     // ----- moves -----
 
+    /// Plays `action` on the game and queues it for the store: the played
+    /// shot (for shots) and the pending write. A refused move changes
+    /// nothing.
+    fn resolve(&mut self, action: Action) -> Result<(Option<Played>, MoveWrite), ApplyError> {
+        let game = &mut self.game;
+        let played = match action {
+            Action::Shot(side, shot) => Some(game.play(side, shot)?),
+            Action::Pie(side, swap) => {
+                game.decide_pie(side, swap)?;
+                None
+            }
+            Action::Resign(side) => {
+                game.resign(side)?;
+                None
+            }
+            Action::Pass(side) => {
+                game.pass(side)?;
+                None
+            }
+            Action::Forfeit(side, reason) => {
+                game.forfeit(side, reason)?;
+                None
+            }
+        };
+        let moves = &game.record().moves;
+        let (index, last) = (moves.len() - 1, &moves[moves.len() - 1]);
+        let result = game.result();
+        let after = AfterMove {
+            status: status_of(game, &self.seats),
+            shots: game.shots(),
+            result: result.as_ref(),
+        };
+        let write = self
+            .hub
+            .store()
+            .submit_move(&self.id, index, last, &after)
+            .map_err(|e| ApplyError::Store(e.to_string()))?;
+        Ok((played, write))
+    }
+
     /// Applies an accepted move: resolves it, stores it, then broadcasts it.
     async fn apply(&mut self, action: Action) -> Result<(), Refusal> {
         let started = std::time::Instant::now();
-        let store = self.hub.store().clone();
-        let id = self.id.clone();
-        let seats = self.seats.clone();
-        let game = &mut self.game;
-        let outcome = tokio::task::block_in_place(|| -> Result<_, ApplyError> {
-            let played = match action {
-                Action::Shot(side, shot) => Some(game.play(side, shot)?),
-                Action::Pie(side, swap) => {
-                    game.decide_pie(side, swap)?;
-                    None
-                }
-                Action::Resign(side) => {
-                    game.resign(side)?;
-                    None
-                }
-                Action::Pass(side) => {
-                    game.pass(side)?;
-                    None
-                }
-                Action::Forfeit(side, reason) => {
-                    game.forfeit(side, reason)?;
-                    None
-                }
-            };
-            let moves = &game.record().moves;
-            let (index, last) = (moves.len() - 1, &moves[moves.len() - 1]);
-            let result = game.result();
-            let after = AfterMove {
-                status: status_of(game, &seats),
-                shots: game.shots(),
-                result: result.as_ref(),
-            };
-            store
-                .append_move(&id, index, last, &after)
-                .map_err(|e| ApplyError::Store(e.to_string()))?;
-            Ok(played)
-        });
+        // Resolving a shot is microseconds of CPU, done here; the write is
+        // awaited, so no game thread waits on the disk.
+        let outcome = match self.resolve(action) {
+            Ok((played, write)) => write
+                .done()
+                .await
+                .map(|()| played)
+                .map_err(|e| ApplyError::Store(e.to_string())),
+            Err(e) => Err(e),
+        };
         let played = match outcome {
             Ok(p) => p,
             Err(ApplyError::Refused(refusal)) => return Err(refusal),

@@ -11,8 +11,9 @@ use game::{Config, MatchRecord, MatchResult, RecordedMove, RECORD_VERSION};
 use rusqlite::{params, Connection, OptionalExtension};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
-use std::sync::{Mutex, MutexGuard};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::time::{SystemTime, UNIX_EPOCH};
+use tokio::sync::oneshot;
 
 /// A store operation failed.
 #[derive(Debug, thiserror::Error)]
@@ -113,16 +114,33 @@ pub struct AfterMove<'a> {
 
 /// The SQLite store (one connection; SQLite has one writer at a time anyway).
 ///
-/// Moves are written by group commit: a writer queues its move, then takes
-/// the connection; whoever holds it writes every queued move in one
-/// transaction (one fsync for all of them), each in its own savepoint so
-/// one bad move fails alone, and hands each writer its own result. A writer
-/// whose move a previous holder already committed returns at once. Under
-/// load this turns one fsync per move into one per batch.
+/// Moves are written by group commit on the store's own writer thread: a
+/// writer queues its move ([`Store::submit_move`]) and waits for its
+/// [`MoveWrite`] (asynchronously in a room, blocking in
+/// [`Store::append_move`]); the writer thread takes every queued move and
+/// writes them in one transaction (one fsync for all of them), each in its
+/// own savepoint so one bad move fails alone, and hands each writer its own
+/// result. Under load this turns one fsync per move into one per batch, and
+/// no game thread ever blocks on the disk. Dropping the store writes what
+/// is queued and stops the thread.
 pub struct Store {
+    shared: Arc<Shared>,
+    writer: Option<std::thread::JoinHandle<()>>,
+}
+
+/// What the store's callers and its writer thread share.
+struct Shared {
     conn: Mutex<Connection>,
-    /// Moves waiting for the next group commit.
-    queue: Mutex<Vec<QueuedMove>>,
+    queue: Mutex<Queue>,
+    /// Signalled when a move is queued or the store closes.
+    wake: Condvar,
+}
+
+/// Moves waiting for the next group commit.
+#[derive(Default)]
+struct Queue {
+    moves: Vec<QueuedMove>,
+    closing: bool,
 }
 
 /// A move waiting to be written, and where its writer waits for the result.
@@ -133,7 +151,28 @@ struct QueuedMove {
     status: &'static str,
     shots: i64,
     result: Option<String>,
-    done: std::sync::mpsc::Sender<Result<(), StoreError>>,
+    done: oneshot::Sender<Result<(), StoreError>>,
+}
+
+/// A queued move's write: wait for it to learn whether the move is stored.
+#[must_use = "a move is only stored once its write has completed"]
+pub struct MoveWrite(oneshot::Receiver<Result<(), StoreError>>);
+
+impl MoveWrite {
+    /// Waits (asynchronously) until the move is committed or has failed.
+    pub async fn done(self) -> Result<(), StoreError> {
+        self.0
+            .await
+            .map_err(|_| StoreError::GroupCommit("the store closed first".into()))?
+    }
+
+    /// Blocks the thread until the move is committed or has failed (not
+    /// from inside an async task: use [`MoveWrite::done`] there).
+    pub fn wait(self) -> Result<(), StoreError> {
+        self.0
+            .blocking_recv()
+            .map_err(|_| StoreError::GroupCommit("the store closed first".into()))?
+    }
 }
 
 const SCHEMA: &str = "
@@ -198,14 +237,26 @@ impl Store {
         conn.pragma_update(None, "foreign_keys", "ON")?;
         conn.busy_timeout(std::time::Duration::from_secs(5))?;
         conn.execute_batch(SCHEMA)?;
-        Ok(Store {
+        let shared = Arc::new(Shared {
             conn: Mutex::new(conn),
-            queue: Mutex::new(Vec::new()),
+            queue: Mutex::new(Queue::default()),
+            wake: Condvar::new(),
+        });
+        let writer = {
+            let shared = shared.clone();
+            std::thread::Builder::new()
+                .name("store-writer".into())
+                .spawn(move || write_loop(&shared))
+                .map_err(|e| StoreError::GroupCommit(format!("cannot start the writer: {e}")))?
+        };
+        Ok(Store {
+            shared,
+            writer: Some(writer),
         })
     }
 
     fn lock(&self) -> Result<MutexGuard<'_, Connection>, StoreError> {
-        self.conn.lock().map_err(|_| StoreError::Poisoned)
+        self.shared.conn.lock().map_err(|_| StoreError::Poisoned)
     }
 
     /// Stores a new match (no moves yet).
@@ -251,7 +302,7 @@ impl Store {
     }
 
     /// Appends move number `index` and updates the match row, in one
-    /// transaction: both are stored, or neither.
+    /// transaction: both are stored, or neither. Blocks until it is done.
     pub fn append_move(
         &self,
         id: &str,
@@ -259,32 +310,38 @@ impl Store {
         m: &RecordedMove,
         after: &AfterMove<'_>,
     ) -> Result<(), StoreError> {
+        self.submit_move(id, index, m, after)?.wait()
+    }
+
+    /// Queues move number `index` and the match row's update for the next
+    /// group commit (one transaction: both are stored, or neither); the
+    /// returned [`MoveWrite`] tells when it is stored.
+    pub fn submit_move(
+        &self,
+        id: &str,
+        index: usize,
+        m: &RecordedMove,
+        after: &AfterMove<'_>,
+    ) -> Result<MoveWrite, StoreError> {
         let body = serde_json::to_string(m)?;
         let result = after.result.map(serde_json::to_string).transpose()?;
-        let (done, answer) = std::sync::mpsc::channel();
-        self.queue
-            .lock()
-            .map_err(|_| StoreError::Poisoned)?
-            .push(QueuedMove {
-                id: id.to_string(),
-                index: index as i64,
-                body,
-                status: after.status.as_str(),
-                shots: after.shots as i64,
-                result,
-                done,
-            });
-        let mut conn = self.lock()?;
-        // A previous holder of the connection may have committed it already.
-        if let Ok(r) = answer.try_recv() {
-            return r;
+        let (done, answer) = oneshot::channel();
+        let mut queue = self.shared.queue.lock().map_err(|_| StoreError::Poisoned)?;
+        if queue.closing {
+            return Err(StoreError::GroupCommit("the store is closing".into()));
         }
-        let batch = std::mem::take(&mut *self.queue.lock().map_err(|_| StoreError::Poisoned)?);
-        write_batch(&mut conn, batch);
-        drop(conn);
-        answer
-            .recv()
-            .map_err(|_| StoreError::GroupCommit("the batch was dropped".into()))?
+        queue.moves.push(QueuedMove {
+            id: id.to_string(),
+            index: index as i64,
+            body,
+            status: after.status.as_str(),
+            shots: after.shots as i64,
+            result,
+            done,
+        });
+        drop(queue);
+        self.shared.wake.notify_one();
+        Ok(MoveWrite(answer))
     }
 
     fn row_to_match(row: &rusqlite::Row<'_>) -> rusqlite::Result<(StoredMatchRaw, String)> {
@@ -497,6 +554,49 @@ impl StoredMatchRaw {
             rematch_of: self.rematch_of,
             id: self.id,
         })
+    }
+}
+
+impl Drop for Store {
+    /// Writes what is still queued, then stops the writer thread.
+    fn drop(&mut self) {
+        if let Ok(mut queue) = self.shared.queue.lock() {
+            queue.closing = true;
+        }
+        self.shared.wake.notify_one();
+        if let Some(writer) = self.writer.take() {
+            let _ = writer.join();
+        }
+    }
+}
+
+/// The writer thread: waits for queued moves and commits each batch, until
+/// the store closes with nothing left to write.
+fn write_loop(shared: &Shared) {
+    loop {
+        let batch = {
+            let Ok(mut queue) = shared.queue.lock() else {
+                return;
+            };
+            while queue.moves.is_empty() && !queue.closing {
+                queue = match shared.wake.wait(queue) {
+                    Ok(q) => q,
+                    Err(_) => return,
+                };
+            }
+            if queue.moves.is_empty() {
+                return;
+            }
+            std::mem::take(&mut queue.moves)
+        };
+        match shared.conn.lock() {
+            Ok(mut conn) => write_batch(&mut conn, batch),
+            Err(_) => {
+                for m in batch {
+                    let _ = m.done.send(Err(StoreError::Poisoned));
+                }
+            }
+        }
     }
 }
 
