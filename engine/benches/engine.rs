@@ -5,6 +5,11 @@
 //!   leaves the board is removed, as in the game), from `World::new` to rest.
 //! * `galperin_n7` / `galperin_n8`: Galperin's billiard; the collision count
 //!   (the digits of pi) is asserted on every iteration.
+//! * `galperin/bare_loop_n7`: the same billiard in a hand-written loop with
+//!   the engine's formulas and none of its generality (two frictionless
+//!   discs on a line and one wall, all three predictions redone after every
+//!   event): not the engine, but the speed this machine allows at all, the
+//!   yardstick for the engine's own rate.
 //! * `box_frictionless_{100,10000}`: discs in a closed box at ~10% area
 //!   fraction, 20 000 events from a steady state (the world is built and
 //!   warmed up once, then cloned per iteration, outside the timing).
@@ -216,7 +221,108 @@ fn galperin(c: &mut Criterion) {
             },
         );
     }
+    if selected("galperin/bare_loop_n7") {
+        assert_eq!(bare_galperin(7), 3_141_592, "bare loop, n = 7");
+        group.throughput(Throughput::Elements(3_141_592));
+        group.bench_function("bare_loop_n7", |b| b.iter(|| bare_galperin(black_box(7))));
+    }
     group.finish();
+}
+
+/// A disc on the x axis for [`bare_galperin`]: position and velocity at `t0`.
+#[derive(Clone, Copy)]
+struct BareDisc {
+    t0: f64,
+    x: f64,
+    v: f64,
+    r: f64,
+    m: f64,
+}
+
+impl BareDisc {
+    fn x_at(&self, t: f64) -> f64 {
+        self.x + self.v * (t - self.t0)
+    }
+}
+
+/// Galperin's billiard (the preset's scene) in the leanest possible loop:
+/// the pair's contact from the same stable quadratic root as the engine
+/// (a square root and a division), the wall's from one division, the
+/// impulse from the mass shares. Returns the number of collisions.
+fn bare_galperin(n: u32) -> u64 {
+    let big = (1..n).fold(1.0, |m, _| m * 100.0);
+    let mut small = BareDisc {
+        t0: 0.0,
+        x: 1.0,
+        v: 0.0,
+        r: 0.1,
+        m: 1.0,
+    };
+    let mut heavy = BareDisc {
+        t0: 0.0,
+        x: 3.0,
+        v: -1.0,
+        r: 0.5,
+        m: big,
+    };
+    let (mut now, mut events) = (0.0, 0u64);
+    loop {
+        let pair = {
+            let (dp, dv) = (small.x_at(now) - heavy.x_at(now), small.v - heavy.v);
+            let (b, s) = (dp * dv, small.r + heavy.r);
+            let (a, c) = (dv * dv, dp * dp - s * s);
+            let disc = b * b - a * c;
+            if b >= 0.0 || disc <= 0.0 {
+                f64::INFINITY
+            } else {
+                now + c / (-b + disc.sqrt())
+            }
+        };
+        let wall = |d: &BareDisc| {
+            if d.v >= 0.0 {
+                f64::INFINITY
+            } else {
+                now + (d.x_at(now) - d.r) / -d.v
+            }
+        };
+        let (ws, wh) = (wall(&small), wall(&heavy));
+        let t = pair.min(ws).min(wh);
+        if t == f64::INFINITY {
+            return events;
+        }
+        now = t;
+        events += 1;
+        if t == pair {
+            let q = small.m / (small.m + heavy.m);
+            let k = -2.0 * (small.v - heavy.v);
+            small = BareDisc {
+                t0: t,
+                x: small.x_at(t),
+                v: small.v + k * (1.0 - q),
+                ..small
+            };
+            heavy = BareDisc {
+                t0: t,
+                x: heavy.x_at(t),
+                v: heavy.v - k * q,
+                ..heavy
+            };
+        } else if t == ws {
+            small = BareDisc {
+                t0: t,
+                x: small.x_at(t),
+                v: -small.v,
+                ..small
+            };
+        } else {
+            heavy = BareDisc {
+                t0: t,
+                x: heavy.x_at(t),
+                v: -heavy.v,
+                ..heavy
+            };
+        }
+    }
 }
 
 fn box_frictionless(c: &mut Criterion) {
