@@ -430,11 +430,12 @@ fn no_real_roots(q: &Coeffs) -> bool {
             return false;
         }
     }
-    // The discriminant grouped by powers of e (Horner in e), and the same
-    // expression on absolute values with every sign positive, which is the
-    // sum of the magnitudes of its 16 monomials: the rounding error of the
-    // first is below gamma(k) times the second, k the longest chain of
-    // roundings (Higham, Accuracy and Stability, 3.1).
+    // The discriminant grouped by powers of e (Horner in e). A quartic with
+    // two real roots (the usual case that gets here) fails on its sign
+    // alone; otherwise the same expression on absolute values with every
+    // sign positive, which is the sum of the magnitudes of its 16
+    // monomials, bounds its rounding error: below gamma(k) times that, k
+    // the longest chain of roundings (Higham, Accuracy and Stability, 3.1).
     let bd = b * d;
     let a3 = 256.0 * a2 * a;
     let a2_ = a * (a * (-192.0 * bd - 128.0 * c2) + 144.0 * b2 * c) - 27.0 * b2 * b2;
@@ -442,6 +443,9 @@ fn no_real_roots(q: &Coeffs) -> bool {
         + b2 * c * (18.0 * bd - 4.0 * c2);
     let a0 = d2 * (ac * (18.0 * bd - 4.0 * c2) - 27.0 * a2 * d2 + b2 * (c2 - 4.0 * bd));
     let disc = ((a3 * e + a2_) * e + a1) * e + a0;
+    if !(disc > 0.0) {
+        return false;
+    }
     let (aa, ac_, bd_, cc, ee) = (a.abs(), ac.abs(), bd.abs(), c.abs(), e.abs());
     let m3 = 256.0 * a2 * aa;
     let m2 = aa * (aa * (192.0 * bd_ + 128.0 * c2) + 144.0 * b2 * cc) + 27.0 * b2 * b2;
