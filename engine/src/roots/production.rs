@@ -67,8 +67,8 @@ impl RootSolver for Production {
         solve(coeffs, lo, hi, false)
     }
 
-    /// [`solve`] without the result array on the fast paths: a shortcut's
-    /// answer comes back in registers.
+    /// As `solve`, but without the result array on the fast paths: a
+    /// shortcut's answer comes back in registers.
     fn first_root(&self, coeffs: &[f64], lo: f64, hi: f64) -> Option<f64> {
         if !(lo < hi) {
             return None;
