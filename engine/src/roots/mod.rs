@@ -49,7 +49,11 @@ pub use production::Production;
 /// Up to four real roots, sorted ascending.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Roots {
-    len: u8,
+    /// A full word rather than a byte: the struct is padded to 40 bytes
+    /// either way, and a byte store followed by the word load of a copy
+    /// defeats store-to-load forwarding (a stall of about as long as a
+    /// whole fast-path query).
+    len: usize,
     /// Slots past `len` are always `0.0`, so the derived `PartialEq` compares
     /// only the roots.
     vals: [f64; 4],
@@ -66,12 +70,12 @@ impl Roots {
 
     /// The roots as a slice, ascending.
     pub fn as_slice(&self) -> &[f64] {
-        &self.vals[..self.len as usize]
+        &self.vals[..self.len]
     }
 
     /// Number of roots.
     pub fn len(&self) -> usize {
-        self.len as usize
+        self.len
     }
 
     /// True when there are no roots.
@@ -87,8 +91,8 @@ impl Roots {
     /// Appends a root (ignored when four are already stored or it is not
     /// finite). Callers keep the order themselves or call [`Roots::sort`].
     fn push(&mut self, x: f64) {
-        if (self.len as usize) < 4 && x.is_finite() {
-            self.vals[self.len as usize] = x;
+        if self.len < 4 && x.is_finite() {
+            self.vals[self.len] = x;
             self.len += 1;
         }
     }
@@ -98,12 +102,12 @@ impl Roots {
         for i in n.min(4)..4 {
             self.vals[i] = 0.0;
         }
-        self.len = self.len.min(n.min(4) as u8);
+        self.len = self.len.min(n.min(4));
     }
 
     /// Sorts the roots ascending (insertion sort: at most four values).
     fn sort(&mut self) {
-        let n = self.len as usize;
+        let n = self.len;
         for i in 1..n {
             let mut j = i;
             while j > 0 && self.vals[j - 1] > self.vals[j] {

@@ -242,24 +242,33 @@ pub(super) fn horner_exact<const N: usize>(a: &Coeffs, x: f64) -> f64 {
 /// each term rounded up to a power of two using only exponent arithmetic
 /// (no `powf`). By Gauss–Lucas the bound also holds for every derivative.
 pub(super) fn root_bound(a: &Coeffs, n: usize) -> f64 {
-    let inv = 1.0 / a[n].abs();
+    match n {
+        1 => root_bound_n::<1>(a),
+        2 => root_bound_n::<2>(a),
+        3 => root_bound_n::<3>(a),
+        _ => root_bound_n::<4>(a),
+    }
+}
+
+/// [`root_bound`] for degree `N`: the loop unrolls and every root index
+/// `N - k` is a constant.
+#[inline(always)]
+fn root_bound_n<const N: usize>(a: &Coeffs) -> f64 {
+    let inv = 1.0 / a[N].abs();
     let mut e_max = i32::MIN;
-    for (k, &ak) in a.iter().enumerate().take(n) {
-        let mut t = ak.abs() * inv;
-        if k == 0 {
-            t *= 0.5;
-        }
-        if t == 0.0 {
-            continue;
-        }
-        if !t.is_finite() {
-            return f64::INFINITY;
-        }
+    let mut finite = true;
+    let mut k = 0;
+    // Branch-free selects, so that the loop unrolls into straight code.
+    while k < N {
+        let t = a[k].abs() * inv * if k == 0 { 0.5 } else { 1.0 };
+        finite &= t < f64::INFINITY;
         // t < 2^e  =>  t^(1/m) < 2^ceil(e/m)
-        let e = exponent_above(t);
-        let m = (n - k) as i32;
-        let r = e.div_euclid(m) + i32::from(e.rem_euclid(m) != 0);
-        e_max = e_max.max(r);
+        let r = ceil_div(exponent_above(t), N - k);
+        e_max = if t != 0.0 { e_max.max(r) } else { e_max };
+        k += 1;
+    }
+    if !finite {
+        return f64::INFINITY;
     }
     if e_max == i32::MIN {
         // p = a_n x^n: every root is zero.
@@ -269,17 +278,28 @@ pub(super) fn root_bound(a: &Coeffs, n: usize) -> f64 {
     pow2(e_max + 2)
 }
 
+/// `ceil(e / m)` for `m` in `1..=4`, by shifts and a division by the
+/// constant 3 (a division by a variable `m` is an integer `div`, which
+/// costs more than the rest of [`root_bound`] together; with `m` a
+/// constant the `match` folds away).
+#[inline(always)]
+fn ceil_div(e: i32, m: usize) -> i32 {
+    // `>>` on i32 is an arithmetic shift: floor division by a power of two.
+    match m {
+        1 => e,
+        2 => (e + 1) >> 1,
+        3 => (e + 2).div_euclid(3),
+        _ => (e + 3) >> 2,
+    }
+}
+
 /// The smallest `e` with `t < 2^e`, for finite positive `t`.
 #[inline(always)]
 pub(super) fn exponent_above(t: f64) -> i32 {
     let bits = t.to_bits();
     let biased = ((bits >> 52) & 0x7ff) as i32;
-    if biased == 0 {
-        // Subnormal: t < 2^-1022.
-        -1022
-    } else {
-        biased - 1023 + 1
-    }
+    // Subnormal (biased exponent 0): t < 2^-1022.
+    biased.max(1) - 1023 + 1
 }
 
 /// `2^e`, saturating to `f64::MAX`/`f64::MIN_POSITIVE` outside the normal range.
@@ -385,6 +405,17 @@ mod tests {
         for (a, n, r) in cases {
             let b = root_bound(&a, n);
             assert!(b > r && b < 64.0 * r, "{b} vs {r}");
+        }
+    }
+
+    #[test]
+    fn ceil_div_rounds_up_for_every_sign() {
+        for e in -1100i32..1100 {
+            for m in 1..=4usize {
+                let mi = m as i32;
+                let want = e.div_euclid(mi) + i32::from(e.rem_euclid(mi) != 0);
+                assert_eq!(ceil_div(e, m), want, "{e} / {m}");
+            }
         }
     }
 
