@@ -25,8 +25,10 @@ pub struct Config {
     #[arg(long, env = "CHAPAEV_LOG", default_value = "info")]
     pub log: String,
 
-    /// HTTP/WebSocket worker threads.
-    #[arg(long, env = "CHAPAEV_HTTP_WORKERS", default_value_t = 2, value_parser = clap::value_parser!(u16).range(1..=64))]
+    /// HTTP/WebSocket worker threads (each serves its share of the
+    /// connections; more than the cores keeps one busy worker from holding
+    /// up the sockets it serves).
+    #[arg(long, env = "CHAPAEV_HTTP_WORKERS", default_value_t = 4, value_parser = clap::value_parser!(u16).range(1..=64))]
     pub http_workers: u16,
 
     /// Game threads: shot resolution, bots, store writes.

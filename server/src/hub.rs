@@ -461,10 +461,7 @@ mod tests {
             velocity: DVec2::new(0.0, 2.0),
         };
         room.tx
-            .send(Command::Message {
-                conn: watcher.conn,
-                msg: shot.clone(),
-            })
+            .send(Command::message(watcher.conn, shot.clone()))
             .await
             .unwrap();
         assert!(matches!(
@@ -475,10 +472,7 @@ mod tests {
             }
         ));
         room.tx
-            .send(Command::Message {
-                conn: white.conn,
-                msg: shot,
-            })
+            .send(Command::message(white.conn, shot))
             .await
             .unwrap();
         let played = next_of(&mut watcher.rx, "shot-played").await;
@@ -514,10 +508,7 @@ mod tests {
             piece: PieceId::new(Side::White, 2).unwrap(),
             velocity: DVec2::new(0.0, 0.5),
         };
-        room.tx
-            .send(Command::Message { conn: c.conn, msg })
-            .await
-            .unwrap();
+        room.tx.send(Command::message(c.conn, msg)).await.unwrap();
         let ServerMessage::MatchState { view: before, .. } = next(&mut c.rx).await else {
             panic!()
         };
@@ -557,10 +548,7 @@ mod tests {
             piece: PieceId::new(Side::White, 0).unwrap(),
             velocity: DVec2::new(0.0, 0.5),
         };
-        room.tx
-            .send(Command::Message { conn: c.conn, msg })
-            .await
-            .unwrap();
+        room.tx.send(Command::message(c.conn, msg)).await.unwrap();
         let ServerMessage::ShotPlayed { outcome, .. } = next_of(&mut c.rx, "shot-played").await
         else {
             panic!()

@@ -1,13 +1,15 @@
 //! Prometheus metrics in the text exposition format, kept in atomics (no
 //! locks on the hot path): connections, matches in memory and live, shots
-//! resolved, refused client messages, and a histogram of shot resolution
-//! time (physics and the store write, up to the broadcast).
+//! resolved, refused client messages, and two histograms: shot resolution
+//! time (physics and the store write, up to the broadcast) and the whole
+//! server-side shot-to-broadcast time (from the frame's arrival on its
+//! connection, so the wait in the match's queue counts too).
 
 use std::fmt::Write as _;
 use std::sync::atomic::{AtomicI64, AtomicU64, Ordering};
 use std::time::Duration;
 
-/// Upper bounds of the resolution-time histogram buckets, seconds.
+/// Upper bounds of the latency histograms' buckets, seconds.
 pub const BUCKETS: [f64; 12] = [
     0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1.0, 2.5,
 ];
@@ -20,9 +22,45 @@ pub struct Metrics {
     live: AtomicI64,
     shots: AtomicU64,
     refused: AtomicU64,
+    resolution: Histogram,
+    to_broadcast: Histogram,
+}
+
+/// A latency histogram over [`BUCKETS`] (cumulative, as Prometheus wants).
+#[derive(Debug, Default)]
+struct Histogram {
     buckets: [AtomicU64; BUCKETS.len()],
     sum_nanos: AtomicU64,
     count: AtomicU64,
+}
+
+impl Histogram {
+    fn observe(&self, took: Duration) {
+        let secs = took.as_secs_f64();
+        for (bound, bucket) in BUCKETS.iter().zip(&self.buckets) {
+            if secs <= *bound {
+                bucket.fetch_add(1, Ordering::Relaxed);
+            }
+        }
+        let nanos = u64::try_from(took.as_nanos()).unwrap_or(u64::MAX);
+        self.sum_nanos.fetch_add(nanos, Ordering::Relaxed);
+        self.count.fetch_add(1, Ordering::Relaxed);
+    }
+
+    fn render(&self, out: &mut String, name: &str, help: &str) {
+        let _ = writeln!(out, "# HELP {name} {help}\n# TYPE {name} histogram");
+        for (bound, bucket) in BUCKETS.iter().zip(&self.buckets) {
+            let _ = writeln!(
+                out,
+                "{name}_bucket{{le=\"{bound}\"}} {}",
+                bucket.load(Ordering::Relaxed)
+            );
+        }
+        let count = self.count.load(Ordering::Relaxed);
+        let _ = writeln!(out, "{name}_bucket{{le=\"+Inf\"}} {count}");
+        let sum = self.sum_nanos.load(Ordering::Relaxed) as f64 / 1e9;
+        let _ = writeln!(out, "{name}_sum {sum}\n{name}_count {count}");
+    }
 }
 
 impl Metrics {
@@ -58,15 +96,13 @@ impl Metrics {
     /// A shot was resolved and stored in `took`.
     pub fn shot_resolved(&self, took: Duration) {
         self.shots.fetch_add(1, Ordering::Relaxed);
-        let secs = took.as_secs_f64();
-        for (bound, bucket) in BUCKETS.iter().zip(&self.buckets) {
-            if secs <= *bound {
-                bucket.fetch_add(1, Ordering::Relaxed);
-            }
-        }
-        let nanos = u64::try_from(took.as_nanos()).unwrap_or(u64::MAX);
-        self.sum_nanos.fetch_add(nanos, Ordering::Relaxed);
-        self.count.fetch_add(1, Ordering::Relaxed);
+        self.resolution.observe(took);
+    }
+
+    /// A shot's outcome was handed to every connection's queue `took` after
+    /// the shot's frame arrived.
+    pub fn shot_broadcast(&self, took: Duration) {
+        self.to_broadcast.observe(took);
     }
 
     /// The metrics as Prometheus text.
@@ -116,22 +152,16 @@ impl Metrics {
                 rss.to_string(),
             );
         }
-        let name = "chapaev_shot_resolution_seconds";
-        let _ = writeln!(
-            out,
-            "# HELP {name} Time from a shot's arrival at its match to its broadcast (physics and store write).\n# TYPE {name} histogram"
+        self.resolution.render(
+            &mut out,
+            "chapaev_shot_resolution_seconds",
+            "Time from a shot's turn in its match to its broadcast (physics and store write).",
         );
-        for (bound, bucket) in BUCKETS.iter().zip(&self.buckets) {
-            let _ = writeln!(
-                out,
-                "{name}_bucket{{le=\"{bound}\"}} {}",
-                bucket.load(Ordering::Relaxed)
-            );
-        }
-        let count = self.count.load(Ordering::Relaxed);
-        let _ = writeln!(out, "{name}_bucket{{le=\"+Inf\"}} {count}");
-        let sum = self.sum_nanos.load(Ordering::Relaxed) as f64 / 1e9;
-        let _ = writeln!(out, "{name}_sum {sum}\n{name}_count {count}");
+        self.to_broadcast.render(
+            &mut out,
+            "chapaev_shot_to_broadcast_seconds",
+            "Time from a shot's frame arriving on its connection to its broadcast (queueing included).",
+        );
         out
     }
 }
@@ -163,5 +193,13 @@ mod tests {
         assert!(text.contains("chapaev_shot_resolution_seconds_bucket{le=\"0.05\"} 2\n"));
         assert!(text.contains("chapaev_shot_resolution_seconds_bucket{le=\"+Inf\"} 2\n"));
         assert!(text.contains("chapaev_shot_resolution_seconds_count 2\n"));
+        // The arrival-to-broadcast histogram is its own.
+        assert!(text.contains("chapaev_shot_to_broadcast_seconds_count 0\n"));
+        m.shot_broadcast(Duration::from_millis(3));
+        let text = m.render();
+        assert!(text.contains("chapaev_shot_to_broadcast_seconds_bucket{le=\"0.0025\"} 0\n"));
+        assert!(text.contains("chapaev_shot_to_broadcast_seconds_bucket{le=\"0.005\"} 1\n"));
+        assert!(text.contains("chapaev_shot_to_broadcast_seconds_count 1\n"));
+        assert!(text.contains("chapaev_shots_resolved_total 2\n"));
     }
 }

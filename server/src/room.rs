@@ -38,8 +38,12 @@ pub enum Command {
     },
     /// A connection closed.
     Disconnect { conn: u64 },
-    /// A connection sent a match message.
-    Message { conn: u64, msg: ClientMessage },
+    /// A connection sent a match message, which arrived at `received`.
+    Message {
+        conn: u64,
+        msg: ClientMessage,
+        received: std::time::Instant,
+    },
     /// Someone takes the empty second seat (HTTP join).
     Join {
         name: String,
@@ -48,6 +52,17 @@ pub enum Command {
     },
     /// Finish the command in hand and stop (server shutdown).
     Shutdown { done: oneshot::Sender<()> },
+}
+
+impl Command {
+    /// A match message from `conn` that arrived just now.
+    pub fn message(conn: u64, msg: ClientMessage) -> Command {
+        Command::Message {
+            conn,
+            msg,
+            received: std::time::Instant::now(),
+        }
+    }
 }
 
 /// A connection admitted to a room.
@@ -270,8 +285,12 @@ impl Room {
                 }
             }
             Command::Disconnect { conn } => self.disconnect(conn),
-            Command::Message { conn, msg } => {
-                if let Err(refusal) = self.message(conn, msg).await {
+            Command::Message {
+                conn,
+                msg,
+                received,
+            } => {
+                if let Err(refusal) = self.message(conn, msg, received).await {
                     self.hub.metrics().refused();
                     self.send_to(conn, &refusal.to_message());
                 }
@@ -471,7 +490,13 @@ impl Room {
 
     // ----- client messages -----
 
-    async fn message(&mut self, conn: u64, msg: ClientMessage) -> Result<(), Refusal> {
+    /// Handles a client's match message (which arrived at `received`).
+    async fn message(
+        &mut self,
+        conn: u64,
+        msg: ClientMessage,
+        received: std::time::Instant,
+    ) -> Result<(), Refusal> {
         let seat = self.conns.get(&conn).and_then(|c| c.seat);
         let seated = || {
             seat.ok_or_else(|| {
@@ -494,6 +519,7 @@ impl Room {
                 let shot = Shot::new(piece, velocity, self.game.config())?;
                 self.game.check(side, &shot)?;
                 self.apply(Action::Shot(side, shot)).await?;
+                self.hub.metrics().shot_broadcast(received.elapsed());
                 self.clock.acted(seat);
             }
             ClientMessage::PieDecision { swap } => {

@@ -250,6 +250,6 @@ async fn handle_text(
                 send(session, &r.to_message()).await
             }
         }
-        Ok(msg) => room.tx.send(Command::Message { conn, msg }).await.is_ok(),
+        Ok(msg) => room.tx.send(Command::message(conn, msg)).await.is_ok(),
     }
 }

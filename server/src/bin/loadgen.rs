@@ -3,8 +3,11 @@
 //! players per match, the rest spread over the matches as spectators), and
 //! lets the players shoot as fast as their turns come for a while. It
 //! reports the connections held, shots per second, the p50/p99 latency
-//! from sending a shot to receiving its `shot-played` broadcast, and the
-//! server's resident memory per connection (from `/metrics`).
+//! from sending a shot to receiving its `shot-played` broadcast, the
+//! server's own arrival-to-broadcast histogram and resident memory per
+//! connection (from `/metrics`), and what else delayed the run: how often
+//! the load generator itself could not run on time, and the machine's busy
+//! and hypervisor-stolen CPU shares (`/proc/stat`, Linux).
 //!
 //! ```sh
 //! cargo run --release -p server -- --data-dir /tmp/chapaev-load &
@@ -43,6 +46,12 @@ struct Args {
     /// half and one and a half times it (0: shoot as soon as it is your turn).
     #[arg(long, default_value_t = 0)]
     think_ms: u64,
+
+    /// Threads of the load generator's own runtime. It shares the machine
+    /// with the server it measures; one thread drives 10,000 connections and
+    /// leaves the other cores to the server.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=64))]
+    threads: u16,
 }
 
 /// Failures that end the run.
@@ -78,6 +87,87 @@ async fn http(addr: &str, method: &str, path: &str, body: &str) -> Result<String
         )));
     }
     Ok(rest.to_string())
+}
+
+/// The server's own arrival-to-broadcast histogram from `/metrics`: the
+/// bucket bounds (ms) holding the median and the 99th percentile, and the
+/// share of shots within 10 ms.
+fn server_side(metrics: &str) -> Option<(f64, f64, f64)> {
+    let name = "chapaev_shot_to_broadcast_seconds_bucket{le=\"";
+    let buckets: Vec<(f64, f64)> = metrics
+        .lines()
+        .filter_map(|l| l.strip_prefix(name))
+        .filter_map(|l| {
+            let (le, n) = l.split_once("\"} ")?;
+            Some((le.parse().ok()?, n.trim().parse().ok()?))
+        })
+        .collect();
+    let total = buckets.last()?.1;
+    if total <= 0.0 {
+        return None;
+    }
+    let at = |q: f64| {
+        buckets
+            .iter()
+            .find(|(_, n)| *n >= q * total)
+            .map(|(le, _)| le * 1e3)
+    };
+    let within = buckets.iter().find(|(le, _)| *le == 0.01)?.1 / total * 100.0;
+    Some((at(0.5)?, at(0.99)?, within))
+}
+
+/// Ticks every millisecond until `until` and counts the ticks that came more
+/// than 10 ms late: when the load generator itself could not run (CPU
+/// contention, a stalled virtual machine), its latencies include that wait.
+async fn own_stalls(until: Instant) -> (u64, Duration) {
+    let (mut late, mut longest) = (0, Duration::ZERO);
+    while Instant::now() < until {
+        let t = Instant::now();
+        tokio::time::sleep(Duration::from_millis(1)).await;
+        let lag = t.elapsed().saturating_sub(Duration::from_millis(1));
+        if lag > Duration::from_millis(10) {
+            late += 1;
+        }
+        longest = longest.max(lag);
+    }
+    (late, longest)
+}
+
+/// Machine-wide CPU jiffies from `/proc/stat` (Linux): all, idle, stolen.
+struct CpuTimes {
+    total: u64,
+    idle: u64,
+    steal: u64,
+}
+
+impl CpuTimes {
+    /// Busy and stolen shares (percent) between `earlier` and `self`.
+    fn since(&self, earlier: &CpuTimes) -> (f64, f64) {
+        let total = self.total.saturating_sub(earlier.total).max(1) as f64;
+        let idle = self.idle.saturating_sub(earlier.idle) as f64;
+        let steal = self.steal.saturating_sub(earlier.steal) as f64;
+        (
+            100.0 * (total - idle - steal) / total,
+            100.0 * steal / total,
+        )
+    }
+}
+
+fn cpu_times() -> Option<CpuTimes> {
+    let stat = std::fs::read_to_string("/proc/stat").ok()?;
+    let fields: Vec<u64> = stat
+        .lines()
+        .next()?
+        .split_whitespace()
+        .skip(1)
+        .filter_map(|v| v.parse().ok())
+        .collect();
+    // user nice system idle iowait irq softirq steal ...
+    Some(CpuTimes {
+        total: fields.iter().take(8).sum(),
+        idle: fields.get(3)? + fields.get(4)?,
+        steal: *fields.get(7)?,
+    })
 }
 
 async fn resident_bytes(addr: &str) -> Option<u64> {
@@ -273,6 +363,8 @@ async fn run(args: Args) -> Result<(), LoadError> {
 
     let totals = Arc::new(Totals::default());
     let until = Instant::now() + Duration::from_secs(args.seconds);
+    let stalls = tokio::spawn(own_stalls(until));
+    let cpu_before = cpu_times();
     let play_start = Instant::now();
     let think = Duration::from_millis(args.think_ms);
     let mut tasks = Vec::new();
@@ -300,6 +392,8 @@ async fn run(args: Args) -> Result<(), LoadError> {
         let _ = t.await;
     }
     let elapsed = play_start.elapsed().as_secs_f64();
+    let cpu = cpu_before.zip(cpu_times()).map(|(a, b)| b.since(&a));
+    let (stalled, longest) = stalls.await.unwrap_or_default();
     latencies.sort();
     let shots = totals.shots.load(Ordering::Relaxed);
     println!("matches:                {matches}");
@@ -325,6 +419,24 @@ async fn run(args: Args) -> Result<(), LoadError> {
         percentile(&latencies, 0.99).as_secs_f64() * 1e3,
         latencies.last().copied().unwrap_or_default().as_secs_f64() * 1e3
     );
+    let metrics = http(&args.addr, "GET", "/metrics", "")
+        .await
+        .unwrap_or_default();
+    match server_side(&metrics) {
+        Some((p50, p99, within)) => println!(
+            "server side:            p50 <= {p50} ms, p99 <= {p99} ms, {within:.2}% within 10 ms (arrival to broadcast, /metrics buckets)"
+        ),
+        None => println!("server side:            not reported by /metrics"),
+    }
+    println!(
+        "load generator stalls:  {stalled} of its 1 ms ticks late by over 10 ms, longest {:.1} ms",
+        longest.as_secs_f64() * 1e3
+    );
+    if let Some((busy, steal)) = cpu {
+        println!(
+            "machine CPU:            {busy:.0}% busy, {steal:.1}% stolen by the hypervisor (/proc/stat)"
+        );
+    }
     println!(
         "errors answered:        {}",
         totals.errors.load(Ordering::Relaxed)
@@ -348,6 +460,7 @@ async fn run(args: Args) -> Result<(), LoadError> {
 fn main() -> std::process::ExitCode {
     let args = Args::parse();
     let rt = match tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(usize::from(args.threads))
         .enable_all()
         .build()
     {
@@ -363,5 +476,22 @@ fn main() -> std::process::ExitCode {
             eprintln!("loadgen: {e}");
             std::process::ExitCode::FAILURE
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn server_side_percentiles_come_from_the_cumulative_buckets() {
+        let m = server::metrics::Metrics::default();
+        for ms in [1, 1, 2, 2, 2, 3, 3, 4, 4, 30] {
+            m.shot_broadcast(Duration::from_micros(ms * 900));
+        }
+        let (p50, p99, within) = server_side(&m.render()).expect("histogram present");
+        assert_eq!((p50, p99), (2.5, 50.0));
+        assert!((within - 90.0).abs() < 1e-9, "{within}");
+        assert!(server_side("no metrics here").is_none());
     }
 }
