@@ -16,6 +16,7 @@
 //! reach are rejected before any polynomial is formed.
 
 use crate::obstacle::LineGeom;
+use crate::push;
 use crate::roots::RootSolver;
 use crate::trajectory::Trajectory;
 use glam::DVec2;
@@ -289,7 +290,8 @@ fn curved_pair(
     // the speeds is rounding noise, not a contact.
     let min_slope = -2.0 * s * APPROACH * (ti.speed() + tj.speed());
     let touching = c0 <= 2.0 * TOUCH * s * s;
-    if touching && c1 < min_slope {
+    if touching && (c1 < min_slope || push::pushing(ti, pi, tj, pj, now)) {
+        // Approaching, or pressed together by their braking: an event now.
         return Some(now);
     }
     if touching {

@@ -26,6 +26,7 @@
 //! Modules, from the bottom up: [`roots`] (polynomial root solvers),
 //! [`trajectory`] (closed-form motion), [`obstacle`] (points and lines),
 //! [`contact`] (when two things touch), [`impulse`] (what a contact does),
+//! [`push`] (touching discs that brake unequally and press together),
 //! [`calendar`] and [`grid`] (which event is next, who is near whom),
 //! [`world`] (the event loop), [`model`] (the chain of scenes: queries at any
 //! time, actions, rewind, diffs), [`scene`] (the JSON scene format).
@@ -43,6 +44,7 @@ pub mod impulse;
 pub mod model;
 pub mod obstacle;
 pub mod presets;
+pub mod push;
 pub mod roots;
 pub mod scene;
 pub mod trajectory;

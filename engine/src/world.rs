@@ -21,6 +21,7 @@ use crate::grid::{Grid, Step};
 use crate::id::{BodyId, LineId, PointId};
 use crate::impulse;
 use crate::obstacle::{Line, LineGeom, Point};
+use crate::push;
 use crate::roots::Method;
 use crate::scene::{BodySpec, Scene, SceneError};
 use crate::trajectory::Trajectory;
@@ -738,8 +739,18 @@ impl World {
         let n = (pi - pj).normalize_or_zero();
         let e = mi.restitution.min(mj.restitution);
         let (vi, vj) = impulse::body_body(ti.velocity(t), tj.velocity(t), mi.mass, mj.mass, e, n);
-        self.slots[i].traj = Trajectory::new(t, pi, vi, ti.alpha());
-        self.slots[j].traj = Trajectory::new(t, pj, vj, tj.alpha());
+        // Each gets its own friction back (a pushed pair shares one).
+        let alpha = [mi.mu * self.g, mj.mu * self.g];
+        let (mut new_i, mut new_j) = (
+            Trajectory::new(t, pi, vi, alpha[0]),
+            Trajectory::new(t, pj, vj, alpha[1]),
+        );
+        if push::pushing(&new_i, pi, &new_j, pj, t) {
+            let (v, a) = push::together([vi, vj], [mi.mass, mj.mass], alpha);
+            (new_i, new_j) = (Trajectory::new(t, pi, v, a), Trajectory::new(t, pj, v, a));
+        }
+        self.slots[i].traj = new_i;
+        self.slots[j].traj = new_j;
         self.slots[i].gen = self.slots[i].gen.wrapping_add(1);
         self.slots[j].gen = self.slots[j].gen.wrapping_add(1);
         // The pair (i, j) is solved once, for both.
@@ -749,8 +760,9 @@ impl World {
 
     fn bounce(&mut self, i: usize, t: f64, n: DVec2) {
         let tr = self.slots[i].traj;
-        let v = impulse::body_static(tr.velocity(t), self.material[i].restitution, n);
-        self.slots[i].traj = Trajectory::new(t, tr.position(t), v, tr.alpha());
+        let m = &self.material[i];
+        let v = impulse::body_static(tr.velocity(t), m.restitution, n);
+        self.slots[i].traj = Trajectory::new(t, tr.position(t), v, m.mu * self.g);
         self.changed(i);
     }
 

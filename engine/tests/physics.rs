@@ -889,13 +889,13 @@ fn very_slow_frictionless_disc_does_not_hit_a_far_away_disc() {
 }
 
 #[test]
-#[ignore = "not modelled: a persistent pushing contact (touching discs pressed together by their friction difference) needs a contact force, not impulses"]
-fn touching_discs_sliding_together_do_not_overlap_when_the_rear_one_slides_easier() {
+fn touching_discs_sliding_together_move_as_one_when_the_rear_one_slides_easier() {
     // Both move at (1, 0) touching; the front disc brakes at 3 * 0.981, the
     // rear one at 0.981, so the rear one pushes the front one (the distance
     // has a double root at t = 0 and then would fall). Friction forces do
-    // not depend on the contact, so the pair's momentum falls linearly: if
-    // they stay together they stop at T = 2 m / (m (alpha_a + alpha_b)).
+    // not depend on the contact, so the pair brakes at the mean
+    // a = (alpha_a + alpha_b) / 2 = 1.962 and stops together at T = 1 / a,
+    // each 1 / (2 a) further on.
     let sc = scene(
         9.81,
         vec![
@@ -909,7 +909,7 @@ fn touching_discs_sliding_together_do_not_overlap_when_the_rear_one_slides_easie
         max_events: 100_000,
         ..Limits::default()
     };
-    let (trace, end, _) = run_traced(&sc, limits);
+    let (trace, end, world) = run_traced(&sc, limits);
     let mut model = Model::new(sc).unwrap();
     model.compute(&limits);
     for k in 0..=40 {
@@ -920,12 +920,51 @@ fn touching_discs_sliding_together_do_not_overlap_when_the_rear_one_slides_easie
             "overlap at t={t}: distance/(R+R) = {ratio}"
         );
     }
-    assert_eq!(
-        end.reason,
-        EndReason::Rest,
-        "after {} events",
-        trace.events.len()
+    assert_eq!(end.reason, EndReason::Rest, "{:?}", trace.events);
+    let a = 0.5 * (0.1 + 0.3) * 9.81;
+    assert_close(end.t, 1.0 / a, 1e-12, "both stop at 1 / a");
+    assert!(
+        trace.events.len() <= 4,
+        "one push and two stops: {:?}",
+        trace.events
     );
+    let (p1, v1) = state(&world, 1, 10.0);
+    let (p2, v2) = state(&world, 2, 10.0);
+    assert_vec_close(p1, v(0.5 / a, 0.0), 1e-12, "rear disc at rest");
+    assert_vec_close(p2, v(1.0 + 0.5 / a, 0.0), 1e-12, "front disc at rest");
+    assert_eq!((v1, v2), (DVec2::ZERO, DVec2::ZERO));
+}
+
+#[test]
+fn a_pushed_pair_parts_when_a_third_disc_hits_the_front_one_head_on() {
+    // The pair of the test above; a frictionless disc comes the other way
+    // along the same line and hits the front disc at speed 2: the run ends
+    // at rest with no overlap (the pair's shared braking does not outlive
+    // the hit).
+    let sc = scene(
+        9.81,
+        vec![
+            disc(1, v(0.0, 0.0), v(1.0, 0.0), 0.5, 1.0, 0.1),
+            disc(2, v(1.0, 0.0), v(1.0, 0.0), 0.5, 1.0, 0.3),
+            disc(3, v(2.5, 0.0), v(-2.0, 0.0), 0.5, 1.0, 0.2),
+        ],
+        vec![],
+        vec![],
+    );
+    let limits = Limits {
+        max_events: 10_000,
+        ..Limits::default()
+    };
+    let (trace, end, _) = run_traced(&sc, limits);
+    assert_eq!(end.reason, EndReason::Rest, "{:?}", trace.events);
+    assert!(trace.events.iter().any(|e| is_pair(&e.kind, 2, 3)));
+    let mut model = Model::new(sc).unwrap();
+    model.compute(&limits);
+    for k in 0..=60 {
+        let t = end.t * k as f64 / 60.0;
+        let ratio = min_pair_ratio(&model.scene_at(t));
+        assert!(ratio >= 1.0 - 1e-9, "overlap at t={t}: {ratio}");
+    }
 }
 
 #[test]

@@ -478,7 +478,7 @@ proptest! {
     /// its cap: at rest, on the event cap or on the horizon (never `free`:
     /// the box is closed).
     #[test]
-    #[ignore = "not modelled: random discs with different friction can press together (a persistent pushing contact needs a contact force, not impulses); see physics.rs"]
+    #[ignore = "not modelled: random discs with different friction can press together obliquely (a pushing contact off the line of centres makes them slide along each other and turn: no closed form); pushing along the line of centres is modelled (engine::push)"]
     fn invariants_hold_after_every_event(
         scene in arb_scene(10, true),
         broad_phase in arb_broad_phase(),
@@ -500,7 +500,7 @@ proptest! {
     /// least `min(mu) g sqrt(2 min(m) E)`, so everything comes to rest in
     /// finite time: the run must end `rest`, well within a generous cap.
     #[test]
-    #[ignore = "not modelled: persistent pushing contacts between discs of different friction (see physics.rs); the collapse loop itself is fixed"]
+    #[ignore = "not modelled: oblique pushing contacts between discs of different friction (see engine::push); the collapse loop itself is fixed"]
     fn scenes_with_friction_come_to_rest(scene in arb_scene(10, true).prop_map(with_friction)) {
         let mut world = World::new(&scene, WorldConfig::default()).unwrap();
         let mut checker = Checker::new(&world);
