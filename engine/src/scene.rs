@@ -2,8 +2,9 @@
 //! contract of `shared/design/scene-format.md` — and its validation.
 //!
 //! [`Scene::from_json`] parses and validates in one go, so every error names
-//! the object and field at fault (`bodies[1] (id 2): field "mass": must be
-//! > 0`). Validation never fixes input silently and never panics.
+//! the object and field at fault, as in
+//! `bodies[1] (id 2): field "mass": must be > 0`. Validation never fixes
+//! input silently and never panics.
 
 use crate::id::BodyId;
 use crate::obstacle::{Line, LineGeom, Point};
