@@ -87,9 +87,6 @@ async fn serve(
             .configure(crate::http::routes)
     })
     .workers(config.http_workers as usize)
-    // Small frames go out at once: with Nagle, a message written while the
-    // previous one waits for a (delayed, up to 40 ms) ACK would wait too.
-    .tcp_nodelay(true)
     .disable_signals()
     .shutdown_timeout(config.shutdown_seconds)
     .bind(&config.addr)
