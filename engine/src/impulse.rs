@@ -5,41 +5,40 @@
 //! `J = -(1 + e) w m*` with the reduced mass `m* = m_i m_j / (m_i + m_j)`,
 //! `e` the smaller restitution of the two. With `e = 1` this is the thesis's
 //! elastic formula (25); an obstacle is an infinite mass, formula (28).
-//! Each body's share of the velocity change, `m_j / (m_i + m_j)`, comes from
-//! `q = m_s / (m_s + m_b)` (`m_s` the smaller mass) as `q` or `1 - q`, so
-//! that huge mass ratios (Galperin's billiard, 10^16) neither overflow nor
-//! lose the small correction.
+//! The reduced mass is formed as `m_s - m_s (m_s / (m_s + m_b))` (`m_s` the
+//! smaller mass) so that huge mass ratios (Galperin's billiard, 10^16)
+//! neither overflow nor lose the small correction.
 
 use glam::DVec2;
 
-/// The shares `(m_j / (m_i + m_j), m_i / (m_i + m_j))` of a pair's velocity
-/// change taken by `i` and by `j`, from one division and free of overflow:
-/// the heavier body takes `q = small / (small + big)`, the lighter `1 - q`
-/// (so a mass ratio of 10^16 keeps the lighter body's small correction).
-#[inline]
-pub fn shares(m_i: f64, m_j: f64) -> (f64, f64) {
+/// The reduced mass `m_i m_j / (m_i + m_j)`, free of overflow.
+pub fn reduced_mass(m_i: f64, m_j: f64) -> f64 {
+    let (small, big) = if m_i <= m_j { (m_i, m_j) } else { (m_j, m_i) };
+    small - small * (small / (small + big))
+}
+
+/// Each body's weight in a mass-weighted mean, `(m_i, m_j) / (m_i + m_j)`,
+/// from one division and free of overflow: the lighter body's weight is
+/// `q = small / (small + big)`, the heavier's `1 - q`.
+pub fn weights(m_i: f64, m_j: f64) -> (f64, f64) {
     let (small, big) = if m_i <= m_j { (m_i, m_j) } else { (m_j, m_i) };
     let q = small / (small + big);
     if m_i <= m_j {
-        (1.0 - q, q)
-    } else {
         (q, 1.0 - q)
+    } else {
+        (1.0 - q, q)
     }
 }
 
-/// New velocities of two discs after an impulse along the unit normal `n`
-/// (from `j` to `i`): `v_i + n J / m_i` and `v_j - n J / m_j`, each
-/// `J / m` written as `-(1 + e) w` times the body's [`shares`]. Returns the
-/// velocities unchanged if they are not approaching.
-#[inline]
+/// New velocities of two discs after an impulse along `n` (from `j` to `i`).
+/// Returns the velocities unchanged if they are not approaching.
 pub fn body_body(v_i: DVec2, v_j: DVec2, m_i: f64, m_j: f64, e: f64, n: DVec2) -> (DVec2, DVec2) {
     let w = (v_i - v_j).dot(n);
-    if !(w < 0.0) {
+    if w >= 0.0 {
         return (v_i, v_j);
     }
-    let (share_i, share_j) = shares(m_i, m_j);
-    let k = -(1.0 + e) * w;
-    (v_i + n * (k * share_i), v_j - n * (k * share_j))
+    let j = -(1.0 + e) * w * reduced_mass(m_i, m_j);
+    (v_i + n * (j / m_i), v_j - n * (j / m_j))
 }
 
 /// New velocity of a disc after hitting an immovable object with normal `n`
@@ -117,10 +116,17 @@ mod tests {
 
     #[test]
     fn huge_mass_ratio_keeps_the_small_correction() {
-        let (light, heavy) = shares(1.0, 1e16);
-        assert!(heavy > 0.999e-16 && heavy < 1.001e-16);
-        assert_eq!(light, 1.0 - heavy);
-        assert_eq!(shares(1e16, 1.0), (heavy, light));
-        assert_eq!(shares(1e300, 1e300), (0.5, 0.5));
+        let m = reduced_mass(1.0, 1e16);
+        assert!(m < 1.0 && m > 0.999_999_999_999_99);
+        assert_eq!(reduced_mass(1e300, 1e300), 5e299);
+    }
+
+    #[test]
+    fn mass_weights_sum_to_one_even_for_a_huge_ratio() {
+        let (light, heavy) = weights(1.0, 1e16);
+        assert!(light > 0.999e-16 && light < 1.001e-16);
+        assert_eq!(heavy, 1.0 - light);
+        assert_eq!(weights(1e16, 1.0), (heavy, light));
+        assert_eq!(weights(1e300, 1e300), (0.5, 0.5));
     }
 }

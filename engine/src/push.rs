@@ -51,12 +51,8 @@ pub fn pushing(ti: &Trajectory, pi: DVec2, tj: &Trajectory, pj: DVec2, now: f64)
 /// two discs pushed together, from their velocities `v`, masses `m` and
 /// own brakings `alpha` (`mu g`).
 pub fn together(v: [DVec2; 2], m: [f64; 2], alpha: [f64; 2]) -> (DVec2, f64) {
-    // shares(m_i, m_j) = (m_j, m_i) / (m_i + m_j): i's weight is the second.
-    let (share_i, share_j) = impulse::shares(m[0], m[1]);
-    (
-        v[0] * share_j + v[1] * share_i,
-        alpha[0] * share_j + alpha[1] * share_i,
-    )
+    let (w_i, w_j) = impulse::weights(m[0], m[1]);
+    (v[0] * w_i + v[1] * w_j, alpha[0] * w_i + alpha[1] * w_j)
 }
 
 #[cfg(test)]

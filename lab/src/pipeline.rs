@@ -258,6 +258,6 @@ mod tests {
             .find(|r| r.case == "galperin-3" && r.method == "engine production")
             .unwrap();
         assert_eq!((g.collisions, g.reference_collisions), (314, 314));
-        assert!(g.error < 1e-12);
+        assert!(g.error < 1e-12, "{}", g.error);
     }
 }
