@@ -1087,18 +1087,23 @@ mod tests {
         );
     }
 
+    /// A fixed xorshift stream of numbers uniform in `[-1, 1)`.
+    fn uniform_stream(seed: u64) -> impl FnMut() -> f64 {
+        let mut state = seed;
+        move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        }
+    }
+
     #[test]
     fn no_real_roots_is_never_wrong_and_usually_decides() {
         // Products of two quadratic factors with random (mostly complex)
         // roots, including near-real pairs: whenever the discriminant test
         // claims "no real root", the f64-exact reference agrees.
-        let mut state = 0x1234_5678_9abc_def0u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut next = uniform_stream(0x1234_5678_9abc_def0);
         let (mut clear, mut decided) = (0, 0);
         for _ in 0..400 {
             // (x - re)^2 + s: a complex pair when s > 0 (sometimes very
@@ -1147,13 +1152,7 @@ mod tests {
         // at scales from 2^-600 to 2^600: whenever a certificate claims
         // "positive on [0, inf)", the f64-exact reference finds no root
         // >= 0.
-        let mut state = 0x0bad_5eed_1234_5678u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut next = uniform_stream(0x0bad_5eed_1234_5678);
         let (mut claims, mut total) = (0, 0);
         for i in 0..4000 {
             let mut c = [0.0; 5];
