@@ -888,6 +888,15 @@ fn very_slow_frictionless_disc_does_not_hit_a_far_away_disc() {
     assert_eq!(end.reason, EndReason::Free);
 }
 
+/// Two touching discs sliding together at (1, 0), the rear one braking at
+/// 0.981 and the front one at 3 * 0.981: the rear one pushes.
+fn pushing_pair() -> Vec<BodySpec> {
+    vec![
+        disc(1, v(0.0, 0.0), v(1.0, 0.0), 0.5, 1.0, 0.1),
+        disc(2, v(1.0, 0.0), v(1.0, 0.0), 0.5, 1.0, 0.3),
+    ]
+}
+
 #[test]
 fn touching_discs_sliding_together_move_as_one_when_the_rear_one_slides_easier() {
     // Both move at (1, 0) touching; the front disc brakes at 3 * 0.981, the
@@ -896,15 +905,7 @@ fn touching_discs_sliding_together_move_as_one_when_the_rear_one_slides_easier()
     // not depend on the contact, so the pair brakes at the mean
     // a = (alpha_a + alpha_b) / 2 = 1.962 and stops together at T = 1 / a,
     // each 1 / (2 a) further on.
-    let sc = scene(
-        9.81,
-        vec![
-            disc(1, v(0.0, 0.0), v(1.0, 0.0), 0.5, 1.0, 0.1),
-            disc(2, v(1.0, 0.0), v(1.0, 0.0), 0.5, 1.0, 0.3),
-        ],
-        vec![],
-        vec![],
-    );
+    let sc = scene(9.81, pushing_pair(), vec![], vec![]);
     let limits = Limits {
         max_events: 100_000,
         ..Limits::default()
@@ -943,11 +944,11 @@ fn a_pushed_pair_parts_when_a_third_disc_hits_the_front_one_head_on() {
     // the hit).
     let sc = scene(
         9.81,
-        vec![
-            disc(1, v(0.0, 0.0), v(1.0, 0.0), 0.5, 1.0, 0.1),
-            disc(2, v(1.0, 0.0), v(1.0, 0.0), 0.5, 1.0, 0.3),
-            disc(3, v(2.5, 0.0), v(-2.0, 0.0), 0.5, 1.0, 0.2),
-        ],
+        [
+            pushing_pair(),
+            vec![disc(3, v(2.5, 0.0), v(-2.0, 0.0), 0.5, 1.0, 0.2)],
+        ]
+        .concat(),
         vec![],
         vec![],
     );
