@@ -43,6 +43,19 @@ pub fn init_logging(config: &Config) -> Result<(), AppError> {
     Ok(())
 }
 
+/// A binary's whole `main`: flags from the command line and environment,
+/// then [`run`]; an error is printed after `program`'s name.
+pub fn main(program: &str) -> std::process::ExitCode {
+    use clap::Parser;
+    match run(Config::parse()) {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("{program}: {e}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}
+
 /// Runs the server until SIGTERM or Ctrl-C.
 pub fn run(config: Config) -> Result<(), AppError> {
     init_logging(&config)?;

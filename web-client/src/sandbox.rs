@@ -625,31 +625,9 @@ impl Sandbox {
             self.template.mass = (t.mass * f * f).clamp(1e-6, 1e12);
         }
         y += 28.0;
-        ui::text(&format!("mu {:.2}", t.mu), x, y + 4.0, 16.0, colors::TEXT);
-        let mu = ui.slider(
-            "new-mu",
-            t.mu,
-            0.0,
-            1.0,
-            Rect::new(x + 118.0, y, w - 118.0, 22.0),
-        );
-        self.template.mu = (mu * 100.0).round() / 100.0;
+        self.template.mu = unit_slider(ui, "new-mu", "mu", t.mu, x, y, w);
         y += 26.0;
-        ui::text(
-            &format!("e {:.2}", t.restitution),
-            x,
-            y + 4.0,
-            16.0,
-            colors::TEXT,
-        );
-        let e = ui.slider(
-            "new-e",
-            t.restitution,
-            0.0,
-            1.0,
-            Rect::new(x + 118.0, y, w - 118.0, 22.0),
-        );
-        self.template.restitution = (e * 100.0).round() / 100.0;
+        self.template.restitution = unit_slider(ui, "new-e", "e", t.restitution, x, y, w);
         y += 34.0;
         y
     }
@@ -1032,6 +1010,26 @@ impl Screen for Sandbox {
     fn animating(&self) -> bool {
         self.sim.playing || self.gesture.is_some()
     }
+}
+
+/// A labelled slider over `[0, 1]` at `(x, y)`, `w` wide: the value shown
+/// and returned to two decimals.
+fn unit_slider(ui: &mut Ui, id: &str, label: &str, value: f64, x: f32, y: f32, w: f32) -> f64 {
+    ui::text(
+        &format!("{label} {value:.2}"),
+        x,
+        y + 4.0,
+        16.0,
+        colors::TEXT,
+    );
+    let v = ui.slider(
+        id,
+        value,
+        0.0,
+        1.0,
+        Rect::new(x + 118.0, y, w - 118.0, 22.0),
+    );
+    (v * 100.0).round() / 100.0
 }
 
 /// A `-` / `+` pair with a label; the factor 1/1.25 or 1.25 when clicked.
