@@ -94,6 +94,16 @@ pub enum SyncMode {
     Normal,
 }
 
+impl SyncMode {
+    /// The value of SQLite's `synchronous` pragma.
+    pub fn pragma(self) -> &'static str {
+        match self {
+            SyncMode::Full => "FULL",
+            SyncMode::Normal => "NORMAL",
+        }
+    }
+}
+
 /// The limits and timings the match rooms and sessions run under.
 #[derive(Clone, Debug)]
 pub struct Limits {

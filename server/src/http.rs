@@ -118,9 +118,11 @@ async fn healthz(hub: web::Data<Hub>) -> HttpResponse {
 }
 
 async fn metrics(hub: web::Data<Hub>) -> HttpResponse {
+    let mut text = hub.metrics().render();
+    hub.store().render_metrics(&mut text);
     HttpResponse::Ok()
         .content_type("text/plain; version=0.0.4")
-        .body(hub.metrics().render())
+        .body(text)
 }
 
 /// `POST /api/matches`.

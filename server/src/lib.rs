@@ -19,6 +19,7 @@
 pub mod app;
 pub mod assets;
 pub mod bot;
+pub mod checkpointer;
 pub mod clock;
 pub mod config;
 pub mod http;

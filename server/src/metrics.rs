@@ -28,14 +28,15 @@ pub struct Metrics {
 
 /// A latency histogram over [`BUCKETS`] (cumulative, as Prometheus wants).
 #[derive(Debug, Default)]
-struct Histogram {
+pub struct Histogram {
     buckets: [AtomicU64; BUCKETS.len()],
     sum_nanos: AtomicU64,
     count: AtomicU64,
 }
 
 impl Histogram {
-    fn observe(&self, took: Duration) {
+    /// Counts one observation of `took`.
+    pub fn observe(&self, took: Duration) {
         let secs = took.as_secs_f64();
         for (bound, bucket) in BUCKETS.iter().zip(&self.buckets) {
             if secs <= *bound {
@@ -47,7 +48,8 @@ impl Histogram {
         self.count.fetch_add(1, Ordering::Relaxed);
     }
 
-    fn render(&self, out: &mut String, name: &str, help: &str) {
+    /// Appends the histogram as Prometheus text under `name`.
+    pub fn render(&self, out: &mut String, name: &str, help: &str) {
         let _ = writeln!(out, "# HELP {name} {help}\n# TYPE {name} histogram");
         for (bound, bucket) in BUCKETS.iter().zip(&self.buckets) {
             let _ = writeln!(

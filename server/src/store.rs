@@ -6,13 +6,16 @@
 //! so the match record rebuilt from the store is exactly what players saw,
 //! and a restarted server replays it through [`game::Replay`].
 
+use crate::checkpointer::{Checkpointer, Nudge};
 use crate::config::SyncMode;
+use crate::metrics::Histogram;
 use game::{Config, MatchRecord, MatchResult, RecordedMove, RECORD_VERSION};
 use rusqlite::{params, Connection, OptionalExtension};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
-use std::time::{SystemTime, UNIX_EPOCH};
+use std::time::{Instant, SystemTime, UNIX_EPOCH};
 use tokio::sync::oneshot;
 
 /// A store operation failed.
@@ -31,6 +34,8 @@ pub enum StoreError {
     Corrupt(String),
     #[error("the store's lock was poisoned by a panic")]
     Poisoned,
+    #[error("cannot start the store's {0} thread: {1}")]
+    Thread(&'static str, std::io::Error),
     /// The group commit that carried this write failed as a whole.
     #[error("the commit of a group of moves failed: {0}")]
     GroupCommit(String),
@@ -126,6 +131,8 @@ pub struct AfterMove<'a> {
 pub struct Store {
     shared: Arc<Shared>,
     writer: Option<std::thread::JoinHandle<()>>,
+    /// Copies the log into the database file (a store on disk only).
+    checkpointer: Option<Checkpointer>,
 }
 
 /// What the store's callers and its writer thread share.
@@ -134,6 +141,21 @@ struct Shared {
     queue: Mutex<Queue>,
     /// Signalled when a move is queued or the store closes.
     wake: Condvar,
+    /// How long each group commit took, from taking the batch to its
+    /// answers (writes, commit, sync).
+    commits: Histogram,
+    /// Moves written by those commits.
+    moves_committed: AtomicU64,
+    /// Tells the checkpointer that a commit added to the log.
+    log_grew: Option<Nudge>,
+}
+
+impl Shared {
+    fn log_grew(&self) {
+        if let Some(n) = &self.log_grew {
+            n.nudge();
+        }
+    }
 }
 
 /// Moves waiting for the next group commit.
@@ -151,8 +173,11 @@ struct QueuedMove {
     status: &'static str,
     shots: i64,
     result: Option<String>,
-    done: oneshot::Sender<Result<(), StoreError>>,
+    done: Answer,
 }
+
+/// Where a queued move's writer waits for its result.
+type Answer = oneshot::Sender<Result<(), StoreError>>;
 
 /// A queued move's write: wait for it to learn whether the move is stored.
 #[must_use = "a move is only stored once its write has completed"]
@@ -216,24 +241,30 @@ impl Store {
             path: dir.display().to_string(),
             source,
         })?;
-        Store::with_connection(Connection::open(dir.join("chapaev.sqlite3"))?, sync)
+        let path = dir.join("chapaev.sqlite3");
+        let conn = Connection::open(&path)?;
+        // In log mode before the checkpointer's connection opens the file.
+        conn.pragma_update(None, "journal_mode", "WAL")?;
+        // Checkpoints run on their own thread, never inside a commit; a log
+        // that a burst grew past 64 MiB is cut back when it starts over.
+        conn.pragma_update(None, "wal_autocheckpoint", 0)?;
+        conn.pragma_update(None, "journal_size_limit", 64 << 20)?;
+        let checkpointer = Checkpointer::start(&path, sync)?;
+        Store::with_connection(conn, sync, Some(checkpointer))
     }
 
     /// A store in memory (tests).
     pub fn in_memory() -> Result<Store, StoreError> {
-        Store::with_connection(Connection::open_in_memory()?, SyncMode::Normal)
+        Store::with_connection(Connection::open_in_memory()?, SyncMode::Normal, None)
     }
 
-    fn with_connection(conn: Connection, sync: SyncMode) -> Result<Store, StoreError> {
+    fn with_connection(
+        conn: Connection,
+        sync: SyncMode,
+        checkpointer: Option<Checkpointer>,
+    ) -> Result<Store, StoreError> {
         conn.pragma_update(None, "journal_mode", "WAL")?;
-        conn.pragma_update(
-            None,
-            "synchronous",
-            match sync {
-                SyncMode::Full => "FULL",
-                SyncMode::Normal => "NORMAL",
-            },
-        )?;
+        conn.pragma_update(None, "synchronous", sync.pragma())?;
         conn.pragma_update(None, "foreign_keys", "ON")?;
         conn.busy_timeout(std::time::Duration::from_secs(5))?;
         conn.execute_batch(SCHEMA)?;
@@ -241,17 +272,21 @@ impl Store {
             conn: Mutex::new(conn),
             queue: Mutex::new(Queue::default()),
             wake: Condvar::new(),
+            commits: Histogram::default(),
+            moves_committed: AtomicU64::new(0),
+            log_grew: checkpointer.as_ref().map(Checkpointer::nudger),
         });
         let writer = {
             let shared = shared.clone();
             std::thread::Builder::new()
                 .name("store-writer".into())
                 .spawn(move || write_loop(&shared))
-                .map_err(|e| StoreError::GroupCommit(format!("cannot start the writer: {e}")))?
+                .map_err(|e| StoreError::Thread("writer", e))?
         };
         Ok(Store {
             shared,
             writer: Some(writer),
+            checkpointer,
         })
     }
 
@@ -282,6 +317,7 @@ impl Store {
                 m.rematch_of,
             ],
         )?;
+        self.shared.log_grew();
         Ok(())
     }
 
@@ -293,6 +329,7 @@ impl Store {
              WHERE id = ?1 AND second_token IS NULL AND bot IS NULL",
             params![id, name, token, now() as i64],
         )?;
+        self.shared.log_grew();
         if n != 1 {
             return Err(StoreError::Corrupt(format!(
                 "match {id} has no empty second seat"
@@ -456,6 +493,24 @@ impl Store {
         raw.map(SummaryRaw::finish).transpose()
     }
 
+    /// The store's metrics as Prometheus text: group commits (count and
+    /// duration) and the moves they wrote.
+    pub fn render_metrics(&self, out: &mut String) {
+        use std::fmt::Write as _;
+        let moves = self.shared.moves_committed.load(Ordering::Relaxed);
+        let _ = writeln!(
+            out,
+            "# HELP chapaev_store_moves_committed_total Moves handed to group commits.\n\
+             # TYPE chapaev_store_moves_committed_total counter\n\
+             chapaev_store_moves_committed_total {moves}"
+        );
+        self.shared.commits.render(
+            out,
+            "chapaev_store_commit_seconds",
+            "Time of each group commit: the batch's writes, the commit and its sync.",
+        );
+    }
+
     /// Makes sure everything written is in the main database file (on shutdown).
     pub fn checkpoint(&self) -> Result<(), StoreError> {
         let conn = self.lock()?;
@@ -558,7 +613,8 @@ impl StoredMatchRaw {
 }
 
 impl Drop for Store {
-    /// Writes what is still queued, then stops the writer thread.
+    /// Writes what is still queued, then stops the writer thread, then the
+    /// checkpointer.
     fn drop(&mut self) {
         if let Ok(mut queue) = self.shared.queue.lock() {
             queue.closing = true;
@@ -567,6 +623,7 @@ impl Drop for Store {
         if let Some(writer) = self.writer.take() {
             let _ = writer.join();
         }
+        drop(self.checkpointer.take());
     }
 }
 
@@ -589,27 +646,37 @@ fn write_loop(shared: &Shared) {
             }
             std::mem::take(&mut queue.moves)
         };
-        match shared.conn.lock() {
+        let started = Instant::now();
+        let moves = batch.len() as u64;
+        let answers = match shared.conn.lock() {
             Ok(mut conn) => write_batch(&mut conn, batch),
-            Err(_) => {
-                for m in batch {
-                    let _ = m.done.send(Err(StoreError::Poisoned));
-                }
-            }
+            Err(_) => batch
+                .into_iter()
+                .map(|m| (m.done, Err(StoreError::Poisoned)))
+                .collect(),
+        };
+        shared.commits.observe(started.elapsed());
+        shared.moves_committed.fetch_add(moves, Ordering::Relaxed);
+        shared.log_grew();
+        for (done, result) in answers {
+            let _ = done.send(result);
         }
     }
 }
 
-/// Writes `batch` in one transaction, each move in its own savepoint, and
-/// tells every writer its result.
-fn write_batch(conn: &mut Connection, batch: Vec<QueuedMove>) {
+/// Writes `batch` in one transaction, each move in its own savepoint; the
+/// answer for each writer.
+fn write_batch(
+    conn: &mut Connection,
+    batch: Vec<QueuedMove>,
+) -> Vec<(Answer, Result<(), StoreError>)> {
     let mut tx = match conn.transaction() {
         Ok(tx) => tx,
         Err(e) => {
-            for m in batch {
-                let _ = m.done.send(Err(StoreError::GroupCommit(e.to_string())));
-            }
-            return;
+            return batch
+                .into_iter()
+                .map(|m| (m.done, Err(StoreError::GroupCommit(e.to_string()))))
+                .collect();
         }
     };
     let mut results = Vec::with_capacity(batch.len());
@@ -617,26 +684,30 @@ fn write_batch(conn: &mut Connection, batch: Vec<QueuedMove>) {
         results.push(write_one(&mut tx, m));
     }
     let committed = tx.commit();
-    for (m, r) in batch.into_iter().zip(results) {
-        let r = match &committed {
-            Ok(()) => r,
-            Err(e) => Err(StoreError::GroupCommit(e.to_string())),
-        };
-        let _ = m.done.send(r);
-    }
+    batch
+        .into_iter()
+        .zip(results)
+        .map(|(m, r)| {
+            let r = match &committed {
+                Ok(()) => r,
+                Err(e) => Err(StoreError::GroupCommit(e.to_string())),
+            };
+            (m.done, r)
+        })
+        .collect()
 }
 
 /// One move and its match row, undone alone if either fails.
 fn write_one(tx: &mut rusqlite::Transaction<'_>, m: &QueuedMove) -> Result<(), StoreError> {
     let sp = tx.savepoint()?;
-    sp.execute(
-        "INSERT INTO moves (match_id, idx, body) VALUES (?1, ?2, ?3)",
-        params![m.id, m.index, m.body],
-    )?;
-    let n = sp.execute(
-        "UPDATE matches SET status = ?2, shots = ?3, result = ?4, updated_at = ?5 WHERE id = ?1",
-        params![m.id, m.status, m.shots, m.result, now() as i64],
-    )?;
+    // Cached: the same two statements run for every move.
+    sp.prepare_cached("INSERT INTO moves (match_id, idx, body) VALUES (?1, ?2, ?3)")?
+        .execute(params![m.id, m.index, m.body])?;
+    let n = sp
+        .prepare_cached(
+            "UPDATE matches SET status = ?2, shots = ?3, result = ?4, updated_at = ?5 WHERE id = ?1",
+        )?
+        .execute(params![m.id, m.status, m.shots, m.result, now() as i64])?;
     if n != 1 {
         // Dropping the savepoint unfinished rolls it back.
         return Err(StoreError::Corrupt(format!("no match {}", m.id)));
@@ -794,5 +865,32 @@ mod tests {
             store.get("m").unwrap().unwrap().seats[0].name.as_deref(),
             Some("Petka")
         );
+    }
+
+    #[test]
+    fn group_commits_are_counted_and_timed_in_the_metrics() {
+        let store = Store::in_memory().unwrap();
+        store.create(&stored("m")).unwrap();
+        let after = AfterMove {
+            status: Status::Live,
+            shots: 0,
+            result: None,
+        };
+        for k in 0..3 {
+            let pass = RecordedMove::Pass { side: Side::White };
+            store.append_move("m", k, &pass, &after).unwrap();
+        }
+        let mut text = String::new();
+        store.render_metrics(&mut text);
+        assert!(
+            text.contains("chapaev_store_moves_committed_total 3\n"),
+            "{text}"
+        );
+        // Each append waited for its own commit.
+        assert!(
+            text.contains("chapaev_store_commit_seconds_count 3\n"),
+            "{text}"
+        );
+        assert!(text.contains("chapaev_store_commit_seconds_bucket{le=\"+Inf\"} 3\n"));
     }
 }

@@ -3,7 +3,8 @@
 //! players per match, the rest spread over the matches as spectators), and
 //! lets the players shoot as fast as their turns come for a while. It
 //! reports the connections held, shots per second, the p50/p99 latency
-//! from sending a shot to receiving its `shot-played` broadcast, the
+//! from sending a shot to receiving its `shot-played` broadcast, beside the
+//! same connections' ping-to-pong time (the floor without the match), the
 //! server's own arrival-to-broadcast histogram and resident memory per
 //! connection (from `/metrics`), and what else delayed the run: how often
 //! the load generator itself could not run on time, and the machine's busy
@@ -89,14 +90,14 @@ async fn http(addr: &str, method: &str, path: &str, body: &str) -> Result<String
     Ok(rest.to_string())
 }
 
-/// The server's own arrival-to-broadcast histogram from `/metrics`: the
-/// bucket bounds (ms) holding the median and the 99th percentile, and the
-/// share of shots within 10 ms.
-fn server_side(metrics: &str) -> Option<(f64, f64, f64)> {
-    let name = "chapaev_shot_to_broadcast_seconds_bucket{le=\"";
+/// A latency histogram of the server's `/metrics` (`name` without the
+/// `_bucket` suffix): the bucket bounds (ms) holding the median and the 99th
+/// percentile, and the share of observations within 10 ms.
+fn server_side(metrics: &str, name: &str) -> Option<(f64, f64, f64)> {
+    let prefix = format!("{name}_bucket{{le=\"");
     let buckets: Vec<(f64, f64)> = metrics
         .lines()
-        .filter_map(|l| l.strip_prefix(name))
+        .filter_map(|l| l.strip_prefix(prefix.as_str()))
         .filter_map(|l| {
             let (le, n) = l.split_once("\"} ")?;
             Some((le.parse().ok()?, n.trim().parse().ok()?))
@@ -200,8 +201,19 @@ async fn connect(addr: &str, id: &str, token: Option<&str>) -> Result<Ws, LoadEr
     )
 }
 
-/// A player: shoots a random own piece whenever its turn comes; returns
-/// its shot-to-broadcast latencies.
+/// What one player measured.
+#[derive(Default)]
+struct Measured {
+    /// From sending each shot to receiving its `shot-played`.
+    shots: Vec<Duration>,
+    /// From sending a WebSocket ping just before each shot to its pong: the
+    /// same connection, moment and machine, without the match (the session
+    /// answers pings itself), so the floor under the shots' latencies.
+    pongs: Vec<Duration>,
+}
+
+/// A player: shoots a random own piece whenever its turn comes, a ping just
+/// before each shot.
 async fn player(
     mut ws: Ws,
     seed: u64,
@@ -209,9 +221,10 @@ async fn player(
     think: Duration,
     totals: Arc<Totals>,
     counts_finish: bool,
-) -> Vec<Duration> {
+) -> Measured {
     let mut rng = SplitMix64::new(seed);
-    let mut latencies = Vec::new();
+    let mut measured = Measured::default();
+    let mut ping_sent: Option<Instant> = None;
     let mut me = Side::White;
     let mut own: Vec<PieceId> = Vec::new();
     let mut pending: Option<Instant> = None;
@@ -233,6 +246,10 @@ async fn player(
                 piece,
                 velocity: glam::DVec2::new(a.cos(), a.sin()) * speed,
             };
+            if ws.send(Message::Ping(Vec::new())).await.is_err() {
+                break;
+            }
+            ping_sent = Some(Instant::now());
             if ws.send(Message::Text(m.to_json())).await.is_err() {
                 break;
             }
@@ -246,7 +263,16 @@ async fn player(
             Ok(Some(Ok(f))) => f,
             _ => break,
         };
-        let Message::Text(text) = frame else { continue };
+        let text = match frame {
+            Message::Text(text) => text,
+            Message::Pong(_) => {
+                if let Some(t) = ping_sent.take() {
+                    measured.pongs.push(t.elapsed());
+                }
+                continue;
+            }
+            _ => continue,
+        };
         totals.messages.fetch_add(1, Ordering::Relaxed);
         let Ok(msg) = ServerMessage::from_json(&text) else {
             continue;
@@ -260,7 +286,7 @@ async fn player(
             ServerMessage::ShotPlayed { outcome, .. } => {
                 if let Some(t) = pending.take() {
                     if outcome.shooter == me {
-                        latencies.push(t.elapsed());
+                        measured.shots.push(t.elapsed());
                         totals.shots.fetch_add(1, Ordering::Relaxed);
                     } else {
                         pending = Some(t);
@@ -291,7 +317,7 @@ async fn player(
         }
     }
     let _ = ws.close(None).await;
-    latencies
+    measured
 }
 
 /// A spectator: reads until the end.
@@ -382,10 +408,11 @@ async fn run(args: Args) -> Result<(), LoadError> {
     for ws in watchers {
         watch_tasks.push(tokio::spawn(spectator(ws, until, totals.clone())));
     }
-    let mut latencies = Vec::new();
+    let (mut latencies, mut pongs) = (Vec::new(), Vec::new());
     for t in tasks {
-        if let Ok(l) = t.await {
-            latencies.extend(l);
+        if let Ok(m) = t.await {
+            latencies.extend(m.shots);
+            pongs.extend(m.pongs);
         }
     }
     for t in watch_tasks {
@@ -395,6 +422,7 @@ async fn run(args: Args) -> Result<(), LoadError> {
     let cpu = cpu_before.zip(cpu_times()).map(|(a, b)| b.since(&a));
     let (stalled, longest) = stalls.await.unwrap_or_default();
     latencies.sort();
+    pongs.sort();
     let shots = totals.shots.load(Ordering::Relaxed);
     println!("matches:                {matches}");
     println!(
@@ -419,14 +447,25 @@ async fn run(args: Args) -> Result<(), LoadError> {
         percentile(&latencies, 0.99).as_secs_f64() * 1e3,
         latencies.last().copied().unwrap_or_default().as_secs_f64() * 1e3
     );
+    println!(
+        "ping-to-pong floor:     p50 {:.2} ms, p99 {:.2} ms, max {:.2} ms (a ping sent just before each shot)",
+        percentile(&pongs, 0.5).as_secs_f64() * 1e3,
+        percentile(&pongs, 0.99).as_secs_f64() * 1e3,
+        pongs.last().copied().unwrap_or_default().as_secs_f64() * 1e3
+    );
     let metrics = http(&args.addr, "GET", "/metrics", "")
         .await
         .unwrap_or_default();
-    match server_side(&metrics) {
+    match server_side(&metrics, "chapaev_shot_to_broadcast_seconds") {
         Some((p50, p99, within)) => println!(
             "server side:            p50 <= {p50} ms, p99 <= {p99} ms, {within:.2}% within 10 ms (arrival to broadcast, /metrics buckets)"
         ),
         None => println!("server side:            not reported by /metrics"),
+    }
+    if let Some((p50, p99, within)) = server_side(&metrics, "chapaev_store_commit_seconds") {
+        println!(
+            "store group commits:    p50 <= {p50} ms, p99 <= {p99} ms, {within:.2}% within 10 ms"
+        );
     }
     println!(
         "load generator stalls:  {stalled} of its 1 ms ticks late by over 10 ms, longest {:.1} ms",
@@ -489,9 +528,10 @@ mod tests {
         for ms in [1, 1, 2, 2, 2, 3, 3, 4, 4, 30] {
             m.shot_broadcast(Duration::from_micros(ms * 900));
         }
-        let (p50, p99, within) = server_side(&m.render()).expect("histogram present");
+        let name = "chapaev_shot_to_broadcast_seconds";
+        let (p50, p99, within) = server_side(&m.render(), name).expect("histogram present");
         assert_eq!((p50, p99), (2.5, 50.0));
         assert!((within - 90.0).abs() < 1e-9, "{within}");
-        assert!(server_side("no metrics here").is_none());
+        assert!(server_side("no metrics here", name).is_none());
     }
 }
