@@ -383,7 +383,7 @@ fn no_such_match(id: &str) -> Refusal {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::room::Outbound;
+    use crate::room::Inbox;
     use game::protocol::{ClientMessage, ServerMessage};
     use game::{PieceId, Side};
     use glam::DVec2;
@@ -401,7 +401,7 @@ mod tests {
         )
     }
 
-    async fn next(rx: &mut mpsc::Receiver<Outbound>) -> ServerMessage {
+    async fn next(rx: &mut Inbox) -> ServerMessage {
         let text = tokio::time::timeout(Duration::from_secs(10), rx.recv())
             .await
             .expect("a message in time")
@@ -409,7 +409,7 @@ mod tests {
         ServerMessage::from_json(&text).unwrap()
     }
 
-    async fn next_of(rx: &mut mpsc::Receiver<Outbound>, kind: &str) -> ServerMessage {
+    async fn next_of(rx: &mut Inbox, kind: &str) -> ServerMessage {
         loop {
             let m = next(rx).await;
             if m.to_json().contains(&format!("\"type\":\"{kind}\"")) {

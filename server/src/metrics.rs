@@ -146,6 +146,14 @@ impl Metrics {
             "counter",
             self.refused.load(Ordering::Relaxed).to_string(),
         );
+        if let Some(cpu) = cpu_seconds() {
+            gauge(
+                "process_cpu_seconds_total",
+                "CPU time the server process has used (user and system).",
+                "counter",
+                cpu.to_string(),
+            );
+        }
         if let Some(rss) = resident_bytes() {
             gauge(
                 "process_resident_memory_bytes",
@@ -166,6 +174,23 @@ impl Metrics {
         );
         out
     }
+}
+
+/// CPU time (user and system) this process has used, seconds, from
+/// `/proc/self/stat` (Linux only).
+pub fn cpu_seconds() -> Option<f64> {
+    cpu_seconds_in(&std::fs::read_to_string("/proc/self/stat").ok()?)
+}
+
+/// CPU seconds from the text of a `/proc/PID/stat`: fields 14 and 15
+/// (`utime`, `stime`) in clock ticks of 1/100 s. The command name, field 2,
+/// may hold spaces, so fields are counted after its closing parenthesis.
+pub fn cpu_seconds_in(stat: &str) -> Option<f64> {
+    let after_name = &stat[stat.rfind(')')? + 1..];
+    let mut fields = after_name.split_whitespace().skip(11);
+    let user: u64 = fields.next()?.parse().ok()?;
+    let system: u64 = fields.next()?.parse().ok()?;
+    Some((user + system) as f64 / 100.0)
 }
 
 /// The process's resident memory, from `/proc/self/statm` (Linux only).
@@ -203,5 +228,14 @@ mod tests {
         assert!(text.contains("chapaev_shot_to_broadcast_seconds_bucket{le=\"0.005\"} 1\n"));
         assert!(text.contains("chapaev_shot_to_broadcast_seconds_count 1\n"));
         assert!(text.contains("chapaev_shots_resolved_total 2\n"));
+    }
+
+    #[test]
+    fn cpu_time_is_read_past_a_command_name_with_spaces() {
+        let stat = "4242 (a (b) c) S 1 4242 4242 0 -1 4194560 \
+                    100 0 0 0 250 75 0 0 20 0 9 0 123 456 789";
+        assert_eq!(cpu_seconds_in(stat), Some(3.25));
+        assert_eq!(cpu_seconds_in("no parenthesis"), None);
+        assert_eq!(cpu_seconds_in("1 (x) S 1 2"), None);
     }
 }

@@ -25,8 +25,58 @@ use tokio::sync::{mpsc, oneshot};
 use tokio::time::Instant;
 use tracing::{debug, error, info, warn};
 
-/// A message on its way to one connection, already JSON.
-pub type Outbound = Arc<str>;
+/// Messages on their way to one connection, already JSON, in order. What
+/// a room says while handling one command (a shot's outcome and the next
+/// turn's clock, say) travels as one item: one wakeup of the connection's
+/// task, one write to its socket.
+pub type Outbound = Arc<[Arc<str>]>;
+
+/// The receiving end of a connection's queue, one message at a time.
+#[derive(Debug)]
+pub struct Inbox {
+    rx: mpsc::Receiver<Outbound>,
+    batch: Outbound,
+    next: usize,
+}
+
+impl Inbox {
+    fn new(rx: mpsc::Receiver<Outbound>) -> Inbox {
+        Inbox {
+            rx,
+            batch: Arc::new([]),
+            next: 0,
+        }
+    }
+
+    /// The next message; `None` once the room has closed this connection
+    /// and everything sent before is read. Cancel-safe.
+    pub async fn recv(&mut self) -> Option<Arc<str>> {
+        while self.next == self.batch.len() {
+            self.batch = self.rx.recv().await?;
+            self.next = 0;
+        }
+        self.next += 1;
+        Some(self.batch[self.next - 1].clone())
+    }
+}
+
+/// Who a message a room says is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum To {
+    All,
+    AllBut(u64),
+    Only(u64),
+}
+
+impl To {
+    fn includes(self, conn: u64) -> bool {
+        match self {
+            To::All => true,
+            To::AllBut(skip) => conn != skip,
+            To::Only(only) => conn == only,
+        }
+    }
+}
 
 /// What a room is asked to do.
 #[derive(Debug)]
@@ -71,7 +121,7 @@ pub struct Connected {
     pub conn: u64,
     pub seat: Option<Seat>,
     /// Everything the room sends this connection, `match-state` first.
-    pub rx: mpsc::Receiver<Outbound>,
+    pub rx: Inbox,
 }
 
 /// One seat of a match.
@@ -147,6 +197,9 @@ pub struct Room {
     rng: SplitMix64,
     hub: Hub,
     broken: bool,
+    /// What the room has said while handling the command in hand; handed to
+    /// the connections when it is done ([`Room::flush`]).
+    outbox: Vec<(To, Arc<str>)>,
 }
 
 fn status_of(game: &Game, seats: &[SeatState; 2]) -> Status {
@@ -194,6 +247,7 @@ impl Room {
             rng,
             hub,
             broken: false,
+            outbox: Vec::new(),
         }
     }
 
@@ -218,6 +272,7 @@ impl Room {
                 },
                 _ = sleep_until(timer) => self.on_timer().await,
             }
+            self.flush();
             if self.broken || self.idle_out(Instant::now()) {
                 break;
             }
@@ -373,10 +428,9 @@ impl Room {
                 match_id: id.clone(),
             });
         }
-        for m in &first {
-            // The queue is new and longer than these few messages.
-            let _ = tx.try_send(Arc::from(m.to_json()));
-        }
+        let first: Outbound = first.iter().map(|m| Arc::from(m.to_json())).collect();
+        // The queue is new and empty.
+        let _ = tx.try_send(first);
         self.conns.insert(conn, Conn { seat, tx });
         self.idle_since = None;
         if let Some(s) = seat {
@@ -387,7 +441,11 @@ impl Room {
             }
         }
         debug!(match_id = %self.id, conn, ?seat, "connected");
-        Ok(Connected { conn, seat, rx })
+        Ok(Connected {
+            conn,
+            seat,
+            rx: Inbox::new(rx),
+        })
     }
 
     fn disconnect(&mut self, conn: u64) {
@@ -414,30 +472,53 @@ impl Room {
     }
 
     fn send_to(&mut self, conn: u64, msg: &ServerMessage) {
-        let text: Outbound = Arc::from(msg.to_json());
-        if let Some(c) = self.conns.get(&conn) {
-            if c.tx.try_send(text).is_err() {
-                self.drop_slow(conn);
-            }
-        }
+        self.outbox.push((To::Only(conn), Arc::from(msg.to_json())));
     }
 
     fn broadcast(&mut self, msg: &ServerMessage) {
-        self.broadcast_except(u64::MAX, msg);
+        self.outbox.push((To::All, Arc::from(msg.to_json())));
     }
 
-    /// Sends to every connection but `skip`; one whose queue is full is
-    /// too slow to follow the match and is dropped (bounded memory).
     fn broadcast_except(&mut self, skip: u64, msg: &ServerMessage) {
-        let text: Outbound = Arc::from(msg.to_json());
-        let slow: Vec<u64> = self
-            .conns
-            .iter()
-            .filter(|(id, c)| **id != skip && c.tx.try_send(text.clone()).is_err())
-            .map(|(id, _)| *id)
-            .collect();
-        for conn in slow {
-            self.drop_slow(conn);
+        self.outbox
+            .push((To::AllBut(skip), Arc::from(msg.to_json())));
+    }
+
+    /// Hands what the room has said to the connections' queues, one item
+    /// per connection (shared by all of them when every message is for
+    /// everyone); a connection whose queue is full is too slow to follow
+    /// the match and is dropped (bounded memory).
+    fn flush(&mut self) {
+        // Dropping a connection may say more (a player left).
+        while !self.outbox.is_empty() {
+            let said = std::mem::take(&mut self.outbox);
+            let everyone = said
+                .iter()
+                .all(|(to, _)| *to == To::All)
+                .then(|| said.iter().map(|(_, m)| m.clone()).collect::<Outbound>());
+            let mut slow = Vec::new();
+            for (&id, c) in &self.conns {
+                let item = match &everyone {
+                    Some(all) => all.clone(),
+                    None => {
+                        let mine: Outbound = said
+                            .iter()
+                            .filter(|(to, _)| to.includes(id))
+                            .map(|(_, m)| m.clone())
+                            .collect();
+                        if mine.is_empty() {
+                            continue;
+                        }
+                        mine
+                    }
+                };
+                if c.tx.try_send(item).is_err() {
+                    slow.push(id);
+                }
+            }
+            for conn in slow {
+                self.drop_slow(conn);
+            }
         }
     }
 
@@ -519,6 +600,7 @@ impl Room {
                 let shot = Shot::new(piece, velocity, self.game.config())?;
                 self.game.check(side, &shot)?;
                 self.apply(Action::Shot(side, shot)).await?;
+                self.flush();
                 self.hub.metrics().shot_broadcast(received.elapsed());
                 self.clock.acted(seat);
             }
@@ -828,5 +910,64 @@ async fn sleep_until(t: Option<Instant>) {
     match t {
         Some(t) => tokio::time::sleep_until(t).await,
         None => std::future::pending().await,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::Limits;
+    use crate::hub::{NewMatch, Opponent};
+    use crate::metrics::Metrics;
+    use crate::store::Store;
+    use game::{Config, PieceId};
+    use glam::DVec2;
+
+    #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+    async fn a_shot_and_the_next_turn_clock_reach_each_connection_as_one_item() {
+        let hub = Hub::new(
+            Arc::new(Store::in_memory().unwrap()),
+            Arc::new(Metrics::default()),
+            Limits::default(),
+            tokio::runtime::Handle::current(),
+        );
+        let a = hub
+            .create(NewMatch {
+                name: "Petka".into(),
+                opponent: Opponent::Person,
+                config: Config::default(),
+                turn_seconds: None,
+            })
+            .await
+            .unwrap();
+        hub.join(&a.match_id, "Anka".into()).await.unwrap();
+        let (room, white) = hub.connect(&a.match_id, Some(a.token)).await.unwrap();
+        let (_, mut watcher) = hub.connect(&a.match_id, None).await.unwrap();
+        let kinds = |item: &Outbound| -> Vec<String> {
+            item.iter()
+                .map(|m| {
+                    let v: serde_json::Value = serde_json::from_str(m).unwrap();
+                    v["type"].as_str().unwrap().to_string()
+                })
+                .collect()
+        };
+        let first = watcher.rx.rx.recv().await.unwrap();
+        assert_eq!(kinds(&first), ["match-state", "clock"]);
+        let shot = ClientMessage::Shot {
+            piece: PieceId::new(Side::White, 4).unwrap(),
+            velocity: DVec2::new(0.0, 2.0),
+        };
+        room.tx
+            .send(Command::message(white.conn, shot))
+            .await
+            .unwrap();
+        let item = watcher.rx.rx.recv().await.unwrap();
+        assert_eq!(kinds(&item), ["shot-played", "clock"]);
+        // Read one at a time, the same messages come in the same order.
+        let mut inbox = Inbox::new(mpsc::channel(1).1);
+        inbox.batch = item.clone();
+        assert_eq!(inbox.recv().await.as_deref(), Some(&*item[0]));
+        assert_eq!(inbox.recv().await.as_deref(), Some(&*item[1]));
+        assert_eq!(inbox.recv().await, None, "the sender is gone");
     }
 }

@@ -171,11 +171,18 @@ fn cpu_times() -> Option<CpuTimes> {
     })
 }
 
-async fn resident_bytes(addr: &str) -> Option<u64> {
+/// A single-valued metric of the server's `/metrics`.
+async fn server_metric(addr: &str, name: &str) -> Option<f64> {
     let text = http(addr, "GET", "/metrics", "").await.ok()?;
     text.lines()
-        .find_map(|l| l.strip_prefix("process_resident_memory_bytes "))
+        .find_map(|l| l.strip_prefix(name)?.strip_prefix(' '))
         .and_then(|v| v.trim().parse().ok())
+}
+
+async fn resident_bytes(addr: &str) -> Option<u64> {
+    server_metric(addr, "process_resident_memory_bytes")
+        .await
+        .map(|b| b as u64)
 }
 
 #[derive(Default)]
@@ -391,6 +398,8 @@ async fn run(args: Args) -> Result<(), LoadError> {
     let until = Instant::now() + Duration::from_secs(args.seconds);
     let stalls = tokio::spawn(own_stalls(until));
     let cpu_before = cpu_times();
+    let server_cpu_before = server_metric(&args.addr, "process_cpu_seconds_total").await;
+    let own_cpu_before = server::metrics::cpu_seconds();
     let play_start = Instant::now();
     let think = Duration::from_millis(args.think_ms);
     let mut tasks = Vec::new();
@@ -420,6 +429,15 @@ async fn run(args: Args) -> Result<(), LoadError> {
     }
     let elapsed = play_start.elapsed().as_secs_f64();
     let cpu = cpu_before.zip(cpu_times()).map(|(a, b)| b.since(&a));
+    let own_cpu = own_cpu_before
+        .zip(server::metrics::cpu_seconds())
+        .map(|(a, b)| b - a);
+    let server_cpu = match server_cpu_before {
+        Some(a) => server_metric(&args.addr, "process_cpu_seconds_total")
+            .await
+            .map(|b| b - a),
+        None => None,
+    };
     let (stalled, longest) = stalls.await.unwrap_or_default();
     latencies.sort();
     pongs.sort();
@@ -471,6 +489,16 @@ async fn run(args: Args) -> Result<(), LoadError> {
         "load generator stalls:  {stalled} of its 1 ms ticks late by over 10 ms, longest {:.1} ms",
         longest.as_secs_f64() * 1e3
     );
+    // CPU time is what the hypervisor's stealing does not blur: the cost
+    // of the work itself.
+    let per_shot = |secs: f64| secs * 1e6 / shots.max(1) as f64;
+    if let (Some(server), Some(own)) = (server_cpu, own_cpu) {
+        println!(
+            "CPU while playing:      server {server:.2} s ({:.0} us per shot), load generator {own:.2} s ({:.0} us per shot)",
+            per_shot(server),
+            per_shot(own)
+        );
+    }
     if let Some((busy, steal)) = cpu {
         println!(
             "machine CPU:            {busy:.0}% busy, {steal:.1}% stolen by the hypervisor (/proc/stat)"
