@@ -35,28 +35,33 @@ pub type Outbound = Arc<[Arc<str>]>;
 #[derive(Debug)]
 pub struct Inbox {
     rx: mpsc::Receiver<Outbound>,
-    batch: Outbound,
-    next: usize,
+    /// The item being read and the index of its next message; let go of
+    /// once read (an idle connection holds no old messages).
+    batch: Option<(Outbound, usize)>,
 }
 
 impl Inbox {
     fn new(rx: mpsc::Receiver<Outbound>) -> Inbox {
-        Inbox {
-            rx,
-            batch: Arc::new([]),
-            next: 0,
-        }
+        Inbox { rx, batch: None }
     }
 
     /// The next message; `None` once the room has closed this connection
     /// and everything sent before is read. Cancel-safe.
     pub async fn recv(&mut self) -> Option<Arc<str>> {
-        while self.next == self.batch.len() {
-            self.batch = self.rx.recv().await?;
-            self.next = 0;
+        loop {
+            if let Some((batch, next)) = &mut self.batch {
+                if let Some(m) = batch.get(*next) {
+                    let m = m.clone();
+                    *next += 1;
+                    if *next == batch.len() {
+                        self.batch = None;
+                    }
+                    return Some(m);
+                }
+                self.batch = None;
+            }
+            self.batch = Some((self.rx.recv().await?, 0));
         }
-        self.next += 1;
-        Some(self.batch[self.next - 1].clone())
     }
 }
 
@@ -965,7 +970,7 @@ mod tests {
         assert_eq!(kinds(&item), ["shot-played", "clock"]);
         // Read one at a time, the same messages come in the same order.
         let mut inbox = Inbox::new(mpsc::channel(1).1);
-        inbox.batch = item.clone();
+        inbox.batch = Some((item.clone(), 0));
         assert_eq!(inbox.recv().await.as_deref(), Some(&*item[0]));
         assert_eq!(inbox.recv().await.as_deref(), Some(&*item[1]));
         assert_eq!(inbox.recv().await, None, "the sender is gone");

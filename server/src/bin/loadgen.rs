@@ -480,6 +480,11 @@ async fn run(args: Args) -> Result<(), LoadError> {
         ),
         None => println!("server side:            not reported by /metrics"),
     }
+    if let Some((p50, p99, within)) = server_side(&metrics, "chapaev_shot_resolution_seconds") {
+        println!(
+            "  of which in the room:  p50 <= {p50} ms, p99 <= {p99} ms, {within:.2}% within 10 ms (its turn in the match to broadcast: physics, store)"
+        );
+    }
     if let Some((p50, p99, within)) = server_side(&metrics, "chapaev_store_commit_seconds") {
         println!(
             "store group commits:    p50 <= {p50} ms, p99 <= {p99} ms, {within:.2}% within 10 ms"
