@@ -117,15 +117,16 @@ pub struct AfterMove<'a> {
     pub result: Option<&'a MatchResult>,
 }
 
-/// The SQLite store (one connection; SQLite has one writer at a time anyway).
+/// The SQLite store: one connection for reads and writes (SQLite has one
+/// writer at a time anyway) and, on disk, a [`Checkpointer`] with its own.
 ///
 /// Moves are written by group commit on the store's own writer thread: a
 /// writer queues its move ([`Store::submit_move`]) and waits for its
 /// [`MoveWrite`] (asynchronously in a room, blocking in
 /// [`Store::append_move`]); the writer thread takes every queued move and
-/// writes them in one transaction (one fsync for all of them), each in its
+/// writes them in one transaction (one disk sync for all of them), each in its
 /// own savepoint so one bad move fails alone, and hands each writer its own
-/// result. Under load this turns one fsync per move into one per batch, and
+/// result. Under load this turns one sync per move into one per batch, and
 /// no game thread ever blocks on the disk. Dropping the store writes what
 /// is queued and stops the thread.
 pub struct Store {
@@ -147,12 +148,12 @@ struct Shared {
     /// Moves written by those commits.
     moves_committed: AtomicU64,
     /// Tells the checkpointer that a commit added to the log.
-    log_grew: Option<Nudge>,
+    nudge: Option<Nudge>,
 }
 
 impl Shared {
     fn log_grew(&self) {
-        if let Some(n) = &self.log_grew {
+        if let Some(n) = &self.nudge {
             n.nudge();
         }
     }
@@ -274,7 +275,7 @@ impl Store {
             wake: Condvar::new(),
             commits: Histogram::default(),
             moves_committed: AtomicU64::new(0),
-            log_grew: checkpointer.as_ref().map(Checkpointer::nudger),
+            nudge: checkpointer.as_ref().map(Checkpointer::nudger),
         });
         let writer = {
             let shared = shared.clone();
