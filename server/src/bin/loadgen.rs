@@ -171,12 +171,17 @@ fn cpu_times() -> Option<CpuTimes> {
     })
 }
 
-/// A single-valued metric of the server's `/metrics`.
-async fn server_metric(addr: &str, name: &str) -> Option<f64> {
-    let text = http(addr, "GET", "/metrics", "").await.ok()?;
-    text.lines()
+/// A single-valued metric in the text of `/metrics`.
+fn metric_value(metrics: &str, name: &str) -> Option<f64> {
+    metrics
+        .lines()
         .find_map(|l| l.strip_prefix(name)?.strip_prefix(' '))
         .and_then(|v| v.trim().parse().ok())
+}
+
+/// A single-valued metric of the server's `/metrics`, fetched now.
+async fn server_metric(addr: &str, name: &str) -> Option<f64> {
+    metric_value(&http(addr, "GET", "/metrics", "").await.ok()?, name)
 }
 
 async fn resident_bytes(addr: &str) -> Option<u64> {
@@ -356,6 +361,17 @@ fn percentile(sorted: &[Duration], p: f64) -> Duration {
     sorted[k.min(sorted.len() - 1)]
 }
 
+/// The p50, p99 and maximum of sorted latencies, in milliseconds.
+fn spread(sorted: &[Duration]) -> String {
+    let ms = |d: Duration| d.as_secs_f64() * 1e3;
+    format!(
+        "p50 {:.2} ms, p99 {:.2} ms, max {:.2} ms",
+        ms(percentile(sorted, 0.5)),
+        ms(percentile(sorted, 0.99)),
+        ms(sorted.last().copied().unwrap_or_default())
+    )
+}
+
 async fn run(args: Args) -> Result<(), LoadError> {
     let matches = args.matches.max(1);
     let clients = args.clients.max(2 * matches);
@@ -438,12 +454,13 @@ async fn run(args: Args) -> Result<(), LoadError> {
     let own_cpu = own_cpu_before
         .zip(server::metrics::cpu_seconds())
         .map(|(a, b)| b - a);
-    let server_cpu = match server_cpu_before {
-        Some(a) => server_metric(&args.addr, "process_cpu_seconds_total")
-            .await
-            .map(|b| b - a),
-        None => None,
-    };
+    // One read of the server's metrics after the play: its CPU and histograms.
+    let metrics = http(&args.addr, "GET", "/metrics", "")
+        .await
+        .unwrap_or_default();
+    let server_cpu = server_cpu_before
+        .zip(metric_value(&metrics, "process_cpu_seconds_total"))
+        .map(|(a, b)| b - a);
     let (stalled, longest) = stalls.await.unwrap_or_default();
     latencies.sort();
     pongs.sort();
@@ -465,21 +482,11 @@ async fn run(args: Args) -> Result<(), LoadError> {
         totals.messages.load(Ordering::Relaxed),
         totals.messages.load(Ordering::Relaxed) as f64 / elapsed
     );
+    println!("shot-to-broadcast:      {}", spread(&latencies));
     println!(
-        "shot-to-broadcast:      p50 {:.2} ms, p99 {:.2} ms, max {:.2} ms",
-        percentile(&latencies, 0.5).as_secs_f64() * 1e3,
-        percentile(&latencies, 0.99).as_secs_f64() * 1e3,
-        latencies.last().copied().unwrap_or_default().as_secs_f64() * 1e3
+        "ping-to-pong floor:     {} (a ping sent as each shot's outcome arrives)",
+        spread(&pongs)
     );
-    println!(
-        "ping-to-pong floor:     p50 {:.2} ms, p99 {:.2} ms, max {:.2} ms (a ping sent as each shot's outcome arrives)",
-        percentile(&pongs, 0.5).as_secs_f64() * 1e3,
-        percentile(&pongs, 0.99).as_secs_f64() * 1e3,
-        pongs.last().copied().unwrap_or_default().as_secs_f64() * 1e3
-    );
-    let metrics = http(&args.addr, "GET", "/metrics", "")
-        .await
-        .unwrap_or_default();
     match server_side(&metrics, "chapaev_shot_to_broadcast_seconds") {
         Some((p50, p99, within)) => println!(
             "server side:            p50 <= {p50} ms, p99 <= {p99} ms, {within:.2}% within 10 ms (arrival to broadcast, /metrics buckets)"
