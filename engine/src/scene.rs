@@ -245,7 +245,12 @@ impl Scene {
             return Err(invalid(sc, "g", Problem::Negative));
         }
         finite(self.t, &Object::Scene, "t")?;
-        let mut seen = std::collections::HashMap::with_capacity(self.bodies.len());
+        // Duplicate ids: a scan of the earlier ids for game-sized scenes
+        // (no allocation: bots validate thousands of scenes a second), a
+        // map for large ones.
+        let small = self.bodies.len() <= 32;
+        let mut seen =
+            std::collections::HashMap::with_capacity(if small { 0 } else { self.bodies.len() });
         for (index, b) in self.bodies.iter().enumerate() {
             let o = Object::Body {
                 index,
@@ -283,7 +288,12 @@ impl Scene {
             if !(b.mu * self.g).is_finite() {
                 return Err(invalid(o, "mu", Problem::Overflow));
             }
-            if let Some(first) = seen.insert(b.id, index) {
+            let earlier = if small {
+                self.bodies[..index].iter().position(|o| o.id == b.id)
+            } else {
+                seen.insert(b.id, index)
+            };
+            if let Some(first) = earlier {
                 return Err(invalid(o, "id", Problem::DuplicateId(first)));
             }
         }

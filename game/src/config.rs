@@ -78,6 +78,60 @@ impl Default for Config {
     }
 }
 
+/// The rules of competitive play, named `standard` on the wire: execution
+/// noise on every shot (as real hands miss) and the pie rule (after White's
+/// first shot Black may take White's side), calibrated by measurement so
+/// that between two copies of the same bot the first player scores half
+/// (see `bots/README.md` for the figures).
+pub const STANDARD_NOISE: NoiseConfig = NoiseConfig {
+    angle_sigma: 0.03,
+    speed_sigma: 0.05,
+};
+
+/// A named set of rules a match can be created with.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Preset {
+    /// The defaults: shots played exactly as aimed, no pie rule.
+    #[default]
+    Casual,
+    /// Competitive play: [`STANDARD_NOISE`] and the pie rule.
+    Standard,
+}
+
+impl Preset {
+    /// The preset's wire name.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Preset::Casual => "casual",
+            Preset::Standard => "standard",
+        }
+    }
+
+    /// The preset named `name`, if there is one.
+    pub fn parse(name: &str) -> Option<Preset> {
+        match name {
+            "casual" => Some(Preset::Casual),
+            "standard" => Some(Preset::Standard),
+            _ => None,
+        }
+    }
+
+    /// The configuration of this preset.
+    pub fn config(self) -> Config {
+        match self {
+            Preset::Casual => Config::default(),
+            Preset::Standard => Config::standard(),
+        }
+    }
+}
+
+impl std::fmt::Display for Preset {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
 /// A configuration that cannot be played.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum ConfigError {
@@ -94,6 +148,19 @@ pub enum ConfigError {
 }
 
 impl Config {
+    /// The `standard` rules of competitive play ([`Preset::Standard`]):
+    /// the default board with [`STANDARD_NOISE`] and the pie rule.
+    pub fn standard() -> Config {
+        Config {
+            variants: Variants {
+                pie_rule: true,
+                noise: Some(STANDARD_NOISE),
+                ..Variants::default()
+            },
+            ..Config::default()
+        }
+    }
+
     /// Side of the whole board, m.
     pub fn board_size(&self) -> f64 {
         self.square * BOARD_SQUARES as f64
@@ -168,6 +235,19 @@ mod tests {
     #[test]
     fn default_config_is_valid() {
         assert_eq!(Config::default().validate(), Ok(()));
+    }
+
+    #[test]
+    fn the_standard_preset_turns_noise_and_the_pie_rule_on_and_is_valid() {
+        let c = Preset::Standard.config();
+        assert!(c.variants.pie_rule);
+        assert_eq!(c.variants.noise, Some(STANDARD_NOISE));
+        assert_eq!(c.validate(), Ok(()));
+        assert_eq!(Preset::Casual.config(), Config::default());
+        assert_eq!(Preset::parse("standard"), Some(Preset::Standard));
+        assert_eq!(Preset::parse("blitz"), None);
+        let name = serde_json::to_string(&Preset::Standard).unwrap();
+        assert_eq!(name, r#""standard""#);
     }
 
     #[test]

@@ -60,7 +60,7 @@ pub mod side;
 mod testing;
 
 pub use board::{Board, Piece};
-pub use config::{Config, ConfigError, NoiseConfig, Variants};
+pub use config::{Config, ConfigError, NoiseConfig, Preset, Variants};
 pub use film::Film;
 pub use game::{Game, GameError, MatchView, Phase, Played};
 pub use outcome::{ForfeitReason, MatchResult, Next, RoundEnd, ShotOutcome, WinReason};

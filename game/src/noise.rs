@@ -117,19 +117,57 @@ pub fn rotate(v: DVec2, angle: f64) -> DVec2 {
     DVec2::new(v.x * c - v.y * s, v.x * s + v.y * c)
 }
 
+/// One draw of execution noise: two standard normal numbers, one turning
+/// the direction and one scaling the speed. The server draws it from the
+/// match's seed and the shot's number ([`NoiseDraw::for_shot`]); a bot that
+/// wants to know how robust a candidate is draws its own from its own
+/// generator ([`NoiseDraw::sample`]) and applies it with the very same
+/// arithmetic ([`NoiseDraw::apply`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NoiseDraw {
+    /// Standard normal; the direction turns by `angle_sigma * angle` radians.
+    pub angle: f64,
+    /// Standard normal; the speed scales by `1 + speed_sigma * speed`.
+    pub speed: f64,
+}
+
+impl NoiseDraw {
+    /// No noise: the shot is played exactly as aimed.
+    pub const NONE: NoiseDraw = NoiseDraw {
+        angle: 0.0,
+        speed: 0.0,
+    };
+
+    /// The draw of the match with seed `seed` for its shot number `shot`.
+    pub fn for_shot(seed: u64, shot: u32) -> NoiseDraw {
+        NoiseDraw::sample(&mut SplitMix64::for_shot(seed, shot))
+    }
+
+    /// A draw from any generator.
+    pub fn sample(rng: &mut SplitMix64) -> NoiseDraw {
+        let (angle, speed) = rng.gaussian_pair();
+        NoiseDraw { angle, speed }
+    }
+
+    /// The velocity played when `aimed` is shot with this draw under
+    /// `noise`: turned by `angle_sigma * angle` radians, its speed scaled by
+    /// `1 + speed_sigma * speed` and kept within `[0, max_speed]`.
+    pub fn apply(&self, noise: &NoiseConfig, aimed: DVec2, max_speed: f64) -> DVec2 {
+        let speed = aimed.length();
+        if speed == 0.0 {
+            return aimed;
+        }
+        let turned = rotate(aimed, noise.angle_sigma * self.angle);
+        let new_speed = (speed * (1.0 + noise.speed_sigma * self.speed)).clamp(0.0, max_speed);
+        turned * (new_speed / speed)
+    }
+}
+
 /// The velocity actually played when `aimed` is shot as the match's shot
 /// number `shot`: turned by `N(0, angle_sigma)` radians, its speed scaled by
 /// `1 + N(0, speed_sigma)` and kept within `[0, max_speed]`.
 pub fn perturb(noise: &NoiseConfig, seed: u64, shot: u32, aimed: DVec2, max_speed: f64) -> DVec2 {
-    let mut rng = SplitMix64::for_shot(seed, shot);
-    let (a, b) = rng.gaussian_pair();
-    let speed = aimed.length();
-    if speed == 0.0 {
-        return aimed;
-    }
-    let turned = rotate(aimed, noise.angle_sigma * a);
-    let new_speed = (speed * (1.0 + noise.speed_sigma * b)).clamp(0.0, max_speed);
-    turned * (new_speed / speed)
+    NoiseDraw::for_shot(seed, shot).apply(noise, aimed, max_speed)
 }
 
 #[cfg(test)]

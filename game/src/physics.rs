@@ -74,13 +74,26 @@ pub fn scene(config: &Config, board: &Board, piece: PieceId, velocity: DVec2) ->
     }
 }
 
-/// Plays `piece` at `velocity` on `board` to the end of its chain.
-pub fn resolve(
+/// Where a shot left the board, without its motion: what a bot needs to
+/// score a candidate. The same computation as [`resolve`], so the same bits.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Settled {
+    /// The pieces knocked off, in the order they fell.
+    pub knocked_off: Vec<PieceId>,
+    /// The pieces left, at rest where they stopped.
+    pub board: Board,
+    /// How the computation ended.
+    pub end: End,
+}
+
+/// The engine model of `piece` flicked at `velocity` on `board`, computed
+/// to the end of its chain.
+fn computed(
     config: &Config,
     board: &Board,
     piece: PieceId,
     velocity: DVec2,
-) -> Result<Resolution, String> {
+) -> Result<(Model<FallOff>, End), String> {
     // The board is the engine's own state from the previous shot: pieces
     // left touching may overlap by rounding, which is not bad input, so the
     // model continues from a snapshot rather than re-validating a scene.
@@ -102,18 +115,85 @@ pub fn resolve(
         max_events: config.max_events_per_shot,
         ..Limits::default()
     });
+    Ok((model, end))
+}
+
+/// The board the model stands at when it ends.
+fn board_at(model: &Model<FallOff>, end: &End) -> Result<Board, String> {
     let after = model.scene_at(end.t);
     let mut pieces = Vec::with_capacity(after.bodies.len());
     for b in &after.bodies {
         let id = PieceId::from_body(b.id).map_err(|e| e.to_string())?;
         pieces.push(Piece { id, pos: b.pos });
     }
+    Ok(Board::from_pieces(pieces))
+}
+
+/// Plays `piece` at `velocity` on `board` to the end of its chain.
+pub fn resolve(
+    config: &Config,
+    board: &Board,
+    piece: PieceId,
+    velocity: DVec2,
+) -> Result<Resolution, String> {
+    let (model, end) = computed(config, board, piece, velocity)?;
     Ok(Resolution {
         events: model.events().to_vec(),
         knocked_off: model.rules().fallen.iter().map(|&(_, p)| p).collect(),
-        board: Board::from_pieces(pieces),
+        board: board_at(&model, &end)?,
         end,
         film: Film::of(&model, end.t),
+    })
+}
+
+/// Plays `piece` at `velocity` on `board` to rest like [`resolve`] — the
+/// very same computation, so the very same bits — but runs the engine's
+/// [`World`] without the model's record of every event and trajectory, and
+/// keeps only where the pieces ended (a bot scores thousands of candidates
+/// a second this way).
+pub fn settle(
+    config: &Config,
+    board: &Board,
+    piece: PieceId,
+    velocity: DVec2,
+) -> Result<Settled, String> {
+    let scene = scene(config, board, piece, velocity);
+    // As `Model::from_snapshot` checks: finite numbers, valid materials,
+    // overlaps by rounding allowed.
+    scene.validate_with(false).map_err(|e| e.to_string())?;
+    let bodies = scene
+        .bodies
+        .iter()
+        .map(|b| BodyState::from_spec(b, scene.t, scene.g))
+        .collect();
+    let mut world = World::from_parts(
+        scene.t,
+        scene.g,
+        bodies,
+        scene.points,
+        scene.lines,
+        WorldConfig::default(),
+    );
+    let mut rules = FallOff::default();
+    let end = world.run(
+        &Limits {
+            max_events: config.max_events_per_shot,
+            ..Limits::default()
+        },
+        &mut rules,
+    );
+    let mut pieces = Vec::with_capacity(board.pieces().len());
+    for b in world.bodies() {
+        let id = PieceId::from_body(b.id).map_err(|e| e.to_string())?;
+        pieces.push(Piece {
+            id,
+            pos: b.spec_at(end.t).pos,
+        });
+    }
+    Ok(Settled {
+        knocked_off: rules.fallen.iter().map(|&(_, p)| p).collect(),
+        board: Board::from_pieces(pieces),
+        end,
     })
 }
 
@@ -202,6 +282,25 @@ mod tests {
         let r = resolve(&c, &board, w(0), DVec2::new(0.0, 0.3)).unwrap();
         assert!(r.knocked_off.is_empty());
         assert_eq!(r.board.pieces().len(), 1);
+    }
+
+    #[test]
+    fn settle_ends_exactly_where_resolve_ends() {
+        let c = Config::default();
+        let board = Board::setup(&c, crate::rows::Rows::new(2, 5).unwrap());
+        for k in 0..40 {
+            let v = DVec2::new(0.05 * (k as f64 - 20.0), 0.3 + 0.04 * k as f64);
+            let r = resolve(&c, &board, w((k % 8) as u8), v).unwrap();
+            let s = settle(&c, &board, w((k % 8) as u8), v).unwrap();
+            assert_eq!(s.knocked_off, r.knocked_off);
+            assert_eq!(s.end, r.end);
+            for (a, b) in s.board.pieces().iter().zip(r.board.pieces()) {
+                assert_eq!(a.id, b.id);
+                assert_eq!(a.pos.x.to_bits(), b.pos.x.to_bits());
+                assert_eq!(a.pos.y.to_bits(), b.pos.y.to_bits());
+            }
+            assert_eq!(s.board.pieces().len(), r.board.pieces().len());
+        }
     }
 
     #[test]

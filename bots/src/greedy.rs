@@ -1,0 +1,97 @@
+//! `greedy`: tries many candidate shots ([`crate::candidates`]) on the
+//! [`Simulator`], as aimed, and plays the one whose result
+//! [`crate::eval::after_shot`] scores best — material, the turn kept, the
+//! safety of its own pieces. One ply, no look-ahead, no noise.
+
+use crate::bot::{Ask, Bot, Context, Decision};
+use crate::candidates::{candidates, Spread};
+use crate::eval;
+use crate::simulator::Simulator;
+use game::{Board, Config, MatchView, Shot, Side};
+
+/// The greedy bot.
+#[derive(Clone, Debug)]
+pub struct Greedy {
+    spread: Spread,
+}
+
+impl Default for Greedy {
+    fn default() -> Self {
+        Greedy {
+            spread: Spread::wide(),
+        }
+    }
+}
+
+impl Greedy {
+    /// A greedy bot trying `spread`'s candidates.
+    pub fn with_spread(spread: Spread) -> Greedy {
+        Greedy { spread }
+    }
+}
+
+/// The best of `spread`'s candidates for `side` on `board` with its value
+/// (first of equals in candidate order; `None` without a legal shot).
+pub fn best_shot(
+    config: &Config,
+    board: &Board,
+    side: Side,
+    spread: &Spread,
+) -> Option<(Shot, f64)> {
+    let sim = Simulator::on(config, board);
+    let mut best: Option<(Shot, f64)> = None;
+    for shot in candidates(config, board, side, spread) {
+        let Ok(result) = sim.play(side, &shot) else {
+            continue;
+        };
+        let v = eval::after_shot(config, &result, side);
+        let better = match &best {
+            Some((_, b)) => v > *b,
+            None => true,
+        };
+        if better {
+            best = Some((shot, v));
+        }
+    }
+    best
+}
+
+/// Black's pie decision: swap when the position after White's first shot
+/// is better for White than for Black.
+pub fn pie_swap(view: &MatchView) -> bool {
+    eval::position(&view.config, &view.board, game::Side::White, view.turn) > 0.0
+}
+
+impl Bot for Greedy {
+    fn decide(&mut self, ctx: &Context) -> Decision {
+        if ctx.ask() == Some(Ask::Pie) {
+            return Decision::Pie {
+                swap: pie_swap(ctx.view),
+            };
+        }
+        match best_shot(ctx.config(), &ctx.view.board, ctx.me, &self.spread) {
+            Some((shot, _)) => Decision::Shot(shot),
+            None => Decision::Resign,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use game::{Game, Phase};
+    use std::time::Duration;
+
+    #[test]
+    fn greedy_knocks_an_enemy_off_from_the_opening_and_keeps_the_turn() {
+        let view = Game::new(Config::default(), 1).unwrap().view();
+        let ctx = Context::new(&view, Side::White, Duration::from_secs(5));
+        let Decision::Shot(shot) = Greedy::default().decide(&ctx) else {
+            panic!("greedy shoots");
+        };
+        let after = Simulator::new(&view).play(Side::White, &shot).unwrap();
+        assert_eq!(after.lost(Side::Black), 1, "{after:?}");
+        assert_eq!(after.lost(Side::White), 0);
+        assert_eq!(view.phase, Phase::Shooting);
+    }
+}

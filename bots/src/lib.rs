@@ -1,0 +1,40 @@
+//! # bots — Chapaev for machines
+//!
+//! Everything a bot author needs, in Rust: the [`Bot`] trait (one required
+//! method: given what a player may know, decide), the [`Simulator`] that
+//! plays a candidate shot with exactly the server's physics and rules,
+//! scripted bots to learn from and measure against ([`RandomBot`],
+//! [`Greedy`], [`Search`]), the computer levels people play
+//! ([`Level`]: easy, medium, hard, each with its own imprecise hand), whole
+//! matches in this process ([`arena`]), round-robin tournaments with Elo,
+//! LOS and SPRT ([`tournament`], [`stats`]).
+//!
+//! Fair play is built in: a bot is handed a [`game::MatchView`], which has
+//! no seed, so it can never know the execution noise of a shot before it
+//! is played; the simulator applies only noise the bot drew itself.
+//!
+//! Modules: [`bot`] (the trait and its context), [`simulator`] (candidate
+//! shots on a copy of the board), [`candidates`] (which shots to try),
+//! [`eval`] (how good a result is), [`random`], [`greedy`], [`search`] (the
+//! scripted bots), [`level`] (computer levels and named bots), [`arena`]
+//! (one match in process), [`stats`] (Elo, LOS, SPRT), [`tournament`].
+
+pub mod arena;
+pub mod bot;
+pub mod candidates;
+pub mod eval;
+pub mod greedy;
+pub mod level;
+pub mod random;
+pub mod search;
+pub mod simulator;
+pub mod stats;
+pub mod tournament;
+
+pub use arena::{play_match, ArenaLimits, MatchReport};
+pub use bot::{Ask, Bot, Context, Decision};
+pub use greedy::Greedy;
+pub use level::{by_name, Imprecise, Level, BOT_NAMES};
+pub use random::RandomBot;
+pub use search::{Search, SearchSettings};
+pub use simulator::{Simulated, Simulator};

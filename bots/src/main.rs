@@ -1,0 +1,123 @@
+//! The `bots` command: tournaments between the scripted bots.
+
+use bots::stats::Sprt;
+use bots::tournament::{self, TournamentSettings};
+use bots::ArenaLimits;
+use clap::{Parser, Subcommand};
+use game::Preset;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Chapaev bots: play tournaments between bots.
+#[derive(Parser, Debug)]
+#[command(name = "bots", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// A round robin between bots, in this process.
+    Tournament(TournamentArgs),
+}
+
+#[derive(Parser, Debug)]
+struct TournamentArgs {
+    /// Comma-separated bot names: random, greedy, search, easy, medium, hard.
+    #[arg(long, value_delimiter = ',', default_value = "random,greedy,search")]
+    bots: Vec<String>,
+    /// Games per pairing (played in pairs with the seats swapped).
+    #[arg(long, default_value_t = 20)]
+    games: u32,
+    /// The tournament's seed (match seeds and the bots' generators).
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// The rules: `standard` (execution noise and the pie rule) or `casual`.
+    #[arg(long, default_value = "standard", value_parser = parse_rules)]
+    rules: Preset,
+    /// Stop a pairing once an SPRT between these two Elo differences
+    /// decides, e.g. `0,50`.
+    #[arg(long, value_parser = parse_sprt)]
+    sprt: Option<Sprt>,
+    /// Write the results as JSON here.
+    #[arg(long)]
+    json: Option<PathBuf>,
+    /// Write every game's record (JSON, replayable) into this folder.
+    #[arg(long)]
+    records: Option<PathBuf>,
+    /// Milliseconds a bot may think per move.
+    #[arg(long, default_value_t = 1000)]
+    think_ms: u64,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+fn parse_rules(s: &str) -> Result<Preset, String> {
+    Preset::parse(s).ok_or_else(|| format!("unknown rules {s:?}: standard or casual"))
+}
+
+fn parse_sprt(s: &str) -> Result<Sprt, String> {
+    let (a, b) = s
+        .split_once(',')
+        .ok_or_else(|| "expected ELO0,ELO1, e.g. 0,50".to_string())?;
+    let parse = |x: &str| x.trim().parse::<f64>().map_err(|e| format!("{x:?}: {e}"));
+    let (e0, e1) = (parse(a)?, parse(b)?);
+    if !e0.is_finite() || !e1.is_finite() || e0 >= e1 {
+        return Err("ELO0 must be below ELO1, both finite".into());
+    }
+    Ok(Sprt::new(e0, e1))
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Tournament(args) => match tournament_command(args) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::FAILURE
+            }
+        },
+    }
+}
+
+fn tournament_command(args: TournamentArgs) -> Result<(), Box<dyn std::error::Error>> {
+    let settings = TournamentSettings {
+        bots: args.bots,
+        games: args.games,
+        seed: args.seed,
+        config: args.rules.config(),
+        sprt: args.sprt,
+        limits: ArenaLimits {
+            think: std::time::Duration::from_millis(args.think_ms),
+            ..ArenaLimits::default()
+        },
+        progress: !args.quiet,
+    };
+    let started = std::time::Instant::now();
+    let report = tournament::run(&settings)?;
+    println!(
+        "rules {}, seed {}, {:.1} s\n",
+        args.rules,
+        args.seed,
+        started.elapsed().as_secs_f64()
+    );
+    print!("{}", tournament::table(&report));
+    if let Some(path) = args.json {
+        std::fs::write(&path, serde_json::to_string_pretty(&report)?)?;
+        println!("\nresults: {}", path.display());
+    }
+    if let Some(dir) = args.records {
+        std::fs::create_dir_all(&dir)?;
+        for p in &report.pairings {
+            for (k, g) in p.games.iter().enumerate() {
+                let name = format!("{}-v-{}-{k:03}.json", g.first, g.second);
+                std::fs::write(dir.join(name), serde_json::to_string(&g.record)?)?;
+            }
+        }
+        println!("records: {}", dir.display());
+    }
+    Ok(())
+}

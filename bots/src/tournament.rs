@@ -1,0 +1,349 @@
+//! Round-robin tournaments between bots, in this process: every pairing
+//! plays games in pairs from the same seed with the seats swapped (so both
+//! bots meet the same noise and the same first move), the bots' own
+//! generators seeded from the tournament's seed, so a tournament is
+//! repeatable for its seed. Each pairing reports wins, draws, losses, the
+//! Elo difference with its 95 % error bar and the LOS, and may stop early
+//! on an SPRT verdict; an overall table sums each bot's games.
+
+use crate::arena::{play_match, ArenaLimits, MatchReport};
+use crate::level::by_name;
+use crate::stats::{Sprt, SprtVerdict, Wdl};
+use game::noise::SplitMix64;
+use game::{Config, MatchRecord, Seat};
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// What to play.
+#[derive(Clone, Debug)]
+pub struct TournamentSettings {
+    /// Bot names (see [`crate::level::BOT_NAMES`]).
+    pub bots: Vec<String>,
+    /// Games per pairing (rounded up to an even number).
+    pub games: u32,
+    /// The tournament's seed: match seeds and the bots' generators.
+    pub seed: u64,
+    /// The rules every game is played under.
+    pub config: Config,
+    /// Stop a pairing early when this test decides.
+    pub sprt: Option<Sprt>,
+    /// Per-match limits.
+    pub limits: ArenaLimits,
+    /// Show a progress bar on standard error.
+    pub progress: bool,
+}
+
+/// A tournament setting that cannot be played.
+#[derive(Debug, thiserror::Error)]
+pub enum TournamentError {
+    #[error("unknown bot {0:?} (known: random, greedy, search, easy, medium, hard)")]
+    UnknownBot(String),
+    #[error("a tournament needs at least two bots")]
+    TooFewBots,
+    #[error("the rules cannot be played: {0}")]
+    Config(#[from] game::ConfigError),
+}
+
+/// One game of a pairing.
+#[derive(Clone, Debug, Serialize)]
+pub struct GameResult {
+    /// The bot in the first seat (White, unless the pie rule swapped).
+    pub first: String,
+    pub second: String,
+    /// The match seed (both games of a pair share it).
+    pub seed: u64,
+    /// Points of the first seat.
+    pub first_score: f64,
+    pub shots: u32,
+    pub swapped: bool,
+    /// The full record, replayable.
+    #[serde(skip)]
+    pub record: MatchRecord,
+}
+
+/// One pairing's games and statistics, from `a`'s side.
+#[derive(Clone, Debug, Serialize)]
+pub struct Pairing {
+    pub a: String,
+    pub b: String,
+    pub wdl: Wdl,
+    pub score: f64,
+    pub elo: f64,
+    pub elo_error: f64,
+    pub los: f64,
+    /// The SPRT's verdict, when one was asked for.
+    pub sprt: Option<SprtVerdict>,
+    /// The first seat's score over the pairing's games.
+    pub first_seat_score: f64,
+    pub games: Vec<GameResult>,
+}
+
+/// One bot's games over the whole tournament.
+#[derive(Clone, Debug, Serialize)]
+pub struct Standing {
+    pub bot: String,
+    pub wdl: Wdl,
+    pub score: f64,
+    pub elo: f64,
+    pub elo_error: f64,
+}
+
+/// A finished tournament.
+#[derive(Clone, Debug, Serialize)]
+pub struct TournamentReport {
+    pub seed: u64,
+    pub config: Config,
+    pub pairings: Vec<Pairing>,
+    pub standings: Vec<Standing>,
+}
+
+fn mix(seed: u64, a: u64, b: u64) -> u64 {
+    let mut r = SplitMix64::new(seed ^ a.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ b.rotate_left(32));
+    r.next_u64()
+}
+
+/// Plays the tournament.
+pub fn run(settings: &TournamentSettings) -> Result<TournamentReport, TournamentError> {
+    if settings.bots.len() < 2 {
+        return Err(TournamentError::TooFewBots);
+    }
+    for name in &settings.bots {
+        if by_name(name, 0).is_none() {
+            return Err(TournamentError::UnknownBot(name.clone()));
+        }
+    }
+    settings.config.validate()?;
+    let pairs_per = settings.games.div_ceil(2).max(1);
+    let n = settings.bots.len();
+    let pairings_total = n * (n - 1) / 2;
+    let bar = if settings.progress {
+        let bar = ProgressBar::new(pairings_total as u64 * pairs_per as u64 * 2);
+        bar.set_style(
+            ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} games {msg}")
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        bar
+    } else {
+        ProgressBar::hidden()
+    };
+    let mut pairings = Vec::new();
+    for i in 0..n {
+        for j in i + 1..n {
+            let (a, b) = (&settings.bots[i], &settings.bots[j]);
+            bar.set_message(format!("{a} v {b}"));
+            pairings.push(pairing(settings, i, j, pairs_per, &bar));
+        }
+    }
+    bar.finish_and_clear();
+    let standings = settings
+        .bots
+        .iter()
+        .map(|bot| {
+            let mut wdl = Wdl::default();
+            for p in &pairings {
+                let w = if &p.a == bot {
+                    p.wdl
+                } else if &p.b == bot {
+                    p.wdl.flipped()
+                } else {
+                    continue;
+                };
+                wdl.wins += w.wins;
+                wdl.draws += w.draws;
+                wdl.losses += w.losses;
+            }
+            let (elo, elo_error) = wdl.elo();
+            Standing {
+                bot: bot.clone(),
+                wdl,
+                score: wdl.score(),
+                elo,
+                elo_error,
+            }
+        })
+        .collect();
+    Ok(TournamentReport {
+        seed: settings.seed,
+        config: settings.config.clone(),
+        pairings,
+        standings,
+    })
+}
+
+/// Games played between SPRT checks (a fixed batch keeps the stop point
+/// independent of how many threads play).
+const BATCH: u32 = 8;
+
+fn pairing(
+    settings: &TournamentSettings,
+    i: usize,
+    j: usize,
+    pairs: u32,
+    bar: &ProgressBar,
+) -> Pairing {
+    let (a, b) = (settings.bots[i].clone(), settings.bots[j].clone());
+    let mut games: Vec<GameResult> = Vec::new();
+    let mut wdl = Wdl::default();
+    let mut verdict = settings.sprt.map(|_| SprtVerdict::Continue);
+    let mut next = 0;
+    while next < pairs {
+        let batch: Vec<u32> = (next..(next + BATCH).min(pairs)).collect();
+        next += batch.len() as u32;
+        let played: Vec<[GameResult; 2]> = batch
+            .par_iter()
+            .map(|&k| {
+                let seed = mix(settings.seed, (i * 64 + j) as u64, k as u64);
+                let one = |first: &str, second: &str, fi: usize, si: usize| {
+                    let mut f = by_name(first, mix(seed, fi as u64 + 1, 1)).expect("checked");
+                    let mut s = by_name(second, mix(seed, si as u64 + 1, 2)).expect("checked");
+                    let r: MatchReport = play_match(
+                        settings.config.clone(),
+                        seed,
+                        &mut f,
+                        &mut s,
+                        &settings.limits,
+                    )
+                    .expect("checked config");
+                    bar.inc(1);
+                    GameResult {
+                        first: first.to_string(),
+                        second: second.to_string(),
+                        seed,
+                        first_score: r.score(Seat::First),
+                        shots: r.shots,
+                        swapped: r.swapped,
+                        record: r.record,
+                    }
+                };
+                [one(&a, &b, i, j), one(&b, &a, j, i)]
+            })
+            .collect();
+        for [ab, ba] in played {
+            wdl.add(ab.first_score);
+            wdl.add(1.0 - ba.first_score);
+            games.push(ab);
+            games.push(ba);
+        }
+        if let (Some(sprt), Some(v)) = (settings.sprt, verdict.as_mut()) {
+            *v = sprt.verdict(&wdl);
+            if *v != SprtVerdict::Continue {
+                bar.inc(((pairs - next) * 2) as u64);
+                break;
+            }
+        }
+    }
+    let (elo, elo_error) = wdl.elo();
+    let first_seat_score =
+        games.iter().map(|g| g.first_score).sum::<f64>() / games.len().max(1) as f64;
+    Pairing {
+        a,
+        b,
+        wdl,
+        score: wdl.score(),
+        elo,
+        elo_error,
+        los: wdl.los(),
+        sprt: verdict,
+        first_seat_score,
+        games,
+    }
+}
+
+/// The report as the table a person reads.
+pub fn table(report: &TournamentReport) -> String {
+    let mut out = String::new();
+    out.push_str(&format!(
+        "{:<22} {:>6} {:>5} {:>5} {:>5} {:>7} {:>16} {:>7} {:>9}\n",
+        "pairing", "games", "W", "D", "L", "score", "Elo (95%)", "LOS", "1st seat"
+    ));
+    for p in &report.pairings {
+        out.push_str(&format!(
+            "{:<22} {:>6} {:>5} {:>5} {:>5} {:>6.1}% {:>16} {:>6.1}% {:>8.1}%{}\n",
+            format!("{} v {}", p.a, p.b),
+            p.wdl.games(),
+            p.wdl.wins,
+            p.wdl.draws,
+            p.wdl.losses,
+            100.0 * p.score,
+            elo_text(p.elo, p.elo_error),
+            100.0 * p.los,
+            100.0 * p.first_seat_score,
+            match p.sprt {
+                Some(v) => format!("  SPRT {v:?}"),
+                None => String::new(),
+            }
+        ));
+    }
+    out.push_str(&format!(
+        "\n{:<22} {:>6} {:>5} {:>5} {:>5} {:>7} {:>16}\n",
+        "bot", "games", "W", "D", "L", "score", "Elo (95%)"
+    ));
+    for s in &report.standings {
+        out.push_str(&format!(
+            "{:<22} {:>6} {:>5} {:>5} {:>5} {:>6.1}% {:>16}\n",
+            s.bot,
+            s.wdl.games(),
+            s.wdl.wins,
+            s.wdl.draws,
+            s.wdl.losses,
+            100.0 * s.score,
+            elo_text(s.elo, s.elo_error)
+        ));
+    }
+    out
+}
+
+fn elo_text(elo: f64, err: f64) -> String {
+    if elo.is_finite() && err.is_finite() {
+        format!("{elo:+.0} ± {err:.0}")
+    } else if elo > 0.0 {
+        "+inf".into()
+    } else {
+        "-inf".into()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn small(seed: u64) -> TournamentSettings {
+        TournamentSettings {
+            bots: vec!["random".into(), "easy".into()],
+            games: 4,
+            seed,
+            config: Config::standard(),
+            sprt: None,
+            limits: ArenaLimits::default(),
+            progress: false,
+        }
+    }
+
+    #[test]
+    fn a_tournament_is_repeatable_for_its_seed() {
+        let one = run(&small(5)).unwrap();
+        let two = run(&small(5)).unwrap();
+        let json = |r: &TournamentReport| serde_json::to_string(r).unwrap();
+        assert_eq!(json(&one), json(&two));
+        let games = &one.pairings[0].games;
+        assert_eq!(games.len(), 4);
+        assert_eq!(
+            games[0].seed, games[1].seed,
+            "colours swap from the same seed"
+        );
+        assert_eq!(games[0].first, games[1].second);
+        assert_eq!(one.standings[0].wdl.games(), 4);
+        let other = run(&small(6)).unwrap();
+        assert_ne!(json(&one), json(&other));
+    }
+
+    #[test]
+    fn unknown_bots_and_lonely_tournaments_are_refused() {
+        let mut s = small(1);
+        s.bots = vec!["random".into(), "deep-blue".into()];
+        assert!(matches!(run(&s), Err(TournamentError::UnknownBot(n)) if n == "deep-blue"));
+        s.bots = vec!["random".into()];
+        assert!(matches!(run(&s), Err(TournamentError::TooFewBots)));
+    }
+}
