@@ -164,15 +164,19 @@ mod tests {
     #[test]
     fn a_bot_whose_shots_are_refused_loses_its_turns_then_the_match() {
         let mut good = by_name("greedy", 1).unwrap();
-        let r = play_match(
-            Config::default(),
-            1,
-            &mut Cheater,
-            &mut good,
-            &ArenaLimits::default(),
-        )
-        .unwrap();
+        let limits = ArenaLimits {
+            max_refusals: 1,
+            ..ArenaLimits::default()
+        };
+        let r = play_match(Config::default(), 1, &mut Cheater, &mut good, &limits).unwrap();
         assert_eq!(r.score(Seat::Second), 1.0);
-        assert!(r.refusals >= 3);
+        assert_eq!(r.refusals, 1);
+        assert_eq!(
+            r.result,
+            Some(MatchResult::Won {
+                side: Side::Black,
+                reason: game::WinReason::Timeouts
+            })
+        );
     }
 }

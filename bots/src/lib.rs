@@ -15,9 +15,15 @@
 //!
 //! Modules: [`bot`] (the trait and its context), [`simulator`] (candidate
 //! shots on a copy of the board), [`candidates`] (which shots to try),
-//! [`eval`] (how good a result is), [`random`], [`greedy`], [`search`] (the
+//! [`eval`] (how good a result is), [`pie`] (the pie-rule decision by
+//! playouts), [`random`], [`greedy`], [`search`] (the
 //! scripted bots), [`level`] (computer levels and named bots), [`arena`]
 //! (one match in process), [`stats`] (Elo, LOS, SPRT), [`tournament`].
+
+/// The README's example, compiled and run as a doctest.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;
 
 pub mod arena;
 pub mod bot;
@@ -25,6 +31,7 @@ pub mod candidates;
 pub mod eval;
 pub mod greedy;
 pub mod level;
+pub mod pie;
 pub mod random;
 pub mod search;
 pub mod simulator;

@@ -4,7 +4,7 @@ use bots::stats::Sprt;
 use bots::tournament::{self, TournamentSettings};
 use bots::ArenaLimits;
 use clap::{Parser, Subcommand};
-use game::Preset;
+use game::{NoiseConfig, Preset};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -36,6 +36,10 @@ struct TournamentArgs {
     /// The rules: `standard` (execution noise and the pie rule) or `casual`.
     #[arg(long, default_value = "standard", value_parser = parse_rules)]
     rules: Preset,
+    /// Override the rules' execution noise: `ANGLE,SPEED` standard
+    /// deviations (radians, fraction of the speed); `0,0` turns it off.
+    #[arg(long, value_parser = parse_noise)]
+    noise: Option<NoiseConfig>,
     /// Stop a pairing once an SPRT between these two Elo differences
     /// decides, e.g. `0,50`.
     #[arg(long, value_parser = parse_sprt)]
@@ -56,6 +60,21 @@ struct TournamentArgs {
 
 fn parse_rules(s: &str) -> Result<Preset, String> {
     Preset::parse(s).ok_or_else(|| format!("unknown rules {s:?}: standard or casual"))
+}
+
+fn parse_noise(s: &str) -> Result<NoiseConfig, String> {
+    let (a, b) = s
+        .split_once(',')
+        .ok_or_else(|| "expected ANGLE,SPEED, e.g. 0.03,0.05".to_string())?;
+    let parse = |x: &str| x.trim().parse::<f64>().map_err(|e| format!("{x:?}: {e}"));
+    let noise = NoiseConfig {
+        angle_sigma: parse(a)?,
+        speed_sigma: parse(b)?,
+    };
+    if !(0.0..=1.0).contains(&noise.angle_sigma) || !(0.0..=1.0).contains(&noise.speed_sigma) {
+        return Err("noise standard deviations are between 0 and 1".into());
+    }
+    Ok(noise)
 }
 
 fn parse_sprt(s: &str) -> Result<Sprt, String> {
@@ -84,11 +103,16 @@ fn main() -> ExitCode {
 }
 
 fn tournament_command(args: TournamentArgs) -> Result<(), Box<dyn std::error::Error>> {
+    let mut config = args.rules.config();
+    if let Some(noise) = args.noise {
+        config.variants.noise =
+            (noise.angle_sigma > 0.0 || noise.speed_sigma > 0.0).then_some(noise);
+    }
     let settings = TournamentSettings {
         bots: args.bots,
         games: args.games,
         seed: args.seed,
-        config: args.rules.config(),
+        config,
         sprt: args.sprt,
         limits: ArenaLimits {
             think: std::time::Duration::from_millis(args.think_ms),

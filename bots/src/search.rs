@@ -7,12 +7,15 @@
 //! best next shot — the opponent's, if the turn passes, its own if it
 //! keeps it. The candidates' samples run on all cores (rayon), in a fixed
 //! order, so the choice depends only on the position and the bot's seed.
-//! The time budget caps the number of samples.
+//! The work per move is fixed (so the choice depends only on the position
+//! and the bot's seed; about 0.1 s of CPU on a mid-game board); the time
+//! budget and the context's deadline only cut the samples short on a
+//! machine too loaded to finish in time.
 
 use crate::bot::{Ask, Bot, Context, Decision};
 use crate::candidates::{candidates, Spread};
 use crate::eval;
-use crate::greedy::{best_shot, pie_swap};
+use crate::greedy::best_shot;
 use crate::simulator::Simulator;
 use game::noise::{NoiseDraw, SplitMix64};
 use game::{NoiseConfig, Shot};
@@ -31,7 +34,8 @@ pub struct SearchSettings {
     pub reply_weight: f64,
     /// The noise assumed for planning when the match has none.
     pub assumed_noise: NoiseConfig,
-    /// Most time spent on one move (the context's deadline also caps it).
+    /// A safety cap on the time spent on one move (the context's deadline
+    /// also caps it); normal moves take far less and are never cut.
     pub budget: Duration,
 }
 
@@ -45,7 +49,7 @@ impl Default for SearchSettings {
                 angle_sigma: 0.015,
                 speed_sigma: 0.03,
             },
-            budget: Duration::from_millis(200),
+            budget: Duration::from_secs(2),
         }
     }
 }
@@ -139,8 +143,9 @@ impl Search {
 impl Bot for Search {
     fn decide(&mut self, ctx: &Context) -> Decision {
         if ctx.ask() == Some(Ask::Pie) {
+            let seed = self.rng.next_u64();
             return Decision::Pie {
-                swap: pie_swap(ctx.view),
+                swap: crate::pie::swap(ctx.view, &crate::pie::PieSettings::default(), seed),
             };
         }
         match self.best(ctx) {

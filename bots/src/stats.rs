@@ -89,7 +89,7 @@ impl Wdl {
     /// stronger, from wins and losses (draws carry no information).
     pub fn los(&self) -> f64 {
         let (w, l) = (self.wins as f64, self.losses as f64);
-        if w + l == 0.0 {
+        if w == l {
             return 0.5;
         }
         0.5 * (1.0 + erf((w - l) / (2.0 * (w + l)).sqrt()))

@@ -194,7 +194,15 @@ fn pairing(
             .par_iter()
             .map(|&k| {
                 let seed = mix(settings.seed, (i * 64 + j) as u64, k as u64);
+                // Two copies of one bot: the swapped game would repeat the
+                // first move for move, so it gets a seed of its own.
+                let same = a == b;
                 let one = |first: &str, second: &str, fi: usize, si: usize| {
+                    let seed = if same && fi > si {
+                        mix(seed, 7, 7)
+                    } else {
+                        seed
+                    };
                     let mut f = by_name(first, mix(seed, fi as u64 + 1, 1)).expect("checked");
                     let mut s = by_name(second, mix(seed, si as u64 + 1, 2)).expect("checked");
                     let r: MatchReport = play_match(
