@@ -8,7 +8,8 @@
 //! chain, the pieces knocked off, whose turn is next) and its [`Film`]
 //! (every piece's exact trajectory from the flick to rest), so a client
 //! animates it exactly without running physics of its own — and errors with
-//! stable string codes ([`ErrorCode`]).
+//! stable string codes ([`ErrorCode`]); a request refused is a [`Refusal`],
+//! a code with a message for people.
 //!
 //! ```
 //! use game::protocol::{ClientMessage, ErrorCode};

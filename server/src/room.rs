@@ -278,9 +278,7 @@ impl<H: RoomHost> Room<H> {
 
     fn set_live(&mut self, live: bool) {
         if live != self.live {
-            self.host
-                .metrics()
-                .live_changed(if live { 1 } else { -1 });
+            self.host.metrics().live_changed(if live { 1 } else { -1 });
             self.live = live;
         }
     }
