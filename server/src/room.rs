@@ -614,14 +614,14 @@ mod tests {
         fn next_conn_id(&self) -> u64 {
             self.next.fetch_add(1, Ordering::Relaxed)
         }
-        fn start_rematch(
+        async fn start_rematch(
             &self,
             _of: String,
             _config: Config,
             _turn: Duration,
             _seats: [SeatSpec; 2],
-        ) -> impl Future<Output = Result<String, Refusal>> + Send {
-            async { Err(Refusal::internal()) }
+        ) -> Result<String, Refusal> {
+            Err(Refusal::internal())
         }
         fn remove(&self, _id: &str, _generation: u64) {}
     }
