@@ -38,8 +38,11 @@
 //! engine, with the fall-off rule), [`film`] (a shot's motion at any time),
 //! [`rules`] (the turn rule), [`outcome`] (what shots, rounds and matches
 //! came to), [`game`] (the match state machine), [`record`] (the versioned
-//! match record), [`replay`] (bit-exact replay and scrubbing) and
-//! [`protocol`] (the wire messages).
+//! match record), [`replay`] (bit-exact replay and scrubbing),
+//! [`protocol`] (the wire messages and refusals) and [`session`] (a live
+//! match — seats, connections, turn clock, rematch — as a state machine
+//! without I/O, driven by the server's rooms and by tests on a virtual
+//! clock).
 
 pub mod board;
 pub mod config;
@@ -54,6 +57,7 @@ pub mod record;
 pub mod replay;
 pub mod rows;
 pub mod rules;
+pub mod session;
 pub mod shot;
 pub mod side;
 #[cfg(test)]

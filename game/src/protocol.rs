@@ -8,7 +8,8 @@
 //! chain, the pieces knocked off, whose turn is next) and its [`Film`]
 //! (every piece's exact trajectory from the flick to rest), so a client
 //! animates it exactly without running physics of its own — and errors with
-//! stable string codes ([`ErrorCode`]).
+//! stable string codes ([`ErrorCode`]); a request refused is a [`Refusal`],
+//! a code with a message for people.
 //!
 //! ```
 //! use game::protocol::{ClientMessage, ErrorCode};
@@ -19,10 +20,11 @@
 
 use crate::config::Config;
 use crate::film::Film;
-use crate::game::MatchView;
+use crate::game::{GameError, MatchView};
 use crate::outcome::{MatchResult, ShotOutcome};
 use crate::piece::PieceId;
 use crate::record::MatchRecord;
+use crate::shot::ShotError;
 use crate::side::{Seat, Side};
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
@@ -235,6 +237,50 @@ impl ProtocolError {
             code: self.code,
             message: self.message.clone(),
         }
+    }
+}
+
+/// A refused request: the stable wire [`ErrorCode`] and a human-readable
+/// message, sent to a client as an `error` message (or, by the server, as
+/// the JSON body of an HTTP error).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{code}: {message}")]
+pub struct Refusal {
+    /// The stable code.
+    pub code: ErrorCode,
+    /// What went wrong, for people.
+    pub message: String,
+}
+
+impl Refusal {
+    /// A refusal with `code` and `message`.
+    pub fn new(code: ErrorCode, message: impl Into<String>) -> Refusal {
+        Refusal {
+            code,
+            message: message.into(),
+        }
+    }
+
+    /// The server failed (the cause is logged, not sent).
+    pub fn internal() -> Refusal {
+        Refusal::new(ErrorCode::Internal, "the server failed; try again")
+    }
+
+    /// The `error` message for this refusal.
+    pub fn to_message(&self) -> ServerMessage {
+        ServerMessage::error(self.code, self.message.clone())
+    }
+}
+
+impl From<ShotError> for Refusal {
+    fn from(e: ShotError) -> Refusal {
+        Refusal::new(e.code(), e.to_string())
+    }
+}
+
+impl From<GameError> for Refusal {
+    fn from(e: GameError) -> Refusal {
+        Refusal::new(e.code(), e.to_string())
     }
 }
 

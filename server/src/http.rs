@@ -7,7 +7,7 @@
 
 use crate::bot::BotLevel;
 use crate::hub::{Hub, NewMatch, Opponent, SeatGrant};
-use crate::refusal::Refusal;
+use crate::refusal::{HttpStatus, Refusal};
 use crate::store::{Status, StoreError};
 use actix_web::http::StatusCode;
 use actix_web::{web, HttpRequest, HttpResponse};

@@ -9,12 +9,14 @@ use crate::bot::BotLevel;
 use crate::config::Limits;
 use crate::metrics::Metrics;
 use crate::refusal::Refusal;
-use crate::room::{Command, Connected, Room};
+use crate::room::{Command, Connected, Room, RoomHost};
 use crate::store::{Status, Store, StoreError, StoredMatch, StoredSeat};
 use crate::token;
 use game::protocol::ErrorCode;
+use game::session::SeatSpec;
 use game::{Config, Game, Replay, Seat};
 use std::collections::HashMap;
+use std::future::Future;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
@@ -373,6 +375,35 @@ impl Hub {
         if tokio::time::timeout(within, all).await.is_err() {
             warn!("some matches did not stop in time");
         }
+    }
+}
+
+impl RoomHost for Hub {
+    fn store(&self) -> &Arc<Store> {
+        Hub::store(self)
+    }
+    fn metrics(&self) -> &Arc<Metrics> {
+        Hub::metrics(self)
+    }
+    fn limits(&self) -> &Limits {
+        Hub::limits(self)
+    }
+    fn next_conn_id(&self) -> u64 {
+        Hub::next_conn_id(self)
+    }
+    fn start_rematch(
+        &self,
+        of: String,
+        config: Config,
+        turn: Duration,
+        seats: [SeatSpec; 2],
+    ) -> impl Future<Output = Result<String, Refusal>> + Send {
+        let hub = self.clone();
+        let seats = seats.map(|s| (s.name, s.token, s.bot.as_deref().and_then(BotLevel::parse)));
+        async move { hub.create_rematch(&of, config, turn, seats).await }
+    }
+    fn remove(&self, id: &str, generation: u64) {
+        Hub::remove(self, id, generation)
     }
 }
 

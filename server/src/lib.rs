@@ -8,19 +8,22 @@
 //! seat for a grace period; a restarted server resumes every match from the
 //! store. The wire protocol is `docs/protocol.md`.
 //!
+//! The rules of a live match (seats, turn clock, grace, rematch) are
+//! [`game::session`], a state machine without I/O; a [`room`] drives one.
+//!
 //! Modules: [`config`] (flags and limits), [`token`] (seat tokens and ids),
-//! [`refusal`] (errors sent to clients), [`store`] (SQLite), [`metrics`]
-//! (Prometheus), [`ratelimit`] (per-connection token bucket), [`clock`]
-//! (turn clock), [`bot`] (built-in bots), [`room`] (one match in memory),
-//! [`hub`] (the registry of rooms), [`http`] (the HTTP API), [`assets`] (the
-//! embedded web client at `/`), [`ws`] (the WebSocket sessions) and [`app`]
-//! (startup and shutdown).
+//! [`refusal`] (errors sent to clients, with their HTTP statuses),
+//! [`store`] (SQLite), [`metrics`] (Prometheus), [`ratelimit`]
+//! (per-connection token bucket), [`bot`] (built-in bots), [`room`] (the
+//! task that drives one match's session), [`hub`] (the registry of
+//! rooms), [`http`] (the HTTP API), [`assets`] (the embedded web client at
+//! `/`), [`ws`] (the WebSocket sessions) and [`app`] (startup and
+//! shutdown).
 
 pub mod app;
 pub mod assets;
 pub mod bot;
 pub mod checkpointer;
-pub mod clock;
 pub mod config;
 pub mod http;
 pub mod hub;

@@ -1,38 +1,20 @@
-//! A refused request: the stable wire [`ErrorCode`] and a human-readable
-//! message, sent as an `error` message over the WebSocket or as the JSON
-//! body of an HTTP error (with a status code that fits).
+//! A refused request as the server answers it: the [`Refusal`] itself (the
+//! stable wire [`ErrorCode`] and a human-readable message) lives in
+//! [`game::protocol`], where the match session makes it; this module adds
+//! the HTTP status that goes with each code, for refusals sent as the JSON
+//! body of an HTTP error.
 
-use game::protocol::{ErrorCode, ServerMessage};
-use game::{GameError, ShotError};
+use game::protocol::ErrorCode;
+pub use game::protocol::Refusal;
 
-/// Why a request was refused.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("{code}: {message}")]
-pub struct Refusal {
-    pub code: ErrorCode,
-    pub message: String,
+/// The HTTP status of a refusal.
+pub trait HttpStatus {
+    /// The HTTP status that goes with the refusal's code.
+    fn http_status(&self) -> u16;
 }
 
-impl Refusal {
-    pub fn new(code: ErrorCode, message: impl Into<String>) -> Refusal {
-        Refusal {
-            code,
-            message: message.into(),
-        }
-    }
-
-    /// The server failed (the cause is logged, not sent).
-    pub fn internal() -> Refusal {
-        Refusal::new(ErrorCode::Internal, "the server failed; try again")
-    }
-
-    /// The `error` message for this refusal.
-    pub fn to_message(&self) -> ServerMessage {
-        ServerMessage::error(self.code, self.message.clone())
-    }
-
-    /// The HTTP status that goes with the code.
-    pub fn http_status(&self) -> u16 {
+impl HttpStatus for Refusal {
+    fn http_status(&self) -> u16 {
         match self.code {
             ErrorCode::NoSuchMatch => 404,
             ErrorCode::MatchFull | ErrorCode::MatchOver | ErrorCode::MatchNotOver => 409,
@@ -46,21 +28,10 @@ impl Refusal {
     }
 }
 
-impl From<ShotError> for Refusal {
-    fn from(e: ShotError) -> Refusal {
-        Refusal::new(e.code(), e.to_string())
-    }
-}
-
-impl From<GameError> for Refusal {
-    fn from(e: GameError) -> Refusal {
-        Refusal::new(e.code(), e.to_string())
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use game::ShotError;
 
     #[test]
     fn refusals_carry_the_game_codes_and_map_to_http_statuses() {

@@ -41,35 +41,8 @@ pub enum StoreError {
     GroupCommit(String),
 }
 
-/// Where a match stands, as listed.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Status {
-    /// Waiting for a second player.
-    Open,
-    /// Both seats taken, being played.
-    Live,
-    /// Over.
-    Finished,
-}
-
-impl Status {
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Status::Open => "open",
-            Status::Live => "live",
-            Status::Finished => "finished",
-        }
-    }
-    pub fn parse(s: &str) -> Option<Status> {
-        match s {
-            "open" => Some(Status::Open),
-            "live" => Some(Status::Live),
-            "finished" => Some(Status::Finished),
-            _ => None,
-        }
-    }
-}
+/// Where a match stands, as listed (the session's status, stored as is).
+pub use game::session::Status;
 
 /// One seat as stored.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]

@@ -9,7 +9,7 @@
 
 use crate::hub::{Hub, RoomHandle};
 use crate::ratelimit::TokenBucket;
-use crate::refusal::Refusal;
+use crate::refusal::{HttpStatus, Refusal};
 use crate::room::Command;
 use actix_web::{web, HttpRequest, HttpResponse};
 use actix_ws::{AggregatedMessage, CloseCode, CloseReason, ProtocolError, Session};
