@@ -1,7 +1,8 @@
-//! Simulated shots per second on a mid-game board: the figure a bot's
-//! search depth rests on. The board is the one reached after 12 shots
-//! between two greedy bots under the standard rules; every candidate of
-//! the wide spread is simulated as aimed.
+//! Simulated shots per second on a mid-game board — the figure a bot's
+//! search depth rests on — and one decision of `greedy` and `search`. The
+//! board is the one reached after 12 shots between two greedy bots under
+//! the standard rules; every candidate of the wide spread is simulated as
+//! aimed.
 use bots::candidates::{candidates, Spread};
 use bots::{Bot, Context, Decision, Simulator};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
@@ -55,9 +56,26 @@ fn simulate(c: &mut Criterion) {
     g.finish();
 }
 
+/// One decision of each scripted bot on the mid-game board (the search
+/// uses every core through rayon).
+fn decide(c: &mut Criterion) {
+    let view = mid_game();
+    let mut g = c.benchmark_group("decide");
+    g.sample_size(10);
+    for name in ["greedy", "search"] {
+        g.bench_function(format!("{name}_mid_game"), |b| {
+            b.iter(|| {
+                let mut bot = bots::by_name(name, 1).unwrap();
+                bot.decide(&Context::new(&view, view.turn, Duration::from_secs(10)))
+            })
+        });
+    }
+    g.finish();
+}
+
 criterion_group! {
     name = benches;
     config = Criterion::default().sample_size(20).measurement_time(Duration::from_secs(5));
-    targets = simulate
+    targets = simulate, decide
 }
 criterion_main!(benches);

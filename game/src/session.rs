@@ -26,7 +26,7 @@
 //! [`Input::JoinFailed`]).
 
 use crate::config::Config;
-use crate::game::{Game, Phase};
+use crate::game::{Game, MatchView, Phase};
 use crate::outcome::{ForfeitReason, MatchResult};
 use crate::protocol::{ClientMessage, ErrorCode, Players, Refusal, ServerMessage, MAX_CHAT_CHARS};
 use crate::record::RecordedMove;
@@ -402,8 +402,9 @@ pub enum Effect {
         /// This match's seats (the rematch exchanges the players').
         seats: [SeatSpec; 2],
     },
-    /// A built-in bot is to act: compute its decision on this copy of the
-    /// game and answer with [`Input::BotMove`].
+    /// A built-in bot is to act: compute its decision from this public
+    /// view (never the game itself, which holds the seed: a built-in bot
+    /// knows no more than a player) and answer with [`Input::BotMove`].
     BotToAct {
         /// The bot's seat.
         seat: Seat,
@@ -413,8 +414,8 @@ pub enum Effect {
         level: String,
         /// Moves played when asked (an answer for another is stale).
         at_move: usize,
-        /// The game to decide on.
-        game: Box<Game>,
+        /// What any player may know of the match now.
+        view: Box<MatchView>,
     },
     /// The match's status changed (or, after a failed write, is restated).
     Status(Status),
@@ -1081,7 +1082,7 @@ impl Session {
             side: self.acting_side(seat),
             level,
             at_move,
-            game: Box::new(self.game.clone()),
+            view: Box::new(self.game.view()),
         });
     }
 
@@ -1725,7 +1726,7 @@ mod tests {
             side,
             level,
             at_move,
-            game,
+            view,
         }] = &e[..]
         else {
             panic!("{:?}", kinds(&e))
@@ -1734,7 +1735,7 @@ mod tests {
             (*seat, *side, level.as_str(), *at_move),
             (Seat::Second, Side::Black, "medium", 1)
         );
-        assert_eq!(game.shots(), 1);
+        assert_eq!(view.shots, 1);
         assert_eq!(
             s.next_deadline(),
             None,

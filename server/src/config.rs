@@ -73,6 +73,11 @@ pub struct Config {
     #[arg(long, env = "CHAPAEV_BOT_DELAY_MS", default_value_t = 400)]
     pub bot_delay_ms: u64,
 
+    /// Milliseconds a computer level may think at most on one move (a safety
+    /// cap: `hard` needs about 0.1 s of CPU on a mid-game board).
+    #[arg(long, env = "CHAPAEV_BOT_THINK_MS", default_value_t = 5000, value_parser = clap::value_parser!(u64).range(10..=60_000))]
+    pub bot_think_ms: u64,
+
     /// Seconds a finished (or still open) match with nobody connected stays in memory.
     #[arg(long, env = "CHAPAEV_IDLE_SECONDS", default_value_t = 30)]
     pub idle_seconds: u64,
@@ -116,6 +121,8 @@ pub struct Limits {
     pub turn: Duration,
     pub grace: Duration,
     pub bot_delay: Duration,
+    /// The most a computer level thinks on one move.
+    pub bot_think: Duration,
     pub idle: Duration,
     /// Messages queued for one connection before it is dropped as too slow.
     pub outbound_queue: usize,
@@ -134,6 +141,7 @@ impl Config {
             turn: Duration::from_secs(self.turn_seconds),
             grace: Duration::from_secs(self.grace_seconds),
             bot_delay: Duration::from_millis(self.bot_delay_ms),
+            bot_think: Duration::from_millis(self.bot_think_ms),
             idle: Duration::from_secs(self.idle_seconds),
             outbound_queue: 256,
         }

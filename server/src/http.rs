@@ -5,12 +5,12 @@
 //! errors are the protocol's `error` message with a fitting HTTP status.
 //! The game itself (`/` and its files) is [`crate::assets`].
 
-use crate::bot::BotLevel;
 use crate::hub::{Hub, NewMatch, Opponent, SeatGrant};
 use crate::refusal::{HttpStatus, Refusal};
 use crate::store::{Status, StoreError};
 use actix_web::http::StatusCode;
 use actix_web::{web, HttpRequest, HttpResponse};
+use bots::Level;
 use game::protocol::ErrorCode;
 use game::Config;
 use serde::{Deserialize, Serialize};
@@ -32,6 +32,7 @@ pub fn routes(cfg: &mut web::ServiceConfig) {
         .route("/api/matches", web::get().to(list))
         .route("/api/matches/{id}", web::get().to(summary))
         .route("/api/matches/{id}/join", web::post().to(join))
+        .route("/api/exhibitions", web::post().to(exhibition))
         .route("/api/matches/{id}/record", web::get().to(record));
 }
 
@@ -132,11 +133,34 @@ struct CreateBody {
     name: Option<String>,
     /// `person` (default) or `bot`.
     opponent: Option<String>,
-    /// `easy` or `medium` (default) when the opponent is a bot.
+    /// `easy`, `medium` (default) or `hard` when the opponent is a bot.
     bot_level: Option<String>,
-    #[serde(default)]
-    config: Config,
+    /// A named set of rules: `casual` (the default) or `standard`.
+    rules: Option<String>,
+    /// A full configuration instead of a named one.
+    config: Option<Config>,
     turn_seconds: Option<u64>,
+}
+
+/// The rules of a new match: a preset by name, or a configuration (not
+/// both); `casual` when neither is given.
+fn rules(rules: Option<&str>, config: Option<Config>) -> Result<Config, Refusal> {
+    match (rules, config) {
+        (Some(_), Some(_)) => Err(Refusal::new(
+            ErrorCode::BadMessage,
+            "give either rules or config, not both",
+        )),
+        (None, Some(config)) => Ok(config),
+        (Some(name), None) => game::Preset::parse(name)
+            .map(game::Preset::config)
+            .ok_or_else(|| Refusal::new(ErrorCode::BadConfig, "rules are casual or standard")),
+        (None, None) => Ok(Config::default()),
+    }
+}
+
+fn level(name: Option<&str>) -> Result<Level, Refusal> {
+    Level::parse(name.unwrap_or("medium"))
+        .ok_or_else(|| Refusal::new(ErrorCode::BadMessage, "a bot level is easy, medium or hard"))
 }
 
 /// A seat handed out, as JSON.
@@ -165,12 +189,7 @@ async fn create(hub: web::Data<Hub>, bytes: web::Bytes) -> HttpResponse {
         let b: CreateBody = body(&bytes)?;
         let opponent = match b.opponent.as_deref().unwrap_or("person") {
             "person" => Opponent::Person,
-            "bot" => {
-                let level = b.bot_level.as_deref().unwrap_or("medium");
-                Opponent::Bot(BotLevel::parse(level).ok_or_else(|| {
-                    Refusal::new(ErrorCode::BadMessage, "bot_level is easy or medium")
-                })?)
-            }
+            "bot" => Opponent::Bot(level(b.bot_level.as_deref())?),
             _ => {
                 return Err(Refusal::new(
                     ErrorCode::BadMessage,
@@ -181,7 +200,7 @@ async fn create(hub: web::Data<Hub>, bytes: web::Bytes) -> HttpResponse {
         let req = NewMatch {
             name: name(b.name, "first")?,
             opponent,
-            config: b.config,
+            config: rules(b.rules.as_deref(), b.config)?,
             turn_seconds: b.turn_seconds,
         };
         hub.create(req).await
@@ -189,6 +208,41 @@ async fn create(hub: web::Data<Hub>, bytes: web::Bytes) -> HttpResponse {
     .await;
     match result {
         Ok(g) => json(StatusCode::CREATED, &SeatResponse::from(g)),
+        Err(r) => refused(&r),
+    }
+}
+
+/// `POST /api/exhibitions`: two computer levels play each other.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ExhibitionBody {
+    /// The first seat's level (White, unless the pie rule swaps).
+    first: Option<String>,
+    second: Option<String>,
+    /// `standard` (the default for bots against bots) or `casual`.
+    rules: Option<String>,
+    config: Option<Config>,
+    turn_seconds: Option<u64>,
+}
+
+async fn exhibition(hub: web::Data<Hub>, bytes: web::Bytes) -> HttpResponse {
+    let result = async {
+        let b: ExhibitionBody = body(&bytes)?;
+        let config = match (b.rules.as_deref(), b.config) {
+            (None, None) => game::Preset::Standard.config(),
+            (r, c) => rules(r, c)?,
+        };
+        let first = level(b.first.as_deref())?;
+        let second = level(b.second.as_deref())?;
+        hub.create_exhibition(first, second, config, b.turn_seconds)
+            .await
+    }
+    .await;
+    match result {
+        Ok(id) => json(
+            StatusCode::CREATED,
+            &serde_json::json!({ "match_id": id, "ws": format!("/ws?match={id}") }),
+        ),
         Err(r) => refused(&r),
     }
 }

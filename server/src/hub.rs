@@ -5,13 +5,13 @@
 //! and connections to rooms, enforces the limit on matches in memory, and
 //! shuts every room down cleanly, each finishing the command in hand.
 
-use crate::bot::BotLevel;
 use crate::config::Limits;
 use crate::metrics::Metrics;
 use crate::refusal::Refusal;
 use crate::room::{Command, Connected, Room, RoomHost};
 use crate::store::{Status, Store, StoreError, StoredMatch, StoredSeat};
 use crate::token;
+use bots::Level;
 use game::protocol::ErrorCode;
 use game::session::SeatSpec;
 use game::{Config, Game, Replay, Seat};
@@ -38,7 +38,7 @@ pub struct RoomHandle {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Opponent {
     Person,
-    Bot(BotLevel),
+    Bot(Level),
 }
 
 /// A request to create a match.
@@ -195,6 +195,28 @@ impl Hub {
         })
     }
 
+    /// Stores and starts an exhibition: two built-in levels play each
+    /// other, and anyone may watch (no seat has a token).
+    pub async fn create_exhibition(
+        &self,
+        first: Level,
+        second: Level,
+        config: Config,
+        turn_seconds: Option<u64>,
+    ) -> Result<String, Refusal> {
+        self.check_capacity()?;
+        let turn_seconds = turn_seconds.unwrap_or(self.inner.limits.turn.as_secs());
+        if !(1..=3600).contains(&turn_seconds) {
+            return Err(Refusal::new(
+                ErrorCode::BadConfig,
+                "turn_seconds must be between 1 and 3600",
+            ));
+        }
+        let seat = |l: Level| (Some(format!("bot ({l})")), None, Some(l));
+        self.start(None, config, turn_seconds, [seat(first), seat(second)])
+            .await
+    }
+
     /// Starts the rematch of `of`: the same configuration and clock, the
     /// players' seats (and so their colours) exchanged; a bot keeps the
     /// second seat. The players keep their tokens.
@@ -203,7 +225,7 @@ impl Hub {
         of: &str,
         config: Config,
         turn: Duration,
-        seats: [(Option<String>, Option<String>, Option<BotLevel>); 2],
+        seats: [(Option<String>, Option<String>, Option<Level>); 2],
     ) -> Result<String, Refusal> {
         self.check_capacity()?;
         let [first, second] = seats;
@@ -221,13 +243,13 @@ impl Hub {
         rematch_of: Option<String>,
         config: Config,
         turn_seconds: u64,
-        seats: [(Option<String>, Option<String>, Option<BotLevel>); 2],
+        seats: [(Option<String>, Option<String>, Option<Level>); 2],
     ) -> Result<String, Refusal> {
         let seed = random(token::seed())?;
         let game = Game::new(config.clone(), seed)
             .map_err(|e| Refusal::new(ErrorCode::BadConfig, e.to_string()))?;
         let id = random(token::match_id())?;
-        let bot = seats[1].2.map(|b| b.as_str().to_string());
+        let bot = StoredMatch::bots_column([seats[0].2, seats[1].2]);
         let both = seats.iter().all(|s| s.1.is_some() || s.2.is_some());
         let stored = StoredMatch {
             id: id.clone(),
@@ -399,7 +421,7 @@ impl RoomHost for Hub {
         seats: [SeatSpec; 2],
     ) -> impl Future<Output = Result<String, Refusal>> + Send {
         let hub = self.clone();
-        let seats = seats.map(|s| (s.name, s.token, s.bot.as_deref().and_then(BotLevel::parse)));
+        let seats = seats.map(|s| (s.name, s.token, s.bot.as_deref().and_then(Level::parse)));
         async move { hub.create_rematch(&of, config, turn, seats).await }
     }
     fn remove(&self, id: &str, generation: u64) {
@@ -565,7 +587,7 @@ mod tests {
         let hub = hub();
         let a = hub
             .create(NewMatch {
-                opponent: Opponent::Bot(BotLevel::Medium),
+                opponent: Opponent::Bot(Level::Medium),
                 ..person("p")
             })
             .await

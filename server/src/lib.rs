@@ -14,15 +14,15 @@
 //! Modules: [`config`] (flags and limits), [`token`] (seat tokens and ids),
 //! [`refusal`] (errors sent to clients, with their HTTP statuses),
 //! [`store`] (SQLite), [`metrics`] (Prometheus), [`ratelimit`]
-//! (per-connection token bucket), [`bot`] (built-in bots), [`room`] (the
-//! task that drives one match's session), [`hub`] (the registry of
+//! (per-connection token bucket), [`room`] (the task that drives one
+//! match's session and asks the computer levels of the [`bots`] crate for
+//! their moves), [`hub`] (the registry of
 //! rooms), [`http`] (the HTTP API), [`assets`] (the embedded web client at
 //! `/`), [`ws`] (the WebSocket sessions) and [`app`] (startup and
 //! shutdown).
 
 pub mod app;
 pub mod assets;
-pub mod bot;
 pub mod checkpointer;
 pub mod config;
 pub mod http;

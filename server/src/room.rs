@@ -13,18 +13,17 @@
 //! blocking thread, counts the match in the metrics, and leaves memory when
 //! the session closes or the server shuts down.
 
-use crate::bot::{self, BotLevel, BotMove};
 use crate::config::Limits;
 use crate::metrics::Metrics;
 use crate::refusal::Refusal;
 use crate::store::{AfterMove, Store, StoredMatch};
-use game::noise::SplitMix64;
+use bots::{Bot, Context, Decision};
 use game::protocol::{ClientMessage, ForfeitReason, ServerMessage};
 use game::session::{
     BotDecision, ConnId, Effect, Input, Moment, Request, SeatSpec, Session, SessionLimits, Status,
     To,
 };
-use game::{Config, Game, RecordedMove, Replay, Seat, Side};
+use game::{Config, Game, MatchView, RecordedMove, Replay, Seat, Side};
 use std::collections::{HashMap, VecDeque};
 use std::future::Future;
 use std::sync::Arc;
@@ -145,11 +144,12 @@ pub struct Connected {
 }
 
 /// A built-in bot's decision, computed off the room's task.
-#[derive(Debug)]
 struct BotAnswer {
     seat: Seat,
     at_move: usize,
     decision: BotDecision,
+    /// The bot, back from its thinking thread.
+    bot: Box<dyn Bot>,
 }
 
 /// What carrying out one input's effects came to, for the command's
@@ -178,13 +178,32 @@ pub struct Room<H: RoomHost> {
     conns: HashMap<u64, mpsc::Sender<Outbound>>,
     /// Whether the metrics count this match as live.
     live: bool,
-    /// Seeds the bot's randomness (not derived from the match seed).
-    rng: SplitMix64,
+    /// The built-in bot of each seat played by one, with its own
+    /// generator (seeded from the system's randomness, never the match's
+    /// seed); out of its slot while it thinks (behind a mutex only so that
+    /// the room, held across awaits, can be shared: only the room touches
+    /// it).
+    bots: [std::sync::Mutex<Option<Box<dyn Bot>>>; 2],
     bot_tx: mpsc::Sender<BotAnswer>,
     bot_rx: Option<mpsc::Receiver<BotAnswer>>,
     /// What the session has said while handling the command in hand;
     /// handed to the connections when it is done ([`Room::flush`]).
     outbox: Vec<(To, Arc<str>)>,
+}
+
+/// A bot's slot (a panic while it was held cannot leave it half-changed).
+fn lock(
+    slot: &std::sync::Mutex<Option<Box<dyn Bot>>>,
+) -> std::sync::MutexGuard<'_, Option<Box<dyn Bot>>> {
+    slot.lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+fn seat_index(seat: Seat) -> usize {
+    match seat {
+        Seat::First => 0,
+        Seat::Second => 1,
+    }
 }
 
 fn bot_seed() -> u64 {
@@ -200,13 +219,14 @@ fn bot_seed() -> u64 {
 impl<H: RoomHost> Room<H> {
     /// A room for a stored match whose record has been replayed into `game`.
     pub fn new(stored: &StoredMatch, game: Game, host: H, generation: u64) -> Room<H> {
-        let bot = stored.bot.as_deref().and_then(BotLevel::parse);
-        let seat = |i: usize, bot: Option<BotLevel>| SeatSpec {
+        let levels = stored.bots();
+        let seat = |i: usize| SeatSpec {
             name: stored.seats[i].name.clone(),
             token: stored.seats[i].token.clone(),
-            bot: bot.map(|b| b.as_str().to_string()),
+            bot: levels[i].map(|b| b.as_str().to_string()),
         };
-        let seats = [seat(0, None), seat(1, bot)];
+        let seats = [seat(0), seat(1)];
+        let bots = levels.map(|l| std::sync::Mutex::new(l.map(|l| l.bot(bot_seed()))));
         let l = host.limits();
         let limits = SessionLimits {
             turn: Duration::from_secs(stored.turn_seconds.max(1)),
@@ -225,7 +245,7 @@ impl<H: RoomHost> Room<H> {
             epoch: Instant::now(),
             conns: HashMap::new(),
             live: false,
-            rng: SplitMix64::new(bot_seed()),
+            bots,
             bot_tx,
             bot_rx: Some(bot_rx),
             outbox: Vec::new(),
@@ -261,6 +281,7 @@ impl<H: RoomHost> Room<H> {
                     Some(cmd) => self.handle(cmd).await,
                 },
                 Some(a) = bots.recv() => {
+                    *lock(&self.bots[seat_index(a.seat)]) = Some(a.bot);
                     let input = Input::BotMove { seat: a.seat, at_move: a.at_move, decision: a.decision };
                     self.feed(input).await;
                 }
@@ -440,8 +461,8 @@ impl<H: RoomHost> Room<H> {
                     side,
                     level,
                     at_move,
-                    game,
-                } => self.ask_bot(seat, side, &level, at_move, game),
+                    view,
+                } => self.ask_bot(seat, side, &level, at_move, view),
                 Effect::Status(status) => self.set_live(status == Status::Live),
                 Effect::Close => debug!(match_id = %self.id, "the session closed"),
             }
@@ -496,27 +517,36 @@ impl<H: RoomHost> Room<H> {
         }
     }
 
-    /// Computes the built-in bot's move on a blocking thread; the answer
-    /// comes back through the room's bot queue.
-    fn ask_bot(&mut self, seat: Seat, side: Side, level: &str, at_move: usize, game: Box<Game>) {
-        let Some(level) = BotLevel::parse(level) else {
-            warn!(match_id = %self.id, level, "no such bot");
+    /// Computes the built-in bot's move on a blocking thread from the
+    /// public view; the answer (and the bot) come back through the room's
+    /// bot queue.
+    fn ask_bot(
+        &mut self,
+        seat: Seat,
+        side: Side,
+        level: &str,
+        at_move: usize,
+        view: Box<MatchView>,
+    ) {
+        let Some(mut bot) = lock(&self.bots[seat_index(seat)]).take() else {
+            warn!(match_id = %self.id, level, ?seat, "no bot in this seat (or it is still thinking)");
             return;
         };
-        let seed = self.rng.next_u64();
         let tx = self.bot_tx.clone();
+        let think = self.host.limits().bot_think;
         tokio::task::spawn_blocking(move || {
-            let mut rng = SplitMix64::new(seed);
-            let decision = match bot::choose(level, &game, side, &mut rng) {
-                Some(BotMove::Shot(shot)) => BotDecision::Shot(shot),
-                Some(BotMove::Pie { swap }) => BotDecision::Pie { swap },
-                None => BotDecision::Resign,
+            let ctx = Context::new(&view, side, think);
+            let decision = match bot.decide(&ctx) {
+                Decision::Shot(shot) => BotDecision::Shot(shot),
+                Decision::Pie { swap } => BotDecision::Pie { swap },
+                Decision::Resign => BotDecision::Resign,
             };
             // The room may have stopped meanwhile.
             let _ = tx.blocking_send(BotAnswer {
                 seat,
                 at_move,
                 decision,
+                bot,
             });
         });
     }

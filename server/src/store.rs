@@ -60,11 +60,38 @@ pub struct StoredMatch {
     pub config: Config,
     pub seed: u64,
     pub status: Status,
-    /// The built-in bot playing the second seat, if any.
+    /// The built-in bots: a level (`easy`, `medium`, `hard`) for a bot in
+    /// the second seat, or `FIRST/SECOND` for an exhibition where both
+    /// seats are bots ([`StoredMatch::bots`] reads it).
     pub bot: Option<String>,
     pub turn_seconds: u64,
     pub seats: [StoredSeat; 2],
     pub rematch_of: Option<String>,
+}
+
+impl StoredMatch {
+    /// The `bot` column for bots in the seats: `None`, the second seat's
+    /// level, or `FIRST/SECOND` when both seats are bots.
+    pub fn bots_column(levels: [Option<bots::Level>; 2]) -> Option<String> {
+        match levels {
+            [None, None] => None,
+            [None, Some(l)] => Some(l.as_str().to_string()),
+            [Some(a), Some(b)] => Some(format!("{a}/{b}")),
+            // A bot only ever takes the first seat in an exhibition.
+            [Some(a), None] => Some(format!("{a}/")),
+        }
+    }
+
+    /// The level of each seat's built-in bot, read from the `bot` column.
+    pub fn bots(&self) -> [Option<bots::Level>; 2] {
+        match self.bot.as_deref() {
+            None => [None, None],
+            Some(text) => match text.split_once('/') {
+                Some((a, b)) => [bots::Level::parse(a), bots::Level::parse(b)],
+                None => [None, bots::Level::parse(text)],
+            },
+        }
+    }
 }
 
 /// What a listing shows of a match (no tokens).
