@@ -402,7 +402,13 @@ mod tests {
             ServerMessage::error(ErrorCode::NotYourPiece, "that piece is white's"),
             now,
         );
-        assert!(matches!(refused, Followed::Refused { code: ErrorCode::NotYourPiece, .. }));
+        assert!(matches!(
+            refused,
+            Followed::Refused {
+                code: ErrorCode::NotYourPiece,
+                ..
+            }
+        ));
         assert_eq!(f.version(), v);
         assert!(f.deadline().is_some());
     }
@@ -418,8 +424,8 @@ mod tests {
         )
         .unwrap();
         let mut f = Follower::new(Seat::First);
-        let early = Follower::new(Seat::First)
-            .apply(ServerMessage::TurnPassed { side: Side::White }, now);
+        let early =
+            Follower::new(Seat::First).apply(ServerMessage::TurnPassed { side: Side::White }, now);
         assert!(matches!(early, Followed::OutOfSync(_)));
         f.apply(state(&game, Seat::First), now);
         let played = game.play(Side::White, shot).unwrap();
@@ -442,9 +448,7 @@ mod tests {
     #[test]
     fn a_state_of_a_finished_match_gives_its_result() {
         let mut game = Game::new(Config::default(), 1).unwrap();
-        let result = game
-            .forfeit(Side::Black, ForfeitReason::Abandoned)
-            .unwrap();
+        let result = game.forfeit(Side::Black, ForfeitReason::Abandoned).unwrap();
         let mut f = Follower::new(Seat::First);
         f.apply(state(&game, Seat::First), Instant::now());
         assert_eq!(f.result(), Some(result));

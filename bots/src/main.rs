@@ -1,9 +1,9 @@
 //! The `bots` command: tournaments between the scripted bots, and a bot
 //! playing a match on a real server (`play`).
 
+use bots::runner::{CreateMatch, Opponent, Runner, RunnerOptions};
 use bots::stats::Sprt;
 use bots::tournament::{self, TournamentSettings};
-use bots::runner::{CreateMatch, Opponent, Runner, RunnerOptions};
 use bots::{by_name, ArenaLimits};
 use clap::{Parser, Subcommand};
 use game::Preset;

@@ -370,9 +370,11 @@ impl Runner {
         })?;
         if status >= 400 {
             return Err(match ServerMessage::from_json(&text) {
-                Ok(ServerMessage::Error { code, message }) => {
-                    RunnerError::Refused { what, code, message }
-                }
+                Ok(ServerMessage::Error { code, message }) => RunnerError::Refused {
+                    what,
+                    code,
+                    message,
+                },
                 _ => RunnerError::Refused {
                     what,
                     code: ErrorCode::Internal,
@@ -515,8 +517,16 @@ struct TokenBucket {
 
 impl TokenBucket {
     fn new(rate: f64, burst: f64, now: Instant) -> TokenBucket {
-        let rate = if rate.is_finite() && rate > 0.0 { rate } else { 1.0 };
-        let burst = if burst.is_finite() { burst.max(1.0) } else { 1.0 };
+        let rate = if rate.is_finite() && rate > 0.0 {
+            rate
+        } else {
+            1.0
+        };
+        let burst = if burst.is_finite() {
+            burst.max(1.0)
+        } else {
+            1.0
+        };
         TokenBucket {
             rate,
             burst,
@@ -655,8 +665,7 @@ impl<B: Bot + 'static> Play<B> {
                     self.bot = Some(bot);
                     self.deliver_hooks();
                     // Sent only if nothing changed while the bot thought.
-                    if version == Some(self.follower.version()) && self.follower.ask().is_some()
-                    {
+                    if version == Some(self.follower.version()) && self.follower.ask().is_some() {
                         match self.send(ws, &message(decision)).await {
                             Ok(()) => {
                                 self.sent += 1;
@@ -821,9 +830,18 @@ mod tests {
 
     #[test]
     fn the_budget_keeps_a_margin_for_the_network() {
-        assert_eq!(think_budget(Duration::from_secs(60)), Duration::from_secs(58));
-        assert_eq!(think_budget(Duration::from_secs(2)), Duration::from_millis(1600));
-        assert_eq!(think_budget(Duration::from_millis(500)), Duration::from_millis(300));
+        assert_eq!(
+            think_budget(Duration::from_secs(60)),
+            Duration::from_secs(58)
+        );
+        assert_eq!(
+            think_budget(Duration::from_secs(2)),
+            Duration::from_millis(1600)
+        );
+        assert_eq!(
+            think_budget(Duration::from_millis(500)),
+            Duration::from_millis(300)
+        );
         assert_eq!(think_budget(Duration::from_millis(100)), Duration::ZERO);
     }
 
