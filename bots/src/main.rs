@@ -7,7 +7,6 @@ use bots::tournament::{self, TournamentSettings};
 use bots::{by_name, ArenaLimits};
 use clap::{Parser, Subcommand};
 use game::Preset;
-use std::error::Error as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -175,11 +174,11 @@ fn play_command(args: PlayArgs) -> Result<(), Box<dyn std::error::Error>> {
             Some(r) => serde_json::to_string(r)?,
             None => "unknown".into(),
         };
-        let verdict = match report.score() {
-            Some(s) if s == 1.0 => "won",
-            Some(s) if s == 0.0 => "lost",
-            Some(_) => "drew",
-            None => "unknown",
+        let verdict = match (report.result.map(|r| r.winner()), report.side) {
+            (Some(None), _) => "drew",
+            (Some(Some(w)), Some(me)) if w == me => "won",
+            (Some(Some(_)), _) => "lost",
+            (None, _) => "unknown",
         };
         println!(
             "result: {result}; {name} played {} and {verdict}; {} shots ({} its own), {} reconnects",

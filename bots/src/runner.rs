@@ -350,7 +350,7 @@ impl Runner {
                 match answer {
                     Ok(r) => Ok((r.status(), r.into_string())),
                     Err(ureq::Error::Status(status, r)) => Ok((status, r.into_string())),
-                    Err(e) => Err(e),
+                    Err(e) => Err(Box::new(e)),
                 }
             }
         };
@@ -360,9 +360,9 @@ impl Runner {
                 what: "an HTTP call",
                 source,
             })?
-            .map_err(|e| RunnerError::Http {
+            .map_err(|source| RunnerError::Http {
                 what: what.clone(),
-                source: Box::new(e),
+                source,
             })?;
         let text = text.map_err(|source| RunnerError::Read {
             what: what.clone(),
