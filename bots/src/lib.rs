@@ -7,7 +7,9 @@
 //! [`Greedy`], [`Search`]), the computer levels people play
 //! ([`Level`]: easy, medium, hard, each with its own imprecise hand), whole
 //! matches in this process ([`arena`]), round-robin tournaments with Elo,
-//! LOS and SPRT ([`tournament`], [`stats`]).
+//! LOS and SPRT ([`tournament`], [`stats`]), and a bot playing on a real
+//! server over the match protocol ([`runner`], following the match with
+//! [`follow`]).
 //!
 //! Fair play is built in: a bot is handed a [`game::MatchView`], which has
 //! no seed, so it can never know the execution noise of a shot before it
@@ -18,7 +20,9 @@
 //! [`eval`] (how good a result is), [`pie`] (the pie-rule decision by
 //! playouts), [`random`], [`greedy`], [`search`] (the
 //! scripted bots), [`level`] (computer levels and named bots), [`arena`]
-//! (one match in process), [`stats`] (Elo, LOS, SPRT), [`tournament`].
+//! (one match in process), [`stats`] (Elo, LOS, SPRT), [`tournament`],
+//! [`follow`] (a seat's view kept from the server's messages), [`runner`]
+//! (a bot on a server: create or join, play, reconnect).
 
 /// The README's example, compiled and run as a doctest.
 #[doc = include_str!("../README.md")]
@@ -29,10 +33,12 @@ pub mod arena;
 pub mod bot;
 pub mod candidates;
 pub mod eval;
+pub mod follow;
 pub mod greedy;
 pub mod level;
 pub mod pie;
 pub mod random;
+pub mod runner;
 pub mod search;
 pub mod simulator;
 pub mod stats;
@@ -43,5 +49,6 @@ pub use bot::{Ask, Bot, Context, Decision};
 pub use greedy::Greedy;
 pub use level::{by_name, Imprecise, Level, BOT_NAMES};
 pub use random::RandomBot;
+pub use runner::{CreateMatch, Opponent, RunReport, Runner, RunnerError, RunnerOptions, SeatGrant};
 pub use search::{Search, SearchSettings};
 pub use simulator::{Simulated, Simulator};

@@ -1,14 +1,16 @@
-//! The `bots` command: tournaments between the scripted bots.
+//! The `bots` command: tournaments between the scripted bots, and a bot
+//! playing a match on a real server (`play`).
 
+use bots::runner::{CreateMatch, Opponent, Runner, RunnerOptions};
 use bots::stats::Sprt;
 use bots::tournament::{self, TournamentSettings};
-use bots::ArenaLimits;
+use bots::{by_name, ArenaLimits};
 use clap::{Parser, Subcommand};
 use game::{NoiseConfig, Preset};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-/// Chapaev bots: play tournaments between bots.
+/// Chapaev bots: play tournaments between bots, or a match on a server.
 #[derive(Parser, Debug)]
 #[command(name = "bots", version, about)]
 struct Cli {
@@ -20,6 +22,47 @@ struct Cli {
 enum Command {
     /// A round robin between bots, in this process.
     Tournament(TournamentArgs),
+    /// One match on a server: create it, join it, or play a built-in level.
+    Play(PlayArgs),
+}
+
+#[derive(Parser, Debug)]
+struct PlayArgs {
+    /// The server, `http://HOST:PORT`.
+    #[arg(long, default_value = "http://127.0.0.1:8080")]
+    server: String,
+    /// The bot: random, greedy, search, easy, medium, hard.
+    #[arg(long, default_value = "greedy")]
+    bot: String,
+    /// The name the bot plays under.
+    #[arg(long)]
+    name: Option<String>,
+    /// The rules of a created match: `standard` (execution noise and the
+    /// pie rule) or `casual`.
+    #[arg(long, default_value = "standard", value_parser = parse_rules)]
+    rules: Preset,
+    #[command(flatten)]
+    how: HowToPlay,
+    /// The turn clock of a created match, seconds (the server's default if absent).
+    #[arg(long)]
+    turn_seconds: Option<u64>,
+    /// The bot's seed.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+}
+
+#[derive(clap::Args, Debug)]
+#[group(required = true, multiple = false)]
+struct HowToPlay {
+    /// Create a match for someone to join.
+    #[arg(long)]
+    create: bool,
+    /// Join the match with this id.
+    #[arg(long, value_name = "MATCH_ID")]
+    join: Option<String>,
+    /// Create a match against the server's built-in level.
+    #[arg(long, value_name = "LEVEL", value_parser = ["easy", "medium", "hard"])]
+    against: Option<String>,
 }
 
 #[derive(Parser, Debug)]
@@ -91,15 +134,83 @@ fn parse_sprt(s: &str) -> Result<Sprt, String> {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    match cli.command {
-        Command::Tournament(args) => match tournament_command(args) {
-            Ok(()) => ExitCode::SUCCESS,
-            Err(e) => {
-                eprintln!("error: {e}");
-                ExitCode::FAILURE
+    let done = match cli.command {
+        Command::Tournament(args) => tournament_command(args),
+        Command::Play(args) => play_command(args),
+    };
+    match done {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            let mut source = e.source();
+            while let Some(s) = source {
+                eprintln!("  caused by: {s}");
+                source = s.source();
             }
-        },
+            ExitCode::FAILURE
+        }
     }
+}
+
+fn play_command(args: PlayArgs) -> Result<(), Box<dyn std::error::Error>> {
+    let bot = by_name(&args.bot, args.seed).ok_or_else(|| {
+        format!(
+            "unknown bot {:?}: one of {}",
+            args.bot,
+            bots::BOT_NAMES.join(", ")
+        )
+    })?;
+    let name = args.name.clone().unwrap_or_else(|| args.bot.clone());
+    let runner = Runner::new(&args.server)?.with_options(RunnerOptions {
+        name: name.clone(),
+        ..RunnerOptions::default()
+    });
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()?;
+    runtime.block_on(async {
+        let create = |opponent: Opponent| CreateMatch {
+            name: Some(name.clone()),
+            opponent,
+            config: args.rules.config(),
+            turn_seconds: args.turn_seconds,
+        };
+        let grant = match (&args.how.join, &args.how.against) {
+            (Some(id), _) => runner.join(id, Some(&name)).await?,
+            (None, Some(level)) => runner.create(&create(Opponent::Level(level.clone()))).await?,
+            (None, None) => runner.create(&create(Opponent::Person)).await?,
+        };
+        println!("match {} (seat {:?})", grant.match_id, grant.seat);
+        if args.how.create {
+            println!(
+                "invite: bots play --server {} --join {}",
+                runner.server(),
+                grant.match_id
+            );
+        }
+        let (report, _) = runner.play(&grant, bot).await?;
+        let result = match &report.result {
+            Some(r) => serde_json::to_string(r)?,
+            None => "unknown".into(),
+        };
+        let verdict = match (report.result.map(|r| r.winner()), report.side) {
+            (Some(None), _) => "drew",
+            (Some(Some(w)), Some(me)) if w == me => "won",
+            (Some(Some(_)), _) => "lost",
+            (None, _) => "unknown",
+        };
+        println!(
+            "result: {result}; {name} played {} and {verdict}; {} shots ({} its own), {} reconnects",
+            report.side.map_or("?".to_string(), |s| s.to_string()),
+            report.shots,
+            report.my_shots,
+            report.reconnects
+        );
+        for e in &report.errors {
+            println!("refused: {}: {}", e.code, e.message);
+        }
+        Ok::<(), Box<dyn std::error::Error>>(())
+    })
 }
 
 fn tournament_command(args: TournamentArgs) -> Result<(), Box<dyn std::error::Error>> {

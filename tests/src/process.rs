@@ -108,14 +108,27 @@ pub struct Server {
 
 impl Server {
     pub fn start(binary: &Path, data: &Path, log: &Path) -> Result<Server> {
+        Server::start_with(binary, data, log, "127.0.0.1:0", &[])
+    }
+
+    /// The server listening on `addr` (`127.0.0.1:0`: a free port; a fixed
+    /// port to start it again where it was), with `extra` flags.
+    pub fn start_with(
+        binary: &Path,
+        data: &Path,
+        log: &Path,
+        addr: &str,
+        extra: &[&str],
+    ) -> Result<Server> {
         let log_file = std::fs::File::create(log).map_err(|source| E2eError::Io {
             what: format!("creating {}", log.display()),
             source,
         })?;
         let mut cmd = Command::new(binary);
-        cmd.args(["--addr", "127.0.0.1:0", "--log", "info,server=debug"])
+        cmd.args(["--addr", addr, "--log", "info,server=debug"])
             .arg("--data-dir")
             .arg(data)
+            .args(extra)
             .stdin(Stdio::null())
             .stdout(Stdio::piped())
             .stderr(log_file);
@@ -144,6 +157,11 @@ impl Server {
             })?
             .to_string();
         Ok(Server { guard, addr })
+    }
+
+    /// SIGKILL to the server's whole process group: no chance to clean up.
+    pub fn kill(self) {
+        drop(self.guard);
     }
 
     pub fn url(&self, path: &str) -> String {
