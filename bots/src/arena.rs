@@ -1,31 +1,43 @@
-//! A whole match between two bots in this process: the game asks whichever
-//! seat must act, hands its bot the public view (never the seed), applies
-//! the decision, and tells both bots every shot. A shot the game refuses
-//! or a decision that does not answer what was asked passes the turn, as
-//! the server's clock would once it ran out. Tournaments play their games
-//! here.
+//! A whole match between two bots in this process, through the very same
+//! [`game::session::Session`] the server drives — seats with tokens, the
+//! turn clock, the pie decision, passes and forfeits — on a virtual clock.
+//! Each seat follows the match from the session's messages alone
+//! ([`Follower`], as a client on the network does), so its bot is handed
+//! the public view, never the seed. A bot decides at most once per change
+//! of the match: a shot the session refuses is not retried, and the
+//! virtual clock jumps to the turn's deadline, which passes the turn (three
+//! in a row forfeit). Thinking takes a fixed virtual time, so a match is
+//! repeatable for its seeds however long the bots really think.
+//! Tournaments play their games here.
 
-use crate::bot::{Bot, Context, Decision};
-use game::{Config, ConfigError, ForfeitReason, Game, MatchRecord, MatchResult, Phase, Seat, Side};
-use std::time::Duration;
+use crate::bot::{Bot, Context};
+use crate::follow::{Followed, Follower};
+use crate::runner::message;
+use game::protocol::ServerMessage;
+use game::session::{ConnId, Effect, Input, Moment, Request, SeatSpec, Session, SessionLimits, To};
+use game::{Config, ConfigError, Game, MatchRecord, MatchResult, Seat};
+use std::time::{Duration, Instant};
 
 /// How long a match may run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ArenaLimits {
-    /// Time a bot gets for one decision.
+    /// Real time a bot gets for one decision (its context's deadline).
     pub think: Duration,
+    /// The turn clock, on the virtual clock.
+    pub turn: Duration,
+    /// Virtual time one decision takes (less than `turn`).
+    pub virtual_think: Duration,
     /// Shots after which the match is stopped and scored a draw.
     pub max_shots: u32,
-    /// Refused decisions in a row after which the seat forfeits.
-    pub max_refusals: u32,
 }
 
 impl Default for ArenaLimits {
     fn default() -> Self {
         ArenaLimits {
             think: Duration::from_secs(1),
+            turn: Duration::from_secs(60),
+            virtual_think: Duration::from_secs(1),
             max_shots: 1500,
-            max_refusals: 3,
         }
     }
 }
@@ -35,14 +47,16 @@ impl Default for ArenaLimits {
 pub struct MatchReport {
     /// The result (`None`: stopped at [`ArenaLimits::max_shots`], a draw).
     pub result: Option<MatchResult>,
-    /// The record, replayable in the web client.
+    /// The record, replayable.
     pub record: MatchRecord,
     /// Shots played.
     pub shots: u32,
     /// Whether Black took White's side under the pie rule.
     pub swapped: bool,
-    /// Decisions the game refused.
+    /// Decisions the session refused.
     pub refusals: u32,
+    /// Turns the clock passed (after refusals).
+    pub timeouts: u32,
 }
 
 impl MatchReport {
@@ -56,6 +70,52 @@ impl MatchReport {
     }
 }
 
+/// The two seats: their connections, followers, bots and the version each
+/// last decided on.
+struct Seats<'a> {
+    conns: [ConnId; 2],
+    followers: [Follower; 2],
+    bots: [&'a mut dyn Bot; 2],
+    decided: [Option<u64>; 2],
+    refusals: u32,
+    timeouts: u32,
+}
+
+impl Seats<'_> {
+    /// Delivers what the session said to the seats it is for, and tells
+    /// their bots of every shot and of the end.
+    fn deliver(&mut self, effects: Vec<Effect>) {
+        for effect in effects {
+            // A refused message is answered to its sender alone, as the
+            // server's room does.
+            let (to, msg) = match effect {
+                Effect::Send { to, msg } => (to, msg),
+                Effect::Refused {
+                    request: Request::Message(conn),
+                    refusal,
+                } => (To::Only(conn), refusal.to_message()),
+                _ => continue,
+            };
+            if matches!(msg, ServerMessage::TurnPassed { .. }) {
+                self.timeouts += 1;
+            }
+            for k in 0..2 {
+                if !to.includes(self.conns[k]) {
+                    continue;
+                }
+                match self.followers[k].apply(msg.clone(), Instant::now()) {
+                    Followed::Shot(outcome) => self.bots[k].on_shot(&outcome),
+                    Followed::Over { result, record } => {
+                        self.bots[k].on_match_over(&result, &record)
+                    }
+                    Followed::Refused { .. } => self.refusals += 1,
+                    _ => {}
+                }
+            }
+        }
+    }
+}
+
 /// Plays a match of `config` with seed `seed`: `first` takes the first seat
 /// (White, unless the pie rule swaps), `second` the other.
 pub fn play_match(
@@ -65,74 +125,93 @@ pub fn play_match(
     second: &mut dyn Bot,
     limits: &ArenaLimits,
 ) -> Result<MatchReport, ConfigError> {
-    let mut game = Game::new(config, seed)?;
-    let mut refusals = [0u32; 2];
-    let mut total_refusals = 0;
-    while !game.is_over() && game.shots() < limits.max_shots {
-        let side = match game.phase() {
-            Phase::PieDecision => Side::Black,
-            _ => game.to_shoot().unwrap_or(Side::White),
+    let game = Game::new(config, seed)?;
+    let seat = |name: &str| SeatSpec {
+        name: Some(name.to_string()),
+        token: Some(format!("{name}-token")),
+        bot: None,
+    };
+    let session_limits = SessionLimits {
+        turn: limits.turn,
+        grace: limits.turn,
+        bot_delay: Duration::ZERO,
+        idle: Duration::from_secs(24 * 3600),
+        max_connections_per_match: 2,
+    };
+    let mut now = Moment::ZERO;
+    let mut session = Session::new(
+        "arena",
+        game,
+        [seat("first"), seat("second")],
+        session_limits,
+        now,
+    );
+    let mut seats = Seats {
+        conns: [ConnId(1), ConnId(2)],
+        followers: [Follower::new(Seat::First), Follower::new(Seat::Second)],
+        bots: [first, second],
+        decided: [None, None],
+        refusals: 0,
+        timeouts: 0,
+    };
+    for (k, name) in ["first", "second"].into_iter().enumerate() {
+        let input = Input::Connect {
+            conn: seats.conns[k],
+            token: Some(format!("{name}-token")),
         };
-        let seat = game.seat_of(side);
-        let bot: &mut dyn Bot = match seat {
-            Seat::First => first,
-            Seat::Second => second,
-        };
-        let view = game.view();
-        let decision = bot.decide(&Context::new(&view, side, limits.think));
-        let applied = match (game.phase(), decision) {
-            (Phase::Shooting, Decision::Shot(shot)) => match game.play(side, shot) {
-                Ok(played) => {
-                    first.on_shot(&played.outcome);
-                    second.on_shot(&played.outcome);
-                    true
-                }
-                Err(_) => false,
-            },
-            (Phase::PieDecision, Decision::Pie { swap }) => game.decide_pie(side, swap).is_ok(),
-            (_, Decision::Resign) => game.resign(side).is_ok(),
-            _ => false,
-        };
-        let k = seat_index(seat);
-        if applied {
-            refusals[k] = 0;
-            continue;
-        }
-        refusals[k] += 1;
-        total_refusals += 1;
-        let _ = if refusals[k] >= limits.max_refusals {
-            game.forfeit(side, ForfeitReason::Timeouts).map(|_| ())
-        } else if game.phase() == Phase::PieDecision {
-            game.decide_pie(side, false)
-        } else {
-            game.pass(side)
-        };
+        let effects = session.handle(input, now);
+        seats.deliver(effects);
     }
-    let report = MatchReport {
+    while !session.game().is_over() && session.game().shots() < limits.max_shots {
+        let asked = (0..2).find(|&k| {
+            let f = &seats.followers[k];
+            f.ask().is_some() && seats.decided[k] != Some(f.version())
+        });
+        match asked {
+            Some(k) => {
+                let f = &seats.followers[k];
+                seats.decided[k] = Some(f.version());
+                let (Some(view), Some(side)) = (f.view().cloned(), f.side()) else {
+                    break;
+                };
+                let decision = seats.bots[k].decide(&Context::new(&view, side, limits.think));
+                now = now + limits.virtual_think;
+                let input = Input::Message {
+                    conn: seats.conns[k],
+                    msg: message(decision),
+                };
+                let effects = session.handle(input, now);
+                seats.deliver(effects);
+            }
+            None => {
+                // Nobody has anything to decide (a refused move): the
+                // clock runs to its deadline.
+                let Some(deadline) = session.next_deadline() else {
+                    break;
+                };
+                now = deadline;
+                let effects = session.handle(Input::Timer, now);
+                seats.deliver(effects);
+            }
+        }
+    }
+    let game = session.game();
+    Ok(MatchReport {
         result: game.result(),
         record: game.record().clone(),
         shots: game.shots(),
         swapped: game.swapped(),
-        refusals: total_refusals,
-    };
-    if let Some(result) = &report.result {
-        first.on_match_over(result, &report.record);
-        second.on_match_over(result, &report.record);
-    }
-    Ok(report)
-}
-
-fn seat_index(seat: Seat) -> usize {
-    match seat {
-        Seat::First => 0,
-        Seat::Second => 1,
-    }
+        refusals: seats.refusals,
+        timeouts: seats.timeouts,
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bot::Decision;
     use crate::level::by_name;
+    use game::Side;
 
     #[test]
     fn two_bots_play_a_match_to_its_end_and_the_record_replays() {
@@ -162,15 +241,35 @@ mod tests {
     }
 
     #[test]
-    fn a_bot_whose_shots_are_refused_loses_its_turns_then_the_match() {
+    fn a_bot_whose_shots_are_refused_loses_its_turns_on_the_clock_then_the_match() {
         let mut good = by_name("greedy", 1).unwrap();
-        let limits = ArenaLimits {
-            max_refusals: 1,
-            ..ArenaLimits::default()
-        };
-        let r = play_match(Config::default(), 1, &mut Cheater, &mut good, &limits).unwrap();
+        let r = play_match(
+            Config::default(),
+            1,
+            &mut Cheater,
+            &mut good,
+            &ArenaLimits::default(),
+        )
+        .unwrap();
         assert_eq!(r.score(Seat::Second), 1.0);
-        assert_eq!(r.refusals, 1);
+        assert!(r.refusals >= 1, "{} refusals", r.refusals);
+        assert!(r.timeouts >= 1, "the clock passed the refused turns");
+        let replay = game::Replay::new(r.record.clone()).unwrap();
+        assert_eq!(replay.game().result(), r.result);
+    }
+
+    #[test]
+    fn three_refused_turns_in_a_row_forfeit_on_the_clock() {
+        let mut also = Cheater;
+        let r = play_match(
+            Config::default(),
+            2,
+            &mut Cheater,
+            &mut also,
+            &ArenaLimits::default(),
+        )
+        .unwrap();
+        assert_eq!(r.shots, 0);
         assert_eq!(
             r.result,
             Some(MatchResult::Won {
@@ -178,5 +277,7 @@ mod tests {
                 reason: game::WinReason::Timeouts
             })
         );
+        // White and Black pass twice each; White's third timeout forfeits.
+        assert_eq!(r.timeouts, 4);
     }
 }
