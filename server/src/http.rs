@@ -339,7 +339,11 @@ this page is about playing through the API, by hand or with a bot of your own, i
 The full protocol is in <code>docs/protocol.md</code>.</p>
 <h2>1. Create a match</h2>
 <pre>curl -s -XPOST localhost:8080/api/matches -d '{"name":"Petka"}'
-curl -s -XPOST localhost:8080/api/matches -d '{"name":"Petka","opponent":"bot","bot_level":"easy"}'</pre>
+curl -s -XPOST localhost:8080/api/matches -d '{"name":"Petka","opponent":"bot","bot_level":"hard"}'
+curl -s -XPOST localhost:8080/api/matches -d '{"name":"MyBot","rules":"standard"}'</pre>
+<p>Computer levels: <code>easy</code>, <code>medium</code>, <code>hard</code>. Rules: <code>casual</code> (the default: shots
+played as aimed) or <code>standard</code> (competitive play and bot against bot: execution noise on every shot and
+the pie rule).</p>
 <p>The answer holds the <code>match_id</code>, your <code>seat</code> and a secret <code>token</code>:
 only that token can shoot for your seat. Share the match id (never the token) with your opponent.</p>
 <h2>2. Join the empty seat</h2>
@@ -359,6 +363,8 @@ A dropped player keeps the seat for a grace period and reconnects with the same 
 <li><code>GET /api/matches?status=open|live|finished</code> &mdash; list matches</li>
 <li><code>GET /api/matches/ID</code> &mdash; one match's summary</li>
 <li><code>GET /api/matches/ID/record</code> &mdash; the record of a finished match, for replay</li>
+<li><code>POST /api/exhibitions</code> with <code>{"first":"medium","second":"hard"}</code> &mdash; two computer
+levels play each other (standard rules) for anyone to watch</li>
 <li><code>GET /healthz</code>, <code>GET /metrics</code> (Prometheus)</li></ul>
 </body></html>
 "#;

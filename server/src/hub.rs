@@ -583,6 +583,47 @@ mod tests {
     }
 
     #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+    async fn an_exhibition_between_two_levels_plays_to_the_end_for_a_spectator_and_stores_both_bots(
+    ) {
+        let hub = hub();
+        let id = hub
+            .create_exhibition(
+                Level::Easy,
+                Level::Medium,
+                game::Preset::Standard.config(),
+                None,
+            )
+            .await
+            .unwrap();
+        let stored = hub.store().get(&id).unwrap().unwrap();
+        assert_eq!(stored.bots(), [Some(Level::Easy), Some(Level::Medium)]);
+        assert_eq!(stored.status, Status::Live);
+        let (_, mut watcher) = hub.connect(&id, None).await.unwrap();
+        let ServerMessage::MatchState { players, view, .. } = next(&mut watcher.rx).await else {
+            panic!("match-state first")
+        };
+        assert_eq!(players.first.as_deref(), Some("bot (easy)"));
+        assert_eq!(players.second.as_deref(), Some("bot (medium)"));
+        assert!(view.config.variants.pie_rule, "standard rules by default");
+        let over = tokio::time::timeout(Duration::from_secs(120), async {
+            loop {
+                if let ServerMessage::MatchOver { result, .. } = next(&mut watcher.rx).await {
+                    return result;
+                }
+            }
+        })
+        .await
+        .expect("the bots finish the match");
+        assert!(over.winner().is_some(), "{over:?}");
+        let summary = hub.store().get(&id).unwrap().unwrap();
+        assert_eq!(summary.status, Status::Finished);
+        assert_eq!(
+            StoredMatch::bots_column([None, Some(Level::Hard)]).as_deref(),
+            Some("hard")
+        );
+    }
+
+    #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
     async fn a_bot_answers_a_shot_and_a_full_server_refuses_new_matches() {
         let hub = hub();
         let a = hub

@@ -8,10 +8,10 @@ use game::protocol::{ClientMessage, ForfeitReason, ServerMessage};
 use game::{MatchResult, Seat, Side, WinReason};
 
 #[tokio::test]
-async fn a_bot_answers_shots_over_the_websocket_at_both_strengths() {
+async fn a_bot_answers_shots_over_the_websocket_at_every_level() {
     let dir = tempfile::tempdir().unwrap();
     let server = Server::start(dir.path(), &[]);
-    for level in ["easy", "medium"] {
+    for level in ["easy", "medium", "hard"] {
         let (id, token) = server
             .create(&format!(
                 r#"{{"name":"Petka","opponent":"bot","bot_level":"{level}"}}"#
@@ -33,6 +33,62 @@ async fn a_bot_answers_shots_over_the_websocket_at_both_strengths() {
         };
         assert_eq!(outcome.shooter, Side::Black, "{level} bot answered");
     }
+}
+
+#[tokio::test]
+async fn named_rules_set_the_config_and_an_exhibition_is_watched_from_the_live_list() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &[]);
+    let (id, token) = server
+        .create(r#"{"name":"MyBot","rules":"standard"}"#)
+        .await;
+    let mut me = server.ws(&id, Some(&token)).await;
+    let config = view(me.next().await).config;
+    assert_eq!(config, game::Config::standard());
+    for (body, code) in [
+        (r#"{"rules":"blitz"}"#, "bad-config"),
+        (r#"{"rules":"standard","config":{}}"#, "bad-message"),
+        (
+            r#"{"opponent":"bot","bot_level":"grandmaster"}"#,
+            "bad-message",
+        ),
+    ] {
+        let (status, text) = server.http("POST", "/api/matches", body).await;
+        assert_eq!(status, 400, "{body}: {text}");
+        assert!(text.contains(code), "{body}: {text}");
+    }
+    let (status, text) = server
+        .http(
+            "POST",
+            "/api/exhibitions",
+            r#"{"first":"easy","second":"hard"}"#,
+        )
+        .await;
+    assert_eq!(status, 201, "{text}");
+    let answer: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let ex = answer["match_id"].as_str().unwrap().to_string();
+    let (_, live) = server.http("GET", "/api/matches?status=live", "").await;
+    assert!(live.contains(&ex), "{live}");
+    let mut watcher = server.ws(&ex, None).await;
+    let ServerMessage::MatchState { you, players, .. } = watcher.next().await else {
+        panic!("match-state first")
+    };
+    assert_eq!(you, None);
+    assert_eq!(players.first.as_deref(), Some("bot (easy)"));
+    assert_eq!(players.second.as_deref(), Some("bot (hard)"));
+    // The bots play on their own (they may have begun before the watcher).
+    let ServerMessage::ShotPlayed { outcome, .. } = watcher.next_of("shot-played").await else {
+        unreachable!()
+    };
+    assert!(outcome.number < 2000);
+    let (status, text) = server
+        .http(
+            "POST",
+            "/api/exhibitions",
+            r#"{"first":"easy","second":"nobody"}"#,
+        )
+        .await;
+    assert_eq!(status, 400, "{text}");
 }
 
 #[tokio::test]

@@ -1,5 +1,5 @@
-//! The lobby: your name, a match against the computer (easy or medium) or
-//! a friend (a link to send), joining by id, and the server's open, live
+//! The lobby: your name, a match against the computer (easy, medium or
+//! hard) or a friend (a link to send), joining by id, and the server's open, live
 //! and finished matches to join, watch or replay. The lists refresh every
 //! few seconds.
 
@@ -204,7 +204,7 @@ impl Lobby {
             40,
         );
         y += 52.0;
-        let bw = ((col - 24.0) / 4.0).min(230.0);
+        let bw = ((col - 32.0) / 5.0).min(200.0);
         let b = |i: f32| Rect::new(x0 + i * (bw + 8.0), y, bw, 48.0);
         if ui.button("vs-computer-easy", "Computer: easy", b(0.0)) {
             self.create(Opponent::Bot("easy"));
@@ -212,10 +212,13 @@ impl Lobby {
         if ui.button("vs-computer-medium", "Computer: medium", b(1.0)) {
             self.create(Opponent::Bot("medium"));
         }
-        if ui.button("vs-person", "A friend (link)", b(2.0)) {
+        if ui.button("vs-computer-hard", "Computer: hard", b(2.0)) {
+            self.create(Opponent::Bot("hard"));
+        }
+        if ui.button("vs-person", "A friend (link)", b(3.0)) {
             self.create(Opponent::Person);
         }
-        if ui.button("sandbox", "Physics sandbox", b(3.0)) {
+        if ui.button("sandbox", "Physics sandbox", b(4.0)) {
             go = Some(Route::Sandbox);
         }
         y += 62.0;
