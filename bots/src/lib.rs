@@ -20,7 +20,7 @@
 //! [`eval`] (how good a result is), [`pie`] (the pie-rule decision by
 //! playouts), [`random`], [`greedy`], [`search`] (the
 //! scripted bots), [`level`] (computer levels and named bots), [`arena`]
-//! (one match in process), [`stats`] (Elo, LOS, SPRT), [`tournament`],
+//! (one match in process), [`remote`] (one match on a server), [`remote`] (one match on a server), [`stats`] (Elo, LOS, SPRT), [`tournament`],
 //! [`follow`] (a seat's view kept from the server's messages), [`runner`]
 //! (a bot on a server: create or join, play, reconnect).
 
@@ -38,6 +38,7 @@ pub mod greedy;
 pub mod level;
 pub mod pie;
 pub mod random;
+pub mod remote;
 pub mod runner;
 pub mod search;
 pub mod simulator;

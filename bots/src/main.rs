@@ -99,6 +99,11 @@ struct TournamentArgs {
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
+    /// Play every game on this running server (`http://HOST:PORT`) instead
+    /// of in this process; the records stay there, replayable in the web
+    /// client.
+    #[arg(long)]
+    server: Option<String>,
 }
 
 fn parse_rules(s: &str) -> Result<Preset, String> {
@@ -230,6 +235,7 @@ fn tournament_command(args: TournamentArgs) -> Result<(), Box<dyn std::error::Er
             ..ArenaLimits::default()
         },
         progress: !args.quiet,
+        server: args.server,
     };
     let started = std::time::Instant::now();
     let report = tournament::run(&settings)?;

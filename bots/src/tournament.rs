@@ -8,6 +8,7 @@
 
 use crate::arena::{play_match, ArenaLimits, MatchReport};
 use crate::level::by_name;
+use crate::remote::play_on_server;
 use crate::stats::{Sprt, SprtVerdict, Wdl};
 use game::noise::SplitMix64;
 use game::{Config, MatchRecord, Seat};
@@ -32,6 +33,9 @@ pub struct TournamentSettings {
     pub limits: ArenaLimits,
     /// Show a progress bar on standard error.
     pub progress: bool,
+    /// Play every game on this server (`http://HOST:PORT`) instead of in
+    /// this process: real, but the server draws the seeds.
+    pub server: Option<String>,
 }
 
 /// A tournament setting that cannot be played.
@@ -43,6 +47,8 @@ pub enum TournamentError {
     TooFewBots,
     #[error("the rules cannot be played: {0}")]
     Config(#[from] game::ConfigError),
+    #[error("a game on the server failed: {0}")]
+    Server(#[from] crate::runner::RunnerError),
 }
 
 /// One game of a pairing.
@@ -132,7 +138,7 @@ pub fn run(settings: &TournamentSettings) -> Result<TournamentReport, Tournament
         for j in i + 1..n {
             let (a, b) = (&settings.bots[i], &settings.bots[j]);
             bar.set_message(format!("{a} v {b}"));
-            pairings.push(pairing(settings, i, j, pairs_per, &bar));
+            pairings.push(pairing(settings, i, j, pairs_per, &bar)?);
         }
     }
     bar.finish_and_clear();
@@ -181,7 +187,7 @@ fn pairing(
     j: usize,
     pairs: u32,
     bar: &ProgressBar,
-) -> Pairing {
+) -> Result<Pairing, TournamentError> {
     let (a, b) = (settings.bots[i].clone(), settings.bots[j].clone());
     let mut games: Vec<GameResult> = Vec::new();
     let mut wdl = Wdl::default();
@@ -190,7 +196,7 @@ fn pairing(
     while next < pairs {
         let batch: Vec<u32> = (next..(next + BATCH).min(pairs)).collect();
         next += batch.len() as u32;
-        let played: Vec<[GameResult; 2]> = batch
+        let played: Vec<Result<[GameResult; 2], TournamentError>> = batch
             .par_iter()
             .map(|&k| {
                 let seed = mix(settings.seed, (i * 64 + j) as u64, k as u64);
@@ -205,16 +211,18 @@ fn pairing(
                     };
                     let mut f = by_name(first, mix(seed, fi as u64 + 1, 1)).expect("checked");
                     let mut s = by_name(second, mix(seed, si as u64 + 1, 2)).expect("checked");
-                    let r: MatchReport = play_match(
-                        settings.config.clone(),
-                        seed,
-                        &mut f,
-                        &mut s,
-                        &settings.limits,
-                    )
-                    .expect("checked config");
+                    let r: MatchReport = match &settings.server {
+                        Some(url) => play_on_server(url, &settings.config, f, s, [first, second])?,
+                        None => play_match(
+                            settings.config.clone(),
+                            seed,
+                            &mut f,
+                            &mut s,
+                            &settings.limits,
+                        )?,
+                    };
                     bar.inc(1);
-                    GameResult {
+                    Ok::<_, TournamentError>(GameResult {
                         first: first.to_string(),
                         second: second.to_string(),
                         seed,
@@ -222,12 +230,13 @@ fn pairing(
                         shots: r.shots,
                         swapped: r.swapped,
                         record: r.record,
-                    }
+                    })
                 };
-                [one(&a, &b, i, j), one(&b, &a, j, i)]
+                Ok([one(&a, &b, i, j)?, one(&b, &a, j, i)?])
             })
             .collect();
-        for [ab, ba] in played {
+        for pair in played {
+            let [ab, ba] = pair?;
             wdl.add(ab.first_score);
             wdl.add(1.0 - ba.first_score);
             games.push(ab);
@@ -244,7 +253,7 @@ fn pairing(
     let (elo, elo_error) = wdl.elo();
     let first_seat_score =
         games.iter().map(|g| g.first_score).sum::<f64>() / games.len().max(1) as f64;
-    Pairing {
+    Ok(Pairing {
         a,
         b,
         wdl,
@@ -255,7 +264,7 @@ fn pairing(
         sprt: verdict,
         first_seat_score,
         games,
-    }
+    })
 }
 
 /// The report as the table a person reads.
@@ -325,6 +334,7 @@ mod tests {
             sprt: None,
             limits: ArenaLimits::default(),
             progress: false,
+            server: None,
         }
     }
 

@@ -238,3 +238,35 @@ async fn a_refused_shot_is_reported_with_its_code_and_the_match_plays_on_to_its_
     let replay = replayed(&server, &grant.match_id).await;
     assert_eq!(replay.game().result(), report.result);
 }
+
+#[test]
+fn a_tournament_against_a_running_server_plays_every_game_there_and_leaves_the_records() {
+    let scratch = tempfile::tempdir().unwrap();
+    let server = start(&scratch.path().join("data"), "127.0.0.1:0", "tournament");
+    let settings = bots::tournament::TournamentSettings {
+        bots: vec!["random".into(), "easy".into()],
+        games: 2,
+        seed: 1,
+        config: Config::standard(),
+        sprt: None,
+        limits: bots::ArenaLimits::default(),
+        progress: false,
+        server: Some(server.url("")),
+    };
+    let report = bots::tournament::run(&settings).unwrap_or_else(|e| panic!("{e}"));
+    let games = &report.pairings[0].games;
+    assert_eq!(games.len(), 2);
+    assert_eq!(report.pairings[0].wdl.games(), 2);
+    let rt = tokio::runtime::Runtime::new().unwrap();
+    let (status, list) = rt
+        .block_on(api::get_json(&server.addr, "/api/matches?status=finished"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(status, 200);
+    let finished = list["matches"].as_array().unwrap();
+    assert_eq!(finished.len(), 2, "{list}");
+    for g in games {
+        // Each game's record is the server's, and replays to its result.
+        let replay = Replay::new(g.record.clone()).unwrap();
+        assert!(replay.game().is_over());
+    }
+}
