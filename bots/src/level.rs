@@ -90,8 +90,8 @@ impl Level {
     pub fn hand(self) -> NoiseConfig {
         match self {
             Level::Easy => NoiseConfig {
-                angle_sigma: 0.06,
-                speed_sigma: 0.15,
+                angle_sigma: 0.10,
+                speed_sigma: 0.20,
             },
             Level::Medium => NoiseConfig {
                 angle_sigma: 0.03,
