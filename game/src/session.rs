@@ -1104,6 +1104,10 @@ impl Session {
         };
         if let Err(refusal) = self.apply(action, Vec::new(), now) {
             self.refuse(Request::Bot(seat), refusal);
+            // A bot seat has no clock to run out: a move the game refuses
+            // counts as a timeout at once, so the match never waits on it
+            // (three in a row forfeit, as for a person).
+            self.timed_out(seat, now);
         }
     }
 
@@ -1767,6 +1771,42 @@ mod tests {
         assert_eq!(s.game().shots(), 2);
         // The same answer again is stale now.
         assert!(s.handle(answer, at(1_800)).is_empty());
+    }
+
+    #[test]
+    fn a_bot_move_the_game_refuses_passes_the_turn_like_a_timeout() {
+        let mut s = session_with(Config::default(), bot("easy"));
+        connect(&mut s, A, Some("tok-a"), 0);
+        say(&mut s, A, nudge(), 0);
+        s.handle(Input::Timer, at(500));
+        // White's piece, for Black: refused.
+        let wrong = Shot::new(
+            PieceId::new(Side::White, 0).unwrap(),
+            DVec2::new(0.0, 0.5),
+            s.game().config(),
+        )
+        .unwrap();
+        let answer = Input::BotMove {
+            seat: Seat::Second,
+            at_move: 1,
+            decision: BotDecision::Shot(wrong),
+        };
+        let e = s.handle(answer, at(600));
+        assert_eq!(
+            kinds(&e),
+            [
+                "refused:not-your-piece",
+                "store:Pass",
+                "send:turn-timed-out",
+                "send:turn-passed",
+                "send:clock"
+            ]
+        );
+        assert_eq!(
+            s.game().to_shoot(),
+            Some(Side::White),
+            "the turn passed back"
+        );
     }
 
     #[test]
