@@ -155,13 +155,13 @@ impl TurnClock {
 
     /// `seat` acted in time.
     pub fn acted(&mut self, seat: Seat) {
-        self.strikes[index(seat)] = 0;
+        self.strikes[seat.index()] = 0;
     }
 
     /// `seat` timed out: its strikes in a row, now.
     pub fn strike(&mut self, seat: Seat) -> u32 {
         self.deadline = None;
-        let s = &mut self.strikes[index(seat)];
+        let s = &mut self.strikes[seat.index()];
         *s += 1;
         *s
     }
@@ -447,13 +447,6 @@ enum Action {
 
 const SEATS: [Seat; 2] = [Seat::First, Seat::Second];
 
-fn index(seat: Seat) -> usize {
-    match seat {
-        Seat::First => 0,
-        Seat::Second => 1,
-    }
-}
-
 fn status_of(game: &Game, seats: &[SeatState; 2]) -> Status {
     if game.is_over() {
         Status::Finished
@@ -641,7 +634,7 @@ impl Session {
                 }
             },
             Input::JoinFailed => {
-                let second = &mut self.seats[index(Seat::Second)].spec;
+                let second = &mut self.seats[Seat::Second.index()].spec;
                 second.name = None;
                 second.token = None;
                 self.restate(now);
@@ -715,7 +708,7 @@ impl Session {
 
     fn seat_of_token(&self, token: &str) -> Option<Seat> {
         SEATS.into_iter().find(|s| {
-            self.seats[index(*s)]
+            self.seats[s.index()]
                 .spec
                 .token
                 .as_deref()
@@ -769,7 +762,7 @@ impl Session {
         self.conns.insert(conn, seat);
         self.idle_since = None;
         if let Some(s) = seat {
-            let st = &mut self.seats[index(s)];
+            let st = &mut self.seats[s.index()];
             st.conns += 1;
             if st.conns == 1 && st.away_until.take().is_some() {
                 self.send(To::AllBut(conn), ServerMessage::PlayerBack { seat: s });
@@ -788,7 +781,7 @@ impl Session {
             return;
         };
         let grace = self.limits.grace;
-        let st = &mut self.seats[index(seat)];
+        let st = &mut self.seats[seat.index()];
         st.conns = st.conns.saturating_sub(1);
         if st.conns == 0 && self.status == Status::Live {
             st.away_until = Some(now + grace);
@@ -803,7 +796,7 @@ impl Session {
         if self.game.is_over() {
             return Err(Refusal::new(ErrorCode::MatchOver, "the match is over"));
         }
-        if self.seats[index(Seat::Second)].spec.taken() {
+        if self.seats[Seat::Second.index()].spec.taken() {
             return Err(Refusal::new(
                 ErrorCode::MatchFull,
                 "both seats of this match are taken",
@@ -813,7 +806,7 @@ impl Session {
             name: name.clone(),
             token: token.clone(),
         });
-        let second = &mut self.seats[index(Seat::Second)].spec;
+        let second = &mut self.seats[Seat::Second.index()].spec;
         second.name = Some(name.clone());
         second.token = Some(token);
         self.set_status(status_of(&self.game, &self.seats));
@@ -896,7 +889,7 @@ impl Session {
                 }
                 self.rematch_offer = Some(seat);
                 self.broadcast(ServerMessage::RematchOffered { by: seat });
-                if self.seats[index(seat.other())].spec.bot.is_some() {
+                if self.seats[seat.other().index()].spec.bot.is_some() {
                     self.start_rematch(conn);
                 }
             }
@@ -1016,7 +1009,7 @@ impl Session {
             None
         };
         match acting {
-            Some(seat) if self.seats[index(seat)].spec.bot.is_some() => {
+            Some(seat) if self.seats[seat.index()].spec.bot.is_some() => {
                 self.clock.start(None, now);
                 let at_move = self.game.record().moves.len();
                 if self.bot_asked != Some((seat, at_move)) {
@@ -1061,8 +1054,11 @@ impl Session {
             self.ask_bot();
         }
         for seat in SEATS {
-            if self.seats[index(seat)].away_until.is_some_and(|t| t <= now) {
-                self.seats[index(seat)].away_until = None;
+            if self.seats[seat.index()]
+                .away_until
+                .is_some_and(|t| t <= now)
+            {
+                self.seats[seat.index()].away_until = None;
                 self.abandoned(seat, now);
             }
         }
@@ -1072,7 +1068,7 @@ impl Session {
         let Some(seat) = to_act(&self.game) else {
             return;
         };
-        let Some(level) = self.seats[index(seat)].spec.bot.clone() else {
+        let Some(level) = self.seats[seat.index()].spec.bot.clone() else {
             return;
         };
         let at_move = self.game.record().moves.len();
@@ -1136,7 +1132,7 @@ impl Session {
     }
 
     fn abandoned(&mut self, seat: Seat, now: Moment) {
-        if self.status != Status::Live || self.seats[index(seat)].conns > 0 {
+        if self.status != Status::Live || self.seats[seat.index()].conns > 0 {
             return;
         }
         let side = self.game.side_of(seat);

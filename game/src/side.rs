@@ -73,6 +73,14 @@ impl Seat {
         }
     }
 
+    /// 0 for the first seat, 1 for the second (for per-seat arrays).
+    pub fn index(self) -> usize {
+        match self {
+            Seat::First => 0,
+            Seat::Second => 1,
+        }
+    }
+
     /// The other seat.
     pub fn other(self) -> Seat {
         match self {

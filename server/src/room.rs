@@ -199,13 +199,6 @@ fn lock(
         .unwrap_or_else(std::sync::PoisonError::into_inner)
 }
 
-fn seat_index(seat: Seat) -> usize {
-    match seat {
-        Seat::First => 0,
-        Seat::Second => 1,
-    }
-}
-
 fn bot_seed() -> u64 {
     crate::token::seed().unwrap_or_else(|e| {
         warn!(error = %e, "no randomness for the bot; seeding it from the time");
@@ -281,7 +274,7 @@ impl<H: RoomHost> Room<H> {
                     Some(cmd) => self.handle(cmd).await,
                 },
                 Some(a) = bots.recv() => {
-                    *lock(&self.bots[seat_index(a.seat)]) = Some(a.bot);
+                    *lock(&self.bots[a.seat.index()]) = Some(a.bot);
                     let input = Input::BotMove { seat: a.seat, at_move: a.at_move, decision: a.decision };
                     self.feed(input).await;
                 }
@@ -528,7 +521,7 @@ impl<H: RoomHost> Room<H> {
         at_move: usize,
         view: Box<MatchView>,
     ) {
-        let Some(mut bot) = lock(&self.bots[seat_index(seat)]).take() else {
+        let Some(mut bot) = lock(&self.bots[seat.index()]).take() else {
             warn!(match_id = %self.id, level, ?seat, "no bot in this seat (or it is still thinking)");
             return;
         };
