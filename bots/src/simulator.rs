@@ -5,27 +5,12 @@
 //! whatever a bot learns from it, a player could learn too.
 
 use game::noise::NoiseDraw;
-use game::physics;
-use game::rules::{judge, Verdict};
-use game::{Board, Config, MatchView, NoiseConfig, PieceId, Shot, ShotError, Side};
+use game::simulate;
+use game::{Board, Config, MatchView, NoiseConfig, Shot, ShotError, Side};
 
-/// What a simulated shot did.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Simulated {
-    /// The pieces knocked off, in the order they fell.
-    pub knocked_off: Vec<PieceId>,
-    /// Where the pieces came to rest.
-    pub board: Board,
-    /// What the rules make of it: shoot again, pass, or the round's end.
-    pub verdict: Verdict,
-}
-
-impl Simulated {
-    /// Pieces of `side` knocked off.
-    pub fn lost(&self, side: Side) -> usize {
-        self.knocked_off.iter().filter(|p| p.side() == side).count()
-    }
-}
+/// What a simulated shot did (the pieces knocked off, where the others
+/// rest, the verdict of the turn rule).
+pub use game::Simulation as Simulated;
 
 /// Plays candidate shots on one position.
 #[derive(Clone, Debug)]
@@ -101,24 +86,14 @@ impl<'a> Simulator<'a> {
                 side: shooter,
             });
         }
-        if !self.board.contains(piece) {
-            return Err(ShotError::PieceOffBoard(piece));
-        }
-        let s = physics::settle(self.config, self.board, piece, velocity)
-            .map_err(ShotError::Physics)?;
-        let verdict = judge(shooter, &s.knocked_off, &s.board);
-        Ok(Simulated {
-            knocked_off: s.knocked_off,
-            board: s.board,
-            verdict,
-        })
+        simulate::play(self.config, self.board, shot, velocity, false)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use game::{Game, Phase};
+    use game::{Game, Phase, PieceId};
     use glam::DVec2;
 
     #[test]

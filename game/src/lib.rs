@@ -39,7 +39,8 @@
 //! [`rules`] (the turn rule), [`outcome`] (what shots, rounds and matches
 //! came to), [`game`] (the match state machine), [`record`] (the versioned
 //! match record), [`replay`] (bit-exact replay and scrubbing),
-//! [`protocol`] (the wire messages and refusals) and [`session`] (a live
+//! [`simulate`] (one shot on any position, as plain data for every
+//! language), [`protocol`] (the wire messages and refusals) and [`session`] (a live
 //! match — seats, connections, turn clock, rematch — as a state machine
 //! without I/O, driven by the server's rooms and by tests on a virtual
 //! clock).
@@ -60,6 +61,7 @@ pub mod rules;
 pub mod session;
 pub mod shot;
 pub mod side;
+pub mod simulate;
 #[cfg(test)]
 mod testing;
 
@@ -75,3 +77,4 @@ pub use rows::Rows;
 pub use rules::RoundResult;
 pub use shot::{Shot, ShotError};
 pub use side::{Seat, Side};
+pub use simulate::{SimulateError, SimulateRequest, Simulation};

@@ -180,6 +180,9 @@ pub enum ErrorCode {
     ServerBusy,
     /// The record of a match is public only once it is over.
     MatchNotOver,
+    /// A position given to simulate is impossible (a piece twice, off
+    /// the board, or two pieces overlapping).
+    BadBoard,
 }
 
 impl ErrorCode {
@@ -212,6 +215,7 @@ impl ErrorCode {
             ErrorCode::MessageTooLarge => "message-too-large",
             ErrorCode::ServerBusy => "server-busy",
             ErrorCode::MatchNotOver => "match-not-over",
+            ErrorCode::BadBoard => "bad-board",
         }
     }
 }

@@ -21,8 +21,11 @@ pub enum RoundResult {
     Draw,
 }
 
-/// What happens after a shot.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// What happens after a shot (on the wire: `{"verdict": "shoot-again"}`,
+/// `{"verdict": "pass-turn"}` or `{"verdict": "round-over", "result":
+/// "won", "side": "white"}`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(tag = "verdict", rename_all = "kebab-case")]
 pub enum Verdict {
     /// The shooter shoots again.
     ShootAgain,
