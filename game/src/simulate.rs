@@ -202,7 +202,7 @@ impl SimulateRequest {
 /// flicked in a random direction at a random speed, and half the time a
 /// noise draw.
 pub fn random_request(rng: &mut SplitMix64) -> SimulateRequest {
-    let config = if rng.next_u64() % 2 == 0 {
+    let config = if rng.next_u64().is_multiple_of(2) {
         Config::default()
     } else {
         Config::standard()
@@ -228,7 +228,7 @@ pub fn random_request(rng: &mut SplitMix64) -> SimulateRequest {
     let angle = rng.next_f64() * std::f64::consts::TAU;
     let speed = config.max_speed * (0.05 + 0.95 * rng.next_f64());
     let (s, c) = crate::noise::sin_cos(angle);
-    let noise = (rng.next_u64() % 2 == 0).then(|| NoiseDraw::sample(rng));
+    let noise = (rng.next_u64().is_multiple_of(2)).then(|| NoiseDraw::sample(rng));
     SimulateRequest {
         config,
         board,
