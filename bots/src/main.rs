@@ -24,6 +24,20 @@ enum Command {
     Tournament(TournamentArgs),
     /// One match on a server: create it, join it, or play a built-in level.
     Play(PlayArgs),
+    /// Simulated shots per CPU-second over random positions: the native
+    /// twin of the JavaScript and Python bindings' throughput benchmarks
+    /// (the same requests for the same seed).
+    Throughput(ThroughputArgs),
+}
+
+#[derive(Parser, Debug)]
+struct ThroughputArgs {
+    /// How many random requests to simulate.
+    #[arg(long, default_value_t = 20_000)]
+    count: u32,
+    /// Their seed (`game::simulate::random_request` from one generator).
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
 }
 
 #[derive(Parser, Debug)]
@@ -142,6 +156,7 @@ fn main() -> ExitCode {
     let done = match cli.command {
         Command::Tournament(args) => tournament_command(args),
         Command::Play(args) => play_command(args),
+        Command::Throughput(args) => throughput_command(args),
     };
     match done {
         Ok(()) => ExitCode::SUCCESS,
@@ -155,6 +170,39 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+fn throughput_command(args: ThroughputArgs) -> Result<(), Box<dyn std::error::Error>> {
+    use game::noise::SplitMix64;
+    use game::simulate::{self, random_request};
+    let mut rng = SplitMix64::new(args.seed);
+    let requests: Vec<_> = (0..args.count).map(|_| random_request(&mut rng)).collect();
+    // Each position checked and converted once, as a binding's `Simulator`
+    // does; the timed part is the shot itself.
+    let mut prepared = Vec::with_capacity(requests.len());
+    for r in &requests {
+        prepared.push((r, r.validate()?));
+    }
+    let clock = cpu_time::ProcessTime::now();
+    let mut knocked = 0usize;
+    for (r, (board, shot)) in &prepared {
+        let v = r.played_velocity(shot);
+        knocked += simulate::play(&r.config, board, shot, v, false)?
+            .knocked_off
+            .len();
+    }
+    let cpu = clock.elapsed().as_secs_f64();
+    println!(
+        "{}",
+        serde_json::json!({
+            "binding": "native",
+            "shots": args.count,
+            "knocked_off": knocked,
+            "cpu_seconds": cpu,
+            "shots_per_cpu_second": f64::from(args.count) / cpu,
+        })
+    );
+    Ok(())
 }
 
 fn play_command(args: PlayArgs) -> Result<(), Box<dyn std::error::Error>> {

@@ -185,13 +185,19 @@ impl SimulateRequest {
         Ok((Board::from_pieces(self.board.iter().copied()), shot))
     }
 
+    /// The velocity `shot` is played at: the request's noise draw applied
+    /// with the configuration's noise model, or as aimed.
+    pub fn played_velocity(&self, shot: &Shot) -> DVec2 {
+        match (&self.config.variants.noise, &self.noise) {
+            (Some(model), Some(draw)) => draw.apply(model, shot.velocity(), self.config.max_speed),
+            _ => shot.velocity(),
+        }
+    }
+
     /// Validates and simulates the request.
     pub fn run(&self) -> Result<Simulation, SimulateError> {
         let (board, shot) = self.validate()?;
-        let velocity = match (&self.config.variants.noise, &self.noise) {
-            (Some(model), Some(draw)) => draw.apply(model, shot.velocity(), self.config.max_speed),
-            _ => shot.velocity(),
-        };
+        let velocity = self.played_velocity(&shot);
         Ok(play(&self.config, &board, &shot, velocity, self.film)?)
     }
 }
