@@ -176,7 +176,11 @@ impl Follower {
                 self.bump(now);
                 Followed::State
             }
-            ServerMessage::ShotPlayed { outcome, film } => {
+            ServerMessage::ShotPlayed {
+                outcome,
+                view: next,
+                ..
+            } => {
                 let Some(view) = self.view.as_ref() else {
                     return Followed::OutOfSync("a shot before the match state".into());
                 };
@@ -189,7 +193,6 @@ impl Follower {
                 if outcome.shooter == self.seat.side(view.swapped) {
                     self.my_shots += 1;
                 }
-                let next = view.after_shot(&outcome, &film);
                 if let Phase::Over { result } = next.phase {
                     self.result = Some(result);
                 }
@@ -309,10 +312,7 @@ mod tests {
                 }
                 (Ask::Shoot, Decision::Shot(shot)) => {
                     let played = game.play(me, shot).unwrap();
-                    ServerMessage::ShotPlayed {
-                        outcome: played.outcome,
-                        film: played.film,
-                    }
+                    ServerMessage::shot_played(played, game.view())
                 }
                 (ask, d) => panic!("asked {ask:?}, decided {d:?}"),
             };
@@ -429,17 +429,11 @@ mod tests {
         assert!(matches!(early, Followed::OutOfSync(_)));
         f.apply(state(&game, Seat::First), now);
         let played = game.play(Side::White, shot).unwrap();
-        let mut outcome = played.outcome.clone();
-        outcome.number = 5;
-        let msg = ServerMessage::ShotPlayed {
-            outcome,
-            film: played.film.clone(),
-        };
+        let mut wrong = played.clone();
+        wrong.outcome.number = 5;
+        let msg = ServerMessage::shot_played(wrong, game.view());
         assert!(matches!(f.apply(msg, now), Followed::OutOfSync(_)));
-        let msg = ServerMessage::ShotPlayed {
-            outcome: played.outcome,
-            film: played.film,
-        };
+        let msg = ServerMessage::shot_played(played, game.view());
         assert!(matches!(f.apply(msg, now), Followed::Shot(_)));
         assert_eq!(f.view().unwrap(), &game.view());
         assert_eq!(f.my_shots(), 1);

@@ -67,6 +67,9 @@ impl GameError {
 pub struct Played {
     pub outcome: ShotOutcome,
     pub film: Film,
+    /// Where the pieces came to rest (before a round end sets up the next
+    /// round's board).
+    pub after: Board,
 }
 
 /// What anyone watching the match may know (no seed: knowing it would let
@@ -306,7 +309,7 @@ impl Game {
         let number = self.shots;
         let round = self.round;
         self.shots += 1;
-        self.board = res.board;
+        self.board = res.board.clone();
         let mut round_end = None;
         match judge(side, &res.knocked_off, &self.board) {
             Verdict::ShootAgain => {}
@@ -342,6 +345,7 @@ impl Game {
         Ok(Played {
             outcome,
             film: res.film,
+            after: res.board,
         })
     }
 

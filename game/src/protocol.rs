@@ -18,9 +18,10 @@
 //! assert_eq!(ClientMessage::from_json("{").unwrap_err().code, ErrorCode::BadJson);
 //! ```
 
+use crate::board::Board;
 use crate::config::Config;
 use crate::film::Film;
-use crate::game::{GameError, MatchView};
+use crate::game::{GameError, MatchView, Played};
 use crate::outcome::{MatchResult, ShotOutcome};
 use crate::piece::PieceId;
 use crate::record::MatchRecord;
@@ -90,7 +91,15 @@ pub enum ServerMessage {
         view: MatchView,
     },
     /// A shot was played: what it did and how everything moved.
-    ShotPlayed { outcome: ShotOutcome, film: Film },
+    ShotPlayed {
+        outcome: ShotOutcome,
+        film: Film,
+        /// Where the pieces came to rest: the film's end.
+        after: Board,
+        /// The match as it stands after the shot: at a round end, the new
+        /// round's board and rows, and in `turn` the side that opens it.
+        view: MatchView,
+    },
     /// Black decided the pie rule.
     PieDecided { swap: bool },
     /// The match ended; the record (with its seed) is now public.
@@ -288,21 +297,43 @@ impl From<GameError> for Refusal {
     }
 }
 
-fn read<T: for<'de> Deserialize<'de>>(text: &str) -> Result<T, ProtocolError> {
-    serde_json::from_str(text).map_err(|e| ProtocolError {
-        code: if e.is_syntax() || e.is_eof() {
+/// Reads any JSON body or message of this protocol, with the code its
+/// refusal carries: `bad-json` for text that is not JSON, `not-finite` for
+/// a number beyond the range of a double (JSON has no NaN or infinity, so
+/// `1e400` is how a non-finite number arrives), `bad-message` for JSON
+/// that is not the expected message.
+pub fn read<T: for<'de> Deserialize<'de>>(text: &[u8]) -> Result<T, ProtocolError> {
+    serde_json::from_slice(text).map_err(|e| {
+        let message = e.to_string();
+        let code = if message.starts_with("number out of range") {
+            ErrorCode::NotFinite
+        } else if e.is_syntax() || e.is_eof() {
             ErrorCode::BadJson
         } else {
             ErrorCode::BadMessage
-        },
-        message: e.to_string(),
+        };
+        ProtocolError { code, message }
     })
 }
 
 impl ClientMessage {
+    /// Whether it is a move of the match (a shot, a pie decision,
+    /// resigning, a rematch offer or acceptance): play, which a server's
+    /// flood guard must never drop, as opposed to talk (hello, chat).
+    pub fn is_move(&self) -> bool {
+        matches!(
+            self,
+            ClientMessage::Shot { .. }
+                | ClientMessage::PieDecision { .. }
+                | ClientMessage::Resign
+                | ClientMessage::OfferRematch
+                | ClientMessage::AcceptRematch
+        )
+    }
+
     /// Reads a client message; the error carries `bad-json` or `bad-message`.
     pub fn from_json(text: &str) -> Result<Self, ProtocolError> {
-        read(text)
+        read(text.as_bytes())
     }
 
     /// The message as JSON.
@@ -314,12 +345,22 @@ impl ClientMessage {
 impl ServerMessage {
     /// Reads a server message.
     pub fn from_json(text: &str) -> Result<Self, ProtocolError> {
-        read(text)
+        read(text.as_bytes())
     }
 
     /// The message as JSON.
     pub fn to_json(&self) -> String {
         serde_json::to_string(self).expect("server messages always serialise")
+    }
+
+    /// The announcement of an accepted shot, with the match's view after it.
+    pub fn shot_played(played: Played, view: MatchView) -> Self {
+        ServerMessage::ShotPlayed {
+            outcome: played.outcome,
+            film: played.film,
+            after: played.after,
+            view,
+        }
     }
 
     /// An error message.
@@ -413,6 +454,20 @@ mod tests {
                 .code,
             ErrorCode::BadMessage
         );
+        // JSON has no NaN; a number beyond a double's range is how a
+        // non-finite velocity arrives.
+        assert_eq!(
+            ClientMessage::from_json(r#"{"type":"shot","piece":4,"velocity":[0,1e400]}"#)
+                .unwrap_err()
+                .code,
+            ErrorCode::NotFinite
+        );
+        assert_eq!(
+            ClientMessage::from_json(r#"{"type":"shot","piece":4,"velocity":[0,NaN]}"#)
+                .unwrap_err()
+                .code,
+            ErrorCode::BadJson
+        );
         let e = ClientMessage::from_json("[").unwrap_err().to_message();
         assert!(
             e.to_json()
@@ -460,10 +515,7 @@ mod tests {
         let piece = PieceId::new(Side::White, 4).unwrap();
         let shot = Shot::new(piece, DVec2::new(0.0, 2.0), g.config()).unwrap();
         let played = g.play(Side::White, shot).unwrap();
-        let msg = ServerMessage::ShotPlayed {
-            outcome: played.outcome,
-            film: played.film,
-        };
+        let msg = ServerMessage::shot_played(played, g.view());
         let json = msg.to_json();
         assert!(json.starts_with(r#"{"type":"shot-played""#));
         assert_eq!(ServerMessage::from_json(&json).unwrap(), msg);

@@ -911,7 +911,7 @@ impl Session {
             | ClientMessage::Watch { .. } => {
                 return Err(Refusal::new(
                     ErrorCode::BadMessage,
-                    "matches are created and joined over HTTP (see /)",
+                    "matches are created and joined over HTTP (see /api)",
                 ))
             }
         }
@@ -983,10 +983,10 @@ impl Session {
             self.broadcast(msg);
         }
         match (action, played) {
-            (Action::Shot(..), Some(played)) => self.broadcast(ServerMessage::ShotPlayed {
-                outcome: played.outcome,
-                film: played.film,
-            }),
+            (Action::Shot(..), Some(played)) => {
+                let view = self.game.view();
+                self.broadcast(ServerMessage::shot_played(played, view))
+            }
             (Action::Pie(_, swap), _) => self.broadcast(ServerMessage::PieDecided { swap }),
             (Action::Pass(side), _) => self.broadcast(ServerMessage::TurnPassed { side }),
             _ => {}

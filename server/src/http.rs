@@ -62,14 +62,7 @@ fn body<T: for<'de> Deserialize<'de>>(bytes: &[u8]) -> Result<T, Refusal> {
     } else {
         bytes
     };
-    serde_json::from_slice(text).map_err(|e| {
-        let code = if e.is_syntax() || e.is_eof() {
-            ErrorCode::BadJson
-        } else {
-            ErrorCode::BadMessage
-        };
-        Refusal::new(code, e.to_string())
-    })
+    game::protocol::read(text).map_err(|e| Refusal::new(e.code, e.message))
 }
 
 fn name(n: Option<String>, default: &str) -> Result<String, Refusal> {

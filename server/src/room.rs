@@ -26,6 +26,7 @@ use game::session::{
 use game::{Config, Game, MatchView, RecordedMove, Replay, Seat, Side};
 use std::collections::{HashMap, VecDeque};
 use std::future::Future;
+use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
 use tokio::sync::{mpsc, oneshot};
@@ -141,6 +142,10 @@ pub struct Connected {
     pub seat: Option<Seat>,
     /// Everything the room sends this connection, `match-state` first.
     pub rx: Inbox,
+    /// How many of this connection's messages the room refused so far
+    /// (the connection's flood guard charges them: junk is limited, legal
+    /// moves are not).
+    pub refused: Arc<AtomicU32>,
 }
 
 /// A built-in bot's decision, computed off the room's task.
@@ -176,6 +181,8 @@ pub struct Room<H: RoomHost> {
     epoch: Instant,
     /// The connections' queues.
     conns: HashMap<u64, mpsc::Sender<Outbound>>,
+    /// The count of refused messages of each connection.
+    refused: HashMap<u64, Arc<AtomicU32>>,
     /// Whether the metrics count this match as live.
     live: bool,
     /// The built-in bot of each seat played by one, with its own
@@ -237,6 +244,7 @@ impl<H: RoomHost> Room<H> {
             host,
             epoch: Instant::now(),
             conns: HashMap::new(),
+            refused: HashMap::new(),
             live: false,
             bots,
             bot_tx,
@@ -346,6 +354,7 @@ impl<H: RoomHost> Room<H> {
     }
 
     async fn disconnect(&mut self, conn: u64) {
+        self.refused.remove(&conn);
         if self.conns.remove(&conn).is_some() {
             debug!(match_id = %self.id, conn, "disconnected");
         }
@@ -368,11 +377,14 @@ impl<H: RoomHost> Room<H> {
                 Effect::Admitted { conn, seat } => {
                     let (tx, rx) = mpsc::channel(self.host.limits().outbound_queue);
                     self.conns.insert(conn.0, tx);
+                    let refused = Arc::new(AtomicU32::new(0));
+                    self.refused.insert(conn.0, refused.clone());
                     debug!(match_id = %self.id, conn = conn.0, ?seat, "connected");
                     carried.admitted = Some(Connected {
                         conn: conn.0,
                         seat,
                         rx: Inbox::new(rx),
+                        refused,
                     });
                 }
                 Effect::Joined { seat } => {
@@ -383,6 +395,9 @@ impl<H: RoomHost> Room<H> {
                     Request::Connect(_) | Request::Join => carried.refused = Some(refusal),
                     Request::Message(conn) => {
                         self.host.metrics().refused();
+                        if let Some(count) = self.refused.get(&conn.0) {
+                            count.fetch_add(1, Ordering::Relaxed);
+                        }
                         self.say(To::Only(conn), &refusal.to_message());
                     }
                     Request::Bot(seat) => {

@@ -3,7 +3,10 @@
 //! the room sends (the full `match-state` first), and reads the client's
 //! messages: it refuses oversized frames, malformed JSON, unknown messages
 //! and floods (a token bucket per connection) itself, with an `error` of a
-//! stable code, and passes every match message to the room. A connection
+//! stable code, and passes every match message to the room. Moves are
+//! never dropped by the flood guard: they pay only when the room refuses
+//! them, and a connection whose refused moves run the bucket bankrupt is
+//! closed. A connection
 //! that stops answering pings, floods on after warnings, or cannot keep up
 //! with the match is closed.
 
@@ -108,6 +111,8 @@ async fn run(hub: Hub, query: WsQuery, mut session: Session, stream: actix_ws::M
     };
     let conn = connected.conn;
     let mut rx = connected.rx;
+    let refused = connected.refused;
+    let mut refused_seen = 0u32;
     let mut bucket = TokenBucket::new(limits.rate_per_sec, limits.rate_burst, Instant::now());
     let mut ping = tokio::time::interval(PING_EVERY);
     let mut last_heard = Instant::now();
@@ -135,13 +140,27 @@ async fn run(hub: Hub, query: WsQuery, mut session: Session, stream: actix_ws::M
                     }
                     Some(Ok(AggregatedMessage::Pong(_))) => {}
                     Some(Ok(AggregatedMessage::Text(text))) => {
-                        if !bucket.take(Instant::now()) {
+                        // Moves the match refused since the last message
+                        // are charged now: junk pays, legal play does not.
+                        let now = Instant::now();
+                        let count = refused.load(std::sync::atomic::Ordering::Relaxed);
+                        bucket.charge(count.wrapping_sub(refused_seen), now);
+                        refused_seen = count;
+                        let parsed = ClientMessage::from_json(&text);
+                        let play = matches!(&parsed, Ok(m) if m.is_move());
+                        if play && bucket.bankrupt() {
+                            break Some(CloseReason {
+                                code: CloseCode::Policy,
+                                description: Some("rate-limited".into()),
+                            });
+                        }
+                        if !play && !bucket.take(now) {
                             if let Some(r) = flooded(&hub, &mut session, &bucket).await {
                                 break Some(r);
                             }
                             continue;
                         }
-                        if !handle_text(&hub, &room, conn, &mut session, &text).await {
+                        if !handle_message(&hub, &room, conn, &mut session, parsed).await {
                             break None;
                         }
                     }
@@ -219,15 +238,15 @@ async fn flooded(hub: &Hub, session: &mut Session, bucket: &TokenBucket) -> Opti
     None
 }
 
-/// Reads one text message; `false` if the session is gone.
-async fn handle_text(
+/// Handles one text message as read; `false` if the session is gone.
+async fn handle_message(
     hub: &Hub,
     room: &RoomHandle,
     conn: u64,
     session: &mut Session,
-    text: &str,
+    parsed: Result<ClientMessage, game::protocol::ProtocolError>,
 ) -> bool {
-    match ClientMessage::from_json(text) {
+    match parsed {
         Err(e) => {
             hub.metrics().refused();
             send(session, &e.to_message()).await

@@ -136,6 +136,40 @@ async fn a_flood_is_rate_limited_and_the_connection_survives() {
 }
 
 #[tokio::test]
+async fn legal_moves_are_never_dropped_by_the_flood_guard_but_refused_ones_pay() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &["--rate-per-sec", "1", "--rate-burst", "2"]);
+    let (id, white_token, black_token) = server.two_player_match("").await;
+    let mut white = server.ws(&id, Some(&white_token)).await;
+    view(white.next().await);
+    // Talk spends the bucket...
+    for k in 0..3 {
+        white
+            .send(&ClientMessage::Chat {
+                text: format!("hi {k}"),
+            })
+            .await;
+    }
+    assert_eq!(white.next_error().await, "rate-limited");
+    // ...but a legal shot right after is played, not dropped.
+    white.send(&shot(4, 0.0, 2.0)).await;
+    white.next_of("shot-played").await;
+    // Refused moves are junk: they pay into debt, and a connection that
+    // keeps sending them is closed.
+    let mut black = server.ws(&id, Some(&black_token)).await;
+    view(black.next().await);
+    for _ in 0..20 {
+        black.send(&shot(12, 0.0, -2.0)).await;
+        tokio::time::sleep(Duration::from_millis(5)).await;
+    }
+    assert_eq!(black.next_error().await, "not-your-turn");
+    assert!(
+        black.closes().await,
+        "a flood of refused moves closes the connection"
+    );
+}
+
+#[tokio::test]
 async fn limits_on_matches_and_connections_hold() {
     let dir = tempfile::tempdir().unwrap();
     let server = Server::start(

@@ -256,7 +256,7 @@ impl Play {
                 break;
             };
             match m {
-                ServerMessage::ShotPlayed { outcome, film } => {
+                ServerMessage::ShotPlayed { outcome, film, .. } => {
                     self.playing = Some((Clip::new(outcome, film), 0.0));
                 }
                 ServerMessage::PieDecided { swap } => {
