@@ -93,9 +93,14 @@ async fn serve(
 ) -> Result<(), AppError> {
     let limit = config.max_message_bytes;
     let data = web::Data::new(hub.clone());
+    let simulations = web::Data::new(crate::simulate::AddressLimiter::new(
+        config.simulate_per_sec,
+        config.simulate_burst,
+    ));
     let server = HttpServer::new(move || {
         App::new()
             .app_data(data.clone())
+            .app_data(simulations.clone())
             .app_data(web::PayloadConfig::new(limit))
             .configure(crate::http::routes)
     })

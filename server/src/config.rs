@@ -60,6 +60,15 @@ pub struct Config {
     #[arg(long, env = "CHAPAEV_RATE_BURST", default_value_t = 40.0)]
     pub rate_burst: f64,
 
+    /// Shots `POST /api/simulate` computes per second for one client
+    /// address, sustained.
+    #[arg(long, env = "CHAPAEV_SIMULATE_PER_SEC", default_value_t = 50.0)]
+    pub simulate_per_sec: f64,
+
+    /// Shots `POST /api/simulate` computes at once for one address.
+    #[arg(long, env = "CHAPAEV_SIMULATE_BURST", default_value_t = 100.0)]
+    pub simulate_burst: f64,
+
     /// Default turn clock, seconds to shoot (a match may ask for its own
     /// between 1 and 3600). Timing out passes the turn; three in a row forfeit.
     #[arg(long, env = "CHAPAEV_TURN_SECONDS", default_value_t = 60, value_parser = clap::value_parser!(u64).range(1..=3600))]

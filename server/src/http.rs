@@ -33,10 +33,12 @@ pub fn routes(cfg: &mut web::ServiceConfig) {
         .route("/api/matches/{id}", web::get().to(summary))
         .route("/api/matches/{id}/join", web::post().to(join))
         .route("/api/exhibitions", web::post().to(exhibition))
+        .route("/api/simulate", web::post().to(crate::simulate::handler))
         .route("/api/matches/{id}/record", web::get().to(record));
 }
 
-fn refused(r: &Refusal) -> HttpResponse {
+/// A refusal as an HTTP error response with a JSON body.
+pub(crate) fn refused(r: &Refusal) -> HttpResponse {
     let status = StatusCode::from_u16(r.http_status()).unwrap_or(StatusCode::BAD_REQUEST);
     HttpResponse::build(status)
         .content_type("application/json")

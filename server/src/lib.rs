@@ -17,7 +17,8 @@
 //! (per-connection token bucket), [`room`] (the task that drives one
 //! match's session and asks the computer levels of the [`bots`] crate for
 //! their moves), [`hub`] (the registry of
-//! rooms), [`http`] (the HTTP API), [`assets`] (the embedded web client at
+//! rooms), [`http`] (the HTTP API), [`simulate`] (`POST /api/simulate`,
+//! limited per address), [`assets`] (the embedded web client at
 //! `/`), [`ws`] (the WebSocket sessions) and [`app`] (startup and
 //! shutdown).
 
@@ -31,6 +32,7 @@ pub mod metrics;
 pub mod ratelimit;
 pub mod refusal;
 pub mod room;
+pub mod simulate;
 pub mod store;
 pub mod token;
 pub mod ws;

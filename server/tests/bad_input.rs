@@ -170,6 +170,63 @@ async fn legal_moves_are_never_dropped_by_the_flood_guard_but_refused_ones_pay()
 }
 
 #[tokio::test]
+async fn simulate_gives_the_servers_bits_and_refuses_hostile_requests() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(
+        dir.path(),
+        &["--simulate-per-sec", "1", "--simulate-burst", "8"],
+    );
+    let mut rng = game::noise::SplitMix64::new(4);
+    for _ in 0..3 {
+        let req = game::simulate::random_request(&mut rng);
+        let (status, body) = server
+            .http(
+                "POST",
+                "/api/simulate",
+                &serde_json::to_string(&req).unwrap(),
+            )
+            .await;
+        assert_eq!(status, 200, "{body}");
+        let native = serde_json::to_string(&req.run().unwrap()).unwrap();
+        assert_eq!(body, native, "the same bits as the server's own simulation");
+    }
+    let code = |body: &str| -> String {
+        let v: serde_json::Value = serde_json::from_str(body).unwrap();
+        v["code"].as_str().unwrap_or_default().to_string()
+    };
+    let opening = r#""board":[{"id":0,"pos":[0.02,0.02]},{"id":8,"pos":[0.02,0.30]}]"#;
+    for (body, status, expected) in [
+        ("{", 400, "bad-json"),
+        (
+            r#"{"board":[],"piece":0,"velocity":[0,1],"oops":1}"#,
+            400,
+            "bad-message",
+        ),
+        (
+            &format!(r#"{{{opening},"piece":0,"velocity":[0,1e400]}}"#) as &str,
+            400,
+            "not-finite",
+        ),
+        (
+            r#"{"board":[{"id":0,"pos":[0.02,0.02]},{"id":8,"pos":[0.021,0.02]}],"piece":0,"velocity":[0,1]}"#,
+            400,
+            "bad-board",
+        ),
+        (
+            &format!(r#"{{{opening},"piece":0,"velocity":[0,9]}}"#),
+            400,
+            "too-fast",
+        ),
+    ] {
+        let (s, b) = server.http("POST", "/api/simulate", body).await;
+        assert_eq!((s, code(&b)), (status, expected.to_string()), "{body}: {b}");
+    }
+    // The address has spent its burst: refused until it refills.
+    let (s, b) = server.http("POST", "/api/simulate", "{}").await;
+    assert_eq!((s, code(&b)), (429, "rate-limited".to_string()));
+}
+
+#[tokio::test]
 async fn limits_on_matches_and_connections_hold() {
     let dir = tempfile::tempdir().unwrap();
     let server = Server::start(
