@@ -8,7 +8,7 @@ use crate::id::{BodyId, LineId, PointId};
 use serde::{Deserialize, Serialize};
 
 /// One thing that happened at time `t`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(into = "FlatEvent", try_from = "FlatEvent")]
 pub struct Event {
     pub t: f64,
@@ -82,9 +82,10 @@ impl EventKind {
 }
 
 /// The flat JSON form of an event.
-#[derive(Clone, Debug, Serialize, Deserialize)]
+#[derive(Clone, Debug, Serialize, Deserialize, schemars::JsonSchema)]
 struct FlatEvent {
     t: f64,
+    #[schemars(extend("enum" = ["body-body", "body-point", "body-line", "stop", "region-exit", "region-entry", "action"]))]
     kind: String,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     bodies: Vec<BodyId>,

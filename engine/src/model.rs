@@ -73,7 +73,7 @@ pub enum ActionError {
 
 /// Bodies, points, lines and gravity, each body with its trajectory: what a
 /// client needs to show any moment until the next event.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Snapshot {
     pub t: f64,
     pub g: f64,
@@ -98,7 +98,7 @@ impl Snapshot {
 /// What changed between two times: the bodies whose motion differs (with
 /// their state at `to`, or `None` if gone) and, if they changed, the fixed
 /// objects and gravity.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct SceneDiff {
     pub from: f64,
     pub to: f64,
@@ -132,7 +132,7 @@ impl SceneDiff {
 }
 
 /// The fixed part of a scene.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Fixed {
     pub g: f64,
     pub points: Vec<Point>,

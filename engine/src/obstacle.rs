@@ -12,14 +12,15 @@ use glam::DVec2;
 use serde::{Deserialize, Serialize};
 
 /// An immovable point.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Point {
+    #[schemars(with = "[f64; 2]")]
     pub pos: DVec2,
 }
 
 /// What part of the line through `a` and `b` exists.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum LineKind {
     /// Infinite both ways.
@@ -32,9 +33,11 @@ pub enum LineKind {
 
 /// An immovable line, ray or segment; or, with `sensor`, a boundary that
 /// reports crossings instead of stopping discs.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Line {
+    #[schemars(with = "[f64; 2]")]
     pub a: DVec2,
+    #[schemars(with = "[f64; 2]")]
     pub b: DVec2,
     pub kind: LineKind,
     /// Not solid: report centre crossings (region exits) instead.

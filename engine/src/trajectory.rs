@@ -14,26 +14,31 @@ use glam::DVec2;
 use serde::{Deserialize, Serialize};
 
 /// The motion of one disc from time `t0` on, until something changes it.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(from = "TrajectoryData", into = "TrajectoryData")]
 pub struct Trajectory {
     t0: f64,
+    #[schemars(with = "[f64; 2]")]
     p: DVec2,
+    #[schemars(with = "[f64; 2]")]
     u: DVec2,
     alpha: f64,
     // Derived, cached: |u|, u/|u| (only with friction: frictionless motion
     // needs neither, and skipping them keeps a frictionless event cheap), and
     // the absolute stop time.
     speed: f64,
+    #[schemars(with = "[f64; 2]")]
     dir: DVec2,
     t_stop: f64,
 }
 
 /// The serialised form: only what defines the motion.
-#[derive(Clone, Copy, Debug, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, schemars::JsonSchema)]
 struct TrajectoryData {
     t0: f64,
+    #[schemars(with = "[f64; 2]")]
     pos: DVec2,
+    #[schemars(with = "[f64; 2]")]
     vel: DVec2,
     alpha: f64,
 }

@@ -124,7 +124,7 @@ impl Default for Limits {
 }
 
 /// Why a run stopped.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum EndReason {
     /// Nothing moves and nothing is pending.
@@ -169,7 +169,7 @@ impl Stats {
 }
 
 /// The material of a disc (what does not change as it moves).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Material {
     pub radius: f64,
     pub mass: f64,
@@ -190,7 +190,7 @@ impl Material {
 }
 
 /// A body as the world holds it: who, what, and how it moves.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct BodyState {
     pub id: BodyId,
     pub material: Material,

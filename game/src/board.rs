@@ -16,14 +16,15 @@ use glam::DVec2;
 use serde::{Deserialize, Serialize};
 
 /// A piece standing on the board.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Piece {
     pub id: PieceId,
+    #[schemars(with = "[f64; 2]")]
     pub pos: DVec2,
 }
 
 /// The pieces on the board, in id order, all at rest.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(transparent)]
 pub struct Board {
     pieces: Vec<Piece>,

@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 pub const BOARD_SQUARES: u8 = 8;
 
 /// Everything that defines the physics and rules of a match.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct Config {
     /// Side of one square, m.
@@ -39,7 +39,7 @@ pub struct Config {
 }
 
 /// Optional rules.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct Variants {
     /// A round won without losing a piece moves the winner two rows.
@@ -53,7 +53,7 @@ pub struct Variants {
 }
 
 /// Gaussian execution noise (standard deviations).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct NoiseConfig {
     /// Of the direction, radians.
@@ -89,7 +89,9 @@ pub const STANDARD_NOISE: NoiseConfig = NoiseConfig {
 };
 
 /// A named set of rules a match can be created with.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum Preset {
     /// The defaults: shots played exactly as aimed, no pie rule.

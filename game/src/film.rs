@@ -12,7 +12,7 @@ use engine::{EventHandler, Model, Scene};
 use serde::{Deserialize, Serialize};
 
 /// One shot's motion, from the flick (t = 0) until everything rests.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Film {
     /// The pieces and their trajectories at t = 0.
     pub start: Snapshot,

@@ -22,7 +22,7 @@ use crate::side::{Seat, Side};
 use serde::{Deserialize, Serialize};
 
 /// Where the match stands.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "phase", rename_all = "kebab-case")]
 pub enum Phase {
     /// Waiting for a shot by the side whose turn it is.
@@ -74,7 +74,7 @@ pub struct Played {
 
 /// What anyone watching the match may know (no seed: knowing it would let
 /// a player predict the execution noise).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct MatchView {
     pub config: Config,
     pub phase: Phase,

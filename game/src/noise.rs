@@ -123,7 +123,16 @@ pub fn rotate(v: DVec2, angle: f64) -> DVec2 {
 /// wants to know how robust a candidate is draws its own from its own
 /// generator ([`NoiseDraw::sample`]) and applies it with the very same
 /// arithmetic ([`NoiseDraw::apply`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    serde::Serialize,
+    serde::Deserialize,
+    schemars::JsonSchema,
+)]
 #[serde(deny_unknown_fields)]
 pub struct NoiseDraw {
     /// Standard normal; the direction turns by `angle_sigma * angle` radians.

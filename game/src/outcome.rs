@@ -10,7 +10,7 @@ use glam::DVec2;
 use serde::{Deserialize, Serialize};
 
 /// Why a match was won.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum WinReason {
     /// The winner's row reached the far edge.
@@ -26,7 +26,7 @@ pub enum WinReason {
 }
 
 /// Why a side forfeited (lost without playing the match out).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum ForfeitReason {
     /// Three turn-clock timeouts in a row.
@@ -46,7 +46,7 @@ impl ForfeitReason {
 }
 
 /// How a match ended.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "result", rename_all = "kebab-case")]
 pub enum MatchResult {
     Won {
@@ -68,7 +68,7 @@ impl MatchResult {
 }
 
 /// What comes after a shot.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "next", rename_all = "kebab-case")]
 pub enum Next {
     /// `side` shoots next.
@@ -81,7 +81,7 @@ pub enum Next {
 }
 
 /// The end of a round.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct RoundEnd {
     pub result: RoundResult,
     /// The rows of the next round (`None` when the match ended).
@@ -89,7 +89,7 @@ pub struct RoundEnd {
 }
 
 /// Everything one shot did, as recorded and announced.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct ShotOutcome {
     /// Shots played in the match before this one (also picks its noise).
     pub number: u32,
@@ -98,8 +98,10 @@ pub struct ShotOutcome {
     pub shooter: Side,
     pub piece: PieceId,
     /// The velocity as aimed.
+    #[schemars(with = "[f64; 2]")]
     pub aimed: DVec2,
     /// The velocity actually played (after execution noise, if any).
+    #[schemars(with = "[f64; 2]")]
     pub played: DVec2,
     /// The engine's event chain (times from the flick, t = 0).
     pub events: Vec<Event>,

@@ -16,6 +16,21 @@ pub const PIECES_PER_SIDE: u8 = 8;
 #[serde(try_from = "u8", into = "u8")]
 pub struct PieceId(u8);
 
+impl schemars::JsonSchema for PieceId {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "PieceId".into()
+    }
+
+    fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        schemars::json_schema!({
+            "description": "One of the sixteen pieces: 0-7 White's on files a-h, 8-15 Black's.",
+            "type": "integer",
+            "minimum": 0,
+            "maximum": 15,
+        })
+    }
+}
+
 /// A number that names no piece.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("no piece has number {0} (pieces are 0-15)")]

@@ -38,7 +38,7 @@ pub const PROTOCOL_VERSION: u32 = 1;
 pub const MAX_CHAT_CHARS: usize = 500;
 
 /// What a client sends.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum ClientMessage {
     /// First message of a connection.
@@ -54,7 +54,11 @@ pub enum ClientMessage {
     /// Watch a match without playing.
     Watch { match_id: String },
     /// Flick `piece` with `velocity` (m/s, `[x, y]`).
-    Shot { piece: PieceId, velocity: DVec2 },
+    Shot {
+        piece: PieceId,
+        #[schemars(with = "[f64; 2]")]
+        velocity: DVec2,
+    },
     /// Black's pie-rule decision.
     PieDecision { swap: bool },
     /// Give up the match.
@@ -68,14 +72,14 @@ pub enum ClientMessage {
 }
 
 /// Who is in a match.
-#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Players {
     pub first: Option<String>,
     pub second: Option<String>,
 }
 
 /// What the server sends.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum ServerMessage {
     /// Answer to a hello.
@@ -148,7 +152,7 @@ pub enum ServerMessage {
 pub use crate::outcome::ForfeitReason;
 
 /// Stable error codes (kebab-case strings on the wire).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum ErrorCode {
     /// The message is not JSON.
@@ -297,6 +301,42 @@ impl From<GameError> for Refusal {
     }
 }
 
+/// Where the server serves [`schema`] (and `docs/schema/` ships it).
+pub const SCHEMA_PATH: &str = "/api/schema/v1.json";
+
+/// The JSON Schema (draft 2020-12) of protocol version 1, generated from
+/// these very types: `$defs` holds every shape, and the four roots are
+/// `ClientMessage` (what a client sends on the WebSocket),
+/// `ServerMessage` (what it receives), `SimulateRequest` and `Simulation`
+/// (the body and answer of `POST /api/simulate`); `MatchRecord` is the
+/// replayable record. A message is valid when it validates against
+/// `{"$ref": "#/$defs/ServerMessage"}` within this document.
+pub fn schema() -> serde_json::Value {
+    let mut generator = schemars::generate::SchemaSettings::draft2020_12().into_generator();
+    let roots = [
+        ("ClientMessage", generator.subschema_for::<ClientMessage>()),
+        ("ServerMessage", generator.subschema_for::<ServerMessage>()),
+        (
+            "SimulateRequest",
+            generator.subschema_for::<crate::simulate::SimulateRequest>(),
+        ),
+        (
+            "Simulation",
+            generator.subschema_for::<crate::simulate::Simulation>(),
+        ),
+        ("MatchRecord", generator.subschema_for::<MatchRecord>()),
+    ];
+    let defs = generator.take_definitions(true);
+    serde_json::json!({
+        "$schema": "https://json-schema.org/draft/2020-12/schema",
+        "$id": SCHEMA_PATH,
+        "title": format!("Chapaev online protocol {PROTOCOL_VERSION}"),
+        "description": "Every message of the match server's WebSocket and the bodies of POST /api/simulate, generated from the server's Rust types. Validate a message against {\"$ref\": \"#/$defs/ServerMessage\"} (or ClientMessage, SimulateRequest, Simulation, MatchRecord).",
+        "anyOf": roots.iter().map(|(name, _)| serde_json::json!({"$ref": format!("#/$defs/{name}")})).collect::<Vec<_>>(),
+        "$defs": defs,
+    })
+}
+
 /// Reads any JSON body or message of this protocol, with the code its
 /// refusal carries: `bad-json` for text that is not JSON, `not-finite` for
 /// a number beyond the range of a double (JSON has no NaN or infinity, so
@@ -433,6 +473,32 @@ mod tests {
         ];
         for m in all {
             assert_eq!(ClientMessage::from_json(&m.to_json()).unwrap(), m);
+        }
+    }
+
+    #[test]
+    fn the_schema_shipped_in_docs_is_the_one_the_types_generate() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../docs/schema/protocol-v1.json"
+        );
+        let generated = serde_json::to_string_pretty(&schema()).unwrap() + "\n";
+        if std::env::var_os("CHAPAEV_BLESS").is_some() {
+            std::fs::write(path, &generated).unwrap();
+        }
+        let shipped = std::fs::read_to_string(path).unwrap_or_default();
+        assert!(
+            shipped == generated,
+            "docs/schema/protocol-v1.json is stale: CHAPAEV_BLESS=1 cargo test -p game schema"
+        );
+        let defs = &schema()["$defs"];
+        for root in [
+            "ClientMessage",
+            "ServerMessage",
+            "SimulateRequest",
+            "Simulation",
+        ] {
+            assert!(defs.get(root).is_some(), "{root} is defined");
         }
     }
 

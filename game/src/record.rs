@@ -16,7 +16,7 @@ pub const RECORD_VERSION: u32 = 2;
 pub const OLDEST_RECORD_VERSION: u32 = 1;
 
 /// One move of a match.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "move", rename_all = "kebab-case")]
 pub enum RecordedMove {
     /// A shot (who, which piece, as aimed, and what it did).
@@ -32,7 +32,7 @@ pub enum RecordedMove {
 }
 
 /// A whole match.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct MatchRecord {
     pub version: u32,
     pub config: Config,

@@ -11,14 +11,14 @@ use crate::side::Side;
 use serde::{Deserialize, Serialize};
 
 /// The two rows: White's rank is always below Black's.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(try_from = "RawRows")]
 pub struct Rows {
     white: u8,
     black: u8,
 }
 
-#[derive(Deserialize)]
+#[derive(Deserialize, schemars::JsonSchema)]
 struct RawRows {
     white: u8,
     black: u8,

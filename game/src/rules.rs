@@ -12,7 +12,7 @@ use crate::side::Side;
 use serde::{Deserialize, Serialize};
 
 /// How a round ended.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "result", content = "side", rename_all = "kebab-case")]
 pub enum RoundResult {
     /// Only this colour is left on the board.
@@ -24,7 +24,7 @@ pub enum RoundResult {
 /// What happens after a shot (on the wire: `{"verdict": "shoot-again"}`,
 /// `{"verdict": "pass-turn"}` or `{"verdict": "round-over", "result":
 /// "won", "side": "white"}`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "verdict", rename_all = "kebab-case")]
 pub enum Verdict {
     /// The shooter shoots again.

@@ -28,10 +28,11 @@ use serde::{Deserialize, Serialize};
 pub const OVERLAP_TOLERANCE: f64 = 1e-9;
 
 /// What one simulated shot did.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Simulation {
     /// The velocity played: the aimed one with the noise draw applied.
+    #[schemars(with = "[f64; 2]")]
     pub played: DVec2,
     /// The pieces knocked off, in the order they fell.
     pub knocked_off: Vec<PieceId>,
@@ -91,7 +92,7 @@ pub fn play(
 
 /// One shot to simulate, as plain data (the body of `POST /api/simulate`
 /// and the argument of the language bindings).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SimulateRequest {
     /// The configuration (a match's `view.config`); the default (casual)
@@ -103,6 +104,7 @@ pub struct SimulateRequest {
     /// The piece flicked; its side is the shooter.
     pub piece: PieceId,
     /// The velocity as aimed, m/s.
+    #[schemars(with = "[f64; 2]")]
     pub velocity: DVec2,
     /// A noise draw to apply with the configuration's noise model
     /// (ignored without one); the shot is played as aimed when left out.

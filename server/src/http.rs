@@ -34,6 +34,7 @@ pub fn routes(cfg: &mut web::ServiceConfig) {
         .route("/api/matches/{id}/join", web::post().to(join))
         .route("/api/exhibitions", web::post().to(exhibition))
         .route("/api/simulate", web::post().to(crate::simulate::handler))
+        .route(game::protocol::SCHEMA_PATH, web::get().to(schema))
         .route("/api/matches/{id}/record", web::get().to(record));
 }
 
@@ -93,6 +94,15 @@ async fn blocking<T: Send + 'static>(
             Err(Refusal::internal())
         }
     }
+}
+
+/// `GET /api/schema/v1.json`: the protocol's JSON Schema.
+async fn schema() -> HttpResponse {
+    static SCHEMA: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+    let text = SCHEMA.get_or_init(|| game::protocol::schema().to_string());
+    HttpResponse::Ok()
+        .content_type("application/schema+json")
+        .body(text.as_str())
 }
 
 async fn api_page() -> HttpResponse {

@@ -172,6 +172,9 @@ fn dechunk(mut s: &str) -> String {
 /// A WebSocket client speaking the protocol.
 pub struct Client {
     ws: WebSocketStream<MaybeTlsStream<TcpStream>>,
+    /// Every text frame received and sent, as it travelled.
+    pub received: Vec<String>,
+    pub sent: Vec<String>,
 }
 
 impl Client {
@@ -189,10 +192,16 @@ impl Client {
             None => format!("ws://{addr}/ws?match={id}"),
         };
         let (ws, _) = tokio_tungstenite::connect_async(url).await?;
-        Ok(Client { ws })
+        Ok(Client {
+            ws,
+            received: Vec::new(),
+            sent: Vec::new(),
+        })
     }
 
     pub async fn send_text(&mut self, text: impl Into<String>) {
+        let text = text.into();
+        self.sent.push(text.clone());
         self.ws.send(Message::Text(text.into())).await.unwrap();
     }
 
@@ -207,7 +216,10 @@ impl Client {
                 .await
                 .expect("a message in time");
             match frame {
-                Some(Ok(Message::Text(t))) => return Some(ServerMessage::from_json(&t).unwrap()),
+                Some(Ok(Message::Text(t))) => {
+                    self.received.push(t.to_string());
+                    return Some(ServerMessage::from_json(&t).unwrap());
+                }
                 Some(Ok(Message::Close(_))) | None | Some(Err(_)) => return None,
                 Some(Ok(_)) => continue,
             }
