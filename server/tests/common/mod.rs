@@ -202,7 +202,7 @@ impl Client {
     pub async fn send_text(&mut self, text: impl Into<String>) {
         let text = text.into();
         self.sent.push(text.clone());
-        self.ws.send(Message::Text(text.into())).await.unwrap();
+        self.ws.send(Message::Text(text)).await.unwrap();
     }
 
     pub async fn send(&mut self, m: &ClientMessage) {
