@@ -23,7 +23,7 @@ use glam::DVec2;
 use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::PyTuple;
+use pyo3::types::{PyDict, PyFloat, PyInt, PyList, PyTuple};
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 
@@ -70,6 +70,93 @@ fn to_py<'py, T: Serialize>(py: Python<'py>, value: &T) -> PyResult<Bound<'py, P
     Ok(pythonize::pythonize(py, &json)?)
 }
 
+/// The pieces of a board. The common shape (a list of dicts with an int
+/// `id` and a `pos` list or tuple of two numbers) is read directly, a few
+/// times faster than through serde; anything else goes through serde,
+/// which accepts or refuses it with the path of the fault. Both read the
+/// very same values.
+fn board_from(board: &Bound<'_, PyAny>) -> PyResult<Vec<Piece>> {
+    fn direct(board: &Bound<'_, PyAny>) -> Option<Vec<Piece>> {
+        let list = board.cast::<PyList>().ok()?;
+        let mut pieces = Vec::with_capacity(list.len());
+        for item in list.iter() {
+            let d = item.cast::<PyDict>().ok()?;
+            let id = d.get_item("id").ok()??;
+            if !id.is_exact_instance_of::<PyInt>() {
+                return None;
+            }
+            let id = PieceId::try_from(id.extract::<u8>().ok()?).ok()?;
+            pieces.push(Piece {
+                id,
+                pos: vec2_direct(&d.get_item("pos").ok()??)?,
+            });
+        }
+        Some(pieces)
+    }
+    match direct(board) {
+        Some(pieces) => Ok(pieces),
+        None => from_py(board, "board"),
+    }
+}
+
+/// `[x, y]` or `(x, y)` of Python floats or ints, read directly.
+fn vec2_direct(v: &Bound<'_, PyAny>) -> Option<DVec2> {
+    let number = |x: Bound<'_, PyAny>| -> Option<f64> {
+        if x.is_exact_instance_of::<PyFloat>() || x.is_exact_instance_of::<PyInt>() {
+            x.extract::<f64>().ok()
+        } else {
+            None
+        }
+    };
+    if let Ok(l) = v.cast::<PyList>() {
+        if l.len() == 2 {
+            return Some(DVec2::new(number(l.get_item(0).ok()?)?, number(l.get_item(1).ok()?)?));
+        }
+    } else if let Ok(t) = v.cast::<PyTuple>() {
+        if t.len() == 2 {
+            return Some(DVec2::new(number(t.get_item(0).ok()?)?, number(t.get_item(1).ok()?)?));
+        }
+    }
+    None
+}
+
+/// A velocity or position: directly when it has the common shape, else
+/// through serde (with the path of the fault).
+fn vec2_from(v: &Bound<'_, PyAny>, what: &str) -> PyResult<DVec2> {
+    match vec2_direct(v) {
+        Some(v) => Ok(v),
+        None => from_py(v, what),
+    }
+}
+
+fn vec2_to_py<'py>(py: Python<'py>, v: DVec2) -> PyResult<Bound<'py, PyList>> {
+    PyList::new(py, [v.x, v.y])
+}
+
+/// A `Simulation` as Python objects, built directly (the same shape and
+/// key order as through serde, which the verdict and the film still take).
+fn simulation_to_py<'py>(py: Python<'py>, sim: &Simulation) -> PyResult<Bound<'py, PyAny>> {
+    let d = PyDict::new(py);
+    d.set_item("played", vec2_to_py(py, sim.played)?)?;
+    let knocked: Vec<u32> = sim.knocked_off.iter().map(|&p| u32::from(u8::from(p))).collect();
+    d.set_item("knocked_off", knocked)?;
+    let board = PyList::empty(py);
+    for p in sim.board.pieces() {
+        let piece = PyDict::new(py);
+        piece.set_item("id", u8::from(p.id) as u32)?;
+        piece.set_item("pos", vec2_to_py(py, p.pos)?)?;
+        board.append(piece)?;
+    }
+    d.set_item("board", board)?;
+    d.set_item("verdict", to_py(py, &sim.verdict)?)?;
+    d.set_item("duration", sim.duration)?;
+    d.set_item("end_reason", to_py(py, &sim.end_reason)?)?;
+    if let Some(film) = &sim.film {
+        d.set_item("film", to_py(py, film)?)?;
+    }
+    Ok(d.into_any())
+}
+
 /// The configuration given, or the default (casual) one for `None`.
 fn config_from(config: Option<&Bound<'_, PyAny>>) -> PyResult<Config> {
     match config {
@@ -91,7 +178,7 @@ fn simulate<'py>(py: Python<'py>, request: &Bound<'py, PyAny>) -> PyResult<Bound
     let sim = py
         .detach(|| req.run())
         .map_err(|e| refusal(py, e.code().as_str(), e.to_string()))?;
-    to_py(py, &sim)
+    simulation_to_py(py, &sim)
 }
 
 /// One position, checked and converted once, to score many shots on.
@@ -109,7 +196,7 @@ impl Simulator {
     #[pyo3(signature = (config, board))]
     fn new(py: Python<'_>, config: Option<&Bound<'_, PyAny>>, board: &Bound<'_, PyAny>) -> PyResult<Self> {
         let config = config_from(config)?;
-        let pieces: Vec<Piece> = from_py(board, "board")?;
+        let pieces = board_from(board)?;
         // The request's own checks of the configuration and the board; the
         // shot in it (a valid configuration has a finite, positive
         // max_speed) passes Shot::new by construction.
@@ -143,7 +230,7 @@ impl Simulator {
         noise: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let piece: PieceId = from_py(piece, "piece")?;
-        let velocity: DVec2 = from_py(velocity, "velocity")?;
+        let velocity = vec2_from(velocity, "velocity")?;
         let noise: Option<NoiseDraw> = match noise {
             Some(n) if !n.is_none() => Some(from_py(n, "noise")?),
             _ => None,
@@ -166,7 +253,7 @@ impl Simulator {
         let sim: Simulation = py
             .detach(|| play_shot(&self.config, &self.board, &shot, played, false))
             .map_err(|e| shot_refusal(py, &e))?;
-        to_py(py, &sim)
+        simulation_to_py(py, &sim)
     }
 
     /// The configuration (a dict).
@@ -203,10 +290,10 @@ fn validate_shot<'py>(
     config
         .validate()
         .map_err(|e| refusal(py, "bad-config", format!("unplayable config: {e}")))?;
-    let board: Vec<Piece> = from_py(board, "board")?;
+    let board = board_from(board)?;
     let side: Side = from_py(side, "side")?;
     let piece: PieceId = from_py(piece, "piece")?;
-    let velocity: DVec2 = from_py(velocity, "velocity")?;
+    let velocity = vec2_from(velocity, "velocity")?;
     let refused = if piece.side() != side {
         Some(ShotError::NotYourPiece { piece, side })
     } else if !board.iter().any(|p| p.id == piece) {
@@ -222,7 +309,7 @@ fn validate_shot<'py>(
 /// The ids of `side`'s pieces on `board`, in id order.
 #[pyfunction]
 fn legal_pieces(board: &Bound<'_, PyAny>, side: &Bound<'_, PyAny>) -> PyResult<Vec<u32>> {
-    let board: Vec<Piece> = from_py(board, "board")?;
+    let board = board_from(board)?;
     let side: Side = from_py(side, "side")?;
     let mut ids: Vec<u32> = board
         .iter()
@@ -343,7 +430,7 @@ fn apply_noise<'py>(
     draw: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let config = config_from(config)?;
-    let velocity: DVec2 = from_py(velocity, "velocity")?;
+    let velocity = vec2_from(velocity, "velocity")?;
     let draw: NoiseDraw = from_py(draw, "draw")?;
     if !velocity.is_finite() {
         return Err(refusal(py, "not-finite", "the velocity must be finite numbers".into()));
