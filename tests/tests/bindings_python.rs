@@ -26,7 +26,11 @@ fn python() -> Option<PathBuf> {
 
 /// `lines` written as a JSON-lines file in `dir`, run through same_bits.py;
 /// its output lines.
-fn through_python(python: &std::path::Path, dir: &std::path::Path, lines: &[String]) -> Vec<String> {
+fn through_python(
+    python: &std::path::Path,
+    dir: &std::path::Path,
+    lines: &[String],
+) -> Vec<String> {
     let input = dir.join("requests.jsonl");
     let mut f = std::fs::File::create(&input).unwrap();
     for l in lines {
@@ -34,7 +38,8 @@ fn through_python(python: &std::path::Path, dir: &std::path::Path, lines: &[Stri
     }
     drop(f);
     let script = repo_root().join("bots/python/tests/same_bits.py");
-    let out = run_script(python, &script, &[input.to_str().unwrap()]).unwrap_or_else(|e| panic!("{e}"));
+    let out =
+        run_script(python, &script, &[input.to_str().unwrap()]).unwrap_or_else(|e| panic!("{e}"));
     out.lines().map(str::to_string).collect()
 }
 
@@ -82,7 +87,10 @@ fn python_simulates_ten_thousand_random_requests_with_the_bits_of_native_rust() 
             lines[k]
         );
     }
-    assert!(knocked > REQUESTS / 5, "the shots knock pieces off: {knocked}");
+    assert!(
+        knocked > REQUESTS / 5,
+        "the shots knock pieces off: {knocked}"
+    );
 }
 
 #[test]
@@ -138,7 +146,10 @@ fn python_refuses_hostile_requests_with_the_servers_codes() {
     let fine = through_python(&python, scratch.path(), &[ok(r#""velocity": [0.0, 2.0]"#)]);
     let sim: Simulation = serde_json::from_str(&fine[0]).unwrap();
     assert_eq!(
-        sim.knocked_off.iter().map(|p| u8::from(*p)).collect::<Vec<_>>(),
+        sim.knocked_off
+            .iter()
+            .map(|p| u8::from(*p))
+            .collect::<Vec<_>>(),
         vec![12]
     );
 }

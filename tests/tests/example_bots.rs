@@ -71,7 +71,14 @@ async fn the_python_example_bot_plays_a_whole_match_against_a_level() {
     let err_path = artifacts.join("example-bot-python.err");
     let mut cmd = Command::new(&python);
     cmd.arg(repo_root().join("bots/examples/python/bot.py"))
-        .args(["--server", &server.url(""), "--level", "easy", "--rules", "standard"])
+        .args([
+            "--server",
+            &server.url(""),
+            "--level",
+            "easy",
+            "--rules",
+            "standard",
+        ])
         .args(["--turn-seconds", "30", "--budget", "1.0", "--seed", "7"])
         .stdin(Stdio::null())
         .stdout(std::fs::File::create(&out_path).unwrap())
@@ -81,18 +88,35 @@ async fn the_python_example_bot_plays_a_whole_match_against_a_level() {
     let status = finish(bot, PYTHON_MATCH_LIMIT).await;
     let out = std::fs::read_to_string(&out_path).unwrap();
     let err = std::fs::read_to_string(&err_path).unwrap();
-    let tail: String = err.lines().rev().take(15).collect::<Vec<_>>().into_iter().rev().collect::<Vec<_>>().join("\n");
-    assert!(status.contains("exit status: 0"), "the bot exited {status}; stderr ends:\n{tail}");
+    let tail: String = err
+        .lines()
+        .rev()
+        .take(15)
+        .collect::<Vec<_>>()
+        .into_iter()
+        .rev()
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert!(
+        status.contains("exit status: 0"),
+        "the bot exited {status}; stderr ends:\n{tail}"
+    );
     let lines: Vec<serde_json::Value> = out
         .lines()
         .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("{e}: {l}")))
         .collect();
     assert_eq!(lines.len(), 2, "the match id, then the result: {out}");
-    let match_id = lines[0]["match_id"].as_str().expect("a match id").to_string();
+    let match_id = lines[0]["match_id"]
+        .as_str()
+        .expect("a match id")
+        .to_string();
     assert_eq!(lines[1]["match_id"], match_id.as_str());
     let summary = assert_finished(&server, &match_id).await;
     assert_eq!(summary["bot"], "easy", "{summary}");
-    assert_eq!(lines[1]["result"], summary["result"], "the bot saw the server's result");
+    assert_eq!(
+        lines[1]["result"], summary["result"],
+        "the bot saw the server's result"
+    );
     eprintln!(
         "python example bot: {} shots in {:.1} s, result {}",
         summary["shots"],

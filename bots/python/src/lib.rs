@@ -110,11 +110,17 @@ fn vec2_direct(v: &Bound<'_, PyAny>) -> Option<DVec2> {
     };
     if let Ok(l) = v.cast::<PyList>() {
         if l.len() == 2 {
-            return Some(DVec2::new(number(l.get_item(0).ok()?)?, number(l.get_item(1).ok()?)?));
+            return Some(DVec2::new(
+                number(l.get_item(0).ok()?)?,
+                number(l.get_item(1).ok()?)?,
+            ));
         }
     } else if let Ok(t) = v.cast::<PyTuple>() {
         if t.len() == 2 {
-            return Some(DVec2::new(number(t.get_item(0).ok()?)?, number(t.get_item(1).ok()?)?));
+            return Some(DVec2::new(
+                number(t.get_item(0).ok()?)?,
+                number(t.get_item(1).ok()?)?,
+            ));
         }
     }
     None
@@ -138,7 +144,11 @@ fn vec2_to_py<'py>(py: Python<'py>, v: DVec2) -> PyResult<Bound<'py, PyList>> {
 fn simulation_to_py<'py>(py: Python<'py>, sim: &Simulation) -> PyResult<Bound<'py, PyAny>> {
     let d = PyDict::new(py);
     d.set_item("played", vec2_to_py(py, sim.played)?)?;
-    let knocked: Vec<u32> = sim.knocked_off.iter().map(|&p| u32::from(u8::from(p))).collect();
+    let knocked: Vec<u32> = sim
+        .knocked_off
+        .iter()
+        .map(|&p| u32::from(u8::from(p)))
+        .collect();
     d.set_item("knocked_off", knocked)?;
     let board = PyList::empty(py);
     for p in sim.board.pieces() {
@@ -194,7 +204,11 @@ impl Simulator {
     /// pieces), checked as `simulate` checks them.
     #[new]
     #[pyo3(signature = (config, board))]
-    fn new(py: Python<'_>, config: Option<&Bound<'_, PyAny>>, board: &Bound<'_, PyAny>) -> PyResult<Self> {
+    fn new(
+        py: Python<'_>,
+        config: Option<&Bound<'_, PyAny>>,
+        board: &Bound<'_, PyAny>,
+    ) -> PyResult<Self> {
         let config = config_from(config)?;
         let pieces = board_from(board)?;
         // The request's own checks of the configuration and the board; the
@@ -366,17 +380,29 @@ struct SceneOut {
 fn scene_at<'py>(py: Python<'py>, film: &Bound<'py, PyAny>, t: f64) -> PyResult<Bound<'py, PyAny>> {
     let film: Film = from_py(film, "film")?;
     if !t.is_finite() {
-        return Err(refusal(py, "not-finite", format!("t must be finite, not {t}")));
+        return Err(refusal(
+            py,
+            "not-finite",
+            format!("t must be finite, not {t}"),
+        ));
     }
     if !film.end.is_finite() || film.end < 0.0 {
-        return Err(refusal(py, "bad-message", format!("film.end: {} is not a finite time >= 0", film.end)));
+        return Err(refusal(
+            py,
+            "bad-message",
+            format!("film.end: {} is not a finite time >= 0", film.end),
+        ));
     }
     let t = t.clamp(0.0, film.end);
     let scene = film.scene_at(t);
     let mut pieces = Vec::with_capacity(scene.bodies.len());
     for b in &scene.bodies {
         let id = PieceId::from_body(b.id).map_err(|e| {
-            refusal(py, "bad-message", format!("film: body {} is not a piece", e.0))
+            refusal(
+                py,
+                "bad-message",
+                format!("film: body {} is not a piece", e.0),
+            )
         })?;
         pieces.push(PieceState {
             id,
@@ -433,10 +459,18 @@ fn apply_noise<'py>(
     let velocity = vec2_from(velocity, "velocity")?;
     let draw: NoiseDraw = from_py(draw, "draw")?;
     if !velocity.is_finite() {
-        return Err(refusal(py, "not-finite", "the velocity must be finite numbers".into()));
+        return Err(refusal(
+            py,
+            "not-finite",
+            "the velocity must be finite numbers".into(),
+        ));
     }
     if !draw.angle.is_finite() || !draw.speed.is_finite() {
-        return Err(refusal(py, "not-finite", "the noise draw must be finite numbers".into()));
+        return Err(refusal(
+            py,
+            "not-finite",
+            "the noise draw must be finite numbers".into(),
+        ));
     }
     let played = match &config.variants.noise {
         Some(model) => draw.apply(model, velocity, config.max_speed),
