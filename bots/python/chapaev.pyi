@@ -1,10 +1,11 @@
 """Chapaev for Python: the match server's exact shot simulation.
 
 Every value has the wire protocol's JSON shape (docs/protocol.md): plain
-dicts, lists, ints and floats. The TypedDicts below name those shapes.
+dicts, lists, ints and floats. The TypedDicts below name those shapes; they
+exist for type checkers only (import them under `typing.TYPE_CHECKING`).
 """
 
-from typing import Any, Dict, List, Literal, Optional, Tuple, TypedDict, Union
+from typing import Any, Dict, List, Literal, Optional, Tuple, TypedDict, Union, final
 
 __version__: str
 PROTOCOL_VERSION: int
@@ -119,10 +120,11 @@ class SimulateError(ValueError):
 def simulate(request: SimulateRequest) -> Simulation:
     """Validates and simulates one shot, exactly as the server would."""
 
+@final
 class Simulator:
     """One position, checked and converted once, to score many shots on."""
 
-    def __init__(self, config: Optional[Config], board: List[Piece]) -> None: ...
+    def __new__(cls, config: Optional[Config], board: List[Piece]) -> "Simulator": ...
     def play(
         self,
         piece: int,
@@ -159,10 +161,11 @@ def config_for(rules: Literal["casual", "standard"]) -> Config:
 def scene_at(film: Film, t: float) -> Scene:
     """The pieces on the board at time `t` of a shot (clamped to `[0, film["end"]]`)."""
 
+@final
 class NoiseRng:
     """A bot's own noise draws: exactly `NoiseDraw::sample` on `SplitMix64::new(seed)`."""
 
-    def __init__(self, seed: int) -> None: ...
+    def __new__(cls, seed: int) -> "NoiseRng": ...
     def sample(self) -> NoiseDraw: ...
     def next_u64(self) -> int: ...
     def next_f64(self) -> float: ...
