@@ -28,6 +28,13 @@ stamp_of() {
     ) | sha256sum | cut -d' ' -f1
 }
 
+# One build at a time (test binaries may run this script in parallel).
+mkdir -p "$(dirname "$venv")"
+if command -v flock >/dev/null; then
+    exec 9>"$venv.lock"
+    flock 9
+fi
+
 want="$(stamp_of)"
 stamp="$venv/.chapaev-stamp"
 if [[ -x "$venv/bin/python" && -f "$stamp" && "$(cat "$stamp")" == "$want" ]]; then
