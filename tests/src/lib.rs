@@ -19,6 +19,7 @@ pub mod api;
 pub mod browser;
 pub mod picture;
 pub mod process;
+pub mod python;
 
 use std::path::PathBuf;
 
