@@ -46,10 +46,74 @@ fn error(code: ErrorCode, message: impl std::fmt::Display) -> JsValue {
     e.into()
 }
 
-/// A JS value read as `T`; a wrong shape is `bad-message`.
-fn from_js<T: DeserializeOwned>(value: JsValue, what: &str) -> Result<T, JsValue> {
-    serde_wasm_bindgen::from_value(value)
-        .map_err(|e| error(ErrorCode::BadMessage, format!("{what}: {e}")))
+/// A JS value read as `T`; a wrong shape is `bad-message`, as on the wire:
+/// a missing field, a wrong type, and also (which serde-wasm-bindgen alone
+/// lets through) an unknown field or an array of the wrong length.
+fn from_js<T: DeserializeOwned + Serialize>(value: JsValue, what: &str) -> Result<T, JsValue> {
+    let bad = |e: &dyn std::fmt::Display| error(ErrorCode::BadMessage, format!("{what}: {e}"));
+    let read: T = serde_wasm_bindgen::from_value(value.clone()).map_err(|e| bad(&e))?;
+    // Plain values need no further check.
+    if value.is_object() {
+        let back = to_js(&read)?;
+        let mut path = String::new();
+        if let Some(e) = extra(&value, &back, &mut path) {
+            return Err(bad(&e));
+        }
+    }
+    Ok(read)
+}
+
+/// What `input` holds that `back` (the value read from it, written out
+/// again) does not: an unknown field (one left `null` or `undefined` is
+/// taken as left out) or array items beyond the expected length.
+fn extra(input: &JsValue, back: &JsValue, path: &mut String) -> Option<String> {
+    if !input.is_object() {
+        return None;
+    }
+    if let (Some(a), Some(b)) = (input.dyn_ref::<js_sys::Array>(), back.dyn_ref::<js_sys::Array>()) {
+        if a.length() != b.length() {
+            return Some(format!(
+                "{} items at {}, expected {}",
+                a.length(),
+                if path.is_empty() { "the top" } else { path.as_str() },
+                b.length()
+            ));
+        }
+        for k in 0..a.length() {
+            let len = path.len();
+            path.push_str(&format!("[{k}]"));
+            let found = extra(&a.get(k), &b.get(k), path);
+            path.truncate(len);
+            if found.is_some() {
+                return found;
+            }
+        }
+        return None;
+    }
+    let keys = js_sys::Object::keys(input.unchecked_ref());
+    for key in keys.iter() {
+        let v = js_sys::Reflect::get(input, &key).unwrap_or(JsValue::UNDEFINED);
+        if v.is_null() || v.is_undefined() {
+            continue;
+        }
+        let name = key.as_string().unwrap_or_default();
+        let len = path.len();
+        if !path.is_empty() {
+            path.push('.');
+        }
+        path.push_str(&name);
+        let found = if back.is_object() && js_sys::Reflect::has(back, &key).unwrap_or(false) {
+            let w = js_sys::Reflect::get(back, &key).unwrap_or(JsValue::UNDEFINED);
+            extra(&v, &w, path)
+        } else {
+            Some(format!("unknown field {path}"))
+        };
+        path.truncate(len);
+        if found.is_some() {
+            return found;
+        }
+    }
+    None
 }
 
 /// A configuration, the default (casual) one when `undefined` or `null`.
