@@ -81,17 +81,18 @@ cat > "$pkg/package.json" <<EOF
   "version": "$crate_version",
   "description": "Chapaev (Russian flick-checkers): the server's exact shot physics in WebAssembly, bit for bit",
   "license": "MIT",
+  "type": "module",
   "types": "./index.d.ts",
   "main": "./node/chapaev_js.js",
   "module": "./web/chapaev_js.js",
   "browser": "./web/chapaev_js.js",
   "exports": {
     ".": {
-      "types": "./index.d.ts",
       "node": {
-        "import": "./node/index.mjs",
-        "require": "./node/chapaev_js.js"
+        "import": { "types": "./index.d.ts", "default": "./node/index.mjs" },
+        "require": { "types": "./node/chapaev_js.d.ts", "default": "./node/chapaev_js.js" }
       },
+      "types": "./index.d.ts",
       "default": "./web/chapaev_js.js"
     },
     "./web": "./web/chapaev_js.js",

@@ -75,10 +75,7 @@ pub fn build_package() -> Result<()> {
             .output();
         let outcome = match out {
             Ok(o) if o.status.success() => {
-                eprintln!(
-                    "bots/js/build.sh: {:.1} s",
-                    start.elapsed().as_secs_f64()
-                );
+                eprintln!("bots/js/build.sh: {:.1} s", start.elapsed().as_secs_f64());
                 Ok(())
             }
             Ok(o) => Err(format!(

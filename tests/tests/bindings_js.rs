@@ -51,11 +51,8 @@ fn run_same_bits(requests: &[String]) -> Vec<String> {
         writeln!(file, "{r}").unwrap();
     }
     file.flush().unwrap();
-    let out = js::node(&[
-        OsStr::new("tests/same_bits.mjs"),
-        file.path().as_os_str(),
-    ])
-    .unwrap_or_else(|e| panic!("{e}"));
+    let out = js::node(&[OsStr::new("tests/same_bits.mjs"), file.path().as_os_str()])
+        .unwrap_or_else(|e| panic!("{e}"));
     String::from_utf8(out.stdout)
         .unwrap()
         .lines()
@@ -190,14 +187,22 @@ fn the_whole_api_refuses_hostile_input_and_its_seeded_functions_match_rust() {
     let got: Vec<SimulateRequest> = serde_json::from_value(v["requests"].clone()).unwrap();
     assert_eq!(json(&got), json(&reqs), "randomRequests");
     let got: SimulateRequest = serde_json::from_value(v["request"].clone()).unwrap();
-    assert_eq!(got, random_request(&mut SplitMix64::new(9)), "randomRequest");
+    assert_eq!(
+        got,
+        random_request(&mut SplitMix64::new(9)),
+        "randomRequest"
+    );
 
     let mut rng = SplitMix64::new(big);
     let u64s: Vec<String> = (0..2).map(|_| rng.next_u64().to_string()).collect();
     let f64s = [rng.next_f64(), rng.next_f64()];
     assert_eq!(v["u64s"], serde_json::json!(u64s), "NoiseRng.nextU64");
     let got: [f64; 2] = serde_json::from_value(v["f64s"].clone()).unwrap();
-    assert_eq!(got.map(f64::to_bits), f64s.map(f64::to_bits), "NoiseRng.nextF64");
+    assert_eq!(
+        got.map(f64::to_bits),
+        f64s.map(f64::to_bits),
+        "NoiseRng.nextF64"
+    );
 
     let standard = Config::standard();
     let noise = standard.variants.noise.unwrap();
@@ -207,7 +212,10 @@ fn the_whole_api_refuses_hostile_input_and_its_seeded_functions_match_rust() {
     }
     .apply(&noise, DVec2::new(0.3, -1.1), standard.max_speed);
     let got: DVec2 = serde_json::from_value(v["applied"].clone()).unwrap();
-    assert_eq!(got.to_array().map(f64::to_bits), applied.to_array().map(f64::to_bits));
+    assert_eq!(
+        got.to_array().map(f64::to_bits),
+        applied.to_array().map(f64::to_bits)
+    );
 
     // The film and a scene in the middle of it, against the Rust film.
     let filmed: Simulation = serde_json::from_value(v["film"].clone()).unwrap();

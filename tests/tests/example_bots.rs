@@ -103,5 +103,8 @@ async fn the_node_example_bot_plays_a_whole_match_against_a_level() {
     assert_eq!(code, 200, "{summary}");
     assert_eq!(summary["status"], "finished", "{summary}");
     assert!(summary["result"].is_object(), "a result: {summary}");
-    assert_eq!(summary["result"], report["result"], "the bot saw the stored result");
+    assert_eq!(
+        summary["result"], report["result"],
+        "the bot saw the stored result"
+    );
 }

@@ -51,7 +51,9 @@ function candidates(config, board, me) {
         const ax = dx + across[0] * cut * diameter;
         const ay = dy + across[1] * cut * diameter;
         const alen = Math.hypot(ax, ay);
-        for (const f of [0.55, 0.8, 1.0]) {
+        // Just under the maximum at full power: a direction of length 1
+        // times max_speed can round a hair above it, which is refused.
+        for (const f of [0.55, 0.8, 0.999]) {
           const speed = config.max_speed * f;
           out.push({ piece: p.id, velocity: [(ax / alen) * speed, (ay / alen) * speed] });
         }
@@ -81,9 +83,14 @@ function bestShot(config, board, me) {
   try {
     for (const c of candidates(config, board, me)) {
       let total = 0;
-      for (const d of draws) {
-        total += score(sim.play(c.piece, c.velocity, d), me);
-        tried++;
+      try {
+        for (const d of draws) {
+          total += score(sim.play(c.piece, c.velocity, d), me);
+          tried++;
+        }
+      } catch (e) {
+        log(`skipping ${JSON.stringify(c)}: ${e.code}: ${e.message}`);
+        continue; // a shot the server would refuse too
       }
       const mean = total / draws.length;
       if (!best || mean > best.mean) best = { ...c, mean };
@@ -226,7 +233,7 @@ for (let attempt = 0; !result; attempt++) {
         onMessage(ws, JSON.parse(data.toString()));
       } catch (e) {
         console.error("bot error:", e);
-        ws.close();
+        process.exit(1);
       }
     });
     ws.on("close", resolve);

@@ -51,7 +51,19 @@ fn error(code: ErrorCode, message: impl std::fmt::Display) -> JsValue {
 /// lets through) an unknown field or an array of the wrong length.
 fn from_js<T: DeserializeOwned + Serialize>(value: JsValue, what: &str) -> Result<T, JsValue> {
     let bad = |e: &dyn std::fmt::Display| error(ErrorCode::BadMessage, format!("{what}: {e}"));
-    let read: T = serde_wasm_bindgen::from_value(value.clone()).map_err(|e| bad(&e))?;
+    let (value, read) = match serde_wasm_bindgen::from_value::<T>(value.clone()) {
+        Ok(read) => (value, read),
+        // A field given as `undefined` or `null` is, in JavaScript, one left
+        // out: read again without them (only when the first reading failed,
+        // so the usual call copies nothing).
+        Err(_) => {
+            let cleaned = without_nullish(&value);
+            match serde_wasm_bindgen::from_value::<T>(cleaned.clone()) {
+                Ok(read) => (cleaned, read),
+                Err(e) => return Err(bad(&e)),
+            }
+        }
+    };
     // Plain values need no further check.
     if value.is_object() {
         let back = to_js(&read)?;
@@ -63,6 +75,30 @@ fn from_js<T: DeserializeOwned + Serialize>(value: JsValue, what: &str) -> Resul
     Ok(read)
 }
 
+/// A copy of `value` with the fields of plain objects that are `null` or
+/// `undefined` left out, at every depth (arrays and other values as they are,
+/// their items cleaned).
+fn without_nullish(value: &JsValue) -> JsValue {
+    if let Some(a) = value.dyn_ref::<js_sys::Array>() {
+        return a
+            .iter()
+            .map(|v| without_nullish(&v))
+            .collect::<js_sys::Array>()
+            .into();
+    }
+    if !value.is_object() || value.is_function() {
+        return value.clone();
+    }
+    let out = js_sys::Object::new();
+    for key in js_sys::Object::keys(value.unchecked_ref::<js_sys::Object>()).iter() {
+        let v = js_sys::Reflect::get(value, &key).unwrap_or(JsValue::UNDEFINED);
+        if !v.is_null() && !v.is_undefined() {
+            let _ = js_sys::Reflect::set(&out, &key, &without_nullish(&v));
+        }
+    }
+    out.into()
+}
+
 /// What `input` holds that `back` (the value read from it, written out
 /// again) does not: an unknown field (one left `null` or `undefined` is
 /// taken as left out) or array items beyond the expected length.
@@ -70,12 +106,19 @@ fn extra(input: &JsValue, back: &JsValue, path: &mut String) -> Option<String> {
     if !input.is_object() {
         return None;
     }
-    if let (Some(a), Some(b)) = (input.dyn_ref::<js_sys::Array>(), back.dyn_ref::<js_sys::Array>()) {
+    if let (Some(a), Some(b)) = (
+        input.dyn_ref::<js_sys::Array>(),
+        back.dyn_ref::<js_sys::Array>(),
+    ) {
         if a.length() != b.length() {
             return Some(format!(
                 "{} items at {}, expected {}",
                 a.length(),
-                if path.is_empty() { "the top" } else { path.as_str() },
+                if path.is_empty() {
+                    "the top"
+                } else {
+                    path.as_str()
+                },
                 b.length()
             ));
         }
@@ -90,7 +133,7 @@ fn extra(input: &JsValue, back: &JsValue, path: &mut String) -> Option<String> {
         }
         return None;
     }
-    let keys = js_sys::Object::keys(input.unchecked_ref());
+    let keys = js_sys::Object::keys(input.unchecked_ref::<js_sys::Object>());
     for key in keys.iter() {
         let v = js_sys::Reflect::get(input, &key).unwrap_or(JsValue::UNDEFINED);
         if v.is_null() || v.is_undefined() {
@@ -354,7 +397,9 @@ pub fn config_for(name: JsValue) -> Result<JsValue, JsValue> {
 #[wasm_bindgen(js_name = initialBoard)]
 pub fn initial_board(config: JsValue) -> Result<JsValue, JsValue> {
     let config = config_from_js(config)?;
-    config.validate().map_err(|e| error(ErrorCode::BadConfig, e))?;
+    config
+        .validate()
+        .map_err(|e| error(ErrorCode::BadConfig, e))?;
     to_js(&Board::setup(&config, Rows::initial()))
 }
 
