@@ -1,11 +1,13 @@
 // Same bits: reads JSON-lines SimulateRequests from the file argv[2] and
 // writes one JSON line per request to stdout: the Simulation `simulate`
-// returned (JSON.stringify of the very object), or {"error": code}.
+// returned (JSON.stringify of the very object), or {"error": code}; without
+// a film, `new Simulator(config, board).play(piece, velocity, noise)` must
+// give the same, or the line is {"error": "simulator-differs", ...}.
 // tests/tests/bindings_js.rs compares every line with the native run.
 //
 //   node bots/js/tests/same_bits.mjs requests.jsonl > simulations.jsonl
 import { readFileSync, writeSync } from "node:fs";
-import { simulate } from "../pkg/node/index.mjs";
+import { simulate, Simulator } from "../pkg/node/index.mjs";
 
 const file = process.argv[2];
 if (!file) {
@@ -22,7 +24,15 @@ for (const line of readFileSync(file, "utf8").split("\n")) {
   if (line.trim() === "") continue;
   let result;
   try {
-    result = stringify(simulate(JSON.parse(line)));
+    const req = JSON.parse(line);
+    result = stringify(simulate(req));
+    // The Simulator's fast path must give the very same answer.
+    if (!req.film) {
+      const s = new Simulator(req.config, req.board);
+      const again = stringify(s.play(req.piece, req.velocity, req.noise));
+      s.free();
+      if (again !== result) result = JSON.stringify({ error: "simulator-differs", simulate: result, simulator: again });
+    }
   } catch (e) {
     result = JSON.stringify({ error: e.code ?? "no-code", message: String(e.message) });
   }
