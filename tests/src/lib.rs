@@ -17,6 +17,7 @@
 
 pub mod api;
 pub mod browser;
+pub mod js;
 pub mod picture;
 pub mod process;
 pub mod python;

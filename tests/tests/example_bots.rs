@@ -5,7 +5,7 @@
 
 use e2e::process::{Guard, Server};
 use e2e::python::{repo_root, venv_python};
-use e2e::{api, artifacts_dir};
+use e2e::{api, artifacts_dir, js};
 use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -120,6 +120,68 @@ async fn the_python_example_bot_plays_a_whole_match_against_a_level() {
     eprintln!(
         "python example bot: {} shots in {:.1} s, result {}",
         summary["shots"],
+        start.elapsed().as_secs_f64(),
+        summary["result"]
+    );
+}
+
+// ===== JavaScript: bots/examples/node/bot.mjs =====
+
+/// No Node example match runs longer.
+const NODE_MATCH_LIMIT: Duration = Duration::from_secs(300);
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_node_example_bot_plays_a_whole_match_against_a_level() {
+    if !js::ready_or_skip("node example bot") {
+        return;
+    }
+    js::build_package().unwrap_or_else(|e| panic!("{e}"));
+    let dir = js::workspace().join("bots/examples/node");
+    js::npm_install(&dir).unwrap_or_else(|e| panic!("{e}"));
+
+    let scratch = tempfile::tempdir().unwrap();
+    let server = start_server(&scratch.path().join("data"), "node");
+    let artifacts = artifacts_dir().unwrap_or_else(|e| panic!("{e}"));
+    let (out_path, err_path) = (
+        artifacts.join("example-bot-node.out"),
+        artifacts.join("example-bot-node.err"),
+    );
+    let mut cmd = Command::new("node");
+    cmd.arg("bot.mjs")
+        .args(["--server", &server.url("")])
+        .args(["--level", "easy", "--rules", "standard", "--samples", "2"])
+        .current_dir(&dir)
+        .stdin(Stdio::null())
+        .stdout(std::fs::File::create(&out_path).unwrap())
+        .stderr(std::fs::File::create(&err_path).unwrap());
+    let start = Instant::now();
+    let bot = Guard::spawn("node example bot", cmd).unwrap_or_else(|e| panic!("{e}"));
+    let status = finish(bot, NODE_MATCH_LIMIT).await;
+    let stderr = std::fs::read_to_string(&err_path).unwrap_or_default();
+    assert!(
+        status.contains("exit status: 0"),
+        "the bot exited with {status}:\n{}",
+        js::tail(&stderr, 3000)
+    );
+    let stdout = std::fs::read_to_string(&out_path).unwrap();
+    let last = stdout.lines().last().unwrap_or_default();
+    let report: serde_json::Value = serde_json::from_str(last)
+        .unwrap_or_else(|e| panic!("the bot's last line is not JSON ({e}): {last:?}"));
+    let shots = stderr.lines().filter(|l| l.contains(" shoots ")).count();
+    assert!(shots > 0, "the bot shot");
+    assert!(
+        !stderr.contains("refused:"),
+        "no move refused:\n{}",
+        js::tail(&stderr, 3000)
+    );
+    let id = report["match_id"].as_str().expect("a match id");
+    let summary = assert_finished(&server, id).await;
+    assert_eq!(
+        summary["result"], report["result"],
+        "the bot saw the stored result"
+    );
+    eprintln!(
+        "node example bot: {shots} shots of its own in {:.1} s, result {}",
         start.elapsed().as_secs_f64(),
         summary["result"]
     );
