@@ -10,7 +10,7 @@
 // joins that match's empty seat. It prints what happens, and at the end
 // one JSON line: {"match_id": ..., "side": ..., "result": {...}}.
 import WebSocket from "ws";
-import { Simulator, NoiseRng, squareCentre, sceneAt } from "chapaev";
+import { Simulator, NoiseRng } from "chapaev";
 
 // ---- options ---------------------------------------------------------------
 
@@ -170,29 +170,9 @@ function onMessage(ws, msg) {
       break;
     case "shot-played": {
       const o = msg.outcome;
-      view.shots = o.number + 1;
-      // Where the pieces came to rest: the film's last moment.
-      const end = sceneAt(msg.film, msg.film.end);
-      view.board = end.pieces.map((p) => ({ id: p.id, pos: p.pos }));
-      if (o.round_end?.next_rows) {
-        // A new round: both rows set up again where the rows now stand.
-        const rows = o.round_end.next_rows;
-        view.board = [];
-        for (let id = 0; id < 16; id++) {
-          const rank = id < 8 ? rows.white : rows.black;
-          view.board.push({ id, pos: squareCentre(view.config, id % 8, rank) });
-        }
-      }
-      const next = o.next;
-      if (next.next === "shoot") {
-        view.phase = { phase: "shooting" };
-        view.turn = next.side;
-      } else if (next.next === "pie-decision") {
-        view.phase = { phase: "pie-decision" };
-        view.turn = next.then;
-      } else if (next.next === "match-over") {
-        view.phase = { phase: "over", result: next.result };
-      }
+      // The match as it stands after the shot: at a round end, the new
+      // round's board, and in `turn` the side that opens it.
+      view = msg.view;
       log(`shot ${o.number} by ${o.shooter}: knocked off [${o.knocked_off}]`);
       break;
     }

@@ -138,15 +138,6 @@ class Brain:
 # ----- the match -----
 
 
-def setup(config: Message, rows: Message) -> List[Message]:
-    """Both rows set up for a round (as game::Board::setup computes it)."""
-    sq = config["square"]
-    return [
-        {"id": i, "pos": [(i % 8 + 0.5) * sq, (rows[side_of(i)] + 0.5) * sq]}
-        for i in range(16)
-    ]
-
-
 class Match:
     """What the bot knows of the match, kept from the server's messages."""
 
@@ -175,21 +166,15 @@ class Match:
             self.result = view["phase"]["result"]
 
     def shot_played(self, msg: Message) -> None:
-        outcome, film = msg["outcome"], msg["film"]
-        self.shots = outcome["number"] + 1
-        round_end = outcome.get("round_end")
-        if round_end and round_end.get("next_rows"):
-            self.board = setup(self.config, round_end["next_rows"])
-        else:
-            end = chapaev.scene_at(film, film["end"])
-            self.board = [{"id": p["id"], "pos": p["pos"]} for p in end["pieces"]]
-        nxt = outcome["next"]
-        if nxt["next"] == "shoot":
-            self.phase, self.turn = "shooting", nxt["side"]
-        elif nxt["next"] == "pie-decision":
-            self.phase, self.then = "pie-decision", nxt["then"]
-        else:
-            self.phase, self.result = "over", nxt["result"]
+        # The server sends the match as it stands after the shot: at a round
+        # end, the new round's board, and in `turn` the side that opens it.
+        view = msg["view"]
+        self.board, self.shots, self.turn = view["board"], view["shots"], view["turn"]
+        self.phase = view["phase"]["phase"]
+        if self.phase == "pie-decision":
+            self.then = view["turn"]
+        elif self.phase == "over":
+            self.result = view["phase"]["result"]
 
 
 def play(server: str, grant: Message, brain: Brain) -> Message:
