@@ -147,7 +147,22 @@ pub enum ConfigError {
     Restitution,
     #[error("a piece (radius {radius}) must fit inside a square (side {square})")]
     PieceTooBig { radius: f64, square: f64 },
+    #[error("config field \"{name}\" must be at most {max}")]
+    TooLarge { name: &'static str, max: f64 },
+    #[error("a piece (radius {radius}) must be at least a thousandth of a square (side {square})")]
+    PieceTooSmall { radius: f64, square: f64 },
 }
+
+/// The largest value each field may take: far beyond any real board, and
+/// well inside what the engine's arithmetic resolves.
+const UPPER_BOUNDS: [(&str, f64); 6] = [
+    ("square", 10.0),
+    ("piece_mass", 1000.0),
+    ("mu", 10.0),
+    ("g", 1000.0),
+    ("max_speed", 1000.0),
+    ("max_events_per_shot", 1_000_000.0),
+];
 
 impl Config {
     /// The `standard` rules of competitive play ([`Preset::Standard`]):
@@ -213,6 +228,25 @@ impl Config {
                 square: self.square,
             });
         }
+        if self.piece_radius < self.square / 1000.0 {
+            return Err(ConfigError::PieceTooSmall {
+                radius: self.piece_radius,
+                square: self.square,
+            });
+        }
+        let values = [
+            self.square,
+            self.piece_mass,
+            self.mu,
+            self.g,
+            self.max_speed,
+            self.max_events_per_shot as f64,
+        ];
+        for ((name, max), x) in UPPER_BOUNDS.into_iter().zip(values) {
+            if x > max {
+                return Err(ConfigError::TooLarge { name, max });
+            }
+        }
         if let Some(n) = &self.variants.noise {
             for (name, x) in [
                 ("angle_sigma", n.angle_sigma),
@@ -223,6 +257,9 @@ impl Config {
                 }
                 if x < 0.0 {
                     return Err(ConfigError::Negative(name));
+                }
+                if x > 1.0 {
+                    return Err(ConfigError::TooLarge { name, max: 1.0 });
                 }
             }
         }
@@ -250,6 +287,31 @@ mod tests {
         assert_eq!(Preset::parse("blitz"), None);
         let name = serde_json::to_string(&Preset::Standard).unwrap();
         assert_eq!(name, r#""standard""#);
+    }
+
+    #[test]
+    fn absurd_configs_are_refused_with_the_field_named() {
+        let mut c = Config::default();
+        c.max_speed = 2e300;
+        assert_eq!(
+            c.validate(),
+            Err(ConfigError::TooLarge {
+                name: "max_speed",
+                max: 1000.0
+            })
+        );
+        let mut c = Config::default();
+        c.max_events_per_shot = u64::MAX;
+        assert!(matches!(c.validate(), Err(ConfigError::TooLarge { .. })));
+        let mut c = Config::default();
+        c.piece_radius = 1e-300;
+        assert!(matches!(c.validate(), Err(ConfigError::PieceTooSmall { .. })));
+        let mut c = Config::standard();
+        c.variants.noise = Some(NoiseConfig {
+            angle_sigma: 0.03,
+            speed_sigma: 5.0,
+        });
+        assert!(matches!(c.validate(), Err(ConfigError::TooLarge { .. })));
     }
 
     #[test]

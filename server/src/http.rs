@@ -370,6 +370,9 @@ A dropped player keeps the seat for a grace period and reconnects with the same 
 <li><code>GET /api/matches/ID/record</code> &mdash; the record of a finished match, for replay</li>
 <li><code>POST /api/exhibitions</code> with <code>{"first":"medium","second":"hard"}</code> &mdash; two computer
 levels play each other (standard rules) for anyone to watch</li>
+<li><code>POST /api/simulate</code> with <code>{"board":[...],"piece":4,"velocity":[0,2]}</code> &mdash; one shot on any
+position with the server's exact physics (for bots in any language; limited per address)</li>
+<li><code>GET /api/schema/v1.json</code> &mdash; the JSON Schema of every message</li>
 <li><code>GET /healthz</code>, <code>GET /metrics</code> (Prometheus)</li></ul>
 </body></html>
 "#;
