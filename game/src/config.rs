@@ -291,8 +291,10 @@ mod tests {
 
     #[test]
     fn absurd_configs_are_refused_with_the_field_named() {
-        let mut c = Config::default();
-        c.max_speed = 2e300;
+        let c = Config {
+            max_speed: 2e300,
+            ..Config::default()
+        };
         assert_eq!(
             c.validate(),
             Err(ConfigError::TooLarge {
@@ -300,12 +302,19 @@ mod tests {
                 max: 1000.0
             })
         );
-        let mut c = Config::default();
-        c.max_events_per_shot = u64::MAX;
+        let c = Config {
+            max_events_per_shot: u64::MAX,
+            ..Config::default()
+        };
         assert!(matches!(c.validate(), Err(ConfigError::TooLarge { .. })));
-        let mut c = Config::default();
-        c.piece_radius = 1e-300;
-        assert!(matches!(c.validate(), Err(ConfigError::PieceTooSmall { .. })));
+        let c = Config {
+            piece_radius: 1e-300,
+            ..Config::default()
+        };
+        assert!(matches!(
+            c.validate(),
+            Err(ConfigError::PieceTooSmall { .. })
+        ));
         let mut c = Config::standard();
         c.variants.noise = Some(NoiseConfig {
             angle_sigma: 0.03,
