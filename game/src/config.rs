@@ -149,9 +149,15 @@ pub enum ConfigError {
     PieceTooBig { radius: f64, square: f64 },
     #[error("config field \"{name}\" must be at most {max}")]
     TooLarge { name: &'static str, max: f64 },
+    #[error("config field \"{name}\" must be at least {min}")]
+    TooSmall { name: &'static str, min: f64 },
     #[error("a piece (radius {radius}) must be at least a thousandth of a square (side {square})")]
     PieceTooSmall { radius: f64, square: f64 },
 }
+
+/// The smallest square, m (a millimetre): below it the engine's times and
+/// distances lose their meaning in double precision.
+const MIN_SQUARE: f64 = 1e-3;
 
 /// The largest value each field may take: far beyond any real board, and
 /// well inside what the engine's arithmetic resolves.
@@ -226,6 +232,12 @@ impl Config {
             return Err(ConfigError::PieceTooBig {
                 radius: self.piece_radius,
                 square: self.square,
+            });
+        }
+        if self.square < MIN_SQUARE {
+            return Err(ConfigError::TooSmall {
+                name: "square",
+                min: MIN_SQUARE,
             });
         }
         if self.piece_radius < self.square / 1000.0 {
@@ -315,6 +327,12 @@ mod tests {
             c.validate(),
             Err(ConfigError::PieceTooSmall { .. })
         ));
+        let c = Config {
+            square: 1e-300,
+            piece_radius: 4e-301,
+            ..Config::default()
+        };
+        assert!(matches!(c.validate(), Err(ConfigError::TooSmall { .. })));
         let mut c = Config::standard();
         c.variants.noise = Some(NoiseConfig {
             angle_sigma: 0.03,
