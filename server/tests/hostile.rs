@@ -224,3 +224,22 @@ async fn creating_matches_is_rate_limited_per_address() {
     let v: serde_json::Value = serde_json::from_str(&body).unwrap();
     assert_eq!(v["matches_in_memory"], 3);
 }
+
+#[tokio::test]
+async fn a_connection_the_server_closes_is_released_at_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &[]);
+    let (id, _) = server.create("{}").await;
+    let mut thief = server.ws(&id, Some(&"0".repeat(32))).await;
+    assert_eq!(thief.next_error().await, "bad-token");
+    assert!(thief.closes().await);
+    // Well within the 10 s write timeout: the closed socket is not held.
+    let started = Instant::now();
+    while connections(&server).await != 0 {
+        assert!(
+            started.elapsed() < Duration::from_secs(3),
+            "a closed connection is still counted"
+        );
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+}
