@@ -57,9 +57,9 @@ async fn a_client_that_stops_reading_is_dropped_and_its_socket_closed_by_the_ser
         dir.path(),
         &[
             "--write-timeout-ms",
-            "500",
+            "1000",
             "--outbound-queue",
-            "64",
+            "128",
             "--rate-per-sec",
             "100000",
             "--rate-burst",
