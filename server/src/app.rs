@@ -97,13 +97,18 @@ async fn serve(
         config.simulate_per_sec,
         config.simulate_burst,
     ));
+    let creations = web::Data::new(crate::http::Creations(
+        crate::simulate::AddressLimiter::new(config.create_per_sec, config.create_burst),
+    ));
     let server = HttpServer::new(move || {
         App::new()
             .app_data(data.clone())
             .app_data(simulations.clone())
+            .app_data(creations.clone())
             .app_data(web::PayloadConfig::new(limit))
             .configure(crate::http::routes)
     })
+    .on_connect(crate::ws::on_connect)
     .workers(config.http_workers as usize)
     .disable_signals()
     .shutdown_timeout(config.shutdown_seconds)

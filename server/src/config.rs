@@ -44,6 +44,11 @@ pub struct Config {
     #[arg(long, env = "CHAPAEV_MAX_CONNECTIONS", default_value_t = 5000)]
     pub max_connections: usize,
 
+    /// Most WebSocket connections from one client address at once; more
+    /// are refused with HTTP 503 `server-busy`.
+    #[arg(long, env = "CHAPAEV_MAX_CONNECTIONS_PER_ADDRESS", default_value_t = 50, value_parser = clap::value_parser!(u64).range(1..))]
+    pub max_connections_per_address: u64,
+
     /// Most WebSocket connections (players and spectators) on one match.
     #[arg(long, env = "CHAPAEV_MAX_CONNECTIONS_PER_MATCH", default_value_t = 200)]
     pub max_connections_per_match: usize,
@@ -59,6 +64,26 @@ pub struct Config {
     /// Messages a connection may send in a burst above the sustained rate.
     #[arg(long, env = "CHAPAEV_RATE_BURST", default_value_t = 40.0)]
     pub rate_burst: f64,
+
+    /// Messages queued for one connection before it is dropped as too slow
+    /// to follow its match (and its socket closed).
+    #[arg(long, env = "CHAPAEV_OUTBOUND_QUEUE", default_value_t = 256, value_parser = clap::value_parser!(u64).range(1..=65_536))]
+    pub outbound_queue: u64,
+
+    /// Milliseconds one write to a WebSocket may take; a connection whose
+    /// write takes longer (a client that stopped reading) is closed.
+    #[arg(long, env = "CHAPAEV_WRITE_TIMEOUT_MS", default_value_t = 10_000, value_parser = clap::value_parser!(u64).range(1..))]
+    pub write_timeout_ms: u64,
+
+    /// Matches (`POST /api/matches`, `POST /api/exhibitions`) one client
+    /// address may create per second, sustained; past it, HTTP 429
+    /// `rate-limited`.
+    #[arg(long, env = "CHAPAEV_CREATE_PER_SEC", default_value_t = 2.0)]
+    pub create_per_sec: f64,
+
+    /// Matches one client address may create at once.
+    #[arg(long, env = "CHAPAEV_CREATE_BURST", default_value_t = 10.0)]
+    pub create_burst: f64,
 
     /// Shots `POST /api/simulate` computes per second for one client
     /// address, sustained.
@@ -124,6 +149,8 @@ pub struct Limits {
     pub max_matches: usize,
     pub max_connections: usize,
     pub max_connections_per_match: usize,
+    /// Most WebSocket connections from one client address.
+    pub max_connections_per_address: usize,
     pub max_message_bytes: usize,
     pub rate_per_sec: f64,
     pub rate_burst: f64,
@@ -135,6 +162,8 @@ pub struct Limits {
     pub idle: Duration,
     /// Messages queued for one connection before it is dropped as too slow.
     pub outbound_queue: usize,
+    /// The most one write to a WebSocket may take.
+    pub write_timeout: Duration,
 }
 
 impl Config {
@@ -144,6 +173,8 @@ impl Config {
             max_matches: self.max_matches,
             max_connections: self.max_connections,
             max_connections_per_match: self.max_connections_per_match,
+            max_connections_per_address: usize::try_from(self.max_connections_per_address)
+                .unwrap_or(usize::MAX),
             max_message_bytes: self.max_message_bytes,
             rate_per_sec: self.rate_per_sec,
             rate_burst: self.rate_burst,
@@ -152,7 +183,8 @@ impl Config {
             bot_delay: Duration::from_millis(self.bot_delay_ms),
             bot_think: Duration::from_millis(self.bot_think_ms),
             idle: Duration::from_secs(self.idle_seconds),
-            outbound_queue: 256,
+            outbound_queue: usize::try_from(self.outbound_queue).unwrap_or(256),
+            write_timeout: Duration::from_millis(self.write_timeout_ms),
         }
     }
 }

@@ -3,10 +3,14 @@
 //! (against a person or a built-in bot), joining its empty seat, listing
 //! matches, one match's summary and its record for replay. Bodies are JSON;
 //! errors are the protocol's `error` message with a fitting HTTP status.
+//! Creating matches and exhibitions is limited per client address
+//! ([`Creations`]: `--create-per-sec`, `--create-burst`; past it, 429
+//! `rate-limited`), and the hub holds the limit on matches in memory.
 //! The game itself (`/` and its files) is [`crate::assets`].
 
 use crate::hub::{Hub, NewMatch, Opponent, SeatGrant};
 use crate::refusal::{HttpStatus, Refusal};
+use crate::simulate::AddressLimiter;
 use crate::store::{Status, StoreError};
 use actix_web::http::StatusCode;
 use actix_web::{web, HttpRequest, HttpResponse};
@@ -36,6 +40,29 @@ pub fn routes(cfg: &mut web::ServiceConfig) {
         .route("/api/simulate", web::post().to(crate::simulate::handler))
         .route(game::protocol::SCHEMA_PATH, web::get().to(schema))
         .route("/api/matches/{id}/record", web::get().to(record));
+}
+
+/// The per-address limit on creating matches (`POST /api/matches` and
+/// `POST /api/exhibitions` share it).
+#[derive(Debug)]
+pub struct Creations(pub AddressLimiter);
+
+impl Creations {
+    /// Refuses a creation from this request's address past the limit.
+    fn check(&self, req: &HttpRequest) -> Result<(), Refusal> {
+        let addr = req
+            .peer_addr()
+            .map(|a| a.ip())
+            .unwrap_or(std::net::IpAddr::from([0, 0, 0, 0]));
+        if self.0.take(addr, std::time::Instant::now()) {
+            Ok(())
+        } else {
+            Err(Refusal::new(
+                ErrorCode::RateLimited,
+                "too many matches created from this address; slow down",
+            ))
+        }
+    }
 }
 
 /// A refusal as an HTTP error response with a JSON body.
@@ -189,8 +216,14 @@ impl From<SeatGrant> for SeatResponse {
     }
 }
 
-async fn create(hub: web::Data<Hub>, bytes: web::Bytes) -> HttpResponse {
+async fn create(
+    hub: web::Data<Hub>,
+    creations: web::Data<Creations>,
+    req: HttpRequest,
+    bytes: web::Bytes,
+) -> HttpResponse {
     let result = async {
+        creations.check(&req)?;
         let b: CreateBody = body(&bytes)?;
         let opponent = match b.opponent.as_deref().unwrap_or("person") {
             "person" => Opponent::Person,
@@ -230,8 +263,14 @@ struct ExhibitionBody {
     turn_seconds: Option<u64>,
 }
 
-async fn exhibition(hub: web::Data<Hub>, bytes: web::Bytes) -> HttpResponse {
+async fn exhibition(
+    hub: web::Data<Hub>,
+    creations: web::Data<Creations>,
+    req: HttpRequest,
+    bytes: web::Bytes,
+) -> HttpResponse {
     let result = async {
+        creations.check(&req)?;
         let b: ExhibitionBody = body(&bytes)?;
         let config = match (b.rules.as_deref(), b.config) {
             (None, None) => game::Preset::Standard.config(),

@@ -2,8 +2,14 @@
 //! (store first, then a room), finds a room by id — loading a match that is
 //! not in memory from the store and replaying its record through
 //! [`game::Replay`] — resumes every unfinished match on start, routes joins
-//! and connections to rooms, enforces the limit on matches in memory, and
-//! shuts every room down cleanly, each finishing the command in hand.
+//! and connections to rooms, enforces the limit on matches in memory, counts
+//! WebSocket connections per client address, and shuts every room down
+//! cleanly, each finishing the command in hand.
+//!
+//! The limit on matches holds under concurrent requests: a creation (or a
+//! load from the store) reserves its slot under the registry's lock before
+//! it writes anything, the room takes the slot over under the same lock,
+//! and a creation that fails gives its slot back ([`Slot`]).
 
 use crate::config::Limits;
 use crate::metrics::Metrics;
@@ -17,7 +23,8 @@ use game::session::SeatSpec;
 use game::{Config, Game, Replay, Seat};
 use std::collections::HashMap;
 use std::future::Future;
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::net::IpAddr;
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 use tokio::runtime::Handle;
@@ -64,6 +71,12 @@ struct Inner {
     limits: Limits,
     rt: Handle,
     rooms: Mutex<HashMap<String, RoomHandle>>,
+    /// Slots reserved for matches being created or loaded; raised only
+    /// under the lock of `rooms`, so `rooms + reserved` never passes the
+    /// limit.
+    reserved: AtomicUsize,
+    /// Open WebSocket connections per client address.
+    addresses: Mutex<HashMap<IpAddr, usize>>,
     /// Serialises loads so that one match never gets two rooms.
     load_lock: tokio::sync::Mutex<()>,
     next_conn: AtomicU64,
@@ -99,6 +112,8 @@ impl Hub {
                 limits,
                 rt,
                 rooms: Mutex::new(HashMap::new()),
+                reserved: AtomicUsize::new(0),
+                addresses: Mutex::new(HashMap::new()),
                 load_lock: tokio::sync::Mutex::new(()),
                 next_conn: AtomicU64::new(1),
                 next_generation: AtomicU64::new(1),
@@ -141,36 +156,73 @@ impl Hub {
         }
     }
 
-    fn check_capacity(&self) -> Result<(), Refusal> {
+    /// Reserves room for one more match in memory (refused with
+    /// `server-busy` at the limit or while shutting down); the slot is
+    /// given back when dropped unless a room took it over.
+    fn reserve(&self) -> Result<Slot, Refusal> {
         if self.inner.closing.load(Ordering::Relaxed) {
             return Err(Refusal::new(
                 ErrorCode::ServerBusy,
                 "the server is shutting down",
             ));
         }
-        if self.rooms_in_memory() >= self.inner.limits.max_matches {
+        let rooms = self.rooms();
+        let reserved = self.inner.reserved.load(Ordering::SeqCst);
+        if rooms.len() + reserved >= self.inner.limits.max_matches {
             return Err(Refusal::new(
                 ErrorCode::ServerBusy,
                 "the server holds as many matches as it can; try later",
             ));
         }
-        Ok(())
+        self.inner.reserved.fetch_add(1, Ordering::SeqCst);
+        drop(rooms);
+        Ok(Slot {
+            hub: self.clone(),
+            held: true,
+        })
+    }
+
+    /// Counts one more WebSocket connection from `addr`; `None` when the
+    /// address already holds as many as allowed. The count drops with the
+    /// guard.
+    pub fn admit_address(&self, addr: IpAddr) -> Option<AddressGuard> {
+        let mut addresses = self
+            .inner
+            .addresses
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        let n = addresses.entry(addr).or_insert(0);
+        if *n >= self.inner.limits.max_connections_per_address {
+            return None;
+        }
+        *n += 1;
+        Some(AddressGuard {
+            hub: self.clone(),
+            addr,
+        })
     }
 
     /// Spawns the room of a stored match replayed into `game`.
-    fn spawn(&self, stored: &StoredMatch, game: Game) -> RoomHandle {
+    /// The room takes over `slot` (under the registry's lock, so the count
+    /// of matches never dips or doubles meanwhile).
+    fn spawn(&self, stored: &StoredMatch, game: Game, mut slot: Slot) -> RoomHandle {
         let generation = self.inner.next_generation.fetch_add(1, Ordering::Relaxed);
         let (tx, rx) = mpsc::channel(ROOM_QUEUE);
         let room = Room::new(stored, game, self.clone(), generation);
         let handle = RoomHandle { tx, generation };
-        self.rooms().insert(stored.id.clone(), handle.clone());
+        {
+            let mut rooms = self.rooms();
+            rooms.insert(stored.id.clone(), handle.clone());
+            slot.held = false;
+            self.inner.reserved.fetch_sub(1, Ordering::SeqCst);
+        }
         self.inner.rt.spawn(room.run(rx));
         handle
     }
 
     /// Stores and starts a new match; the creator gets the first seat.
     pub async fn create(&self, req: NewMatch) -> Result<SeatGrant, Refusal> {
-        self.check_capacity()?;
+        let slot = self.reserve()?;
         let turn_seconds = req.turn_seconds.unwrap_or(self.inner.limits.turn.as_secs());
         if !(1..=3600).contains(&turn_seconds) {
             return Err(Refusal::new(
@@ -187,7 +239,9 @@ impl Hub {
             (Some(req.name), Some(token.clone()), None),
             (None, None, bot),
         ];
-        let id = self.start(None, req.config, turn_seconds, seats).await?;
+        let id = self
+            .start(slot, None, req.config, turn_seconds, seats)
+            .await?;
         Ok(SeatGrant {
             match_id: id,
             seat: Seat::First,
@@ -204,7 +258,7 @@ impl Hub {
         config: Config,
         turn_seconds: Option<u64>,
     ) -> Result<String, Refusal> {
-        self.check_capacity()?;
+        let slot = self.reserve()?;
         let turn_seconds = turn_seconds.unwrap_or(self.inner.limits.turn.as_secs());
         if !(1..=3600).contains(&turn_seconds) {
             return Err(Refusal::new(
@@ -213,8 +267,14 @@ impl Hub {
             ));
         }
         let seat = |l: Level| (Some(format!("bot ({l})")), None, Some(l));
-        self.start(None, config, turn_seconds, [seat(first), seat(second)])
-            .await
+        self.start(
+            slot,
+            None,
+            config,
+            turn_seconds,
+            [seat(first), seat(second)],
+        )
+        .await
     }
 
     /// Starts the rematch of `of`: the same configuration and clock, the
@@ -227,19 +287,20 @@ impl Hub {
         turn: Duration,
         seats: [(Option<String>, Option<String>, Option<Level>); 2],
     ) -> Result<String, Refusal> {
-        self.check_capacity()?;
+        let slot = self.reserve()?;
         let [first, second] = seats;
         let seats = if second.2.is_some() {
             [first, second]
         } else {
             [second, first]
         };
-        self.start(Some(of.to_string()), config, turn.as_secs(), seats)
+        self.start(slot, Some(of.to_string()), config, turn.as_secs(), seats)
             .await
     }
 
     async fn start(
         &self,
+        slot: Slot,
         rematch_of: Option<String>,
         config: Config,
         turn_seconds: u64,
@@ -271,7 +332,7 @@ impl Hub {
                 Refusal::internal()
             })?
             .map_err(store_failed)?;
-        self.spawn(&stored, game);
+        self.spawn(&stored, game, slot);
         info!(match_id = %id, bot = ?stored.bot, "match created");
         Ok(id)
     }
@@ -288,7 +349,7 @@ impl Hub {
         if let Some(h) = self.rooms().get(id) {
             return Ok(h.clone());
         }
-        self.check_capacity()?;
+        let slot = self.reserve()?;
         let store = self.inner.store.clone();
         let key = id.to_string();
         let loaded = tokio::task::spawn_blocking(move || -> Result<_, Refusal> {
@@ -307,7 +368,7 @@ impl Hub {
             Refusal::internal()
         })??;
         let (stored, game) = loaded.ok_or_else(|| no_such_match(id))?;
-        Ok(self.spawn(&stored, game))
+        Ok(self.spawn(&stored, game, slot))
     }
 
     /// Asks the room of `id` something, once more if it stopped meanwhile.
@@ -426,6 +487,44 @@ impl RoomHost for Hub {
     }
     fn remove(&self, id: &str, generation: u64) {
         Hub::remove(self, id, generation)
+    }
+}
+
+/// Room reserved for one match in memory; given back when dropped unless
+/// the match's room took it over.
+struct Slot {
+    hub: Hub,
+    held: bool,
+}
+
+impl Drop for Slot {
+    fn drop(&mut self) {
+        if self.held {
+            self.hub.inner.reserved.fetch_sub(1, Ordering::SeqCst);
+        }
+    }
+}
+
+/// One WebSocket connection counted against its client address.
+pub struct AddressGuard {
+    hub: Hub,
+    addr: IpAddr,
+}
+
+impl Drop for AddressGuard {
+    fn drop(&mut self) {
+        let mut addresses = self
+            .hub
+            .inner
+            .addresses
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        if let Some(n) = addresses.get_mut(&self.addr) {
+            *n -= 1;
+            if *n == 0 {
+                addresses.remove(&self.addr);
+            }
+        }
     }
 }
 

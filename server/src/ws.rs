@@ -9,8 +9,20 @@
 //! closed. A connection
 //! that stops answering pings, floods on after warnings, or cannot keep up
 //! with the match is closed.
+//!
+//! Every write to the socket has a deadline (`--write-timeout-ms`): a client
+//! that stops reading fills the kernel's buffers and then the session's
+//! queue, and a write that cannot finish in time ends the session. Closing
+//! politely would need yet another write, so the server then shuts the TCP
+//! connection down itself ([`on_connect`] keeps a handle on each socket);
+//! the same happens to a connection the room dropped for not keeping up
+//! once its last messages cannot be flushed in time. Either way the socket,
+//! its connection count and its address's count are released within about
+//! one write timeout. Each client address holds at most
+//! `--max-connections-per-address` connections; past it (or past the global
+//! `--max-connections`) the upgrade is refused with HTTP 503 `server-busy`.
 
-use crate::hub::{Hub, RoomHandle};
+use crate::hub::{AddressGuard, Hub, RoomHandle};
 use crate::ratelimit::TokenBucket;
 use crate::refusal::{HttpStatus, Refusal};
 use crate::room::Command;
@@ -18,6 +30,8 @@ use actix_web::{web, HttpRequest, HttpResponse};
 use actix_ws::{AggregatedMessage, CloseCode, CloseReason, ProtocolError, Session};
 use game::protocol::{ClientMessage, ErrorCode, ServerMessage, PROTOCOL_VERSION};
 use serde::Deserialize;
+use std::future::Future;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 use tracing::debug;
 
@@ -43,6 +57,42 @@ impl Drop for ConnectionGuard {
     fn drop(&mut self) {
         self.0.connection_closed();
     }
+}
+
+/// A second handle on a connection's TCP socket, kept in the connection's
+/// data by [`on_connect`], so that a session stuck on a client that stopped
+/// reading can shut the connection down.
+#[derive(Clone, Debug)]
+pub struct ConnSocket(Arc<std::net::TcpStream>);
+
+impl ConnSocket {
+    /// Shuts the TCP connection down both ways: the HTTP server's pending
+    /// writes fail, it drops the connection, and the client sees it close.
+    fn shut_down(&self) {
+        let _ = self.0.shutdown(std::net::Shutdown::Both);
+    }
+}
+
+/// For [`actix_web::HttpServer::on_connect`]: keeps a [`ConnSocket`] of
+/// each TCP connection (a duplicate of its descriptor, closed with it).
+pub fn on_connect(conn: &dyn std::any::Any, data: &mut actix_web::dev::Extensions) {
+    #[cfg(unix)]
+    if let Some(tcp) = conn.downcast_ref::<actix_web::rt::net::TcpStream>() {
+        use std::os::fd::AsFd;
+        match tcp.as_fd().try_clone_to_owned() {
+            Ok(fd) => {
+                data.insert(ConnSocket(Arc::new(std::net::TcpStream::from(fd))));
+            }
+            Err(e) => debug!(error = %e, "cannot keep a handle on a socket"),
+        }
+    }
+    #[cfg(not(unix))]
+    let _ = (conn, data);
+}
+
+/// Writes within the write timeout; `false`: the socket is gone or stuck.
+async fn timely<E>(limit: Duration, write: impl Future<Output = Result<(), E>>) -> bool {
+    matches!(tokio::time::timeout(limit, write).await, Ok(Ok(())))
 }
 
 fn http_refusal(r: &Refusal) -> HttpResponse {
@@ -77,21 +127,69 @@ pub async fn handler(
             "the server holds as many connections as it can; try later",
         )));
     }
+    let addr = req
+        .peer_addr()
+        .map(|a| a.ip())
+        .unwrap_or(std::net::IpAddr::from([0, 0, 0, 0]));
+    let Some(address_guard) = hub.admit_address(addr) else {
+        return Ok(http_refusal(&Refusal::new(
+            ErrorCode::ServerBusy,
+            "this address holds as many connections as it may; try later",
+        )));
+    };
+    let socket = req.conn_data::<ConnSocket>().cloned();
     let (response, session, stream) = actix_ws::handle(&req, body)?;
     let hub = hub.get_ref().clone();
     actix_web::rt::spawn(async move {
-        let _guard = guard;
-        run(hub, query, session, stream).await;
+        let guards = (guard, address_guard);
+        let stuck = run(hub.clone(), query, session, stream).await;
+        if let Some(socket) = socket {
+            release(&hub, socket, stuck, guards).await;
+        }
     });
     Ok(response)
 }
 
-async fn send(session: &mut Session, msg: &ServerMessage) -> bool {
-    session.text(msg.to_json()).await.is_ok()
+/// After a session: a socket whose writes got stuck is shut down at once;
+/// otherwise the HTTP server gets one write timeout to flush the last
+/// messages and close it, and is cut off after that. The connection counts
+/// drop when the socket is gone.
+async fn release(
+    hub: &Hub,
+    socket: ConnSocket,
+    stuck: bool,
+    guards: (ConnectionGuard, AddressGuard),
+) {
+    if !stuck {
+        let deadline = tokio::time::Instant::now() + hub.limits().write_timeout;
+        // The HTTP server holds the other handle until it drops the connection.
+        while Arc::strong_count(&socket.0) > 1 && tokio::time::Instant::now() < deadline {
+            tokio::time::sleep(Duration::from_millis(50)).await;
+        }
+        if Arc::strong_count(&socket.0) == 1 {
+            drop(guards);
+            return;
+        }
+    }
+    debug!("shutting down a connection that does not take what is written to it");
+    socket.shut_down();
+    drop(guards);
 }
 
-async fn run(hub: Hub, query: WsQuery, mut session: Session, stream: actix_ws::MessageStream) {
+async fn send(session: &mut Session, limit: Duration, msg: &ServerMessage) -> bool {
+    timely(limit, session.text(msg.to_json())).await
+}
+
+/// Runs one session; `true` when it ended on a write that could not finish
+/// in time (the socket is stuck).
+async fn run(
+    hub: Hub,
+    query: WsQuery,
+    mut session: Session,
+    stream: actix_ws::MessageStream,
+) -> bool {
     let limits = hub.limits().clone();
+    let wt = limits.write_timeout;
     let mut stream = stream
         .max_frame_size(limits.max_message_bytes)
         .aggregate_continuations()
@@ -100,13 +198,14 @@ async fn run(hub: Hub, query: WsQuery, mut session: Session, stream: actix_ws::M
         Ok(c) => c,
         Err(r) => {
             hub.metrics().refused();
-            let _ = send(&mut session, &r.to_message()).await;
+            if !send(&mut session, wt, &r.to_message()).await {
+                return true;
+            }
             let reason = CloseReason {
                 code: CloseCode::Policy,
                 description: Some(r.code.as_str().into()),
             };
-            let _ = session.close(Some(reason)).await;
-            return;
+            return !timely(wt, session.close(Some(reason))).await;
         }
     };
     let conn = connected.conn;
@@ -116,11 +215,14 @@ async fn run(hub: Hub, query: WsQuery, mut session: Session, stream: actix_ws::M
     let mut bucket = TokenBucket::new(limits.rate_per_sec, limits.rate_burst, Instant::now());
     let mut ping = tokio::time::interval(PING_EVERY);
     let mut last_heard = Instant::now();
+    // Set when a write did not finish in time.
+    let mut stuck = false;
     let reason: Option<CloseReason> = loop {
         tokio::select! {
             out = rx.recv() => match out {
                 Some(text) => {
-                    if session.text(&*text).await.is_err() {
+                    if !timely(wt, session.text(&*text)).await {
+                        stuck = true;
                         break None;
                     }
                 }
@@ -134,7 +236,8 @@ async fn run(hub: Hub, query: WsQuery, mut session: Session, stream: actix_ws::M
                 match frame {
                     None | Some(Ok(AggregatedMessage::Close(_))) => break None,
                     Some(Ok(AggregatedMessage::Ping(b))) => {
-                        if session.pong(&b).await.is_err() {
+                        if !timely(wt, session.pong(&b)).await {
+                            stuck = true;
                             break None;
                         }
                     }
@@ -155,25 +258,27 @@ async fn run(hub: Hub, query: WsQuery, mut session: Session, stream: actix_ws::M
                             });
                         }
                         if !play && !bucket.take(now) {
-                            if let Some(r) = flooded(&hub, &mut session, &bucket).await {
+                            if let Some(r) = flooded(&hub, &mut session, wt, &bucket).await {
                                 break Some(r);
                             }
                             continue;
                         }
-                        if !handle_message(&hub, &room, conn, &mut session, parsed).await {
+                        if !handle_message(&hub, &room, conn, &mut session, wt, parsed).await {
+                            stuck = true;
                             break None;
                         }
                     }
                     Some(Ok(AggregatedMessage::Binary(_))) => {
                         if !bucket.take(Instant::now()) {
-                            if let Some(r) = flooded(&hub, &mut session, &bucket).await {
+                            if let Some(r) = flooded(&hub, &mut session, wt, &bucket).await {
                                 break Some(r);
                             }
                             continue;
                         }
                         hub.metrics().refused();
                         let r = Refusal::new(ErrorCode::BadMessage, "messages are JSON text frames");
-                        if !send(&mut session, &r.to_message()).await {
+                        if !send(&mut session, wt, &r.to_message()).await {
+                            stuck = true;
                             break None;
                         }
                     }
@@ -183,7 +288,9 @@ async fn run(hub: Hub, query: WsQuery, mut session: Session, stream: actix_ws::M
                             ErrorCode::MessageTooLarge,
                             format!("messages are at most {} bytes", limits.max_message_bytes),
                         );
-                        let _ = send(&mut session, &r.to_message()).await;
+                        if !send(&mut session, wt, &r.to_message()).await {
+                            stuck = true;
+                        }
                         break Some(CloseReason {
                             code: CloseCode::Size,
                             description: Some(r.code.as_str().into()),
@@ -205,18 +312,27 @@ async fn run(hub: Hub, query: WsQuery, mut session: Session, stream: actix_ws::M
                         description: Some("no answer to pings".into()),
                     });
                 }
-                if session.ping(b"").await.is_err() {
+                if !timely(wt, session.ping(b"")).await {
+                    stuck = true;
                     break None;
                 }
             }
         }
     };
     let _ = room.tx.send(Command::Disconnect { conn }).await;
-    let _ = session.close(reason).await;
+    if stuck {
+        return true;
+    }
+    !timely(wt, session.close(reason)).await
 }
 
 /// Answers a dropped message; closes a connection that floods on.
-async fn flooded(hub: &Hub, session: &mut Session, bucket: &TokenBucket) -> Option<CloseReason> {
+async fn flooded(
+    hub: &Hub,
+    session: &mut Session,
+    wt: Duration,
+    bucket: &TokenBucket,
+) -> Option<CloseReason> {
     hub.metrics().refused();
     let close = Some(CloseReason {
         code: CloseCode::Policy,
@@ -231,7 +347,7 @@ async fn flooded(hub: &Hub, session: &mut Session, bucket: &TokenBucket) -> Opti
             ErrorCode::RateLimited,
             "too many messages; this one was dropped, slow down",
         );
-        if !send(session, &r.to_message()).await {
+        if !send(session, wt, &r.to_message()).await {
             return close;
         }
     }
@@ -244,17 +360,19 @@ async fn handle_message(
     room: &RoomHandle,
     conn: u64,
     session: &mut Session,
+    wt: Duration,
     parsed: Result<ClientMessage, game::protocol::ProtocolError>,
 ) -> bool {
     match parsed {
         Err(e) => {
             hub.metrics().refused();
-            send(session, &e.to_message()).await
+            send(session, wt, &e.to_message()).await
         }
         Ok(ClientMessage::Hello { protocol, .. }) => {
             if protocol == PROTOCOL_VERSION {
                 send(
                     session,
+                    wt,
                     &ServerMessage::Welcome {
                         protocol: PROTOCOL_VERSION,
                     },
@@ -266,7 +384,7 @@ async fn handle_message(
                     ErrorCode::UnsupportedProtocol,
                     format!("this server speaks protocol {PROTOCOL_VERSION}"),
                 );
-                send(session, &r.to_message()).await
+                send(session, wt, &r.to_message()).await
             }
         }
         Ok(msg) => room.tx.send(Command::message(conn, msg)).await.is_ok(),

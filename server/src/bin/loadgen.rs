@@ -11,7 +11,8 @@
 //! and hypervisor-stolen CPU shares (`/proc/stat`, Linux).
 //!
 //! ```sh
-//! cargo run --release -p server -- --data-dir /tmp/chapaev-load &
+//! cargo run --release -p server -- --data-dir /tmp/chapaev-load \
+//!     --max-connections-per-address 100000 --create-per-sec 10000 --create-burst 10000 &
 //! cargo run --release -p server --bin loadgen -- --matches 50 --clients 400 --seconds 20
 //! ```
 
