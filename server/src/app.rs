@@ -106,6 +106,12 @@ async fn serve(
             .app_data(simulations.clone())
             .app_data(creations.clone())
             .app_data(web::PayloadConfig::new(limit))
+            .wrap(
+                actix_web::middleware::ErrorHandlers::new()
+                    .handler(actix_web::http::StatusCode::PAYLOAD_TOO_LARGE, move |res| {
+                        crate::http::too_large_as_json(res, limit)
+                    }),
+            )
             .configure(crate::http::routes)
     })
     .on_connect(crate::ws::on_connect)

@@ -65,6 +65,32 @@ impl Creations {
     }
 }
 
+/// Gives a `413 Payload Too Large` that actix-web produced itself (a body
+/// over the limit, refused before any handler ran) the JSON error body every
+/// other refusal has; a 413 that already is JSON passes unchanged.
+pub(crate) fn too_large_as_json<B>(
+    res: actix_web::dev::ServiceResponse<B>,
+    limit: usize,
+) -> actix_web::Result<actix_web::middleware::ErrorHandlerResponse<B>> {
+    use actix_web::middleware::ErrorHandlerResponse;
+    let json = res
+        .response()
+        .headers()
+        .get(actix_web::http::header::CONTENT_TYPE)
+        .is_some_and(|v| v.as_bytes().starts_with(b"application/json"));
+    if json {
+        return Ok(ErrorHandlerResponse::Response(res.map_into_left_body()));
+    }
+    let (req, _) = res.into_parts();
+    let body = refused(&Refusal::new(
+        ErrorCode::MessageTooLarge,
+        format!("bodies are at most {limit} bytes"),
+    ));
+    Ok(ErrorHandlerResponse::Response(
+        actix_web::dev::ServiceResponse::new(req, body).map_into_right_body(),
+    ))
+}
+
 /// A refusal as an HTTP error response with a JSON body.
 pub(crate) fn refused(r: &Refusal) -> HttpResponse {
     let status = StatusCode::from_u16(r.http_status()).unwrap_or(StatusCode::BAD_REQUEST);

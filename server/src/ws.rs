@@ -90,6 +90,18 @@ pub fn on_connect(conn: &dyn std::any::Any, data: &mut actix_web::dev::Extension
     let _ = (conn, data);
 }
 
+/// Whether a WebSocket read failed on the size limit: one frame above it
+/// (`Overflow`), or a message fragmented into continuation frames that add
+/// up to more (actix-ws reports that one only as an I/O error with this
+/// text, having no variant of its own for it).
+fn too_large(e: &ProtocolError) -> bool {
+    match e {
+        ProtocolError::Overflow => true,
+        ProtocolError::Io(io) => io.to_string().contains("maximum continuation size"),
+        _ => false,
+    }
+}
+
 /// Writes within the write timeout; `false`: the socket is gone or stuck.
 async fn timely<E>(limit: Duration, write: impl Future<Output = Result<(), E>>) -> bool {
     matches!(tokio::time::timeout(limit, write).await, Ok(Ok(())))
@@ -282,7 +294,7 @@ async fn run(
                             break None;
                         }
                     }
-                    Some(Err(ProtocolError::Overflow)) => {
+                    Some(Err(e)) if too_large(&e) => {
                         hub.metrics().refused();
                         let r = Refusal::new(
                             ErrorCode::MessageTooLarge,

@@ -106,6 +106,35 @@ async fn an_oversized_frame_is_refused_with_message_too_large_and_changes_nothin
 }
 
 #[tokio::test]
+async fn a_message_fragmented_past_the_size_limit_is_refused_with_message_too_large() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &["--max-message-bytes", "4096"]);
+    let (id, white_token, _) = server.two_player_match("").await;
+    let mut white = server.ws(&id, Some(&white_token)).await;
+    view(white.next().await);
+    let padding = " ".repeat(12_000);
+    // Every frame is under the limit; the message they make is not.
+    white
+        .send_fragmented(&format!(r#"{{"type":"chat","text":"hi"{padding}}}"#), 3000)
+        .await;
+    assert_eq!(white.next_error().await, "message-too-large");
+    assert!(white.closes().await);
+}
+
+#[tokio::test]
+async fn an_http_body_past_the_size_limit_gets_a_json_413() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &["--max-message-bytes", "4096"]);
+    let body = format!(r#"{{"name":"{}"}}"#, "x".repeat(10_000));
+    let (status, text) = server.http("POST", "/api/matches", &body).await;
+    assert_eq!(status, 413, "{text}");
+    let v: serde_json::Value =
+        serde_json::from_str(&text).unwrap_or_else(|e| panic!("{e}: {text}"));
+    assert_eq!(v["type"], "error");
+    assert_eq!(v["code"], "message-too-large");
+}
+
+#[tokio::test]
 async fn a_flood_is_rate_limited_and_the_connection_survives() {
     let dir = tempfile::tempdir().unwrap();
     let server = Server::start(dir.path(), &["--rate-per-sec", "10", "--rate-burst", "10"]);

@@ -205,6 +205,20 @@ impl Client {
         self.ws.send(Message::Text(text)).await.unwrap();
     }
 
+    /// Sends `text` as one message fragmented into frames of `chunk` bytes.
+    pub async fn send_fragmented(&mut self, text: &str, chunk: usize) {
+        use tokio_tungstenite::tungstenite::protocol::frame::coding::{Data, OpCode};
+        use tokio_tungstenite::tungstenite::protocol::frame::Frame;
+        let parts: Vec<&[u8]> = text.as_bytes().chunks(chunk).collect();
+        for (k, part) in parts.iter().enumerate() {
+            let opcode = if k == 0 { Data::Text } else { Data::Continue };
+            let frame = Frame::message(part.to_vec(), OpCode::Data(opcode), k + 1 == parts.len());
+            if self.ws.send(Message::Frame(frame)).await.is_err() {
+                return;
+            }
+        }
+    }
+
     pub async fn send(&mut self, m: &ClientMessage) {
         self.send_text(m.to_json()).await;
     }
