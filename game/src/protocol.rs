@@ -196,6 +196,8 @@ pub enum ErrorCode {
     /// A position given to simulate is impossible (a piece twice, off
     /// the board, or two pieces overlapping).
     BadBoard,
+    /// A page of another site tried to act (its `Origin` is not allowed).
+    ForbiddenOrigin,
 }
 
 impl ErrorCode {
@@ -229,6 +231,7 @@ impl ErrorCode {
             ErrorCode::ServerBusy => "server-busy",
             ErrorCode::MatchNotOver => "match-not-over",
             ErrorCode::BadBoard => "bad-board",
+            ErrorCode::ForbiddenOrigin => "forbidden-origin",
         }
     }
 }

@@ -100,9 +100,12 @@ async fn serve(
     let creations = web::Data::new(crate::http::Creations(
         crate::simulate::AddressLimiter::new(config.create_per_sec, config.create_burst),
     ));
+    let origins = web::Data::new(crate::origin::Origins::new(&config.allowed_origins));
     let server = HttpServer::new(move || {
         App::new()
             .app_data(data.clone())
+            .app_data(origins.clone())
+            .wrap(actix_web::middleware::from_fn(crate::origin::check))
             .app_data(simulations.clone())
             .app_data(creations.clone())
             .app_data(web::PayloadConfig::new(limit))

@@ -85,6 +85,12 @@ pub struct Config {
     #[arg(long, env = "CHAPAEV_CREATE_BURST", default_value_t = 10.0)]
     pub create_burst: f64,
 
+    /// Origins besides the server's own (scheme and `Host`) whose pages may
+    /// create, join and play matches, comma-separated (e.g. the public
+    /// address of a proxy in front: `https://chapaev.example`).
+    #[arg(long, env = "CHAPAEV_ALLOWED_ORIGINS", value_delimiter = ',')]
+    pub allowed_origins: Vec<String>,
+
     /// Shots `POST /api/simulate` computes per second for one client
     /// address, sustained.
     #[arg(long, env = "CHAPAEV_SIMULATE_PER_SEC", default_value_t = 50.0)]

@@ -13,7 +13,8 @@
 //!
 //! Modules: [`config`] (flags and limits), [`token`] (seat tokens and ids),
 //! [`refusal`] (errors sent to clients, with their HTTP statuses),
-//! [`store`] (SQLite), [`metrics`] (Prometheus), [`ratelimit`]
+//! [`store`] (SQLite), [`metrics`] (Prometheus), [`origin`] (cross-site
+//! requests refused), [`ratelimit`]
 //! (per-connection token bucket), [`room`] (the task that drives one
 //! match's session and asks the computer levels of the [`bots`] crate for
 //! their moves), [`hub`] (the registry of
@@ -29,6 +30,7 @@ pub mod config;
 pub mod http;
 pub mod hub;
 pub mod metrics;
+pub mod origin;
 pub mod ratelimit;
 pub mod refusal;
 pub mod room;

@@ -18,7 +18,7 @@ impl HttpStatus for Refusal {
         match self.code {
             ErrorCode::NoSuchMatch => 404,
             ErrorCode::MatchFull | ErrorCode::MatchOver | ErrorCode::MatchNotOver => 409,
-            ErrorCode::BadToken => 403,
+            ErrorCode::BadToken | ErrorCode::ForbiddenOrigin => 403,
             ErrorCode::RateLimited => 429,
             ErrorCode::MessageTooLarge => 413,
             ErrorCode::ServerBusy => 503,

@@ -135,6 +135,43 @@ async fn an_http_body_past_the_size_limit_gets_a_json_413() {
 }
 
 #[tokio::test]
+async fn another_sites_page_cannot_create_join_or_play_but_the_own_origin_and_bots_can() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(
+        dir.path(),
+        &["--allowed-origins", "https://chapaev.example"],
+    );
+    let addr = server.addr.clone();
+    let code = |body: &str| -> String {
+        let v: serde_json::Value = serde_json::from_str(body).unwrap();
+        v["code"].as_str().unwrap_or_default().to_string()
+    };
+    let foreign = "Origin: http://evil.example\r\n";
+    let (s, b) = common::http_with(&addr, "POST", "/api/matches", foreign, "{}").await;
+    assert_eq!((s, code(&b)), (403, "forbidden-origin".to_string()), "{b}");
+    let (id, _) = server.create("{}").await;
+    let join = format!("/api/matches/{id}/join");
+    let (s, b) = common::http_with(&addr, "POST", &join, foreign, "{}").await;
+    assert_eq!((s, code(&b)), (403, "forbidden-origin".to_string()), "{b}");
+    // The WebSocket opening too.
+    let ws = format!("/ws?match={id}");
+    let upgrade = format!(
+        "{foreign}Upgrade: websocket\r\nConnection: Upgrade\r\nSec-WebSocket-Version: 13\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n"
+    );
+    let (s, b) = common::http_with(&addr, "GET", &ws, &upgrade, "").await;
+    assert_eq!((s, code(&b)), (403, "forbidden-origin".to_string()), "{b}");
+    // Reads are not checked; the own origin and a listed one may act.
+    let (s, _) = common::http_with(&addr, "GET", "/api/matches", foreign, "").await;
+    assert_eq!(s, 200);
+    let own = format!("Origin: http://{addr}\r\n");
+    let (s, b) = common::http_with(&addr, "POST", "/api/matches", &own, "{}").await;
+    assert_eq!(s, 201, "{b}");
+    let listed = "Origin: https://chapaev.example\r\n";
+    let (s, b) = common::http_with(&addr, "POST", &join, listed, "{}").await;
+    assert_eq!(s, 200, "{b}");
+}
+
+#[tokio::test]
 async fn a_flood_is_rate_limited_and_the_connection_survives() {
     let dir = tempfile::tempdir().unwrap();
     let server = Server::start(dir.path(), &["--rate-per-sec", "10", "--rate-burst", "10"]);
