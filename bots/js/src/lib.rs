@@ -20,6 +20,7 @@
 //! The package (`bots/js/build.sh` writes it to `bots/js/pkg`) has its own
 //! hand-written TypeScript types, `bots/js/index.d.ts`.
 
+use game::batch;
 use game::board::{is_on_board, square_centre};
 use game::noise::{NoiseDraw, SplitMix64};
 use game::protocol::ErrorCode;
@@ -29,8 +30,6 @@ use glam::DVec2;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
-
-mod batch;
 
 /// The most items one call makes (noise draws, random requests): a
 /// mistaken count fails with `bad-message` instead of exhausting memory.

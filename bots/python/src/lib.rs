@@ -15,6 +15,7 @@
 //! the server would give (`bad-board`, `too-fast`, ...). Nothing panics
 //! into the interpreter. The simulation itself runs without the GIL.
 
+use game::batch;
 use game::board::Board;
 use game::noise::{NoiseDraw, SplitMix64};
 use game::simulate::{play as play_shot, random_request, SimulateRequest, Simulation};
@@ -26,8 +27,6 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyFloat, PyInt, PyList, PyTuple};
 use serde::de::DeserializeOwned;
 use serde::Serialize;
-
-mod batch;
 
 create_exception!(
     chapaev,

@@ -1,8 +1,8 @@
 //! The batch form of `Simulator.play`: many shots in one flat array of
 //! numbers, answered in one flat array of doubles with a fixed stride, so
 //! a bot scoring thousands of candidates pays the boundary once, not once
-//! per shot. The same file is `bots/js/src/batch.rs` and
-//! `bots/python/src/batch.rs` (keep them identical).
+//! per shot. The JavaScript (`Simulator.playMany`) and Python
+//! (`Simulator.play_many`) packages both answer with it.
 //!
 //! A request is [`SHOT_FIELDS`] numbers per shot: `piece, vx, vy,
 //! noise_angle, noise_speed`. The noise draw is applied (with the
@@ -26,10 +26,10 @@
 //!
 //! A refused shot has its status and NaN everywhere else.
 
-use game::protocol::ErrorCode;
-use game::rules::Verdict;
-use game::simulate::{self, Simulation};
-use game::{Board, Config, PieceId, RoundResult, Shot, Side};
+use crate::protocol::ErrorCode;
+use crate::rules::Verdict;
+use crate::simulate::{self, Simulation};
+use crate::{Board, Config, PieceId, RoundResult, Shot, Side};
 use glam::DVec2;
 
 /// Numbers per shot in a request.
@@ -86,7 +86,7 @@ fn play_one(config: &Config, board: &Board, shot: &[f64]) -> Result<Simulation, 
     } else if !angle.is_finite() || !speed.is_finite() {
         return Err(simulate::SimulateError::NoiseNotFinite.code());
     } else {
-        Some(game::noise::NoiseDraw { angle, speed })
+        Some(crate::noise::NoiseDraw { angle, speed })
     };
     let shot = Shot::new(piece, DVec2::new(vx, vy), config).map_err(|e| e.code())?;
     let played = match (&config.variants.noise, &noise) {
