@@ -201,12 +201,47 @@ export default function init(
 /** One shot simulated: exactly the server's `POST /api/simulate`. Throws a `ChapaevError`. */
 export function simulate(request: SimulateRequest): Simulation;
 
+/**
+ * The answer of `Simulator.playMany`: 56 numbers per shot (shot `k` at
+ * `56 * k`), at these offsets:
+ *
+ * - 0: status: 0 played, else the refusal `play` would have thrown:
+ *   1 bad-message (the piece is not an integer id 0 to 15), 2 not-finite,
+ *   3 zero-speed, 4 too-fast, 5 piece-off-board, 6 internal, 7 other;
+ * - 1: verdict: 0 shoot-again, 1 pass-turn, 2 round over (White won),
+ *   3 round over (Black won), 4 round over (draw);
+ * - 2, 3: the velocity played (after noise);
+ * - 4: duration, s after the flick;
+ * - 5: end reason: 0 rest, 1 free, 2 until, 3 max-collisions, 4 max-events;
+ * - 6, 7: how many White, Black pieces were knocked off;
+ * - 8 to 23: the ids knocked off, in the order they fell, then NaN;
+ * - 24 to 55: `x, y` of piece id `i` at rest at `24 + 2 * i`, NaN when
+ *   that piece is not on the board (knocked off, or never there).
+ *
+ * A refused shot has its status and NaN everywhere else.
+ */
+export type PlayManyResult = Float64Array;
+
+/** The status numbers of `Simulator.playMany` (offset 0 of each shot). */
+export type PlayManyStatus = 0 | 1 | 2 | 3 | 4 | 5 | 6 | 7;
+
 /** Plays candidate shots on one position, checked and converted once. */
 export class Simulator {
   /** Throws `bad-config` or `bad-board` as `simulate` would. */
   constructor(config: ConfigInput | null | undefined, board: Piece[]);
   /** The result of `simulate` on the same request, without a film. */
   play(piece: PieceId, velocity: Vec2, noise?: NoiseDraw | null): Simulation;
+  /**
+   * Many shots in one call, the very bits of `play` on each. `shots` holds
+   * 5 numbers per shot: `piece, vx, vy, noiseAngle, noiseSpeed`
+   * (`NaN, NaN` for no noise draw; the draw is applied only when the
+   * configuration has a noise model). The answer holds
+   * 56 numbers per shot, laid out as {@link PlayManyResult} says. A
+   * refused shot does not throw: its status is nonzero
+   * ({@link PlayManyStatus}) and every other number NaN. Throws
+   * `bad-message` only when the length is not a multiple of 5.
+   */
+  playMany(shots: Float64Array | ArrayLike<number>): PlayManyResult;
   readonly config: Config;
   readonly board: Piece[];
   /** Releases the wasm memory now (otherwise when garbage-collected). */

@@ -5,10 +5,13 @@ dicts, lists, ints and floats. The TypedDicts below name those shapes; they
 exist for type checkers only (import them under `typing.TYPE_CHECKING`).
 """
 
-from typing import Any, Dict, List, Literal, Optional, Tuple, TypedDict, Union, final
+import array
+from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, TypedDict, Union, final
 
 __version__: str
 PROTOCOL_VERSION: int
+PLAY_MANY_STRIDE: int
+"""Floats per shot in the answer of `Simulator.play_many` (56)."""
 
 Vec2 = List[float]
 """`[x, y]` in metres, or `[vx, vy]` in m/s (a tuple is accepted as input)."""
@@ -132,6 +135,33 @@ class Simulator:
         noise: Optional[NoiseDraw] = None,
     ) -> Simulation:
         """The shot as `simulate` plays it (no film), with the aimed velocity and an optional draw."""
+    def play_many(self, shots: Union[Sequence[float], "array.array[float]"]) -> List[float]:
+        """Many shots in one call, the very bits of `play` on each.
+
+        `shots` holds 5 numbers per shot: `piece, vx, vy, noise_angle,
+        noise_speed` (`nan, nan` for no noise draw; the draw is applied only
+        when the configuration has a noise model). The answer holds
+        `PLAY_MANY_STRIDE` (56) floats per shot (shot `k` at `56 * k`):
+
+        - 0: status: 0.0 played, else the refusal `play` would raise:
+          1 bad-message (the piece is not an integer id 0 to 15),
+          2 not-finite, 3 zero-speed, 4 too-fast, 5 piece-off-board,
+          6 internal, 7 other;
+        - 1: verdict: 0 shoot-again, 1 pass-turn, 2 round over (White won),
+          3 round over (Black won), 4 round over (draw);
+        - 2, 3: the velocity played (after noise);
+        - 4: duration, s after the flick;
+        - 5: end reason: 0 rest, 1 free, 2 until, 3 max-collisions,
+          4 max-events;
+        - 6, 7: how many White, Black pieces were knocked off;
+        - 8 to 23: the ids knocked off, in the order they fell, then nan;
+        - 24 to 55: `x, y` of piece id `i` at rest at `24 + 2 * i`, nan
+          when that piece is not on the board.
+
+        A refused shot raises nothing: it has its status and nan elsewhere.
+        Raises `SimulateError` (`bad-message`) only when the length is not a
+        multiple of 5.
+        """
     @property
     def config(self) -> Config: ...
     @property

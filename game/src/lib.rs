@@ -40,11 +40,13 @@
 //! came to), [`game`] (the match state machine), [`record`] (the versioned
 //! match record), [`replay`] (bit-exact replay and scrubbing),
 //! [`simulate`] (one shot on any position, as plain data for every
-//! language), [`protocol`] (the wire messages and refusals) and [`session`] (a live
+//! language), [`batch`] (many shots in one flat array of numbers, for the
+//! language bindings), [`protocol`] (the wire messages and refusals) and [`session`] (a live
 //! match — seats, connections, turn clock, rematch — as a state machine
 //! without I/O, driven by the server's rooms and by tests on a virtual
 //! clock).
 
+pub mod batch;
 pub mod board;
 pub mod config;
 pub mod film;

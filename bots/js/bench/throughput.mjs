@@ -9,6 +9,9 @@
 //   api "Simulator.play": each position converted and checked once (new
 //     Simulator, untimed, as the native twin validates untimed), the shots
 //     timed: the figure to set next to native;
+//   api "Simulator.playMany": the same shots on the same prepared
+//     Simulators, each through playMany (its one shot as 5 numbers in, 56
+//     out), the compact answer instead of objects;
 //   api "simulate": the whole request converted, checked and played per call.
 // CPU time is process.cpuUsage() (user + system), as the native twin uses
 // the process's CPU clock.
@@ -40,6 +43,9 @@ const report = (api, seconds, knocked) =>
   }));
 
 const requests = randomRequests(seed, count);
+// A request's shot as playMany takes it (NaN, NaN: no noise draw).
+const shotOf = (r) =>
+  new Float64Array([r.piece, r.velocity[0], r.velocity[1], r.noise?.angle ?? NaN, r.noise?.speed ?? NaN]);
 
 // Warm-up, untimed: V8 compiles wasm in tiers (a quick baseline first, the
 // optimised code in background threads for hot functions), and that
@@ -50,6 +56,7 @@ for (let k = 0; k < 3000; k++) {
   simulate(r);
   const s = new Simulator(r.config, r.board);
   s.play(r.piece, r.velocity, r.noise);
+  s.playMany(shotOf(r));
   s.free();
 }
 
@@ -59,6 +66,17 @@ for (let k = 0; k < 3000; k++) {
   const t = process.cpuUsage();
   for (const [sim, r] of prepared) knocked += sim.play(r.piece, r.velocity, r.noise).knocked_off.length;
   report("Simulator.play", cpu(t), knocked);
+  for (const [sim] of prepared) sim.free();
+}
+{
+  const prepared = requests.map((r) => [new Simulator(r.config, r.board), shotOf(r)]);
+  let knocked = 0;
+  const t = process.cpuUsage();
+  for (const [sim, shot] of prepared) {
+    const a = sim.playMany(shot);
+    knocked += a[6] + a[7];
+  }
+  report("Simulator.playMany", cpu(t), knocked);
   for (const [sim] of prepared) sim.free();
 }
 {

@@ -20,6 +20,7 @@
 //! The package (`bots/js/build.sh` writes it to `bots/js/pkg`) has its own
 //! hand-written TypeScript types, `bots/js/index.d.ts`.
 
+use game::batch;
 use game::board::{is_on_board, square_centre};
 use game::noise::{NoiseDraw, SplitMix64};
 use game::protocol::ErrorCode;
@@ -363,6 +364,34 @@ impl Simulator {
         let sim = simulate::play(&self.config, &self.board, &shot, played, false)
             .map_err(|e| error(e.code(), e))?;
         simulation_to_js(&sim)
+    }
+
+    /// Many shots in one call: `shots` is a flat array (a `Float64Array`
+    /// or an array of numbers), 5 per shot: `piece, vx, vy, noiseAngle,
+    /// noiseSpeed` (`NaN, NaN` for no noise draw). Returns a `Float64Array`
+    /// of 56 numbers per shot (layout in `index.d.ts`),
+    /// the very bits of `play` on each. A refused shot does not throw: its
+    /// status (offset 0) is nonzero. Throws `bad-message` only when the
+    /// length is not a multiple of 5 or above the batch limit.
+    #[wasm_bindgen(js_name = playMany)]
+    pub fn play_many(&self, shots: &[f64]) -> Result<Vec<f64>, JsValue> {
+        if !shots
+            .chunks_exact(batch::SHOT_FIELDS)
+            .remainder()
+            .is_empty()
+        {
+            return Err(error(
+                ErrorCode::BadMessage,
+                format!(
+                    "shots: {} numbers is not a multiple of {}",
+                    shots.len(),
+                    batch::SHOT_FIELDS
+                ),
+            ));
+        }
+        let n = u32::try_from(shots.len() / batch::SHOT_FIELDS).unwrap_or(u32::MAX);
+        self::batch(n, "shots")?;
+        Ok(batch::play_many(&self.config, &self.board, shots))
     }
 
     /// The configuration it plays under.

@@ -1,10 +1,12 @@
 """Shots per CPU second through the Python binding: the N requests of
 chapaev.random_requests(S, N), each played through Simulator.play (one
 Simulator per request, as a bot builds one per position). Prints one JSON
-line, the shape of the native twin `cargo run --release -p bots --
+line per entry point (api "Simulator.play", then "Simulator.play_many": the
+same shots, each through the batch method, the Simulator built in the timed
+loop and then beforehand), the shape of the native twin `cargo run --release -p bots --
 throughput --count N --seed S`:
 
-  {"binding": "python", "shots": N, "cpu_seconds": ..., "shots_per_cpu_second": ...}
+  {"binding": "python", "api": ..., "shots": N, "cpu_seconds": ..., "shots_per_cpu_second": ...}
 
 Only the plays are timed (time.process_time), not making the requests.
 """
@@ -27,11 +29,40 @@ def main() -> None:
         sim = chapaev.Simulator(r["config"], r["board"])
         sim.play(r["piece"], r["velocity"], r.get("noise"))
     cpu = time.process_time() - start
+    report("Simulator.play", args.count, cpu)
+
+    # The batch path: the same shots, each position's through play_many (5
+    # floats in, PLAY_MANY_STRIDE out; nan, nan for no noise draw).
+    nan = float("nan")
+    shots = [
+        [r["piece"], r["velocity"][0], r["velocity"][1],
+         (r.get("noise") or {}).get("angle", nan), (r.get("noise") or {}).get("speed", nan)]
+        for r in requests
+    ]
+    start = time.process_time()
+    for r, shot in zip(requests, shots):
+        sim = chapaev.Simulator(r["config"], r["board"])
+        sim.play_many(shot)
+    cpu = time.process_time() - start
+    report("Simulator.play_many", args.count, cpu)
+
+    # The same, the Simulators built beforehand (untimed, as the JS twin and
+    # the native one prepare positions): the shots alone.
+    prepared = [(chapaev.Simulator(r["config"], r["board"]), shot) for r, shot in zip(requests, shots)]
+    start = time.process_time()
+    for sim, shot in prepared:
+        sim.play_many(shot)
+    cpu = time.process_time() - start
+    report("Simulator.play_many (Simulators built untimed)", args.count, cpu)
+
+
+def report(api: str, shots: int, cpu: float) -> None:
     print(json.dumps({
         "binding": "python",
-        "shots": args.count,
+        "api": api,
+        "shots": shots,
         "cpu_seconds": round(cpu, 6),
-        "shots_per_cpu_second": round(args.count / cpu, 1) if cpu > 0 else None,
+        "shots_per_cpu_second": round(shots / cpu, 1) if cpu > 0 else None,
     }))
 
 

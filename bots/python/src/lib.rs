@@ -15,6 +15,7 @@
 //! the server would give (`bad-board`, `too-fast`, ...). Nothing panics
 //! into the interpreter. The simulation itself runs without the GIL.
 
+use game::batch;
 use game::board::Board;
 use game::noise::{NoiseDraw, SplitMix64};
 use game::simulate::{play as play_shot, random_request, SimulateRequest, Simulation};
@@ -270,6 +271,32 @@ impl Simulator {
         simulation_to_py(py, &sim)
     }
 
+    /// Many shots in one call: `shots` is a flat sequence of numbers (a
+    /// list or an `array.array('d')`), 5 per shot: `piece, vx, vy,
+    /// noise_angle, noise_speed` (`nan, nan` for no noise draw). Returns a
+    /// list of floats, `PLAY_MANY_STRIDE` (56) per shot (layout in
+    /// `chapaev.pyi`): the very bits of `play` on each. A refused shot
+    /// raises nothing: its status (offset 0) is nonzero. Raises
+    /// `bad-message` only when the length is not a multiple of 5.
+    fn play_many(&self, py: Python<'_>, shots: Vec<f64>) -> PyResult<Vec<f64>> {
+        if !shots
+            .chunks_exact(batch::SHOT_FIELDS)
+            .remainder()
+            .is_empty()
+        {
+            return Err(refusal(
+                py,
+                "bad-message",
+                format!(
+                    "shots: {} numbers is not a multiple of {}",
+                    shots.len(),
+                    batch::SHOT_FIELDS
+                ),
+            ));
+        }
+        Ok(py.detach(|| batch::play_many(&self.config, &self.board, &shots)))
+    }
+
     /// The configuration (a dict).
     #[getter]
     fn config<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
@@ -494,6 +521,7 @@ fn chapaev(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SimulateError", m.py().get_type::<SimulateError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("PROTOCOL_VERSION", game::protocol::PROTOCOL_VERSION)?;
+    m.add("PLAY_MANY_STRIDE", batch::STRIDE)?;
     m.add_class::<Simulator>()?;
     m.add_class::<NoiseRng>()?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
