@@ -93,12 +93,12 @@ async fn serve(
 ) -> Result<(), AppError> {
     let limit = config.max_message_bytes;
     let data = web::Data::new(hub.clone());
-    let simulations = web::Data::new(crate::simulate::AddressLimiter::new(
+    let simulations = web::Data::new(crate::ratelimit::AddressLimiter::new(
         config.simulate_per_sec,
         config.simulate_burst,
     ));
     let creations = web::Data::new(crate::http::Creations(
-        crate::simulate::AddressLimiter::new(config.create_per_sec, config.create_burst),
+        crate::ratelimit::AddressLimiter::new(config.create_per_sec, config.create_burst),
     ));
     let origins = web::Data::new(crate::origin::Origins::new(&config.allowed_origins));
     let server = HttpServer::new(move || {

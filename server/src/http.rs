@@ -9,8 +9,8 @@
 //! The game itself (`/` and its files) is [`crate::assets`].
 
 use crate::hub::{Hub, NewMatch, Opponent, SeatGrant};
+use crate::ratelimit::AddressLimiter;
 use crate::refusal::{HttpStatus, Refusal};
-use crate::simulate::AddressLimiter;
 use crate::store::{Status, StoreError};
 use actix_web::http::StatusCode;
 use actix_web::{web, HttpRequest, HttpResponse};
@@ -50,18 +50,8 @@ pub struct Creations(pub AddressLimiter);
 impl Creations {
     /// Refuses a creation from this request's address past the limit.
     fn check(&self, req: &HttpRequest) -> Result<(), Refusal> {
-        let addr = req
-            .peer_addr()
-            .map(|a| a.ip())
-            .unwrap_or(std::net::IpAddr::from([0, 0, 0, 0]));
-        if self.0.take(addr, std::time::Instant::now()) {
-            Ok(())
-        } else {
-            Err(Refusal::new(
-                ErrorCode::RateLimited,
-                "too many matches created from this address; slow down",
-            ))
-        }
+        self.0
+            .check(req, "too many matches created from this address; slow down")
     }
 }
 

@@ -3,8 +3,16 @@
 //! answered with `rate-limited`; a connection that keeps flooding is closed.
 //! Moves are never dropped: a move pays only once the match refuses it
 //! ([`TokenBucket::charge`]), so the bucket limits junk, not play.
+//! [`AddressLimiter`] keeps a bucket per client address (simulations,
+//! match creation).
 
-use std::time::Instant;
+use crate::refusal::Refusal;
+use actix_web::HttpRequest;
+use game::protocol::ErrorCode;
+use std::collections::HashMap;
+use std::net::IpAddr;
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
 
 /// A token bucket.
 #[derive(Clone, Debug)]
@@ -65,6 +73,67 @@ impl TokenBucket {
     }
 }
 
+/// The client address of a request (the TCP peer; `0.0.0.0` when unknown),
+/// which the per-address limits count by.
+pub fn client_ip(req: &HttpRequest) -> IpAddr {
+    req.peer_addr()
+        .map(|a| a.ip())
+        .unwrap_or(IpAddr::from([0, 0, 0, 0]))
+}
+
+/// Addresses remembered at most; past it, buckets idle for a while are
+/// forgotten (a full bucket is the same as no bucket).
+const MAX_ADDRESSES: usize = 10_000;
+
+/// A token bucket per client address.
+#[derive(Debug)]
+pub struct AddressLimiter {
+    rate: f64,
+    burst: f64,
+    buckets: Mutex<HashMap<IpAddr, TokenBucket>>,
+}
+
+impl AddressLimiter {
+    /// `rate` requests a second sustained per address, `burst` at once.
+    pub fn new(rate: f64, burst: f64) -> AddressLimiter {
+        AddressLimiter {
+            rate,
+            burst,
+            buckets: Mutex::new(HashMap::new()),
+        }
+    }
+
+    /// Takes a token for `req`'s client address, or refuses it with
+    /// `rate-limited` and `message`.
+    pub fn check(&self, req: &HttpRequest, message: &str) -> Result<(), Refusal> {
+        if self.take(client_ip(req), Instant::now()) {
+            Ok(())
+        } else {
+            Err(Refusal::new(ErrorCode::RateLimited, message))
+        }
+    }
+
+    /// Takes a token for one request from `addr`; `false`: refuse it.
+    pub fn take(&self, addr: IpAddr, now: Instant) -> bool {
+        let mut buckets = self
+            .buckets
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        if buckets.len() >= MAX_ADDRESSES && !buckets.contains_key(&addr) {
+            // A bucket idle for the time it takes to refill is full again.
+            let refill = Duration::from_secs_f64(self.burst / self.rate.max(1e-9));
+            buckets.retain(|_, b| now.saturating_duration_since(b.last_used()) < refill);
+            if buckets.len() >= MAX_ADDRESSES {
+                return false;
+            }
+        }
+        buckets
+            .entry(addr)
+            .or_insert_with(|| TokenBucket::new(self.rate, self.burst, now))
+            .take(now)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -99,5 +168,17 @@ mod tests {
         b.charge(0, t0 + Duration::from_secs(1));
         assert!(!b.bankrupt());
         assert!(b.take(t0 + Duration::from_millis(1700)));
+    }
+
+    #[test]
+    fn each_address_has_its_own_bucket() {
+        let limiter = AddressLimiter::new(1.0, 2.0);
+        let now = Instant::now();
+        let a = IpAddr::from([10, 0, 0, 1]);
+        let b = IpAddr::from([10, 0, 0, 2]);
+        assert!(limiter.take(a, now) && limiter.take(a, now));
+        assert!(!limiter.take(a, now));
+        assert!(limiter.take(b, now));
+        assert!(limiter.take(a, now + Duration::from_secs(1)));
     }
 }

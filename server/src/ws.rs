@@ -139,10 +139,7 @@ pub async fn handler(
             "the server holds as many connections as it can; try later",
         )));
     }
-    let addr = req
-        .peer_addr()
-        .map(|a| a.ip())
-        .unwrap_or(std::net::IpAddr::from([0, 0, 0, 0]));
+    let addr = crate::ratelimit::client_ip(&req);
     let Some(address_guard) = hub.admit_address(addr) else {
         return Ok(http_refusal(&Refusal::new(
             ErrorCode::ServerBusy,
