@@ -15,6 +15,7 @@ use crate::follow::{Followed, Follower};
 use crate::runner::message;
 use game::protocol::ServerMessage;
 use game::session::{ConnId, Effect, Input, Moment, Request, SeatSpec, Session, SessionLimits, To};
+use game::token::{SeatToken, TokenHash};
 use game::{Config, ConfigError, Game, MatchRecord, MatchResult, Seat};
 use std::time::{Duration, Instant};
 
@@ -128,7 +129,7 @@ pub fn play_match(
     let game = Game::new(config, seed)?;
     let seat = |name: &str| SeatSpec {
         name: Some(name.to_string()),
-        token: Some(format!("{name}-token")),
+        token: Some(TokenHash::of(&format!("{name}-token"))),
         bot: None,
     };
     let session_limits = SessionLimits {
@@ -157,7 +158,7 @@ pub fn play_match(
     for (k, name) in ["first", "second"].into_iter().enumerate() {
         let input = Input::Connect {
             conn: seats.conns[k],
-            token: Some(format!("{name}-token")),
+            token: Some(SeatToken::new(format!("{name}-token"))),
         };
         let effects = session.handle(input, now);
         seats.deliver(effects);

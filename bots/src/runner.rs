@@ -18,6 +18,7 @@ use crate::bot::{Bot, Context, Decision};
 use crate::follow::{Followed, Follower};
 use futures_util::{SinkExt, StreamExt};
 use game::protocol::{ClientMessage, ErrorCode, ServerMessage, PROTOCOL_VERSION};
+use game::token::SeatToken;
 use game::{Config, MatchRecord, MatchResult, Seat, ShotOutcome, Side};
 use serde::{Deserialize, Serialize};
 use std::time::{Duration, Instant};
@@ -416,6 +417,7 @@ impl Runner {
             errors: Vec::new(),
             unreadable: Vec::new(),
             options: self.options.clone(),
+            token: SeatToken::new(grant.token.clone()),
         };
         let backoff = &self.options.backoff;
         let mut connections = 0u32;
@@ -582,6 +584,8 @@ struct Play<B> {
     errors: Vec<ServerError>,
     unreadable: Vec<String>,
     options: RunnerOptions,
+    /// The seat's token, presented in each connection's hello.
+    token: SeatToken,
 }
 
 fn dropped(why: &str) -> tungstenite::Error {
@@ -616,6 +620,7 @@ impl<B: Bot + 'static> Play<B> {
         let hello = ClientMessage::Hello {
             protocol: PROTOCOL_VERSION,
             name: self.options.name.clone(),
+            token: Some(self.token.clone()),
         };
         if let Err(e) = self.send(ws, &hello).await {
             return Ok((SessionEnd::Dropped(e), false));
@@ -855,9 +860,9 @@ mod tests {
             match_id: "m".into(),
             seat: Seat::First,
             token: "t".into(),
-            ws: "/ws?match=m&token=t".into(),
+            ws: "/ws?match=m".into(),
         };
-        assert_eq!(r.ws_url(&grant), "ws://127.0.0.1:8080/ws?match=m&token=t");
+        assert_eq!(r.ws_url(&grant), "ws://127.0.0.1:8080/ws?match=m");
     }
 
     #[test]

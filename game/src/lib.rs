@@ -44,7 +44,7 @@
 //! language bindings), [`protocol`] (the wire messages and refusals) and [`session`] (a live
 //! match — seats, connections, turn clock, rematch — as a state machine
 //! without I/O, driven by the server's rooms and by tests on a virtual
-//! clock).
+//! clock), with [`token`] (seat tokens and the hashes a server keeps).
 
 pub mod batch;
 pub mod board;
@@ -66,6 +66,7 @@ pub mod side;
 pub mod simulate;
 #[cfg(test)]
 mod testing;
+pub mod token;
 
 pub use board::{Board, Piece};
 pub use config::{Config, ConfigError, NoiseConfig, Preset, Variants};

@@ -27,6 +27,7 @@ use crate::piece::PieceId;
 use crate::record::MatchRecord;
 use crate::shot::ShotError;
 use crate::side::{Seat, Side};
+use crate::token::SeatToken;
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -41,8 +42,15 @@ pub const MAX_CHAT_CHARS: usize = 500;
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "type", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum ClientMessage {
-    /// First message of a connection.
-    Hello { protocol: u32, name: String },
+    /// The first message of a connection: the protocol spoken, a name, and
+    /// the seat token to play a seat (none: watch). The token travels here,
+    /// never in the URL, which proxies and browsers write down.
+    Hello {
+        protocol: u32,
+        name: String,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        token: Option<SeatToken>,
+    },
     /// Create a match with this configuration (missing fields take the
     /// defaults); the creator takes [`Seat::First`].
     CreateMatch {
@@ -452,6 +460,12 @@ mod tests {
             ClientMessage::Hello {
                 protocol: PROTOCOL_VERSION,
                 name: "Petka".into(),
+                token: None,
+            },
+            ClientMessage::Hello {
+                protocol: PROTOCOL_VERSION,
+                name: "Anka".into(),
+                token: Some(SeatToken::new("540a0bf048fe73e1505aeb84de7f0fcd")),
             },
             ClientMessage::CreateMatch {
                 config: Config::default(),

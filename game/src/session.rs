@@ -32,6 +32,7 @@ use crate::protocol::{ClientMessage, ErrorCode, Players, Refusal, ServerMessage,
 use crate::record::RecordedMove;
 use crate::shot::Shot;
 use crate::side::{Seat, Side};
+use crate::token::{SeatToken, TokenHash};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::ops::Add;
@@ -176,24 +177,14 @@ pub fn to_act(game: &Game) -> Option<Seat> {
     }
 }
 
-/// Compares a presented seat token with the seat's in time that does not
-/// depend on where they differ.
-pub fn same_token(presented: &str, actual: &str) -> bool {
-    let (a, b) = (presented.as_bytes(), actual.as_bytes());
-    if a.len() != b.len() {
-        return false;
-    }
-    a.iter().zip(b).fold(0u8, |acc, (x, y)| acc | (x ^ y)) == 0
-}
-
 /// Who holds a seat: a person (by name and token), a built-in bot, or
 /// nobody yet.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct SeatSpec {
     /// The player's name.
     pub name: Option<String>,
-    /// The seat token (`None`: an empty seat, or a bot's).
-    pub token: Option<String>,
+    /// The hash of the seat token (`None`: an empty seat, or a bot's).
+    pub token: Option<TokenHash>,
     /// The level of the built-in bot playing the seat (`"easy"`,
     /// `"medium"`: the bot's own business), if one does.
     pub bot: Option<String>,
@@ -292,7 +283,7 @@ pub enum Input {
         /// The connection, named by the driver.
         conn: ConnId,
         /// The seat token presented.
-        token: Option<String>,
+        token: Option<SeatToken>,
     },
     /// A connection closed.
     Disconnect {
@@ -310,8 +301,8 @@ pub enum Input {
     Join {
         /// The player's name.
         name: String,
-        /// The seat token made for them.
-        token: String,
+        /// The hash of the seat token made for them.
+        token: TokenHash,
     },
     /// The deadline of [`Session::next_deadline`] has passed.
     Timer,
@@ -389,8 +380,8 @@ pub enum Effect {
     StoreJoin {
         /// The player's name.
         name: String,
-        /// The seat token.
-        token: String,
+        /// The hash of the seat token.
+        token: TokenHash,
     },
     /// Create the rematch of this match; answer with
     /// [`Input::RematchCreated`] or [`Input::RematchFailed`].
@@ -706,17 +697,16 @@ impl Session {
         })
     }
 
-    fn seat_of_token(&self, token: &str) -> Option<Seat> {
+    fn seat_of_token(&self, token: &SeatToken) -> Option<Seat> {
         SEATS.into_iter().find(|s| {
             self.seats[s.index()]
                 .spec
                 .token
-                .as_deref()
-                .is_some_and(|mine| same_token(token, mine))
+                .is_some_and(|mine| mine.matches(token))
         })
     }
 
-    fn connect(&mut self, conn: ConnId, token: Option<String>, now: Moment) {
+    fn connect(&mut self, conn: ConnId, token: Option<SeatToken>, now: Moment) {
         if self.conns.contains_key(&conn) {
             // The driver names each connection once.
             return self.refuse(Request::Connect(conn), Refusal::internal());
@@ -792,7 +782,7 @@ impl Session {
         }
     }
 
-    fn join(&mut self, name: String, token: String, now: Moment) -> Result<(), Refusal> {
+    fn join(&mut self, name: String, token: TokenHash, now: Moment) -> Result<(), Refusal> {
         if self.game.is_over() {
             return Err(Refusal::new(ErrorCode::MatchOver, "the match is over"));
         }
@@ -804,7 +794,7 @@ impl Session {
         }
         self.out.push(Effect::StoreJoin {
             name: name.clone(),
-            token: token.clone(),
+            token,
         });
         let second = &mut self.seats[Seat::Second.index()].spec;
         second.name = Some(name.clone());
@@ -1174,7 +1164,7 @@ mod tests {
     fn person(name: &str, token: &str) -> SeatSpec {
         SeatSpec {
             name: Some(name.into()),
-            token: Some(token.into()),
+            token: Some(TokenHash::of(token)),
             bot: None,
         }
     }
@@ -1205,7 +1195,7 @@ mod tests {
     }
 
     fn connect(s: &mut Session, conn: ConnId, token: Option<&str>, ms: u64) -> Vec<Effect> {
-        let token = token.map(str::to_string);
+        let token = token.map(SeatToken::new);
         s.handle(Input::Connect { conn, token }, at(ms))
     }
 
@@ -1458,7 +1448,7 @@ mod tests {
             unreachable!()
         };
         assert_eq!(*turn, limits().turn);
-        assert_eq!(seats[1].token.as_deref(), Some("tok-b"));
+        assert_eq!(seats[1].token, Some(TokenHash::of("tok-b")));
         // Accepting again while it is being created asks for nothing more.
         assert!(say(&mut s, B, ClientMessage::AcceptRematch, 3_100).is_empty());
         let e = s.handle(
@@ -1581,7 +1571,7 @@ mod tests {
             s.handle(
                 Input::Join {
                     name: "Anka".into(),
-                    token: "tok-b".into(),
+                    token: TokenHash::of("tok-b"),
                 },
                 at(ms),
             )
@@ -1884,12 +1874,5 @@ mod tests {
         assert_eq!(c.strike(Seat::First), 1);
         assert_eq!(c.strike(Seat::Second), 1);
         assert!(c.deadline().is_none());
-    }
-
-    #[test]
-    fn token_comparison_is_exact() {
-        assert!(same_token("abc", "abc"));
-        assert!(!same_token("abd", "abc"));
-        assert!(!same_token("ab", "abc"));
     }
 }

@@ -216,18 +216,20 @@ fn level(name: Option<&str>) -> Result<Level, Refusal> {
 pub struct SeatResponse {
     pub match_id: String,
     pub seat: game::Seat,
+    /// The seat token: shown here once, kept by the server only as a hash,
+    /// and presented in the WebSocket's `hello`.
     pub token: String,
-    /// Path and query of the WebSocket to play on.
+    /// Path and query of the WebSocket to play on (no secret in it).
     pub ws: String,
 }
 
 impl From<SeatGrant> for SeatResponse {
     fn from(g: SeatGrant) -> SeatResponse {
         SeatResponse {
-            ws: format!("/ws?match={}&token={}", g.match_id, g.token),
+            ws: format!("/ws?match={}", g.match_id),
+            token: g.token.expose().to_string(),
             match_id: g.match_id,
             seat: g.seat,
-            token: g.token,
         }
     }
 }
@@ -409,13 +411,15 @@ only that token can shoot for your seat. Share the match id (never the token) wi
 <h2>2. Join the empty seat</h2>
 <pre>curl -s -XPOST localhost:8080/api/matches/MATCH_ID/join -d '{"name":"Anka"}'</pre>
 <h2>3. Play over the WebSocket</h2>
-<pre>websocat 'ws://localhost:8080/ws?match=MATCH_ID&amp;token=TOKEN'</pre>
-<p>The server first sends the whole <code>match-state</code>, then every update.
+<pre>websocat 'ws://localhost:8080/ws?match=MATCH_ID'
+{"type":"hello","protocol":1,"name":"Petka","token":"TOKEN"}</pre>
+<p>The first message is a <code>hello</code> carrying your token (never put it in the URL); the server
+answers <code>welcome</code>, then the whole <code>match-state</code>, then every update.
 Shoot by sending <code>{"type":"shot","piece":4,"velocity":[0.0,2.0]}</code>: pieces 0&ndash;7 are White's
 (files a&ndash;h), 8&ndash;15 Black's; velocity in m/s on a 0.32 m board, at most 2 m/s.
 Also: <code>{"type":"resign"}</code>, <code>{"type":"chat","text":"..."}</code>,
 <code>{"type":"offer-rematch"}</code>, <code>{"type":"accept-rematch"}</code>,
-<code>{"type":"pie-decision","swap":true}</code>. Without a token you watch.</p>
+<code>{"type":"pie-decision","swap":true}</code>. A hello without a token watches.</p>
 <p>Each turn has a clock: miss it and the turn passes; three misses in a row forfeit.
 A dropped player keeps the seat for a grace period and reconnects with the same token.</p>
 <h2>Other endpoints</h2>

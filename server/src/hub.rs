@@ -16,7 +16,7 @@ use crate::metrics::Metrics;
 use crate::refusal::Refusal;
 use crate::room::{Command, Connected, Room, RoomHost};
 use crate::store::{Status, Store, StoreError, StoredMatch, StoredSeat};
-use crate::token;
+use crate::token::{self, SeatToken, TokenHash};
 use bots::Level;
 use game::protocol::ErrorCode;
 use game::session::SeatSpec;
@@ -62,7 +62,8 @@ pub struct NewMatch {
 pub struct SeatGrant {
     pub match_id: String,
     pub seat: Seat,
-    pub token: String,
+    /// The seat token, handed to its owner once and kept only as a hash.
+    pub token: SeatToken,
 }
 
 struct Inner {
@@ -236,7 +237,7 @@ impl Hub {
             Opponent::Bot(level) => Some(level),
         };
         let seats = [
-            (Some(req.name), Some(token.clone()), None),
+            (Some(req.name), Some(token.hash()), None),
             (None, None, bot),
         ];
         let id = self
@@ -285,7 +286,7 @@ impl Hub {
         of: &str,
         config: Config,
         turn: Duration,
-        seats: [(Option<String>, Option<String>, Option<Level>); 2],
+        seats: [(Option<String>, Option<TokenHash>, Option<Level>); 2],
     ) -> Result<String, Refusal> {
         let slot = self.reserve()?;
         let [first, second] = seats;
@@ -304,7 +305,7 @@ impl Hub {
         rematch_of: Option<String>,
         config: Config,
         turn_seconds: u64,
-        seats: [(Option<String>, Option<String>, Option<Level>); 2],
+        seats: [(Option<String>, Option<TokenHash>, Option<Level>); 2],
     ) -> Result<String, Refusal> {
         let seed = random(token::seed())?;
         let game = Game::new(config.clone(), seed)
@@ -398,7 +399,7 @@ impl Hub {
         let (_, seat) = self
             .ask(id, |reply| Command::Join {
                 name: name.clone(),
-                token: token.clone(),
+                token: token.hash(),
                 reply,
             })
             .await?;
@@ -413,7 +414,7 @@ impl Hub {
     pub async fn connect(
         &self,
         id: &str,
-        token: Option<String>,
+        token: Option<SeatToken>,
     ) -> Result<(RoomHandle, Connected), Refusal> {
         self.ask(id, |reply| Command::Connect {
             token: token.clone(),
@@ -603,7 +604,7 @@ mod tests {
             ServerMessage::MatchState { you: None, .. }
         ));
         let bad = hub
-            .connect(&a.match_id, Some("f".repeat(32)))
+            .connect(&a.match_id, Some(SeatToken::new("f".repeat(32))))
             .await
             .unwrap_err();
         assert_eq!(bad.code, ErrorCode::BadToken);

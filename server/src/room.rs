@@ -23,6 +23,7 @@ use game::session::{
     BotDecision, ConnId, Effect, Input, Moment, Request, SeatSpec, Session, SessionLimits, Status,
     To,
 };
+use game::token::{SeatToken, TokenHash};
 use game::{Config, Game, MatchView, RecordedMove, Replay, Seat, Side};
 use std::collections::{HashMap, VecDeque};
 use std::future::Future;
@@ -103,7 +104,7 @@ pub trait RoomHost: Clone + Send + Sync + 'static {
 pub enum Command {
     /// A WebSocket connects, with a seat token or as a spectator.
     Connect {
-        token: Option<String>,
+        token: Option<SeatToken>,
         reply: oneshot::Sender<Result<Connected, Refusal>>,
     },
     /// A connection closed.
@@ -117,7 +118,8 @@ pub enum Command {
     /// Someone takes the empty second seat (HTTP join).
     Join {
         name: String,
-        token: String,
+        /// The hash of the seat token made for them.
+        token: TokenHash,
         reply: oneshot::Sender<Result<Seat, Refusal>>,
     },
     /// Finish the command in hand and stop (server shutdown).
@@ -222,7 +224,7 @@ impl<H: RoomHost> Room<H> {
         let levels = stored.bots();
         let seat = |i: usize| SeatSpec {
             name: stored.seats[i].name.clone(),
-            token: stored.seats[i].token.clone(),
+            token: stored.seats[i].token,
             bot: levels[i].map(|b| b.as_str().to_string()),
         };
         let seats = [seat(0), seat(1)];
@@ -666,7 +668,7 @@ mod tests {
 
     async fn connect(room: &mpsc::Sender<Command>, token: Option<&str>) -> Connected {
         let (reply, answer) = oneshot::channel();
-        let token = token.map(str::to_string);
+        let token = token.map(SeatToken::new);
         room.send(Command::Connect { token, reply }).await.unwrap();
         answer.await.unwrap().unwrap()
     }
@@ -681,7 +683,7 @@ mod tests {
         };
         let seat = |name: &str, token: &str| StoredSeat {
             name: Some(name.into()),
-            token: Some(token.into()),
+            token: Some(TokenHash::of(token)),
         };
         let stored = StoredMatch {
             id: "m1".into(),

@@ -1,5 +1,6 @@
 //! The durable store: one SQLite file in write-ahead-log mode. A `matches`
-//! row holds each match's configuration, seed, seats (names and tokens),
+//! row holds each match's configuration, seed, seats (names, and the
+//! SHA-256 of each seat token: never the token itself),
 //! status and result; a `moves` row holds each accepted move as the JSON of
 //! its [`RecordedMove`]. Every accepted move is written in one transaction
 //! (the move and the match row together) before its outcome is broadcast,
@@ -9,6 +10,7 @@
 use crate::checkpointer::{Checkpointer, Nudge};
 use crate::config::SyncMode;
 use crate::metrics::Histogram;
+use game::token::TokenHash;
 use game::{Config, MatchRecord, MatchResult, RecordedMove, RECORD_VERSION};
 use rusqlite::{params, Connection, OptionalExtension};
 use serde::{Deserialize, Serialize};
@@ -48,8 +50,8 @@ pub use game::session::Status;
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct StoredSeat {
     pub name: Option<String>,
-    /// The seat token (`None`: empty seat, or a bot's seat).
-    pub token: Option<String>,
+    /// The hash of the seat token (`None`: empty seat, or a bot's seat).
+    pub token: Option<TokenHash>,
 }
 
 /// A match row.
@@ -212,9 +214,9 @@ CREATE TABLE IF NOT EXISTS matches (
     bot TEXT,
     turn_seconds INTEGER NOT NULL,
     first_name TEXT,
-    first_token TEXT,
+    first_token_hash TEXT,
     second_name TEXT,
-    second_token TEXT,
+    second_token_hash TEXT,
     shots INTEGER NOT NULL DEFAULT 0,
     result TEXT,
     rematch_of TEXT
@@ -227,6 +229,40 @@ CREATE TABLE IF NOT EXISTS moves (
     PRIMARY KEY (match_id, idx)
 );
 ";
+
+/// Brings a store written before tokens were hashed up to date, in one
+/// transaction: each plain seat token is replaced by its hash (so its
+/// owner can still play) and the columns take their new names.
+fn hash_plain_tokens(conn: &Connection) -> Result<(), StoreError> {
+    let old: bool = conn.query_row(
+        "SELECT count(*) FROM pragma_table_info('matches') WHERE name = 'first_token'",
+        [],
+        |row| row.get::<_, i64>(0).map(|n| n > 0),
+    )?;
+    if !old {
+        return Ok(());
+    }
+    let tx = conn.unchecked_transaction()?;
+    for column in ["first_token", "second_token"] {
+        let plain: Vec<(String, String)> = tx
+            .prepare(&format!(
+                "SELECT id, {column} FROM matches WHERE {column} IS NOT NULL"
+            ))?
+            .query_map([], |row| Ok((row.get(0)?, row.get(1)?)))?
+            .collect::<Result<_, _>>()?;
+        for (id, token) in plain {
+            tx.execute(
+                &format!("UPDATE matches SET {column} = ?2 WHERE id = ?1"),
+                params![id, TokenHash::of(&token).to_hex()],
+            )?;
+        }
+        tx.execute_batch(&format!(
+            "ALTER TABLE matches RENAME COLUMN {column} TO {column}_hash"
+        ))?;
+    }
+    tx.commit()?;
+    Ok(())
+}
 
 fn now() -> u64 {
     SystemTime::now()
@@ -269,6 +305,7 @@ impl Store {
         conn.pragma_update(None, "foreign_keys", "ON")?;
         conn.busy_timeout(std::time::Duration::from_secs(5))?;
         conn.execute_batch(SCHEMA)?;
+        hash_plain_tokens(&conn)?;
         let shared = Arc::new(Shared {
             conn: Mutex::new(conn),
             queue: Mutex::new(Queue::default()),
@@ -301,7 +338,7 @@ impl Store {
         let t = now();
         conn.execute(
             "INSERT INTO matches (id, created_at, updated_at, config, seed, status, bot, turn_seconds,
-                                  first_name, first_token, second_name, second_token, rematch_of)
+                                  first_name, first_token_hash, second_name, second_token_hash, rematch_of)
              VALUES (?1, ?2, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)",
             params![
                 m.id,
@@ -312,9 +349,9 @@ impl Store {
                 m.bot,
                 m.turn_seconds as i64,
                 m.seats[0].name,
-                m.seats[0].token,
+                m.seats[0].token.map(|h| h.to_hex()),
                 m.seats[1].name,
-                m.seats[1].token,
+                m.seats[1].token.map(|h| h.to_hex()),
                 m.rematch_of,
             ],
         )?;
@@ -323,12 +360,12 @@ impl Store {
     }
 
     /// Fills the second seat; the match becomes live.
-    pub fn seat_second(&self, id: &str, name: &str, token: &str) -> Result<(), StoreError> {
+    pub fn seat_second(&self, id: &str, name: &str, token: &TokenHash) -> Result<(), StoreError> {
         let conn = self.lock()?;
         let n = conn.execute(
-            "UPDATE matches SET second_name = ?2, second_token = ?3, status = 'live', updated_at = ?4
-             WHERE id = ?1 AND second_token IS NULL AND bot IS NULL",
-            params![id, name, token, now() as i64],
+            "UPDATE matches SET second_name = ?2, second_token_hash = ?3, status = 'live', updated_at = ?4
+             WHERE id = ?1 AND second_token_hash IS NULL AND bot IS NULL",
+            params![id, name, token.to_hex(), now() as i64],
         )?;
         self.shared.log_grew();
         if n != 1 {
@@ -392,9 +429,9 @@ impl Store {
                 bot: row.get(5)?,
                 turn_seconds: row.get::<_, i64>(6)?,
                 first_name: row.get(7)?,
-                first_token: row.get(8)?,
+                first_token_hash: row.get(8)?,
                 second_name: row.get(9)?,
-                second_token: row.get(10)?,
+                second_token_hash: row.get(10)?,
                 rematch_of: row.get(11)?,
             },
             row.get(2)?,
@@ -402,7 +439,7 @@ impl Store {
     }
 
     const MATCH_COLUMNS: &'static str = "id, created_at, config, seed, status, bot, turn_seconds,
-        first_name, first_token, second_name, second_token, rematch_of";
+        first_name, first_token_hash, second_name, second_token_hash, rematch_of";
 
     /// One match row.
     pub fn get(&self, id: &str) -> Result<Option<StoredMatch>, StoreError> {
@@ -578,9 +615,9 @@ struct StoredMatchRaw {
     bot: Option<String>,
     turn_seconds: i64,
     first_name: Option<String>,
-    first_token: Option<String>,
+    first_token_hash: Option<String>,
     second_name: Option<String>,
-    second_token: Option<String>,
+    second_token_hash: Option<String>,
     rematch_of: Option<String>,
 }
 
@@ -589,6 +626,12 @@ impl StoredMatchRaw {
         let status = Status::parse(&self.status).ok_or_else(|| {
             StoreError::Corrupt(format!("match {}: status {}", self.id, self.status))
         })?;
+        let hash = |hex: Option<String>| {
+            hex.map(|h| TokenHash::from_hex(&h))
+                .transpose()
+                .map_err(|e| StoreError::Corrupt(format!("match {}: {e}", self.id)))
+        };
+        let tokens = [hash(self.first_token_hash)?, hash(self.second_token_hash)?];
         Ok(StoredMatch {
             config: serde_json::from_str(config)?,
             created_at: self.created_at as u64,
@@ -600,11 +643,11 @@ impl StoredMatchRaw {
             seats: [
                 StoredSeat {
                     name: self.first_name,
-                    token: self.first_token,
+                    token: tokens[0],
                 },
                 StoredSeat {
                     name: self.second_name,
-                    token: self.second_token,
+                    token: tokens[1],
                 },
             ],
             rematch_of: self.rematch_of,
@@ -735,7 +778,7 @@ mod tests {
             seats: [
                 StoredSeat {
                     name: Some("Petka".into()),
-                    token: Some("t1".into()),
+                    token: Some(TokenHash::of("t1")),
                 },
                 StoredSeat::default(),
             ],
@@ -747,7 +790,9 @@ mod tests {
     fn a_match_and_its_moves_come_back_as_a_replayable_record() {
         let store = Store::in_memory().unwrap();
         store.create(&stored("m1")).unwrap();
-        store.seat_second("m1", "Anka", "t2").unwrap();
+        store
+            .seat_second("m1", "Anka", &TokenHash::of("t2"))
+            .unwrap();
         let mut g = Game::new(Config::default(), u64::MAX - 1).unwrap();
         let piece = PieceId::new(Side::White, 4).unwrap();
         g.play(
@@ -766,7 +811,7 @@ mod tests {
         let (m, record) = store.load("m1").unwrap().unwrap();
         assert_eq!(m.seed, u64::MAX - 1);
         assert_eq!(m.status, Status::Live);
-        assert_eq!(m.seats[1].token.as_deref(), Some("t2"));
+        assert_eq!(m.seats[1].token, Some(TokenHash::of("t2")));
         assert_eq!(&record, g.record());
         let replay = game::Replay::new(record).unwrap();
         assert_eq!(replay.game().view(), g.view());
@@ -841,8 +886,8 @@ mod tests {
         let store = Store::in_memory().unwrap();
         store.create(&stored("a")).unwrap();
         store.create(&stored("b")).unwrap();
-        store.seat_second("a", "x", "t").unwrap();
-        assert!(store.seat_second("a", "y", "u").is_err());
+        store.seat_second("a", "x", &TokenHash::of("t")).unwrap();
+        assert!(store.seat_second("a", "y", &TokenHash::of("u")).is_err());
         let open = store.list(Some(Status::Open), 10).unwrap();
         assert_eq!(open.len(), 1);
         assert_eq!(open[0].match_id, "b");
@@ -852,6 +897,51 @@ mod tests {
             Some("x")
         );
         assert!(store.summary("zz").unwrap().is_none());
+    }
+
+    #[test]
+    fn the_store_keeps_only_token_hashes_and_hashes_those_an_older_store_kept_plain() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("chapaev.sqlite3");
+        {
+            // A store as written before tokens were hashed.
+            let conn = Connection::open(&path).unwrap();
+            let old = SCHEMA
+                .replace("first_token_hash", "first_token")
+                .replace("second_token_hash", "second_token");
+            conn.execute_batch(&old).unwrap();
+            conn.execute(
+                "INSERT INTO matches (id, created_at, updated_at, config, seed, status, turn_seconds,
+                                      first_name, first_token, second_name, second_token)
+                 VALUES ('old', 0, 0, '{}', 1, 'live', 60, 'Petka', 'plain-a', 'Anka', 'plain-b')",
+                [],
+            )
+            .unwrap();
+        }
+        {
+            let store = Store::open(dir.path(), SyncMode::Full).unwrap();
+            let old = store.get("old").unwrap().unwrap();
+            assert_eq!(old.seats[0].token, Some(TokenHash::of("plain-a")));
+            assert_eq!(old.seats[1].token, Some(TokenHash::of("plain-b")));
+            store.create(&stored("new")).unwrap();
+        }
+        // Nothing in the file is a token any more, and it opens again.
+        let store = Store::open(dir.path(), SyncMode::Full).unwrap();
+        assert_eq!(
+            store.get("new").unwrap().unwrap().seats[0].token,
+            Some(TokenHash::of("t1"))
+        );
+        let conn = Connection::open(&path).unwrap();
+        let texts: Vec<String> = conn
+            .prepare(
+                "SELECT first_token_hash || ' ' || second_token_hash FROM matches WHERE id = 'old'",
+            )
+            .unwrap()
+            .query_map([], |row| row.get(0))
+            .unwrap()
+            .collect::<Result<_, _>>()
+            .unwrap();
+        assert!(!texts[0].contains("plain"), "{texts:?}");
     }
 
     #[test]

@@ -1,5 +1,6 @@
 //! Secrets and identifiers from the operating system's random source: seat
-//! tokens (128 bits, hex), match ids (64 bits, hex) and match seeds.
+//! tokens (128 bits, hex; the server keeps only their hashes, see
+//! [`game::token`]), match ids (64 bits, hex) and match seeds.
 
 /// The OS random source failed.
 #[derive(Debug, thiserror::Error)]
@@ -17,8 +18,8 @@ fn hex(bytes: &[u8]) -> String {
 }
 
 /// A seat token: 128 random bits as 32 hex digits.
-pub fn seat_token() -> Result<String, RandomError> {
-    Ok(hex(&random_bytes::<16>()?))
+pub fn seat_token() -> Result<SeatToken, RandomError> {
+    Ok(SeatToken::new(hex(&random_bytes::<16>()?)))
 }
 
 /// A match id: 64 random bits as 16 hex digits.
@@ -31,9 +32,7 @@ pub fn seed() -> Result<u64, RandomError> {
     Ok(u64::from_le_bytes(random_bytes::<8>()?))
 }
 
-/// Compares a presented token with the seat's in time that does not depend
-/// on where they differ (the match session's comparison).
-pub use game::session::same_token;
+pub use game::token::{SeatToken, TokenHash};
 
 /// Whether `s` looks like a match id (so junk never reaches the store).
 pub fn is_match_id(s: &str) -> bool {
@@ -48,17 +47,14 @@ mod tests {
     fn tokens_carry_128_random_bits_and_differ() {
         let a = seat_token().unwrap();
         let b = seat_token().unwrap();
-        assert_eq!(a.len(), 32);
-        assert!(a.bytes().all(|c| c.is_ascii_hexdigit()));
+        assert_eq!(a.expose().len(), 32);
+        assert!(a.expose().bytes().all(|c| c.is_ascii_hexdigit()));
         assert_ne!(a, b);
         assert_eq!(match_id().unwrap().len(), 16);
     }
 
     #[test]
-    fn token_comparison_is_exact() {
-        assert!(same_token("abc", "abc"));
-        assert!(!same_token("abd", "abc"));
-        assert!(!same_token("ab", "abc"));
+    fn match_ids_are_short_and_plain() {
         assert!(is_match_id("0123abcd"));
         assert!(!is_match_id("../x"));
         assert!(!is_match_id(""));

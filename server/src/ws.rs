@@ -1,6 +1,9 @@
-//! The WebSocket endpoint `/ws?match=ID&token=T` (no token: a spectator).
-//! A session admits the connection to its match room, forwards everything
-//! the room sends (the full `match-state` first), and reads the client's
+//! The WebSocket endpoint `/ws?match=ID`. The client's first message is a
+//! `hello` carrying the seat token (none: a spectator); the token never
+//! travels in the URL, which proxies and browsers write down. A session
+//! admits the connection to its match room once the hello has come
+//! (answering `welcome`), forwards everything the room sends (the full
+//! `match-state` first), and reads the client's
 //! messages: it refuses oversized frames, malformed JSON, unknown messages
 //! and floods (a token bucket per connection) itself, with an `error` of a
 //! stable code, and passes every match message to the room. Moves are
@@ -29,6 +32,7 @@ use crate::room::Command;
 use actix_web::{web, HttpRequest, HttpResponse};
 use actix_ws::{AggregatedMessage, CloseCode, CloseReason, ProtocolError, Session};
 use game::protocol::{ClientMessage, ErrorCode, ServerMessage, PROTOCOL_VERSION};
+use game::token::SeatToken;
 use serde::Deserialize;
 use std::future::Future;
 use std::sync::Arc;
@@ -42,12 +46,16 @@ const SILENT_FOR: Duration = Duration::from_secs(45);
 /// Dropped messages in a row after which a flooding connection is closed.
 const FLOOD_CLOSE_AFTER: u32 = 200;
 
+/// How long a new connection has to say hello.
+const HELLO_WITHIN: Duration = Duration::from_secs(10);
+
 /// The query of `/ws`.
 #[derive(Debug, Deserialize)]
 pub struct WsQuery {
     #[serde(rename = "match")]
     pub match_id: String,
-    pub token: Option<String>,
+    /// Only read to refuse it: the token belongs in the hello.
+    token: Option<String>,
 }
 
 /// Counts an open connection for as long as it lives.
@@ -126,10 +134,17 @@ pub async fn handler(
         Err(e) => {
             return Ok(http_refusal(&Refusal::new(
                 ErrorCode::BadMessage,
-                format!("expected /ws?match=ID[&token=T]: {e}"),
+                format!("expected /ws?match=ID: {e}"),
             )))
         }
     };
+    if query.token.is_some() {
+        return Ok(http_refusal(&Refusal::new(
+            ErrorCode::BadMessage,
+            "the seat token goes in the hello message, never in the URL \
+             (URLs end up in logs); connect to /ws?match=ID",
+        )));
+    }
     let metrics = hub.metrics().clone();
     metrics.connection_opened();
     let guard = ConnectionGuard(metrics.clone());
@@ -203,7 +218,22 @@ async fn run(
         .max_frame_size(limits.max_message_bytes)
         .aggregate_continuations()
         .max_continuation_size(limits.max_message_bytes);
-    let (room, connected) = match hub.connect(&query.match_id, query.token).await {
+    let token = match hello(&mut stream, &mut session, wt).await {
+        Opening::Hello(token) => token,
+        Opening::Stuck => return true,
+        Opening::Refused(r, code) => {
+            hub.metrics().refused();
+            if !send(&mut session, wt, &r.to_message()).await {
+                return true;
+            }
+            let reason = CloseReason {
+                code,
+                description: Some(r.code.as_str().into()),
+            };
+            return !timely(wt, session.close(Some(reason))).await;
+        }
+    };
+    let (room, connected) = match hub.connect(&query.match_id, token).await {
         Ok(c) => c,
         Err(r) => {
             hub.metrics().refused();
@@ -217,6 +247,19 @@ async fn run(
             return !timely(wt, session.close(Some(reason))).await;
         }
     };
+    // Before the room's first message (the match state) is forwarded.
+    let welcome = ServerMessage::Welcome {
+        protocol: PROTOCOL_VERSION,
+    };
+    if !send(&mut session, wt, &welcome).await {
+        let _ = room
+            .tx
+            .send(Command::Disconnect {
+                conn: connected.conn,
+            })
+            .await;
+        return true;
+    }
     let conn = connected.conn;
     let mut rx = connected.rx;
     let refused = connected.refused;
@@ -335,6 +378,79 @@ async fn run(
     !timely(wt, session.close(reason)).await
 }
 
+/// How a connection's opening went.
+enum Opening {
+    /// It said hello in the protocol this server speaks, with this token.
+    Hello(Option<SeatToken>),
+    /// It must be refused with this, and closed with this code.
+    Refused(Refusal, CloseCode),
+    /// A write did not finish in time, or the client went away.
+    Stuck,
+}
+
+/// Waits (at most [`HELLO_WITHIN`]) for the client's `hello`, answering
+/// pings meanwhile. Anything else first is refused with `no-hello`.
+async fn hello(
+    stream: &mut actix_ws::AggregatedMessageStream,
+    session: &mut Session,
+    wt: Duration,
+) -> Opening {
+    let no_hello = |what: &str| {
+        Opening::Refused(
+            Refusal::new(
+                ErrorCode::NoHello,
+                format!(
+                    "{what}: a connection opens with {{\"type\":\"hello\",\"protocol\":\
+                     {PROTOCOL_VERSION},\"name\":...,\"token\":...}} (no token: watch)"
+                ),
+            ),
+            CloseCode::Policy,
+        )
+    };
+    let deadline = tokio::time::Instant::now() + HELLO_WITHIN;
+    loop {
+        let frame = match tokio::time::timeout_at(deadline, stream.recv()).await {
+            Err(_) => return no_hello("no hello within 10 s"),
+            Ok(frame) => frame,
+        };
+        match frame {
+            None | Some(Ok(AggregatedMessage::Close(_))) => return Opening::Stuck,
+            Some(Ok(AggregatedMessage::Ping(b))) => {
+                if !timely(wt, session.pong(&b)).await {
+                    return Opening::Stuck;
+                }
+            }
+            Some(Ok(AggregatedMessage::Pong(_))) => {}
+            Some(Ok(AggregatedMessage::Text(text))) => {
+                return match ClientMessage::from_json(&text) {
+                    Ok(ClientMessage::Hello {
+                        protocol, token, ..
+                    }) if protocol == PROTOCOL_VERSION => Opening::Hello(token),
+                    Ok(ClientMessage::Hello { .. }) => Opening::Refused(
+                        Refusal::new(
+                            ErrorCode::UnsupportedProtocol,
+                            format!("this server speaks protocol {PROTOCOL_VERSION}"),
+                        ),
+                        CloseCode::Policy,
+                    ),
+                    Ok(_) => no_hello("the first message was not a hello"),
+                    Err(e) => Opening::Refused(Refusal::new(e.code, e.message), CloseCode::Policy),
+                }
+            }
+            Some(Ok(AggregatedMessage::Binary(_))) => {
+                return no_hello("messages are JSON text frames")
+            }
+            Some(Err(e)) if too_large(&e) => {
+                return Opening::Refused(
+                    Refusal::new(ErrorCode::MessageTooLarge, "the hello is too large"),
+                    CloseCode::Size,
+                )
+            }
+            Some(Err(_)) => return Opening::Stuck,
+        }
+    }
+}
+
 /// Answers a dropped message; closes a connection that floods on.
 async fn flooded(
     hub: &Hub,
@@ -377,24 +493,13 @@ async fn handle_message(
             hub.metrics().refused();
             send(session, wt, &e.to_message()).await
         }
-        Ok(ClientMessage::Hello { protocol, .. }) => {
-            if protocol == PROTOCOL_VERSION {
-                send(
-                    session,
-                    wt,
-                    &ServerMessage::Welcome {
-                        protocol: PROTOCOL_VERSION,
-                    },
-                )
-                .await
-            } else {
-                hub.metrics().refused();
-                let r = Refusal::new(
-                    ErrorCode::UnsupportedProtocol,
-                    format!("this server speaks protocol {PROTOCOL_VERSION}"),
-                );
-                send(session, wt, &r.to_message()).await
-            }
+        Ok(ClientMessage::Hello { .. }) => {
+            hub.metrics().refused();
+            let r = Refusal::new(
+                ErrorCode::BadMessage,
+                "hello is the first message of a connection, and only the first",
+            );
+            send(session, wt, &r.to_message()).await
         }
         Ok(msg) => room.tx.send(Command::message(conn, msg)).await.is_ok(),
     }

@@ -28,10 +28,11 @@ async fn malformed_json_unknown_messages_and_illegal_shots_get_stable_codes_and_
         .send_text(r#"{"type":"shot","piece":99,"velocity":[0,1]}"#)
         .await;
     assert_eq!(white.next_error().await, "bad-message");
+    // Hello opens a connection, and only opens it.
     white
-        .send_text(r#"{"type":"hello","protocol":999,"name":"x"}"#)
+        .send_text(r#"{"type":"hello","protocol":1,"name":"x"}"#)
         .await;
-    assert_eq!(white.next_error().await, "unsupported-protocol");
+    assert_eq!(white.next_error().await, "bad-message");
     white.send(&shot(12, 0.0, -1.0)).await;
     assert_eq!(white.next_error().await, "not-your-piece");
     white.send(&shot(4, 0.0, 2.5)).await;
@@ -82,6 +83,59 @@ async fn a_wrong_token_or_match_is_refused_with_a_stable_code() {
     assert_eq!(lost.next_error().await, "no-such-match");
     let mut fresh = server.ws(&id, None).await;
     assert_eq!(view(fresh.next().await).shots, 0);
+}
+
+#[tokio::test]
+async fn the_token_travels_in_the_hello_never_in_the_url_and_is_never_stored() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &[]);
+    let (id, white_token, black_token) = server.two_player_match("").await;
+    // The seat's answer names a WebSocket path without the secret.
+    let (_, text) = server.http("GET", &format!("/api/matches/{id}"), "").await;
+    assert!(!text.contains(&white_token), "{text}");
+    // A token in the URL is refused before the upgrade, with the way to do it.
+    let url = format!("ws://{}/ws?match={id}&token={white_token}", server.addr);
+    match tokio_tungstenite::connect_async(url).await {
+        Err(tokio_tungstenite::tungstenite::Error::Http(response)) => {
+            assert_eq!(response.status().as_u16(), 400);
+            let body = String::from_utf8_lossy(response.body().as_deref().unwrap_or_default());
+            assert!(
+                body.contains(r#""code":"bad-message""#) && body.contains("hello"),
+                "{body}"
+            );
+        }
+        other => panic!("expected HTTP 400, got {:?}", other.map(|_| ())),
+    }
+    // Anything but a hello first is refused with no-hello and closed.
+    let mut rude = Client::connect_silent(&server.addr, &id).await.unwrap();
+    rude.send(&shot(4, 0.0, 2.0)).await;
+    assert_eq!(rude.next_error().await, "no-hello");
+    assert!(rude.closes().await);
+    let mut old = Client::connect_silent(&server.addr, &id).await.unwrap();
+    old.send_text(r#"{"type":"hello","protocol":999,"name":"x"}"#)
+        .await;
+    assert_eq!(old.next_error().await, "unsupported-protocol");
+    assert!(old.closes().await);
+    // With the token in the hello, the seat plays.
+    let mut white = server.ws(&id, Some(&white_token)).await;
+    assert_eq!(white.received.len(), 1, "the welcome came first");
+    let mut black = server.ws(&id, Some(&black_token)).await;
+    view(white.next().await);
+    view(black.next().await);
+    white.send(&shot(4, 0.0, 2.0)).await;
+    white.next_of("shot-played").await;
+    // The store holds hashes only: neither token is anywhere in its files.
+    drop(server);
+    let files = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().path());
+    for file in files.filter(|p| p.is_file()) {
+        let bytes = std::fs::read(&file).unwrap();
+        for token in [&white_token, &black_token] {
+            let found = bytes.windows(token.len()).any(|w| w == token.as_bytes());
+            assert!(!found, "a seat token was written to the store");
+        }
+    }
 }
 
 #[tokio::test]

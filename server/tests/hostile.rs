@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{view, Server};
+use common::{view, Client, Server};
 use futures_util::{SinkExt, StreamExt};
 use game::protocol::ClientMessage;
 use std::time::{Duration, Instant};
@@ -47,6 +47,11 @@ async fn stalled_spectator(addr: &str, id: &str) -> TcpStream {
     }
     let head = String::from_utf8_lossy(&head);
     assert!(head.starts_with("HTTP/1.1 101"), "{head}");
+    // A spectator's hello, as one masked text frame (mask 0: plain bytes).
+    let hello = br#"{"type":"hello","protocol":1,"name":"slow"}"#;
+    let mut frame = vec![0x81, 0x80 | hello.len() as u8, 0, 0, 0, 0];
+    frame.extend_from_slice(hello);
+    s.write_all(&frame).await.unwrap();
     s
 }
 
@@ -67,8 +72,14 @@ async fn a_client_that_stops_reading_is_dropped_and_its_socket_closed_by_the_ser
         ],
     );
     let (id, token) = server.create(r#"{"name":"Petka"}"#).await;
-    let url = format!("ws://{}/ws?match={id}&token={token}", server.addr);
-    let (player, _) = tokio_tungstenite::connect_async(url).await.unwrap();
+    let url = format!("ws://{}/ws?match={id}", server.addr);
+    let (mut player, _) = tokio_tungstenite::connect_async(url).await.unwrap();
+    let hello = ClientMessage::Hello {
+        protocol: 1,
+        name: "Petka".into(),
+        token: Some(game::token::SeatToken::new(token)),
+    };
+    player.send(Message::Text(hello.to_json())).await.unwrap();
     let (mut says, mut hears) = player.split();
     // The player reads everything, so only the spectator falls behind.
     let reader = tokio::spawn(async move { while let Some(Ok(_)) = hears.next().await {} });
@@ -147,8 +158,8 @@ async fn connections_past_the_per_address_limit_are_refused_with_server_busy() {
     drop(a);
     let started = Instant::now();
     loop {
-        if let Ok((mut c, _)) = tokio_tungstenite::connect_async(url.clone()).await {
-            assert!(matches!(c.next().await, Some(Ok(Message::Text(_)))));
+        if let Ok(mut c) = Client::try_connect(&server.addr, &id, None).await {
+            view(c.next().await);
             break;
         }
         assert!(

@@ -7,6 +7,7 @@
 
 use crate::platform::{Socket, SocketState};
 use game::protocol::{ClientMessage, ErrorCode, ServerMessage, PROTOCOL_VERSION};
+use game::token::SeatToken;
 
 /// Pause before the first reconnect attempt, doubled each time up to
 /// [`MAX_BACKOFF`].
@@ -31,6 +32,8 @@ pub enum Link {
 pub struct Connection {
     url: String,
     name: String,
+    /// The seat token, said in each hello (none: watching).
+    token: Option<SeatToken>,
     socket: Option<Socket>,
     link: Link,
     attempt: u32,
@@ -39,12 +42,14 @@ pub struct Connection {
 }
 
 impl Connection {
-    /// Opens `url` (`ws://.../ws?match=..&token=..`), saying hello as `name`.
-    pub fn open(url: String, name: String) -> Connection {
+    /// Opens `url` (`ws://.../ws?match=..`), saying hello as `name` with
+    /// the seat token (none: to watch).
+    pub fn open(url: String, name: String, token: Option<SeatToken>) -> Connection {
         Connection {
             socket: Some(Socket::open(&url)),
             url,
             name,
+            token,
             link: Link::Connecting,
             attempt: 0,
             fatal: None,
@@ -108,6 +113,7 @@ impl Connection {
                 let hello = ClientMessage::Hello {
                     protocol: PROTOCOL_VERSION,
                     name: self.name.clone(),
+                    token: self.token.clone(),
                 };
                 socket.send(&hello.to_json());
             }

@@ -15,6 +15,7 @@ use crate::viewport::Viewport;
 use crate::{draw, platform};
 use ::glam::DVec2;
 use game::protocol::{ClientMessage, Players, ServerMessage, MAX_CHAT_CHARS};
+use game::token::SeatToken;
 use game::{MatchResult, MatchView, Phase, PieceId, Seat, Side, WinReason};
 use macroquad::prelude::*;
 use std::collections::VecDeque;
@@ -120,12 +121,9 @@ impl Play {
     }
 
     fn connect(&mut self) {
-        let mut url = format!("{}/ws?match={}", ws_origin(&self.api.origin), self.match_id);
-        if let Some(t) = &self.token {
-            url.push_str("&token=");
-            url.push_str(t);
-        }
-        self.conn = Some(Connection::open(url, self.name.clone()));
+        let url = format!("{}/ws?match={}", ws_origin(&self.api.origin), self.match_id);
+        let token = self.token.clone().map(SeatToken::new);
+        self.conn = Some(Connection::open(url, self.name.clone(), token));
     }
 
     fn notify(&mut self, text: impl Into<String>) {

@@ -10,7 +10,7 @@
 // joins that match's empty seat. It prints what happens, and at the end
 // one JSON line: {"match_id": ..., "side": ..., "result": {...}}.
 import WebSocket from "ws";
-import { Simulator, NoiseRng } from "chapaev";
+import { Simulator, NoiseRng, protocolVersion } from "chapaev";
 
 // ---- options ---------------------------------------------------------------
 
@@ -208,6 +208,10 @@ for (let attempt = 0; !result; attempt++) {
   if (attempt > 50) throw new Error("could not stay connected");
   await new Promise((resolve) => {
     const ws = new WebSocket(wsUrl);
+    // The first message: hello with the seat token (never in the URL).
+    ws.on("open", () =>
+      ws.send(JSON.stringify({ type: "hello", protocol: protocolVersion(), name: "node-example", token: grant.token })),
+    );
     ws.on("message", (data) => {
       try {
         onMessage(ws, JSON.parse(data.toString()));

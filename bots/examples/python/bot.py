@@ -183,7 +183,9 @@ def play(server: str, grant: Message, brain: Brain) -> Message:
     m = Match()
     while m.result is None:
         with connect(ws_url, max_size=None, open_timeout=10) as ws:
-            ws.send(json.dumps({"type": "hello", "protocol": chapaev.PROTOCOL_VERSION, "name": "python-example"}))
+            # The seat token goes in the hello, never in the URL.
+            ws.send(json.dumps({"type": "hello", "protocol": chapaev.PROTOCOL_VERSION,
+                                "name": "python-example", "token": grant["token"]}))
             waiting = False  # a move sent, its answer not seen yet
             resync = False
             for raw in ws:

@@ -19,7 +19,8 @@
 use clap::Parser;
 use futures_util::{SinkExt, StreamExt};
 use game::noise::SplitMix64;
-use game::protocol::{ClientMessage, ServerMessage};
+use game::protocol::{ClientMessage, ServerMessage, PROTOCOL_VERSION};
+use game::token::SeatToken;
 use game::{Next, Phase, PieceId, Seat, Side};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
@@ -201,17 +202,20 @@ struct Totals {
 
 type Ws = tokio_tungstenite::WebSocketStream<tokio_tungstenite::MaybeTlsStream<TcpStream>>;
 
+/// Opens a match's WebSocket and says hello with `token` (none: watch).
 async fn connect(addr: &str, id: &str, token: Option<&str>) -> Result<Ws, LoadError> {
-    let url = match token {
-        Some(t) => format!("ws://{addr}/ws?match={id}&token={t}"),
-        None => format!("ws://{addr}/ws?match={id}"),
-    };
+    let url = format!("ws://{addr}/ws?match={id}");
     // No Nagle: a shot is one small frame and must leave at once.
-    Ok(
-        tokio_tungstenite::connect_async_with_config(url, None, true)
-            .await?
-            .0,
-    )
+    let mut ws = tokio_tungstenite::connect_async_with_config(url, None, true)
+        .await?
+        .0;
+    let hello = ClientMessage::Hello {
+        protocol: PROTOCOL_VERSION,
+        name: "loadgen".into(),
+        token: token.map(SeatToken::new),
+    };
+    ws.send(Message::Text(hello.to_json())).await?;
+    Ok(ws)
 }
 
 /// What one player measured.

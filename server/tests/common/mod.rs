@@ -186,9 +186,13 @@ pub struct Client {
     /// Every text frame received and sent, as it travelled.
     pub received: Vec<String>,
     pub sent: Vec<String>,
+    /// A message read while opening that was not the `welcome`.
+    pending: Option<ServerMessage>,
 }
 
 impl Client {
+    /// Connects and says hello with `token` (none: watch); the `welcome`
+    /// is taken, anything else (a refusal) is left to read.
     pub async fn connect(addr: &str, id: &str, token: Option<&str>) -> Client {
         Client::try_connect(addr, id, token).await.unwrap()
     }
@@ -198,15 +202,32 @@ impl Client {
         id: &str,
         token: Option<&str>,
     ) -> Result<Client, tokio_tungstenite::tungstenite::Error> {
-        let url = match token {
-            Some(t) => format!("ws://{addr}/ws?match={id}&token={t}"),
-            None => format!("ws://{addr}/ws?match={id}"),
-        };
-        let (ws, _) = tokio_tungstenite::connect_async(url).await?;
+        let mut c = Client::connect_silent(addr, id).await?;
+        c.send(&ClientMessage::Hello {
+            protocol: game::protocol::PROTOCOL_VERSION,
+            name: "test".into(),
+            token: token.map(game::token::SeatToken::new),
+        })
+        .await;
+        match c.try_next().await {
+            Some(ServerMessage::Welcome { .. }) => {}
+            other => c.pending = other,
+        }
+        Ok(c)
+    }
+
+    /// Connects without saying anything.
+    pub async fn connect_silent(
+        addr: &str,
+        id: &str,
+    ) -> Result<Client, tokio_tungstenite::tungstenite::Error> {
+        let (ws, _) =
+            tokio_tungstenite::connect_async(format!("ws://{addr}/ws?match={id}")).await?;
         Ok(Client {
             ws,
             received: Vec::new(),
             sent: Vec::new(),
+            pending: None,
         })
     }
 
@@ -236,6 +257,9 @@ impl Client {
 
     /// The next protocol message (`None`: the server closed the connection).
     pub async fn try_next(&mut self) -> Option<ServerMessage> {
+        if let Some(m) = self.pending.take() {
+            return Some(m);
+        }
         loop {
             let frame = tokio::time::timeout(Duration::from_secs(15), self.ws.next())
                 .await
