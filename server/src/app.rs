@@ -72,8 +72,13 @@ pub fn run(config: Config) -> Result<(), AppError> {
         config.limits(),
         game_rt.handle().clone(),
     );
+    // Live matches first and all of them; open ones wait in the store.
     let resumed = game_rt.block_on(hub.resume_all())?;
-    info!(resumed, data_dir = %config.data_dir.display(), "store opened; unfinished matches resumed");
+    info!(resumed, data_dir = %config.data_dir.display(), "store opened; live matches resumed");
+    game_rt.spawn(expire_open_matches(
+        hub.clone(),
+        Duration::from_secs(config.open_match_expiry_seconds),
+    ));
 
     let served = actix_web::rt::System::new().block_on(serve(&config, hub.clone(), &game_rt));
     // Rooms were stopped by the signal handler; make sure of it.
@@ -142,6 +147,20 @@ async fn serve(
     });
     server.await?;
     Ok(())
+}
+
+/// Deletes stale open matches now and then every minute, for as long as
+/// the server runs.
+async fn expire_open_matches(hub: Hub, after: Duration) {
+    let mut every = tokio::time::interval(Duration::from_secs(60));
+    loop {
+        every.tick().await;
+        match hub.expire_open(after).await {
+            Ok(0) => {}
+            Ok(n) => info!(expired = n, "open matches nobody joined expired"),
+            Err(e) => error!(error = %e, "expiring open matches failed"),
+        }
+    }
 }
 
 async fn wait_for_signal() {

@@ -122,6 +122,11 @@ pub struct Config {
     #[arg(long, env = "CHAPAEV_IDLE_SECONDS", default_value_t = 30)]
     pub idle_seconds: u64,
 
+    /// Seconds after which an open match that nobody joined, nobody waits
+    /// in and nobody touched is deleted (checked every minute and on start).
+    #[arg(long, env = "CHAPAEV_OPEN_MATCH_EXPIRY_SECONDS", default_value_t = 3600, value_parser = clap::value_parser!(u64).range(10..=30 * 24 * 3600))]
+    pub open_match_expiry_seconds: u64,
+
     /// How hard SQLite syncs each accepted move: `full` survives power loss,
     /// `normal` survives a crash of the server process only.
     #[arg(long, env = "CHAPAEV_SYNC", value_enum, default_value_t = SyncMode::Full)]

@@ -183,6 +183,16 @@ impl Hub {
         })
     }
 
+    /// A slot even past the limit (new matches are refused until the
+    /// count is back under it).
+    fn reserve_past_limit(&self) -> Slot {
+        self.inner.reserved.fetch_add(1, Ordering::SeqCst);
+        Slot {
+            hub: self.clone(),
+            held: true,
+        }
+    }
+
     /// Counts one more WebSocket connection from `addr`; `None` when the
     /// address already holds as many as allowed. The count drops with the
     /// guard.
@@ -340,6 +350,12 @@ impl Hub {
 
     /// The room of match `id`, loading it from the store if needed.
     pub async fn room(&self, id: &str) -> Result<RoomHandle, Refusal> {
+        self.room_within(id, true).await
+    }
+
+    /// [`Hub::room`]; `within_limit: false` loads past the limit on
+    /// matches in memory (a live match resuming after a restart).
+    async fn room_within(&self, id: &str, within_limit: bool) -> Result<RoomHandle, Refusal> {
         if let Some(h) = self.rooms().get(id) {
             return Ok(h.clone());
         }
@@ -350,7 +366,11 @@ impl Hub {
         if let Some(h) = self.rooms().get(id) {
             return Ok(h.clone());
         }
-        let slot = self.reserve()?;
+        let slot = if within_limit {
+            self.reserve()?
+        } else {
+            self.reserve_past_limit()
+        };
         let store = self.inner.store.clone();
         let key = id.to_string();
         let loaded = tokio::task::spawn_blocking(move || -> Result<_, Refusal> {
@@ -423,20 +443,42 @@ impl Hub {
         .await
     }
 
-    /// Loads and starts every unfinished match in the store.
+    /// Loads and starts every live match in the store, the most recently
+    /// played first, whatever the limit on matches in memory (they were
+    /// being played: their players come back for them). Open matches stay
+    /// in the store until someone comes for one, or it expires.
     pub async fn resume_all(&self) -> Result<usize, StoreError> {
         let store = self.inner.store.clone();
-        let ids = tokio::task::spawn_blocking(move || store.unfinished())
+        let ids = tokio::task::spawn_blocking(move || store.live())
             .await
             .map_err(|e| StoreError::Corrupt(e.to_string()))??;
         let mut resumed = 0;
         for id in ids {
-            match self.room(&id).await {
+            match self.room_within(&id, false).await {
                 Ok(_) => resumed += 1,
                 Err(r) => warn!(match_id = %id, refusal = %r, "could not resume a match"),
             }
         }
         Ok(resumed)
+    }
+
+    /// Deletes the open matches nobody joined that have not been touched
+    /// for `after` and are not in memory (a room in memory is still
+    /// waited for); how many. Loads wait meanwhile, so a match is never
+    /// loaded as it goes.
+    pub async fn expire_open(&self, after: Duration) -> Result<usize, StoreError> {
+        let _loading = self.inner.load_lock.lock().await;
+        let in_memory: std::collections::HashSet<String> = self.rooms().keys().cloned().collect();
+        let store = self.inner.store.clone();
+        let expired = tokio::task::spawn_blocking(move || {
+            store.expire_open(after.as_secs(), |id| in_memory.contains(id))
+        })
+        .await
+        .map_err(|e| StoreError::Corrupt(e.to_string()))??;
+        for id in &expired {
+            info!(match_id = %id, "an open match nobody joined expired");
+        }
+        Ok(expired.len())
     }
 
     /// Stops every room once it has finished the command in hand (so every
@@ -530,7 +572,10 @@ impl Drop for AddressGuard {
 }
 
 fn no_such_match(id: &str) -> Refusal {
-    Refusal::new(ErrorCode::NoSuchMatch, format!("no match {id:?}"))
+    Refusal::new(
+        ErrorCode::NoSuchMatch,
+        format!("no match {id:?} (an open match nobody joins expires)"),
+    )
 }
 
 #[cfg(test)]

@@ -13,7 +13,7 @@
 //!
 //! Modules: [`config`] (flags and limits), [`token`] (seat tokens and ids),
 //! [`refusal`] (errors sent to clients, with their HTTP statuses),
-//! [`store`] (SQLite), [`metrics`] (Prometheus), [`origin`] (cross-site
+//! [`store`] (SQLite, with [`readers`], its read connections), [`metrics`] (Prometheus), [`origin`] (cross-site
 //! requests refused), [`ratelimit`]
 //! (per-connection token bucket), [`room`] (the task that drives one
 //! match's session and asks the computer levels of the [`bots`] crate for
@@ -32,6 +32,7 @@ pub mod hub;
 pub mod metrics;
 pub mod origin;
 pub mod ratelimit;
+pub mod readers;
 pub mod refusal;
 pub mod room;
 pub mod simulate;

@@ -10,6 +10,7 @@
 use crate::checkpointer::{Checkpointer, Nudge};
 use crate::config::SyncMode;
 use crate::metrics::Histogram;
+use crate::readers::{Readers, READERS};
 use game::token::TokenHash;
 use game::{Config, MatchRecord, MatchResult, RecordedMove, RECORD_VERSION};
 use rusqlite::{params, Connection, OptionalExtension};
@@ -140,7 +141,10 @@ pub struct Store {
 
 /// What the store's callers and its writer thread share.
 struct Shared {
+    /// The writer's connection (and, for a store in memory, the readers').
     conn: Mutex<Connection>,
+    /// Read-only connections of a store on disk.
+    readers: Option<Readers>,
     queue: Mutex<Queue>,
     /// Signalled when a move is queued or the store closes.
     wake: Condvar,
@@ -287,7 +291,7 @@ impl Store {
         conn.pragma_update(None, "wal_autocheckpoint", 0)?;
         conn.pragma_update(None, "journal_size_limit", 64 << 20)?;
         let checkpointer = Checkpointer::start(&path, sync)?;
-        Store::with_connection(conn, sync, Some(checkpointer))
+        Store::with_connection(conn, sync, Some((checkpointer, &path)))
     }
 
     /// A store in memory (tests).
@@ -295,10 +299,12 @@ impl Store {
         Store::with_connection(Connection::open_in_memory()?, SyncMode::Normal, None)
     }
 
+    /// The store on `conn`; on disk, also the checkpointer and the read
+    /// connections to the file at the path.
     fn with_connection(
         conn: Connection,
         sync: SyncMode,
-        checkpointer: Option<Checkpointer>,
+        on_disk: Option<(Checkpointer, &Path)>,
     ) -> Result<Store, StoreError> {
         conn.pragma_update(None, "journal_mode", "WAL")?;
         conn.pragma_update(None, "synchronous", sync.pragma())?;
@@ -306,8 +312,13 @@ impl Store {
         conn.busy_timeout(std::time::Duration::from_secs(5))?;
         conn.execute_batch(SCHEMA)?;
         hash_plain_tokens(&conn)?;
+        let (checkpointer, readers) = match on_disk {
+            Some((c, path)) => (Some(c), Some(Readers::open(path, READERS)?)),
+            None => (None, None),
+        };
         let shared = Arc::new(Shared {
             conn: Mutex::new(conn),
+            readers,
             queue: Mutex::new(Queue::default()),
             wake: Condvar::new(),
             commits: Histogram::default(),
@@ -330,6 +341,15 @@ impl Store {
 
     fn lock(&self) -> Result<MutexGuard<'_, Connection>, StoreError> {
         self.shared.conn.lock().map_err(|_| StoreError::Poisoned)
+    }
+
+    /// A connection for reading: a free read connection, never the writer's
+    /// (but for a store in memory, which has no other).
+    fn read(&self) -> Result<MutexGuard<'_, Connection>, StoreError> {
+        match &self.shared.readers {
+            Some(readers) => readers.get().map_err(|_| StoreError::Poisoned),
+            None => self.lock(),
+        }
     }
 
     /// Stores a new match (no moves yet).
@@ -443,7 +463,7 @@ impl Store {
 
     /// One match row.
     pub fn get(&self, id: &str) -> Result<Option<StoredMatch>, StoreError> {
-        let conn = self.lock()?;
+        let conn = self.read()?;
         let raw = conn
             .query_row(
                 &format!("SELECT {} FROM matches WHERE id = ?1", Self::MATCH_COLUMNS),
@@ -454,20 +474,51 @@ impl Store {
         raw.map(|(r, config)| r.finish(&config)).transpose()
     }
 
-    /// Ids of every match not finished (to resume on start).
-    pub fn unfinished(&self) -> Result<Vec<String>, StoreError> {
-        let conn = self.lock()?;
+    /// Ids of the live matches, the most recently played first (to resume
+    /// on start; open ones are loaded when someone comes for them).
+    pub fn live(&self) -> Result<Vec<String>, StoreError> {
+        let conn = self.read()?;
         let mut stmt = conn
-            .prepare("SELECT id FROM matches WHERE status != 'finished' ORDER BY created_at, id")?;
+            .prepare("SELECT id FROM matches WHERE status = 'live' ORDER BY updated_at DESC, id")?;
         let ids = stmt
             .query_map([], |r| r.get::<_, String>(0))?
             .collect::<Result<Vec<_>, _>>()?;
         Ok(ids)
     }
 
+    /// Deletes the open matches (never joined, so without moves) untouched
+    /// for `older_than` seconds, except those `keep` names (in memory, so
+    /// still waited for); their ids. One transaction.
+    pub fn expire_open(
+        &self,
+        older_than: u64,
+        keep: impl Fn(&str) -> bool,
+    ) -> Result<Vec<String>, StoreError> {
+        let cutoff = now().saturating_sub(older_than) as i64;
+        let conn = self.lock()?;
+        let tx = conn.unchecked_transaction()?;
+        let stale: Vec<String> = tx
+            .prepare("SELECT id FROM matches WHERE status = 'open' AND updated_at < ?1")?
+            .query_map(params![cutoff], |r| r.get(0))?
+            .collect::<Result<_, _>>()?;
+        let expired: Vec<String> = stale.into_iter().filter(|id| !keep(id)).collect();
+        for id in &expired {
+            tx.execute("DELETE FROM moves WHERE match_id = ?1", params![id])?;
+            tx.execute(
+                "DELETE FROM matches WHERE id = ?1 AND status = 'open'",
+                params![id],
+            )?;
+        }
+        tx.commit()?;
+        if !expired.is_empty() {
+            self.shared.log_grew();
+        }
+        Ok(expired)
+    }
+
     /// The moves of a match, in order.
     pub fn moves(&self, id: &str) -> Result<Vec<RecordedMove>, StoreError> {
-        let conn = self.lock()?;
+        let conn = self.read()?;
         let mut stmt =
             conn.prepare("SELECT idx, body FROM moves WHERE match_id = ?1 ORDER BY idx")?;
         let rows = stmt
@@ -504,7 +555,7 @@ impl Store {
 
     /// Summaries, newest first, optionally of one status only.
     pub fn list(&self, status: Option<Status>, limit: usize) -> Result<Vec<Summary>, StoreError> {
-        let conn = self.lock()?;
+        let conn = self.read()?;
         let mut stmt = conn.prepare(&format!(
             "SELECT {SUMMARY_COLUMNS} FROM matches WHERE (?1 IS NULL OR status = ?1)
              ORDER BY updated_at DESC, id LIMIT ?2"
@@ -520,7 +571,7 @@ impl Store {
 
     /// One match's summary.
     pub fn summary(&self, id: &str) -> Result<Option<Summary>, StoreError> {
-        let conn = self.lock()?;
+        let conn = self.read()?;
         let raw = conn
             .query_row(
                 &format!("SELECT {SUMMARY_COLUMNS} FROM matches WHERE id = ?1"),
@@ -815,7 +866,7 @@ mod tests {
         assert_eq!(&record, g.record());
         let replay = game::Replay::new(record).unwrap();
         assert_eq!(replay.game().view(), g.view());
-        assert_eq!(store.unfinished().unwrap(), vec!["m1".to_string()]);
+        assert_eq!(store.live().unwrap(), vec!["m1".to_string()]);
     }
 
     #[test]
@@ -942,6 +993,64 @@ mod tests {
             .collect::<Result<_, _>>()
             .unwrap();
         assert!(!texts[0].contains("plain"), "{texts:?}");
+    }
+
+    #[test]
+    fn open_matches_left_alone_expire_and_live_ones_are_resumed_newest_first() {
+        let store = Store::in_memory().unwrap();
+        for id in ["old-open", "waited-for", "live-a", "live-b", "new-open"] {
+            store.create(&stored(id)).unwrap();
+        }
+        for id in ["live-a", "live-b"] {
+            store.seat_second(id, "Anka", &TokenHash::of("t2")).unwrap();
+        }
+        let age = |id: &str, at: i64| {
+            store
+                .lock()
+                .unwrap()
+                .execute(
+                    "UPDATE matches SET updated_at = ?2 WHERE id = ?1",
+                    params![id, at],
+                )
+                .unwrap();
+        };
+        for (id, at) in [
+            ("old-open", 0),
+            ("waited-for", 0),
+            ("live-a", 5),
+            ("live-b", 9),
+        ] {
+            age(id, at);
+        }
+        let expired = store.expire_open(3600, |id| id == "waited-for").unwrap();
+        assert_eq!(expired, ["old-open"]);
+        assert!(store.get("old-open").unwrap().is_none());
+        for kept in ["waited-for", "new-open", "live-a"] {
+            assert!(store.get(kept).unwrap().is_some(), "{kept}");
+        }
+        // Live matches, however old, never expire, and resume newest first.
+        assert_eq!(store.live().unwrap(), ["live-b", "live-a"]);
+    }
+
+    #[test]
+    fn reads_do_not_wait_for_the_writers_connection() {
+        let dir = tempfile::tempdir().unwrap();
+        let store = Store::open(dir.path(), SyncMode::Full).unwrap();
+        store.create(&stored("m")).unwrap();
+        // The writer's connection is busy (as in a commit's sync) ...
+        let writer = store.lock().unwrap();
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::scope(|s| {
+            s.spawn(|| {
+                let listed = store.list(None, 10).unwrap().len();
+                let loaded = store.load("m").unwrap().is_some();
+                tx.send((listed, loaded)).unwrap();
+            });
+            // ... and every read still answers.
+            let answer = rx.recv_timeout(std::time::Duration::from_secs(5));
+            drop(writer);
+            assert_eq!(answer, Ok((1, true)));
+        });
     }
 
     #[test]

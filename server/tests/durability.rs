@@ -78,3 +78,46 @@ async fn sigterm_stops_cleanly_and_a_finished_match_replays_after_restart() {
     assert!(replay.game().is_over());
     assert_eq!(replay.shot_count(), 1);
 }
+
+#[tokio::test]
+async fn after_a_kill_live_matches_resume_first_and_always_while_open_ones_wait_in_the_store() {
+    let dir = tempfile::tempdir().unwrap();
+    let roomy = ["--max-matches", "40", "--create-burst", "100"];
+    let mut server = Server::start(dir.path(), &roomy);
+    // Many open matches nobody joined, created before and after two live ones.
+    let mut open = Vec::new();
+    for _ in 0..8 {
+        open.push(server.create(r#"{"name":"Waiting"}"#).await.0);
+    }
+    let mut live = Vec::new();
+    for _ in 0..2 {
+        let (id, white_token, _) = server.two_player_match("").await;
+        let mut white = server.ws(&id, Some(&white_token)).await;
+        view(white.next().await);
+        white.send(&shot(4, 0.0, 2.0)).await;
+        white.next_of("shot-played").await;
+        live.push((id, white_token));
+    }
+    for _ in 0..8 {
+        open.push(server.create(r#"{"name":"Waiting"}"#).await.0);
+    }
+    server.kill();
+    // Room for only four matches now: the live ones must all be back.
+    let server = Server::start(dir.path(), &["--max-matches", "4"]);
+    let (_, health) = server.http("GET", "/healthz", "").await;
+    let health: serde_json::Value = serde_json::from_str(&health).unwrap();
+    assert_eq!(health["matches_in_memory"], 2, "{health}");
+    for (id, token) in &live {
+        let mut white = server.ws(id, Some(token)).await;
+        assert_eq!(view(white.next().await).shots, 1);
+    }
+    // An open match is loaded when someone comes for it.
+    let (status, text) = server
+        .http(
+            "POST",
+            &format!("/api/matches/{}/join", open[0]),
+            r#"{"name":"Anka"}"#,
+        )
+        .await;
+    assert_eq!(status, 200, "{text}");
+}
