@@ -458,6 +458,7 @@ impl Store {
         let moves = self.moves(id)?;
         let record = MatchRecord {
             version: RECORD_VERSION,
+            physics: game::PHYSICS_VERSION,
             config: m.config.clone(),
             seed: m.seed,
             moves,
