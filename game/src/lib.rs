@@ -40,7 +40,8 @@
 //! motion at any time), [`rules`] (the turn rule), [`outcome`] (what
 //! shots, rounds and matches came to), [`game`] (the match state machine),
 //! [`record`] (the versioned match record), [`replay`] (bit-exact replay
-//! and scrubbing), [`simulate`] (one shot on any position, as
+//! and scrubbing), [`golden`] (records of earlier builds that every build
+//! must replay bit for bit), [`simulate`] (one shot on any position, as
 //! plain data for every language), [`batch`] (many shots in one flat array
 //! of numbers, for the language bindings), [`protocol`] (the wire messages
 //! and refusals) and [`session`] (a live match — seats, connections, turn
@@ -52,6 +53,7 @@ pub mod board;
 pub mod config;
 pub mod film;
 pub mod game;
+pub mod golden;
 pub mod noise;
 pub mod outcome;
 pub mod physics;
