@@ -198,6 +198,9 @@ pub enum ErrorCode {
     BadBoard,
     /// A page of another site tried to act (its `Origin` is not allowed).
     ForbiddenOrigin,
+    /// The match was played under a physics version this server cannot
+    /// play; it is kept as stored, for a server that can.
+    UnsupportedPhysics,
 }
 
 impl ErrorCode {
@@ -232,6 +235,7 @@ impl ErrorCode {
             ErrorCode::MatchNotOver => "match-not-over",
             ErrorCode::BadBoard => "bad-board",
             ErrorCode::ForbiddenOrigin => "forbidden-origin",
+            ErrorCode::UnsupportedPhysics => "unsupported-physics",
         }
     }
 }
@@ -555,6 +559,7 @@ mod tests {
             ErrorCode::PieDecisionPending,
             ErrorCode::Internal,
             ErrorCode::TooFast,
+            ErrorCode::UnsupportedPhysics,
         ] {
             assert_eq!(
                 serde_json::to_string(&code).unwrap(),
