@@ -1,6 +1,6 @@
 //! The durable store: one SQLite file in write-ahead-log mode. A `matches`
-//! row holds each match's configuration, seed, seats (names and tokens),
-//! status and result; a `moves` row holds each accepted move as the JSON of
+//! row holds each match's configuration, seed, physics version, seats
+//! (names and tokens), status and result; a `moves` row holds each accepted move as the JSON of
 //! its [`RecordedMove`]. Every accepted move is written in one transaction
 //! (the move and the match row together) before its outcome is broadcast,
 //! so the match record rebuilt from the store is exactly what players saw,
@@ -9,7 +9,7 @@
 use crate::checkpointer::{Checkpointer, Nudge};
 use crate::config::SyncMode;
 use crate::metrics::Histogram;
-use game::{Config, MatchRecord, MatchResult, RecordedMove, RECORD_VERSION};
+use game::{Config, MatchRecord, MatchResult, PhysicsVersion, RecordedMove, RECORD_VERSION};
 use rusqlite::{params, Connection, OptionalExtension};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -59,6 +59,9 @@ pub struct StoredMatch {
     pub created_at: u64,
     pub config: Config,
     pub seed: u64,
+    /// The physics version the match is played under (see
+    /// [`game::physics_version`]).
+    pub physics: u32,
     pub status: Status,
     /// The built-in bots: a level (`easy`, `medium`, `hard`) for a bot in
     /// the second seat, or `FIRST/SECOND` for an exhibition where both
@@ -107,6 +110,11 @@ pub struct Summary {
     pub shots: u32,
     pub turn_seconds: u64,
     pub result: Option<MatchResult>,
+    /// The physics version the match is played under.
+    pub physics: u32,
+    /// Whether this server can play that version (a match it cannot play
+    /// is kept as stored, not resumed, until a server that can).
+    pub playable: bool,
 }
 
 /// The row update that goes with a move.
@@ -228,6 +236,20 @@ CREATE TABLE IF NOT EXISTS moves (
 );
 ";
 
+/// Adds the `physics` column to a `matches` table made before matches
+/// kept their physics version (and to a new table: [`SCHEMA`] predates
+/// it). Every match stored before then was played under version 1.
+fn add_physics_column(conn: &Connection) -> Result<(), StoreError> {
+    let mut stmt = conn.prepare("PRAGMA table_info(matches)")?;
+    let columns = stmt
+        .query_map([], |r| r.get::<_, String>("name"))?
+        .collect::<Result<Vec<_>, _>>()?;
+    if !columns.iter().any(|c| c == "physics") {
+        conn.execute_batch("ALTER TABLE matches ADD COLUMN physics INTEGER NOT NULL DEFAULT 1")?;
+    }
+    Ok(())
+}
+
 fn now() -> u64 {
     SystemTime::now()
         .duration_since(UNIX_EPOCH)
@@ -269,6 +291,7 @@ impl Store {
         conn.pragma_update(None, "foreign_keys", "ON")?;
         conn.busy_timeout(std::time::Duration::from_secs(5))?;
         conn.execute_batch(SCHEMA)?;
+        add_physics_column(&conn)?;
         let shared = Arc::new(Shared {
             conn: Mutex::new(conn),
             queue: Mutex::new(Queue::default()),
@@ -301,8 +324,9 @@ impl Store {
         let t = now();
         conn.execute(
             "INSERT INTO matches (id, created_at, updated_at, config, seed, status, bot, turn_seconds,
-                                  first_name, first_token, second_name, second_token, rematch_of)
-             VALUES (?1, ?2, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)",
+                                  first_name, first_token, second_name, second_token, rematch_of,
+                                  physics)
+             VALUES (?1, ?2, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13)",
             params![
                 m.id,
                 t as i64,
@@ -316,6 +340,7 @@ impl Store {
                 m.seats[1].name,
                 m.seats[1].token,
                 m.rematch_of,
+                m.physics,
             ],
         )?;
         self.shared.log_grew();
@@ -396,13 +421,14 @@ impl Store {
                 second_name: row.get(9)?,
                 second_token: row.get(10)?,
                 rematch_of: row.get(11)?,
+                physics: row.get(12)?,
             },
             row.get(2)?,
         ))
     }
 
     const MATCH_COLUMNS: &'static str = "id, created_at, config, seed, status, bot, turn_seconds,
-        first_name, first_token, second_name, second_token, rematch_of";
+        first_name, first_token, second_name, second_token, rematch_of, physics";
 
     /// One match row.
     pub fn get(&self, id: &str) -> Result<Option<StoredMatch>, StoreError> {
@@ -450,7 +476,8 @@ impl Store {
         Ok(moves)
     }
 
-    /// A match row and its record (config, seed, every move).
+    /// A match row and its record (config, seed, physics version, every
+    /// move).
     pub fn load(&self, id: &str) -> Result<Option<(StoredMatch, MatchRecord)>, StoreError> {
         let Some(m) = self.get(id)? else {
             return Ok(None);
@@ -458,7 +485,7 @@ impl Store {
         let moves = self.moves(id)?;
         let record = MatchRecord {
             version: RECORD_VERSION,
-            physics: game::PHYSICS_VERSION,
+            physics: m.physics,
             config: m.config.clone(),
             seed: m.seed,
             moves,
@@ -521,8 +548,8 @@ impl Store {
     }
 }
 
-const SUMMARY_COLUMNS: &str =
-    "id, status, created_at, updated_at, first_name, second_name, bot, shots, turn_seconds, result";
+const SUMMARY_COLUMNS: &str = "id, status, created_at, updated_at, first_name, second_name, bot,
+    shots, turn_seconds, result, physics";
 
 struct SummaryRaw {
     id: String,
@@ -535,6 +562,7 @@ struct SummaryRaw {
     shots: i64,
     turn_seconds: i64,
     result: Option<String>,
+    physics: i64,
 }
 
 impl SummaryRaw {
@@ -550,11 +578,15 @@ impl SummaryRaw {
             shots: r.get(7)?,
             turn_seconds: r.get(8)?,
             result: r.get(9)?,
+            physics: r.get(10)?,
         })
     }
 
     fn finish(self) -> Result<Summary, StoreError> {
+        let physics = physics_of(&self.id, self.physics)?;
         Ok(Summary {
+            physics,
+            playable: PhysicsVersion::from_number(physics).is_ok(),
             status: Status::parse(&self.status).ok_or_else(|| {
                 StoreError::Corrupt(format!("match {}: status {}", self.id, self.status))
             })?,
@@ -583,6 +615,13 @@ struct StoredMatchRaw {
     second_name: Option<String>,
     second_token: Option<String>,
     rematch_of: Option<String>,
+    physics: i64,
+}
+
+/// A stored physics version, checked to be one.
+fn physics_of(id: &str, stored: i64) -> Result<u32, StoreError> {
+    u32::try_from(stored)
+        .map_err(|_| StoreError::Corrupt(format!("match {id}: physics version {stored}")))
 }
 
 impl StoredMatchRaw {
@@ -591,6 +630,7 @@ impl StoredMatchRaw {
             StoreError::Corrupt(format!("match {}: status {}", self.id, self.status))
         })?;
         Ok(StoredMatch {
+            physics: physics_of(&self.id, self.physics)?,
             config: serde_json::from_str(config)?,
             created_at: self.created_at as u64,
             // Stored as the i64 with the same bits.
@@ -730,6 +770,7 @@ mod tests {
             created_at: 0,
             config: Config::default(),
             seed: u64::MAX - 1,
+            physics: game::PHYSICS_VERSION,
             status: Status::Open,
             bot: None,
             turn_seconds: 60,
@@ -867,6 +908,45 @@ mod tests {
             store.get("m").unwrap().unwrap().seats[0].name.as_deref(),
             Some("Petka")
         );
+    }
+
+    #[test]
+    fn a_database_from_before_physics_versions_gains_the_column_and_its_matches_are_physics_1() {
+        let dir = tempfile::tempdir().unwrap();
+        {
+            // A store as it was before the column: `SCHEMA` never had it.
+            let conn = Connection::open(dir.path().join("chapaev.sqlite3")).unwrap();
+            conn.execute_batch(SCHEMA).unwrap();
+            conn.execute(
+                "INSERT INTO matches (id, created_at, updated_at, config, seed, status, turn_seconds)
+                 VALUES ('old', 1, 1, '{}', 5, 'live', 60)",
+                [],
+            )
+            .unwrap();
+        }
+        let store = Store::open(dir.path(), SyncMode::Full).unwrap();
+        let (m, record) = store.load("old").unwrap().unwrap();
+        assert_eq!((m.physics, record.physics), (1, 1));
+        assert_eq!(record.version, RECORD_VERSION);
+        let summary = store.summary("old").unwrap().unwrap();
+        assert_eq!((summary.physics, summary.playable), (1, true));
+        store
+            .create(&StoredMatch {
+                physics: 7,
+                ..stored("new")
+            })
+            .unwrap();
+        drop(store);
+        // Opened again: the column is there once, and keeps what it holds.
+        let store = Store::open(dir.path(), SyncMode::Full).unwrap();
+        let (m, record) = store.load("new").unwrap().unwrap();
+        assert_eq!((m.physics, record.physics), (7, 7));
+        let summary = store.summary("new").unwrap().unwrap();
+        assert_eq!((summary.physics, summary.playable), (7, false));
+        assert!(matches!(
+            game::Replay::new(record),
+            Err(game::ReplayError::Physics(_))
+        ));
     }
 
     #[test]
