@@ -1,10 +1,11 @@
 //! The durable store: one SQLite file in write-ahead-log mode. A `matches`
 //! row holds each match's configuration, seed, physics version, seats
-//! (names and tokens), status and result; a `moves` row holds each accepted move as the JSON of
-//! its [`RecordedMove`]. Every accepted move is written in one transaction
-//! (the move and the match row together) before its outcome is broadcast,
-//! so the match record rebuilt from the store is exactly what players saw,
-//! and a restarted server replays it through [`game::Replay`].
+//! (names and tokens), status and result; a `moves` row holds each accepted
+//! move as the JSON of its [`RecordedMove`]. Every accepted move is written
+//! in one transaction (the move and the match row together) before its
+//! outcome is broadcast, so the match record rebuilt from the store is
+//! exactly what players saw, and a restarted server replays it through
+//! [`game::Replay`], under the match's own physics version.
 
 use crate::checkpointer::{Checkpointer, Nudge};
 use crate::config::SyncMode;
