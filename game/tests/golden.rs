@@ -141,26 +141,24 @@ fn the_golden_records_of_the_current_version_cover_the_variety_of_play() {
             .any(|s| s.round_end.is_some_and(|r| r.next_rows.is_some()))),
         "a round won with the match going on"
     );
-    assert!(
-        any(&|g| matches!(
-            g.end.phase,
-            game::Phase::Over {
-                result: game::MatchResult::Won {
-                    reason: game::WinReason::FarEdge,
-                    ..
-                }
-            }
-        ) || matches!(
-            g.end.phase,
-            game::Phase::Over {
-                result: game::MatchResult::Won {
-                    reason: game::WinReason::QuickMatch,
-                    ..
-                }
-            }
-        )),
-        "a match won on the board"
-    );
+    let won_by = |g: &GoldenRecord| match g.end.phase {
+        game::Phase::Over {
+            result: game::MatchResult::Won { reason, .. },
+        } => Some(reason),
+        _ => None,
+    };
+    for reason in [
+        game::WinReason::FarEdge,
+        game::WinReason::QuickMatch,
+        game::WinReason::Resignation,
+        game::WinReason::Timeouts,
+        game::WinReason::Abandoned,
+    ] {
+        assert!(
+            any(&|g| won_by(g) == Some(reason)),
+            "a match won by {reason:?}"
+        );
+    }
     let shots: usize = current.iter().map(|g| g.rests.len()).sum();
     assert!(shots >= 200, "only {shots} shots");
 }
