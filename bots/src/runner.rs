@@ -718,7 +718,10 @@ impl<B: Bot + 'static> Play<B> {
                 });
                 matches!(
                     code,
-                    ErrorCode::BadToken | ErrorCode::NoSuchMatch | ErrorCode::UnsupportedProtocol
+                    ErrorCode::BadToken
+                        | ErrorCode::NoSuchMatch
+                        | ErrorCode::UnsupportedProtocol
+                        | ErrorCode::UnsupportedPhysics
                 )
                 .then_some(SessionEnd::Fatal(code, message))
             }

@@ -10,9 +10,8 @@
 use crate::board::Board;
 use crate::config::{Config, ConfigError};
 use crate::film::Film;
-use crate::noise;
 use crate::outcome::{ForfeitReason, MatchResult, Next, RoundEnd, ShotOutcome, WinReason};
-use crate::physics;
+use crate::physics_version::PhysicsVersion;
 use crate::piece::{PieceId, PIECES_PER_SIDE};
 use crate::record::{MatchRecord, RecordedMove};
 use crate::rows::{Advance, Rows};
@@ -164,6 +163,7 @@ impl MatchView {
 pub struct Game {
     config: Config,
     seed: u64,
+    physics: PhysicsVersion,
     rows: Rows,
     board: Board,
     round: u32,
@@ -178,15 +178,27 @@ pub struct Game {
 impl Game {
     /// A new match: round 1, White on the first row, Black on the last,
     /// White to shoot. `seed` drives the execution noise (if enabled) and is
-    /// kept in the record.
+    /// kept in the record. It is played under the current physics
+    /// ([`PhysicsVersion::CURRENT`]).
     pub fn new(config: Config, seed: u64) -> Result<Game, ConfigError> {
+        Game::with_physics(config, seed, PhysicsVersion::CURRENT)
+    }
+
+    /// A new match played under `physics`: how a recorded match is played
+    /// again, under the physics it was recorded with.
+    pub fn with_physics(
+        config: Config,
+        seed: u64,
+        physics: PhysicsVersion,
+    ) -> Result<Game, ConfigError> {
         config.validate()?;
         let rows = Rows::initial();
         Ok(Game {
             board: Board::setup(&config, rows),
-            record: MatchRecord::new(config.clone(), seed),
+            record: MatchRecord::new(config.clone(), seed, physics),
             config,
             seed,
+            physics,
             rows,
             round: 1,
             round_first: Side::White,
@@ -202,6 +214,10 @@ impl Game {
     }
     pub fn seed(&self) -> u64 {
         self.seed
+    }
+    /// The physics the match is played under.
+    pub fn physics(&self) -> PhysicsVersion {
+        self.physics
     }
     pub fn board(&self) -> &Board {
         &self.board
@@ -299,11 +315,12 @@ impl Game {
     pub fn play(&mut self, side: Side, shot: Shot) -> Result<Played, ShotError> {
         self.check(side, &shot)?;
         let aimed = shot.velocity();
-        let played = match &self.config.variants.noise {
-            Some(n) => noise::perturb(n, self.seed, self.shots, aimed, self.config.max_speed),
-            None => aimed,
-        };
-        let res = physics::resolve(&self.config, &self.board, shot.piece(), played)
+        let played = self
+            .physics
+            .played(&self.config, self.seed, self.shots, aimed);
+        let res = self
+            .physics
+            .resolve(&self.config, &self.board, shot.piece(), played)
             .map_err(ShotError::Physics)?;
         // Accepted: commit.
         let number = self.shots;

@@ -35,25 +35,30 @@
 //! between shots), [`rows`] (rows and how they move between rounds),
 //! [`shot`] (a valid flick and why shots are refused), [`noise`]
 //! (deterministic execution noise), [`physics`] (a shot resolved by the
-//! engine, with the fall-off rule), [`film`] (a shot's motion at any time),
-//! [`rules`] (the turn rule), [`outcome`] (what shots, rounds and matches
-//! came to), [`game`] (the match state machine), [`record`] (the versioned
-//! match record), [`replay`] (bit-exact replay and scrubbing),
-//! [`simulate`] (one shot on any position, as plain data for every
-//! language), [`batch`] (many shots in one flat array of numbers, for the
-//! language bindings), [`protocol`] (the wire messages and refusals) and [`session`] (a live
-//! match — seats, connections, turn clock, rematch — as a state machine
-//! without I/O, driven by the server's rooms and by tests on a virtual
-//! clock), with [`token`] (seat tokens and the hashes a server keeps).
+//! engine, with the fall-off rule), [`physics_version`] (which physics
+//! decides a shot: the version every record carries), [`film`] (a shot's
+//! motion at any time), [`rules`] (the turn rule), [`outcome`] (what
+//! shots, rounds and matches came to), [`game`] (the match state machine),
+//! [`record`] (the versioned match record), [`replay`] (bit-exact replay
+//! and scrubbing), [`golden`] (records of earlier builds that every build
+//! must replay bit for bit), [`simulate`] (one shot on any position, as
+//! plain data for every language), [`batch`] (many shots in one flat array
+//! of numbers, for the language bindings), [`protocol`] (the wire messages
+//! and refusals) and [`session`] (a live match — seats, connections, turn
+//! clock, rematch — as a state machine without I/O, driven by the server's
+//! rooms and by tests on a virtual clock), with [`token`] (seat tokens and
+//! the hashes a server keeps).
 
 pub mod batch;
 pub mod board;
 pub mod config;
 pub mod film;
 pub mod game;
+pub mod golden;
 pub mod noise;
 pub mod outcome;
 pub mod physics;
+pub mod physics_version;
 pub mod piece;
 pub mod protocol;
 pub mod record;
@@ -73,6 +78,7 @@ pub use config::{Config, ConfigError, NoiseConfig, Preset, Variants};
 pub use film::Film;
 pub use game::{Game, GameError, MatchView, Phase, Played};
 pub use outcome::{ForfeitReason, MatchResult, Next, RoundEnd, ShotOutcome, WinReason};
+pub use physics_version::{PhysicsVersion, UnsupportedPhysics, PHYSICS_VERSION};
 pub use piece::PieceId;
 pub use record::{MatchRecord, RecordError, RecordedMove, RECORD_VERSION};
 pub use replay::{Replay, ReplayError};

@@ -206,6 +206,9 @@ pub enum ErrorCode {
     BadBoard,
     /// A page of another site tried to act (its `Origin` is not allowed).
     ForbiddenOrigin,
+    /// The match was played under a physics version this server cannot
+    /// play; it is kept as stored, for a server that can.
+    UnsupportedPhysics,
 }
 
 impl ErrorCode {
@@ -240,6 +243,7 @@ impl ErrorCode {
             ErrorCode::MatchNotOver => "match-not-over",
             ErrorCode::BadBoard => "bad-board",
             ErrorCode::ForbiddenOrigin => "forbidden-origin",
+            ErrorCode::UnsupportedPhysics => "unsupported-physics",
         }
     }
 }
@@ -569,6 +573,7 @@ mod tests {
             ErrorCode::PieDecisionPending,
             ErrorCode::Internal,
             ErrorCode::TooFast,
+            ErrorCode::UnsupportedPhysics,
         ] {
             assert_eq!(
                 serde_json::to_string(&code).unwrap(),

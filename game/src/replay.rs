@@ -1,12 +1,15 @@
 //! Replaying a match record: every move is played again through a fresh
-//! [`Game`] and each shot's outcome is checked, bit for bit, against the
-//! recorded one. The replay keeps each shot's [`Film`] and the match state
+//! [`Game`], under the physics version the record names, and each shot's
+//! outcome is checked, bit for bit, against the recorded one. A record of a
+//! physics version this build cannot play is refused before anything is
+//! played ([`ReplayError::Physics`]), never replayed with other physics. The replay keeps each shot's [`Film`] and the match state
 //! around each move, so a viewer can scrub to any moment of any shot.
 
 use crate::config::ConfigError;
 use crate::film::Film;
 use crate::game::{Game, GameError, MatchView};
 use crate::outcome::ShotOutcome;
+use crate::physics_version::{PhysicsVersion, UnsupportedPhysics};
 use crate::record::{MatchRecord, RecordError, RecordedMove};
 use crate::shot::{Shot, ShotError};
 use engine::Scene;
@@ -16,6 +19,8 @@ use engine::Scene;
 pub enum ReplayError {
     #[error(transparent)]
     Record(#[from] RecordError),
+    #[error(transparent)]
+    Physics(#[from] UnsupportedPhysics),
     #[error("the record's config is unplayable: {0}")]
     Config(#[from] ConfigError),
     #[error("move {index}: the recorded shot is refused: {error}")]
@@ -43,9 +48,11 @@ impl Replay {
         Replay::new(MatchRecord::from_json(text)?)
     }
 
-    /// Replays `record`, checking every shot's outcome against it.
+    /// Replays `record` under its physics version, checking every shot's
+    /// outcome against it.
     pub fn new(record: MatchRecord) -> Result<Replay, ReplayError> {
-        let mut game = Game::new(record.config.clone(), record.seed)?;
+        let physics = PhysicsVersion::from_number(record.physics)?;
+        let mut game = Game::with_physics(record.config.clone(), record.seed, physics)?;
         let mut views = Vec::with_capacity(record.moves.len() + 1);
         let mut shots = Vec::new();
         for (index, m) in record.moves.iter().enumerate() {
@@ -250,7 +257,7 @@ mod tests {
 
     #[test]
     fn a_record_with_an_illegal_move_is_refused() {
-        let mut record = MatchRecord::new(Config::default(), 0);
+        let mut record = MatchRecord::new(Config::default(), 0, PhysicsVersion::CURRENT);
         record.moves.push(RecordedMove::Pie { swap: true });
         assert!(matches!(
             Replay::new(record),
@@ -264,5 +271,32 @@ mod tests {
             Replay::from_json(json),
             Err(ReplayError::Record(RecordError::UnsupportedVersion { .. }))
         ));
+    }
+
+    #[test]
+    fn a_record_of_a_physics_version_this_build_cannot_play_is_refused_not_replayed() {
+        let (game, _) = random_match(Config::default(), 6, 20_000);
+        let mut record = game.record().clone();
+        assert_eq!(record.physics, crate::PHYSICS_VERSION);
+        record.physics = crate::PHYSICS_VERSION + 1;
+        let err = Replay::from_json(&record.to_json()).unwrap_err();
+        assert_eq!(
+            err,
+            ReplayError::Physics(UnsupportedPhysics {
+                found: crate::PHYSICS_VERSION + 1
+            })
+        );
+        assert!(err.to_string().contains("cannot play"), "{err}");
+    }
+
+    #[test]
+    fn a_version_2_record_without_physics_replays_under_physics_1() {
+        let (game, _) = random_match(Config::default(), 8, 20_000);
+        let mut v: serde_json::Value = serde_json::from_str(&game.record().to_json()).unwrap();
+        v["version"] = serde_json::json!(2);
+        v.as_object_mut().unwrap().remove("physics");
+        let replay = Replay::from_json(&v.to_string()).unwrap();
+        assert_eq!(replay.game().physics(), PhysicsVersion::V1);
+        assert_eq!(replay.game().view(), game.view());
     }
 }

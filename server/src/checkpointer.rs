@@ -170,6 +170,7 @@ mod tests {
                 created_at: 0,
                 config: Config::default(),
                 seed: 1,
+                physics: game::PHYSICS_VERSION,
                 status: Status::Live,
                 bot: None,
                 turn_seconds: 60,

@@ -20,7 +20,7 @@ use crate::token::{self, SeatToken, TokenHash};
 use bots::Level;
 use game::protocol::ErrorCode;
 use game::session::SeatSpec;
-use game::{Config, Game, Replay, Seat};
+use game::{Config, Game, Replay, ReplayError, Seat};
 use std::collections::HashMap;
 use std::future::Future;
 use std::net::IpAddr;
@@ -328,6 +328,7 @@ impl Hub {
             created_at: 0,
             config,
             seed,
+            physics: game.physics().number(),
             status: if both { Status::Live } else { Status::Open },
             bot,
             turn_seconds,
@@ -377,9 +378,24 @@ impl Hub {
             let Some((stored, record)) = store.load(&key).map_err(store_failed)? else {
                 return Ok(None);
             };
-            let replay = Replay::new(record).map_err(|e| {
-                error!(match_id = %key, error = %e, "a stored match does not replay");
-                Refusal::internal()
+            let replay = Replay::new(record).map_err(|e| match e {
+                ReplayError::Physics(e) => {
+                    warn!(
+                        match_id = %key,
+                        physics = e.found,
+                        error = %e,
+                        "a stored match of a physics version this server cannot play is not \
+                         resumed; it stays stored as it is, for a server that can"
+                    );
+                    Refusal::new(
+                        ErrorCode::UnsupportedPhysics,
+                        format!("match {key}: {e}; it is kept for a server that can play it"),
+                    )
+                }
+                e => {
+                    error!(match_id = %key, error = %e, "a stored match does not replay");
+                    Refusal::internal()
+                }
             })?;
             Ok(Some((stored, replay.game().clone())))
         })
@@ -453,11 +469,20 @@ impl Hub {
             .await
             .map_err(|e| StoreError::Corrupt(e.to_string()))??;
         let mut resumed = 0;
+        let mut unplayable = 0;
         for id in ids {
             match self.room_within(&id, false).await {
                 Ok(_) => resumed += 1,
+                // Logged, with its version, where it was found.
+                Err(r) if r.code == ErrorCode::UnsupportedPhysics => unplayable += 1,
                 Err(r) => warn!(match_id = %id, refusal = %r, "could not resume a match"),
             }
+        }
+        if unplayable > 0 {
+            warn!(
+                unplayable,
+                "unfinished matches of physics versions this server cannot play were left as stored"
+            );
         }
         Ok(resumed)
     }
@@ -724,6 +749,60 @@ mod tests {
         assert_eq!(
             second.connect("nope", None).await.unwrap_err().code,
             ErrorCode::NoSuchMatch
+        );
+    }
+
+    #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+    async fn a_stored_match_of_a_physics_version_this_server_cannot_play_is_not_resumed() {
+        let hub = hub();
+        let a = hub.create(person("a")).await.unwrap();
+        let stored = hub.store().get(&a.match_id).unwrap().unwrap();
+        assert_eq!(stored.physics, game::PHYSICS_VERSION);
+        let id = "0123456789abcdef";
+        assert!(token::is_match_id(id));
+        hub.store()
+            .create(&StoredMatch {
+                id: id.into(),
+                physics: game::PHYSICS_VERSION + 1,
+                ..stored
+            })
+            .unwrap();
+        // Both live (only live matches resume on start).
+        for m in [id, a.match_id.as_str()] {
+            hub.store()
+                .seat_second(m, "Anka", &TokenHash::of("b"))
+                .unwrap();
+        }
+        // A fresh hub on the same store, as after a restart.
+        let again = Hub::new(
+            hub.store().clone(),
+            Arc::new(Metrics::default()),
+            Limits::default(),
+            Handle::current(),
+        );
+        assert_eq!(
+            again.resume_all().await.unwrap(),
+            1,
+            "only the playable one"
+        );
+        let refused = again.connect(id, None).await.unwrap_err();
+        assert_eq!(refused.code, ErrorCode::UnsupportedPhysics);
+        assert!(
+            refused.message.contains("cannot play"),
+            "{}",
+            refused.message
+        );
+        let summary = again.store().summary(id).unwrap().unwrap();
+        assert_eq!(summary.physics, game::PHYSICS_VERSION + 1);
+        assert!(!summary.playable);
+        assert_eq!(summary.status, Status::Live, "left as stored");
+        assert!(
+            again
+                .store()
+                .summary(&a.match_id)
+                .unwrap()
+                .unwrap()
+                .playable
         );
     }
 

@@ -17,7 +17,10 @@ impl HttpStatus for Refusal {
     fn http_status(&self) -> u16 {
         match self.code {
             ErrorCode::NoSuchMatch => 404,
-            ErrorCode::MatchFull | ErrorCode::MatchOver | ErrorCode::MatchNotOver => 409,
+            ErrorCode::MatchFull
+            | ErrorCode::MatchOver
+            | ErrorCode::MatchNotOver
+            | ErrorCode::UnsupportedPhysics => 409,
             ErrorCode::BadToken | ErrorCode::ForbiddenOrigin => 403,
             ErrorCode::RateLimited => 429,
             ErrorCode::MessageTooLarge => 413,

@@ -690,6 +690,7 @@ mod tests {
             created_at: 0,
             config: Config::default(),
             seed: 7,
+            physics: game::PHYSICS_VERSION,
             status: Status::Live,
             bot: None,
             turn_seconds: 30,

@@ -1,18 +1,19 @@
 //! The durable store: one SQLite file in write-ahead-log mode. A `matches`
-//! row holds each match's configuration, seed, seats (names, and the
-//! SHA-256 of each seat token: never the token itself),
+//! row holds each match's configuration, seed, physics version, seats
+//! (names, and the SHA-256 of each seat token: never the token itself),
 //! status and result; a `moves` row holds each accepted move as the JSON of
 //! its [`RecordedMove`]. Every accepted move is written in one transaction
 //! (the move and the match row together) before its outcome is broadcast,
 //! so the match record rebuilt from the store is exactly what players saw,
-//! and a restarted server replays it through [`game::Replay`].
+//! and a restarted server replays it through [`game::Replay`], under the
+//! match's own physics version.
 
 use crate::checkpointer::{Checkpointer, Nudge};
 use crate::config::SyncMode;
 use crate::metrics::Histogram;
 use crate::readers::{Readers, READERS};
 use game::token::TokenHash;
-use game::{Config, MatchRecord, MatchResult, RecordedMove, RECORD_VERSION};
+use game::{Config, MatchRecord, MatchResult, PhysicsVersion, RecordedMove, RECORD_VERSION};
 use rusqlite::{params, Connection, OptionalExtension};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -62,6 +63,9 @@ pub struct StoredMatch {
     pub created_at: u64,
     pub config: Config,
     pub seed: u64,
+    /// The physics version the match is played under (see
+    /// [`game::physics_version`]).
+    pub physics: u32,
     pub status: Status,
     /// The built-in bots: a level (`easy`, `medium`, `hard`) for a bot in
     /// the second seat, or `FIRST/SECOND` for an exhibition where both
@@ -110,6 +114,11 @@ pub struct Summary {
     pub shots: u32,
     pub turn_seconds: u64,
     pub result: Option<MatchResult>,
+    /// The physics version the match is played under.
+    pub physics: u32,
+    /// Whether this server can play that version (a match it cannot play
+    /// is kept as stored, not resumed, until a server that can).
+    pub playable: bool,
 }
 
 /// The row update that goes with a move.
@@ -268,6 +277,20 @@ fn hash_plain_tokens(conn: &Connection) -> Result<(), StoreError> {
     Ok(())
 }
 
+/// Adds the `physics` column to a `matches` table made before matches
+/// kept their physics version (and to a new table: [`SCHEMA`] predates
+/// it). Every match stored before then was played under version 1.
+fn add_physics_column(conn: &Connection) -> Result<(), StoreError> {
+    let mut stmt = conn.prepare("PRAGMA table_info(matches)")?;
+    let columns = stmt
+        .query_map([], |r| r.get::<_, String>("name"))?
+        .collect::<Result<Vec<_>, _>>()?;
+    if !columns.iter().any(|c| c == "physics") {
+        conn.execute_batch("ALTER TABLE matches ADD COLUMN physics INTEGER NOT NULL DEFAULT 1")?;
+    }
+    Ok(())
+}
+
 fn now() -> u64 {
     SystemTime::now()
         .duration_since(UNIX_EPOCH)
@@ -312,6 +335,7 @@ impl Store {
         conn.busy_timeout(std::time::Duration::from_secs(5))?;
         conn.execute_batch(SCHEMA)?;
         hash_plain_tokens(&conn)?;
+        add_physics_column(&conn)?;
         let (checkpointer, readers) = match on_disk {
             Some((c, path)) => (Some(c), Some(Readers::open(path, READERS)?)),
             None => (None, None),
@@ -358,8 +382,9 @@ impl Store {
         let t = now();
         conn.execute(
             "INSERT INTO matches (id, created_at, updated_at, config, seed, status, bot, turn_seconds,
-                                  first_name, first_token_hash, second_name, second_token_hash, rematch_of)
-             VALUES (?1, ?2, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)",
+                                  first_name, first_token_hash, second_name, second_token_hash, rematch_of,
+                                  physics)
+             VALUES (?1, ?2, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13)",
             params![
                 m.id,
                 t as i64,
@@ -373,6 +398,7 @@ impl Store {
                 m.seats[1].name,
                 m.seats[1].token.map(|h| h.to_hex()),
                 m.rematch_of,
+                m.physics,
             ],
         )?;
         self.shared.log_grew();
@@ -453,13 +479,14 @@ impl Store {
                 second_name: row.get(9)?,
                 second_token_hash: row.get(10)?,
                 rematch_of: row.get(11)?,
+                physics: row.get(12)?,
             },
             row.get(2)?,
         ))
     }
 
     const MATCH_COLUMNS: &'static str = "id, created_at, config, seed, status, bot, turn_seconds,
-        first_name, first_token_hash, second_name, second_token_hash, rematch_of";
+        first_name, first_token_hash, second_name, second_token_hash, rematch_of, physics";
 
     /// One match row.
     pub fn get(&self, id: &str) -> Result<Option<StoredMatch>, StoreError> {
@@ -538,7 +565,8 @@ impl Store {
         Ok(moves)
     }
 
-    /// A match row and its record (config, seed, every move).
+    /// A match row and its record (config, seed, physics version, every
+    /// move).
     pub fn load(&self, id: &str) -> Result<Option<(StoredMatch, MatchRecord)>, StoreError> {
         let Some(m) = self.get(id)? else {
             return Ok(None);
@@ -546,6 +574,7 @@ impl Store {
         let moves = self.moves(id)?;
         let record = MatchRecord {
             version: RECORD_VERSION,
+            physics: m.physics,
             config: m.config.clone(),
             seed: m.seed,
             moves,
@@ -608,8 +637,8 @@ impl Store {
     }
 }
 
-const SUMMARY_COLUMNS: &str =
-    "id, status, created_at, updated_at, first_name, second_name, bot, shots, turn_seconds, result";
+const SUMMARY_COLUMNS: &str = "id, status, created_at, updated_at, first_name, second_name, bot,
+    shots, turn_seconds, result, physics";
 
 struct SummaryRaw {
     id: String,
@@ -622,6 +651,7 @@ struct SummaryRaw {
     shots: i64,
     turn_seconds: i64,
     result: Option<String>,
+    physics: i64,
 }
 
 impl SummaryRaw {
@@ -637,11 +667,15 @@ impl SummaryRaw {
             shots: r.get(7)?,
             turn_seconds: r.get(8)?,
             result: r.get(9)?,
+            physics: r.get(10)?,
         })
     }
 
     fn finish(self) -> Result<Summary, StoreError> {
+        let physics = physics_of(&self.id, self.physics)?;
         Ok(Summary {
+            physics,
+            playable: PhysicsVersion::from_number(physics).is_ok(),
             status: Status::parse(&self.status).ok_or_else(|| {
                 StoreError::Corrupt(format!("match {}: status {}", self.id, self.status))
             })?,
@@ -670,6 +704,13 @@ struct StoredMatchRaw {
     second_name: Option<String>,
     second_token_hash: Option<String>,
     rematch_of: Option<String>,
+    physics: i64,
+}
+
+/// A stored physics version, checked to be one.
+fn physics_of(id: &str, stored: i64) -> Result<u32, StoreError> {
+    u32::try_from(stored)
+        .map_err(|_| StoreError::Corrupt(format!("match {id}: physics version {stored}")))
 }
 
 impl StoredMatchRaw {
@@ -684,6 +725,7 @@ impl StoredMatchRaw {
         };
         let tokens = [hash(self.first_token_hash)?, hash(self.second_token_hash)?];
         Ok(StoredMatch {
+            physics: physics_of(&self.id, self.physics)?,
             config: serde_json::from_str(config)?,
             created_at: self.created_at as u64,
             // Stored as the i64 with the same bits.
@@ -823,6 +865,7 @@ mod tests {
             created_at: 0,
             config: Config::default(),
             seed: u64::MAX - 1,
+            physics: game::PHYSICS_VERSION,
             status: Status::Open,
             bot: None,
             turn_seconds: 60,
@@ -1065,6 +1108,45 @@ mod tests {
             store.get("m").unwrap().unwrap().seats[0].name.as_deref(),
             Some("Petka")
         );
+    }
+
+    #[test]
+    fn a_database_from_before_physics_versions_gains_the_column_and_its_matches_are_physics_1() {
+        let dir = tempfile::tempdir().unwrap();
+        {
+            // A store as it was before the column: `SCHEMA` never had it.
+            let conn = Connection::open(dir.path().join("chapaev.sqlite3")).unwrap();
+            conn.execute_batch(SCHEMA).unwrap();
+            conn.execute(
+                "INSERT INTO matches (id, created_at, updated_at, config, seed, status, turn_seconds)
+                 VALUES ('old', 1, 1, '{}', 5, 'live', 60)",
+                [],
+            )
+            .unwrap();
+        }
+        let store = Store::open(dir.path(), SyncMode::Full).unwrap();
+        let (m, record) = store.load("old").unwrap().unwrap();
+        assert_eq!((m.physics, record.physics), (1, 1));
+        assert_eq!(record.version, RECORD_VERSION);
+        let summary = store.summary("old").unwrap().unwrap();
+        assert_eq!((summary.physics, summary.playable), (1, true));
+        store
+            .create(&StoredMatch {
+                physics: 7,
+                ..stored("new")
+            })
+            .unwrap();
+        drop(store);
+        // Opened again: the column is there once, and keeps what it holds.
+        let store = Store::open(dir.path(), SyncMode::Full).unwrap();
+        let (m, record) = store.load("new").unwrap().unwrap();
+        assert_eq!((m.physics, record.physics), (7, 7));
+        let summary = store.summary("new").unwrap().unwrap();
+        assert_eq!((summary.physics, summary.playable), (7, false));
+        assert!(matches!(
+            game::Replay::new(record),
+            Err(game::ReplayError::Physics(_))
+        ));
     }
 
     #[test]

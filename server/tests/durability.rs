@@ -73,6 +73,7 @@ async fn sigterm_stops_cleanly_and_a_finished_match_replays_after_restart() {
         .await;
     assert_eq!(status, 200, "{body}");
     let stored = game::MatchRecord::from_json(&body).unwrap();
+    assert_eq!(stored.physics, game::PHYSICS_VERSION);
     assert_eq!(stored, record);
     let replay = game::Replay::new(stored).unwrap();
     assert!(replay.game().is_over());

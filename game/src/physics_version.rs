@@ -1,0 +1,138 @@
+//! The physics version: which computation decides what a shot does. It
+//! covers everything between an aimed flick and its recorded outcome — the
+//! [`engine`] (collisions, friction, the event order, the last bit of every
+//! time), the game's physics setup ([`crate::physics`]: the scene, the
+//! edges, the fall-off rule; the board's geometry), the execution noise
+//! ([`crate::noise`]) and the turn rule that judges the result. Every match
+//! is played under one version, and its record says which.
+//!
+//! A change that alters the outcome of any shot — one bit of one number is
+//! enough — makes a new version: [`PHYSICS_VERSION`] goes up, a new variant
+//! joins [`PhysicsVersion`], and the old variant keeps computing exactly
+//! what it computed before (a frozen copy of the old code, or of the old
+//! engine as a second dependency), so that matches recorded or begun under
+//! it still replay and resume. The golden records in `game/tests/golden/`
+//! hold each version to its word. Until then there is one version and its
+//! one implementation; [`PhysicsVersion::played`] and
+//! [`PhysicsVersion::resolve`] are where a version picks its physics.
+//!
+//! New matches, and every simulation of a shot that is not yet played
+//! ([`crate::simulate`], the bots), use [`PhysicsVersion::CURRENT`].
+
+use crate::board::Board;
+use crate::config::Config;
+use crate::noise;
+use crate::physics::{self, Resolution};
+use crate::piece::PieceId;
+use glam::DVec2;
+
+/// The number of the physics version this build plays new matches under.
+pub const PHYSICS_VERSION: u32 = 1;
+
+/// A physics version this build can play.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PhysicsVersion {
+    /// The event-driven engine with the fall-off edges and the SplitMix64
+    /// noise, as every match was played from the first record on.
+    V1,
+}
+
+/// A physics version this build cannot play: a record of it is refused
+/// rather than replayed with other physics.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "the match was played under physics version {found}, which this build cannot play \
+     (it plays versions {})",
+    supported()
+)]
+pub struct UnsupportedPhysics {
+    /// The version asked for.
+    pub found: u32,
+}
+
+/// The versions this build plays, as `1, 2, ...`.
+fn supported() -> String {
+    PhysicsVersion::ALL
+        .iter()
+        .map(|v| v.number().to_string())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+impl PhysicsVersion {
+    /// The version new matches are played under.
+    pub const CURRENT: PhysicsVersion = PhysicsVersion::V1;
+
+    /// Every version this build plays, oldest first.
+    pub const ALL: [PhysicsVersion; 1] = [PhysicsVersion::V1];
+
+    /// The version's number, as records and the store keep it.
+    pub fn number(self) -> u32 {
+        match self {
+            PhysicsVersion::V1 => 1,
+        }
+    }
+
+    /// The version numbered `number`, if this build plays it.
+    pub fn from_number(number: u32) -> Result<PhysicsVersion, UnsupportedPhysics> {
+        PhysicsVersion::ALL
+            .into_iter()
+            .find(|v| v.number() == number)
+            .ok_or(UnsupportedPhysics { found: number })
+    }
+
+    /// The velocity actually played when `aimed` is shot as shot number
+    /// `shot` of a match of `config` with seed `seed`: with the match's
+    /// execution noise, if it has any.
+    pub fn played(self, config: &Config, seed: u64, shot: u32, aimed: DVec2) -> DVec2 {
+        match self {
+            PhysicsVersion::V1 => match &config.variants.noise {
+                Some(n) => noise::perturb(n, seed, shot, aimed, config.max_speed),
+                None => aimed,
+            },
+        }
+    }
+
+    /// `piece` flicked at `velocity` on `board`, computed to the end of its
+    /// chain.
+    pub fn resolve(
+        self,
+        config: &Config,
+        board: &Board,
+        piece: PieceId,
+        velocity: DVec2,
+    ) -> Result<Resolution, String> {
+        match self {
+            PhysicsVersion::V1 => physics::resolve(config, board, piece, velocity),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_current_version_is_the_newest_and_carries_the_constants_number() {
+        assert_eq!(PhysicsVersion::CURRENT.number(), PHYSICS_VERSION);
+        assert_eq!(PhysicsVersion::ALL.last(), Some(&PhysicsVersion::CURRENT));
+        for v in PhysicsVersion::ALL {
+            assert_eq!(PhysicsVersion::from_number(v.number()), Ok(v));
+        }
+    }
+
+    #[test]
+    fn a_version_this_build_does_not_play_is_refused_by_number() {
+        for n in [0, PHYSICS_VERSION + 1, u32::MAX] {
+            let err = PhysicsVersion::from_number(n).unwrap_err();
+            assert_eq!(err, UnsupportedPhysics { found: n });
+            assert!(
+                err.to_string().contains(&format!(
+                    "physics version {n}, which this build cannot play"
+                )),
+                "{err}"
+            );
+            assert!(err.to_string().contains("plays versions 1)"), "{err}");
+        }
+    }
+}
