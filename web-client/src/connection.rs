@@ -98,7 +98,7 @@ impl Connection {
         }
         let fatal = out.iter().find_map(|m| match m {
             ServerMessage::Error {
-                code: ErrorCode::BadToken | ErrorCode::NoSuchMatch,
+                code: ErrorCode::BadToken | ErrorCode::NoSuchMatch | ErrorCode::UnsupportedPhysics,
                 message,
             } => Some(message.clone()),
             _ => None,
