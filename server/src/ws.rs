@@ -67,31 +67,64 @@ impl Drop for ConnectionGuard {
     }
 }
 
-/// A second handle on a connection's TCP socket, kept in the connection's
-/// data by [`on_connect`], so that a session stuck on a client that stopped
-/// reading can shut the connection down.
+/// What identifies a connection's TCP socket, kept in the connection's
+/// data by [`on_connect`], so that a session stuck on a client that
+/// stopped reading can shut the connection down. No descriptor is held
+/// (that would double each connection's descriptors): the number, and the
+/// addresses that prove a descriptor of that number is still this socket.
 #[derive(Clone, Debug)]
-pub struct ConnSocket(Arc<std::net::TcpStream>);
+pub struct ConnSocket(Arc<SocketId>);
+
+#[derive(Debug)]
+struct SocketId {
+    #[cfg(unix)]
+    fd: std::os::fd::RawFd,
+    local: std::net::SocketAddr,
+    peer: std::net::SocketAddr,
+}
 
 impl ConnSocket {
     /// Shuts the TCP connection down both ways: the HTTP server's pending
     /// writes fail, it drops the connection, and the client sees it close.
+    /// It duplicates the descriptor first and checks that the duplicate is
+    /// the same connection (same local and peer address), so a number the
+    /// HTTP server closed and reused meanwhile is left alone.
     fn shut_down(&self) {
-        let _ = self.0.shutdown(std::net::Shutdown::Both);
+        #[cfg(unix)]
+        {
+            use std::os::fd::{FromRawFd, OwnedFd};
+            // SAFETY: dup(2) of any number is sound: a closed one fails
+            // with EBADF, an open one gives a new descriptor...
+            let dup = unsafe { libc::dup(self.0.fd) };
+            if dup < 0 {
+                return;
+            }
+            // ... which nobody else owns: it is closed when this drops.
+            let stream = std::net::TcpStream::from(unsafe { OwnedFd::from_raw_fd(dup) });
+            let same = stream.local_addr().ok() == Some(self.0.local)
+                && stream.peer_addr().ok() == Some(self.0.peer);
+            if same {
+                let _ = stream.shutdown(std::net::Shutdown::Both);
+            }
+        }
     }
 }
 
 /// For [`actix_web::HttpServer::on_connect`]: keeps a [`ConnSocket`] of
-/// each TCP connection (a duplicate of its descriptor, closed with it).
+/// each TCP connection.
 pub fn on_connect(conn: &dyn std::any::Any, data: &mut actix_web::dev::Extensions) {
     #[cfg(unix)]
     if let Some(tcp) = conn.downcast_ref::<actix_web::rt::net::TcpStream>() {
-        use std::os::fd::AsFd;
-        match tcp.as_fd().try_clone_to_owned() {
-            Ok(fd) => {
-                data.insert(ConnSocket(Arc::new(std::net::TcpStream::from(fd))));
+        use std::os::fd::AsRawFd;
+        match (tcp.local_addr(), tcp.peer_addr()) {
+            (Ok(local), Ok(peer)) => {
+                data.insert(ConnSocket(Arc::new(SocketId {
+                    fd: tcp.as_raw_fd(),
+                    local,
+                    peer,
+                })));
             }
-            Err(e) => debug!(error = %e, "cannot keep a handle on a socket"),
+            _ => debug!("a connection without addresses cannot be shut down if stuck"),
         }
     }
     #[cfg(not(unix))]

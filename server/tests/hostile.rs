@@ -254,3 +254,25 @@ async fn a_connection_the_server_closes_is_released_at_once() {
         tokio::time::sleep(Duration::from_millis(50)).await;
     }
 }
+
+#[tokio::test]
+async fn each_connection_holds_one_descriptor_of_the_server() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &[]);
+    let (id, _) = server.create("{}").await;
+    let mut first = server.ws(&id, None).await;
+    view(first.next().await);
+    let before = server.descriptors();
+    let mut clients = Vec::new();
+    for _ in 0..40 {
+        let mut c = server.ws(&id, None).await;
+        view(c.next().await);
+        clients.push(c);
+    }
+    let grown = server.descriptors() - before;
+    // One socket each (a few more for the runtime's own needs at most).
+    assert!(
+        (40..48).contains(&grown),
+        "40 connections took {grown} descriptors"
+    );
+}

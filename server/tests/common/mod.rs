@@ -21,6 +21,13 @@ pub struct Server {
 }
 
 impl Server {
+    /// The server's open file descriptors (Linux).
+    pub fn descriptors(&self) -> usize {
+        std::fs::read_dir(format!("/proc/{}/fd", self.child.id()))
+            .map(|d| d.count())
+            .unwrap_or(0)
+    }
+
     /// Starts the server binary on `dir` with extra flags; waits until it listens.
     pub fn start(dir: &Path, extra: &[&str]) -> Server {
         let log = std::fs::File::create(dir.join(format!(
