@@ -18,6 +18,7 @@ use crate::metrics::Metrics;
 use crate::refusal::Refusal;
 use crate::store::{AfterMove, Store, StoredMatch};
 use bots::{Bot, Context, Decision};
+use bytestring::ByteString;
 use game::protocol::{ClientMessage, ForfeitReason, ServerMessage};
 use game::session::{
     BotDecision, ConnId, Effect, Input, Moment, Request, SeatSpec, Session, SessionLimits, Status,
@@ -38,7 +39,7 @@ use tracing::{debug, error, info, warn};
 /// a room says while handling one command (a shot's outcome and the next
 /// turn's clock, say) travels as one item: one wakeup of the connection's
 /// task, one write to its socket.
-pub type Outbound = Arc<[Arc<str>]>;
+pub type Outbound = Arc<[ByteString]>;
 
 /// The receiving end of a connection's queue, one message at a time.
 #[derive(Debug)]
@@ -56,7 +57,7 @@ impl Inbox {
 
     /// The next message; `None` once the room has closed this connection
     /// and everything sent before is read. Cancel-safe.
-    pub async fn recv(&mut self) -> Option<Arc<str>> {
+    pub async fn recv(&mut self) -> Option<ByteString> {
         loop {
             if let Some((batch, next)) = &mut self.batch {
                 if let Some(m) = batch.get(*next) {
@@ -197,7 +198,7 @@ pub struct Room<H: RoomHost> {
     bot_rx: Option<mpsc::Receiver<BotAnswer>>,
     /// What the session has said while handling the command in hand;
     /// handed to the connections when it is done ([`Room::flush`]).
-    outbox: Vec<(To, Arc<str>)>,
+    outbox: Vec<(To, ByteString)>,
 }
 
 /// A bot's slot (a panic while it was held cannot leave it half-changed).
@@ -364,7 +365,8 @@ impl<H: RoomHost> Room<H> {
     }
 
     fn say(&mut self, to: To, msg: &ServerMessage) {
-        self.outbox.push((to, Arc::from(msg.to_json())));
+        // Serialised once; each connection's copy shares the bytes.
+        self.outbox.push((to, ByteString::from(msg.to_json())));
     }
 
     /// Feeds `input` to the session and carries out its effects, in order

@@ -306,7 +306,7 @@ async fn run(
         tokio::select! {
             out = rx.recv() => match out {
                 Some(text) => {
-                    if !timely(wt, session.text(&*text)).await {
+                    if !timely(wt, session.text(text)).await {
                         stuck = true;
                         break None;
                     }
