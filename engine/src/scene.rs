@@ -1,5 +1,5 @@
 //! The scene: bodies, points, lines and globals at one moment — the JSON
-//! contract of `shared/design/scene-format.md` — and its validation.
+//! contract of `docs/scene-format.md` — and its validation.
 //!
 //! [`Scene::from_json`] parses and validates in one go, so every error names
 //! the object and field at fault, as in

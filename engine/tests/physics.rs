@@ -1,7 +1,7 @@
 //! Named physical scenarios, each checked against a closed-form answer
 //! (never against the engine's own earlier output).
 //!
-//! The formulas are those of `shared/design/model.md`: a disc slides with
+//! The formulas are those of `docs/model.md`: a disc slides with
 //! constant deceleration `alpha = mu g`, so from speed `v` it stops after
 //! `v^2 / (2 alpha)` at time `v / alpha`, and after a path `L` it has speed
 //! `sqrt(v^2 - 2 alpha L)`; impulses follow formulas (25) and (28).

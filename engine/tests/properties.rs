@@ -1,7 +1,7 @@
 //! Property tests on random scenes: discs of random size, mass, friction
 //! and restitution with random velocities in a box of segments (with a few
 //! fixed points), checked after every event against the invariants of
-//! `shared/design/model.md`:
+//! `docs/model.md`:
 //!
 //! - no two discs overlap, no disc crosses a solid line or a point;
 //! - every contact happens at contact distance;

@@ -3,7 +3,7 @@
 //! A thin shell over the engine library: read the scene, run a [`World`],
 //! print `{events, collisions, end, bodies}`. Exit status 0 on success, 2 on
 //! invalid input (the message, naming the object and field, on stderr).
-//! The contract is `shared/design/scene-format.md`.
+//! The contract is `docs/scene-format.md`.
 
 use clap::Parser;
 use engine::{BodyId, End, Event, EventHandler, Limits, Scene, World, WorldConfig};
