@@ -397,7 +397,7 @@ fn scene_seeds() -> BTreeMap<String, Vec<u8>> {
         "game-opening-shot.json".into(),
         opening.to_json().into_bytes(),
     );
-    let hand_written: [(&str, &str); 8] = [
+    let hand_written: [(&str, &str); 9] = [
         (
             "newtons-cradle.json",
             r#"{"g": 9.81, "bodies": [
@@ -455,6 +455,14 @@ fn scene_seeds() -> BTreeMap<String, Vec<u8>> {
   {"id": 1, "pos": [-1e149, 0], "vel": [1e149, 1e-300], "radius": 1e-300, "mass": 1e300, "mu": 1e-300},
   {"id": 2, "pos": [1e149, 0], "vel": [-1e149, 0], "radius": 1e100, "mass": 1e-300, "mu": 1}
 ]}"#,
+        ),
+        (
+            "near-the-bounds.json",
+            r#"{"g": 1, "bodies": [
+  {"id": 1, "pos": [-1e140, 0], "vel": [1e70, 0], "radius": 1e139, "mass": 1, "mu": 1},
+  {"id": 2, "pos": [1e140, 0], "vel": [-1e70, 1e-300], "radius": 1e139, "mass": 2, "mu": 0.5},
+  {"id": 3, "pos": [0, 1e145], "vel": [0, 0], "radius": 1e-100, "mass": 1e30, "mu": 0}
+], "lines": [{"a": [-1e149, -1e149], "b": [1e149, -1e149], "kind": "line"}]}"#,
         ),
         ("unknown-field.json", r#"{"bodies": [], "wind": 3}"#),
     ];
