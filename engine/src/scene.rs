@@ -142,6 +142,8 @@ pub enum Problem {
     Overflow,
     #[error("too many sensor lines (at most {0})")]
     TooManySensors(usize),
+    #[error("friction might only stop it beyond 1e150: the scene's kinetic energy over its friction force (mass * mu * g) is too large")]
+    OutOfReach,
     #[error("{0}")]
     Malformed(String),
 }
@@ -297,6 +299,7 @@ impl Scene {
                 return Err(invalid(o, "id", Problem::DuplicateId(first)));
             }
         }
+        self.check_reach()?;
         for (index, p) in self.points.iter().enumerate() {
             let o = Object::Point { index };
             finite(p.pos.x, &o, "pos")?;
@@ -325,6 +328,43 @@ impl Scene {
         }
         if check_overlaps {
             self.check_overlaps()?;
+        }
+        Ok(())
+    }
+
+    /// No disc with friction may ever slide beyond [`MAX_MAGNITUDE`]. Friction
+    /// does `mass * mu * g` of work per metre a disc slides, and no disc ever
+    /// holds more kinetic energy than the whole scene has at the start
+    /// (collisions and pushes only lose energy), so a disc slides at most
+    /// `energy / (mass * mu * g)` in all. Without this bound a disc could
+    /// come to rest at a finite time at a position beyond any double.
+    fn check_reach(&self) -> Result<(), SceneError> {
+        let energy: f64 = self
+            .bodies
+            .iter()
+            .map(|b| 0.5 * b.mass * b.vel.length_squared())
+            .sum();
+        if energy == 0.0 {
+            return Ok(());
+        }
+        for (index, b) in self.bodies.iter().enumerate() {
+            let alpha = b.mu * self.g;
+            if alpha == 0.0 {
+                // Frictionless: it never stops, and is only ever looked at
+                // where something happens.
+                continue;
+            }
+            // Per unit mass, so that a tiny mass cannot underflow the force.
+            let reach = b.pos.abs().max_element() + energy / b.mass / alpha;
+            if !(reach <= MAX_MAGNITUDE) {
+                return Err(SceneError::Shape {
+                    object: Object::Body {
+                        index,
+                        id: Some(b.id),
+                    },
+                    problem: Problem::OutOfReach,
+                });
+            }
         }
         Ok(())
     }
@@ -611,6 +651,32 @@ mod tests {
     fn malformed_json_is_rejected() {
         assert!(err("{ bodies: ").starts_with("not valid JSON"));
         assert_eq!(err("[1, 2]"), "scene: a scene must be a JSON object");
+    }
+
+    #[test]
+    fn a_disc_that_friction_could_only_stop_beyond_1e150_is_refused() {
+        // Found by the scene_json fuzzer: body 2 would stop at t = 1e229 at
+        // a position beyond any double (it came out as [-inf, NaN]).
+        let found = r#"{"g": 1e-080, "bodies": [
+          {"id": 1, "pos": [-1e149, 0], "vel": [1e149, 1e-300], "radius": 1e-300, "mass": 1e300, "mu": 1e-300},
+          {"id": 2, "pos": [1e148, 0], "vel": [-1e149, 0], "radius": 1e100, "mass": 1e-300, "mu": 1}
+        ]}"#;
+        assert_eq!(
+            err(found),
+            "bodies[1] (id 2): friction might only stop it beyond 1e150: \
+             the scene's kinetic energy over its friction force (mass * mu * g) is too large"
+        );
+        // A disc at rest is refused too if the others' energy could carry
+        // it that far: a heavy frictionless disc can pass it all on.
+        let text = r#"{"bodies": [
+          {"id": 1, "pos": [0, 0], "vel": [1e70, 0], "radius": 1, "mass": 1e10, "mu": 0},
+          {"id": 2, "pos": [5, 0], "vel": [0, 0], "radius": 1, "mass": 1, "mu": 1e-3}
+        ]}"#;
+        assert!(err(text).starts_with("bodies[1] (id 2): friction might only stop it"));
+        // Without friction nothing stops, so nothing is out of reach, and
+        // a real scene is far inside the bound.
+        Scene::from_json(&text.replace("1e-3", "0")).unwrap();
+        Scene::from_json(&text.replace("1e70", "1e60")).unwrap();
     }
 
     #[test]

@@ -170,6 +170,12 @@ const UPPER_BOUNDS: [(&str, f64); 6] = [
     ("max_events_per_shot", 1_000_000.0),
 ];
 
+/// The smallest friction and gravity: far more slippery than any real
+/// board, and still enough that the fastest shot stops within the distances
+/// the engine computes with (it refuses a scene whose discs friction might
+/// only stop beyond 1e150 m).
+const LOWER_BOUNDS: [(&str, f64); 2] = [("mu", 1e-6), ("g", 1e-6)];
+
 impl Config {
     /// The `standard` rules of competitive play ([`Preset::Standard`]):
     /// the default board with [`STANDARD_NOISE`] and the pie rule.
@@ -259,6 +265,11 @@ impl Config {
                 return Err(ConfigError::TooLarge { name, max });
             }
         }
+        for ((name, min), x) in LOWER_BOUNDS.into_iter().zip([self.mu, self.g]) {
+            if x < min {
+                return Err(ConfigError::TooSmall { name, min });
+            }
+        }
         if let Some(n) = &self.variants.noise {
             for (name, x) in [
                 ("angle_sigma", n.angle_sigma),
@@ -339,6 +350,45 @@ mod tests {
             speed_sigma: 5.0,
         });
         assert!(matches!(c.validate(), Err(ConfigError::TooLarge { .. })));
+    }
+
+    #[test]
+    fn a_board_too_slippery_for_the_engine_is_refused_and_the_most_slippery_allowed_plays() {
+        let c = Config {
+            mu: 1e-300,
+            ..Config::default()
+        };
+        assert_eq!(
+            c.validate(),
+            Err(ConfigError::TooSmall {
+                name: "mu",
+                min: 1e-6
+            })
+        );
+        let c = Config {
+            g: 1e-7,
+            ..Config::default()
+        };
+        assert!(matches!(
+            c.validate(),
+            Err(ConfigError::TooSmall { name: "g", .. })
+        ));
+        // The fastest shot on the most slippery board allowed, with the
+        // lightest and the heaviest pieces: the engine resolves it.
+        for piece_mass in [1e-300, 1000.0] {
+            let c = Config {
+                mu: 1e-6,
+                g: 1e-6,
+                max_speed: 1000.0,
+                piece_mass,
+                ..Config::default()
+            };
+            let mut game = crate::Game::new(c, 1).unwrap();
+            let piece = crate::PieceId::new(crate::Side::White, 4).unwrap();
+            let shot =
+                crate::Shot::new(piece, glam::DVec2::new(0.0, 1000.0), game.config()).unwrap();
+            game.play(crate::Side::White, shot).unwrap();
+        }
     }
 
     #[test]
