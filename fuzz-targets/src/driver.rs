@@ -23,6 +23,7 @@ use game::record::{MatchRecord, RecordedMove, RECORD_VERSION};
 use game::session::{
     BotDecision, ConnId, Effect, Input, Moment, Request, Session, SessionLimits, To,
 };
+use game::token::SeatToken;
 use game::{Replay, Seat};
 use std::time::Duration;
 
@@ -100,6 +101,7 @@ impl Driver {
     pub fn connect(&mut self, token: Option<String>) {
         self.last_conn += 1;
         let conn = ConnId(self.last_conn);
+        let token = token.map(SeatToken::new);
         self.feed(Input::Connect { conn, token });
     }
 
@@ -187,7 +189,7 @@ impl Driver {
         let before = refusable.then(|| format!("{:?}", self.session));
         let moves_before = self.session.game().record().moves.len();
         let admits = match &input {
-            Input::Connect { token, .. } => Some(self.seat_of(token.as_deref())),
+            Input::Connect { token, .. } => Some(self.seat_of(token.as_ref())),
             _ => None,
         };
         let effects = self.session.handle(input.clone(), self.now);
@@ -226,14 +228,14 @@ impl Driver {
 
     /// The seat a token admits to: `Some(seat)` (`None`: a spectator), or
     /// `None` for a token that holds no seat.
-    fn seat_of(&self, token: Option<&str>) -> Option<Option<Seat>> {
+    fn seat_of(&self, token: Option<&SeatToken>) -> Option<Option<Seat>> {
         let Some(token) = token else {
             return Some(None);
         };
         let seats = self.session.seats();
         [Seat::First, Seat::Second]
             .into_iter()
-            .find(|s| seats[s.index()].token.as_deref() == Some(token))
+            .find(|s| seats[s.index()].token == Some(token.hash()))
             .map(Some)
     }
 
@@ -375,6 +377,7 @@ impl Driver {
         let game = self.session.game();
         let record = MatchRecord {
             version: RECORD_VERSION,
+            physics: game.physics().number(),
             config: game.config().clone(),
             seed: game.seed(),
             moves: self.stored.clone(),

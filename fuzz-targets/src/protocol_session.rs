@@ -10,6 +10,7 @@ use crate::driver::{Driver, LIMITS};
 use crate::script::{Decided, Op, Rules, Said, Script, Second, Token};
 use game::protocol::{self, ClientMessage, ErrorCode};
 use game::session::{BotDecision, Moment, SeatSpec, Session};
+use game::token::TokenHash;
 use game::{Config, Game, PieceId, Shot, Side, Variants};
 use glam::DVec2;
 use std::time::Duration;
@@ -26,14 +27,14 @@ pub fn protocol_session(data: &[u8]) {
     };
     let first = SeatSpec {
         name: Some("Petka".into()),
-        token: Some(TOKENS[0].into()),
+        token: Some(TokenHash::of(TOKENS[0])),
         bot: None,
     };
     let second = match script.second {
         Second::Empty => SeatSpec::default(),
         Second::Person => SeatSpec {
             name: Some("Anka".into()),
-            token: Some(TOKENS[1].into()),
+            token: Some(TokenHash::of(TOKENS[1])),
             bot: None,
         },
         Second::Bot => SeatSpec {
@@ -109,7 +110,7 @@ fn run(driver: &mut Driver, op: Op) {
             let name = String::from_utf8_lossy(&name).into_owned();
             driver.feed(game::session::Input::Join {
                 name,
-                token: TOKENS[1].into(),
+                token: TokenHash::of(TOKENS[1]),
             });
         }
         Op::FailNextWrite { reload } => driver.fail_next_write(reload),
@@ -193,6 +194,7 @@ fn message(said: Said) -> ClientMessage {
         Said::Hello => ClientMessage::Hello {
             protocol: protocol::PROTOCOL_VERSION,
             name: "Furmanov".into(),
+            token: None,
         },
     }
 }

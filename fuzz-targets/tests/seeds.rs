@@ -500,8 +500,10 @@ fn record_seeds() -> BTreeMap<String, Vec<u8>> {
     let (_, quick) = real_match(quick, 13, 40);
     put("quick-match", quick.record().to_json());
 
-    let mut v1: serde_json::Value =
-        serde_json::from_str(&MatchRecord::new(Config::default(), 1).to_json()).expect("json");
+    let mut v1: serde_json::Value = serde_json::from_str(
+        &MatchRecord::new(Config::default(), 1, game::PhysicsVersion::CURRENT).to_json(),
+    )
+    .expect("json");
     v1["version"] = 1.into();
     v1["moves"] = serde_json::json!([{"move": "resign", "side": "black"}]);
     put("version-1-resigned", v1.to_string());
@@ -511,7 +513,7 @@ fn record_seeds() -> BTreeMap<String, Vec<u8>> {
         first.played.x = f64::from_bits(first.played.x.to_bits() ^ 1);
     }
     put("diverged", diverged.to_json());
-    let mut illegal = MatchRecord::new(Config::default(), 0);
+    let mut illegal = MatchRecord::new(Config::default(), 0, game::PhysicsVersion::CURRENT);
     illegal.moves.push(RecordedMove::Pie { swap: true });
     put("illegal-pie", illegal.to_json());
     put(
