@@ -607,12 +607,17 @@ impl<H: RoomHost> Room<H> {
                         mine
                     }
                 };
-                if tx.try_send(item).is_err() {
-                    slow.push(id);
+                match tx.try_send(item) {
+                    Ok(()) => {}
+                    Err(mpsc::error::TrySendError::Full(_)) => slow.push((id, true)),
+                    // Its session has ended; the disconnect is on its way.
+                    Err(mpsc::error::TrySendError::Closed(_)) => slow.push((id, false)),
                 }
             }
-            for conn in slow {
-                warn!(match_id = %self.id, conn, "dropping a connection that does not keep up");
+            for (conn, behind) in slow {
+                if behind {
+                    warn!(match_id = %self.id, conn, "dropping a connection that does not keep up");
+                }
                 self.disconnect(conn).await;
             }
         }
