@@ -1124,6 +1124,41 @@ mod tests {
         assert_eq!(store.live().unwrap(), ["live-b", "live-a"]);
     }
 
+    fn live(id: &str) -> StoredMatch {
+        StoredMatch {
+            status: Status::Live,
+            ..stored(id)
+        }
+    }
+
+    #[test]
+    fn the_log_file_stays_near_its_limit_under_a_steady_stream_of_commits() {
+        let dir = tempfile::tempdir().unwrap();
+        let log = dir.path().join("chapaev.sqlite3-wal");
+        let limit = 512 << 10;
+        let store = Store::open_with_log_limit(dir.path(), SyncMode::Normal, limit).unwrap();
+        store.create(&live("m")).unwrap();
+        let after = AfterMove {
+            status: Status::Live,
+            shots: 0,
+            result: None,
+        };
+        let started = Instant::now();
+        let (mut k, mut largest) = (0, 0);
+        while started.elapsed() < std::time::Duration::from_secs(3) {
+            // Commits back to back, as under heavy play.
+            let pass = RecordedMove::Pass { side: Side::White };
+            store.append_move("m", k, &pass, &after).unwrap();
+            k += 1;
+            largest = largest.max(std::fs::metadata(&log).map(|m| m.len()).unwrap_or(0));
+        }
+        assert!(
+            largest < 8 * limit,
+            "the log reached {largest} bytes over {k} commits (limit {limit})"
+        );
+        assert_eq!(store.moves("m").unwrap().len(), k);
+    }
+
     #[test]
     fn reads_do_not_wait_for_the_writers_connection() {
         let dir = tempfile::tempdir().unwrap();
