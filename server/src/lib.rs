@@ -20,8 +20,8 @@
 //! their moves), [`hub`] (the registry of
 //! rooms), [`http`] (the HTTP API), [`simulate`] (`POST /api/simulate`,
 //! limited per address), [`assets`] (the embedded web client at
-//! `/`), [`ws`] (the WebSocket sessions) and [`app`] (startup and
-//! shutdown).
+//! `/`), [`ws`] (the WebSocket sessions), [`app`] (startup and
+//! shutdown) and [`loopback`] (the HTTP client of the server's own tools).
 
 pub mod app;
 pub mod assets;
@@ -29,6 +29,7 @@ pub mod checkpointer;
 pub mod config;
 pub mod http;
 pub mod hub;
+pub mod loopback;
 pub mod metrics;
 pub mod origin;
 pub mod ratelimit;

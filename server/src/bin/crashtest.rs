@@ -80,6 +80,8 @@ enum CrashError {
     Io(#[from] std::io::Error),
     #[error("HTTP: {0}")]
     Http(String),
+    #[error("HTTP: {0}")]
+    Request(#[from] server::loopback::HttpError),
     #[error("JSON: {0}")]
     Json(#[from] serde_json::Error),
     #[error("server: {0}")]
@@ -88,70 +90,6 @@ enum CrashError {
     Setup(String),
     #[error("{0}; the server was stopped")]
     Interrupted(&'static str),
-}
-
-mod http {
-    //! A raw HTTP/1.1 client for the few JSON calls the crash test makes
-    //! (create, join, summary): one request per connection, the status
-    //! and the body, with a deadline so that a dead server cannot hang it.
-
-    use super::CrashError;
-    use std::time::Duration;
-    use tokio::io::{AsyncReadExt, AsyncWriteExt};
-    use tokio::net::TcpStream;
-
-    /// One request; returns the status and the body.
-    pub async fn request(
-        addr: &str,
-        method: &str,
-        path: &str,
-        body: &str,
-    ) -> Result<(u16, String), CrashError> {
-        let exchange = async {
-            let mut s = TcpStream::connect(addr).await?;
-            let req = format!(
-                "{method} {path} HTTP/1.1\r\nHost: {addr}\r\nContent-Type: application/json\r\nContent-Length: {}\r\nConnection: close\r\n\r\n{body}",
-                body.len()
-            );
-            s.write_all(req.as_bytes()).await?;
-            let mut raw = Vec::new();
-            s.read_to_end(&mut raw).await?;
-            Ok::<_, std::io::Error>(raw)
-        };
-        let raw = tokio::time::timeout(Duration::from_secs(30), exchange)
-            .await
-            .map_err(|_| CrashError::Http(format!("{method} {path}: no answer within 30 s")))??;
-        parse(&String::from_utf8_lossy(&raw))
-            .ok_or_else(|| CrashError::Http(format!("{method} {path}: not an HTTP answer")))
-    }
-
-    /// The status and body of an HTTP/1.1 answer (a chunked body joined).
-    pub fn parse(text: &str) -> Option<(u16, String)> {
-        let (head, rest) = text.split_once("\r\n\r\n")?;
-        let status = head.split_whitespace().nth(1)?.parse().ok()?;
-        let chunked = head
-            .to_ascii_lowercase()
-            .contains("transfer-encoding: chunked");
-        let body = if chunked {
-            dechunk(rest)?
-        } else {
-            rest.to_string()
-        };
-        Some((status, body))
-    }
-
-    fn dechunk(mut s: &str) -> Option<String> {
-        let mut out = String::new();
-        loop {
-            let (size, rest) = s.split_once("\r\n")?;
-            let n = usize::from_str_radix(size.trim(), 16).ok()?;
-            if n == 0 {
-                return Some(out);
-            }
-            out.push_str(rest.get(..n)?);
-            s = rest.get(n + 2..)?;
-        }
-    }
 }
 
 mod child {
@@ -972,14 +910,16 @@ async fn two_seats(addr: &str) -> Result<(String, String, String), CrashError> {
             .map(str::to_string)
             .ok_or_else(|| CrashError::Http(format!("no {k} in {v}")))
     };
-    let (status, body) = http::request(addr, "POST", "/api/matches", r#"{"name":"crash"}"#).await?;
+    let (status, body) =
+        server::loopback::request(addr, "POST", "/api/matches", r#"{"name":"crash"}"#).await?;
     if status != 201 {
         return Err(CrashError::Http(format!("create: {status} {body}")));
     }
     let created: serde_json::Value = serde_json::from_str(&body)?;
     let id = field(&created, "match_id")?;
     let path = format!("/api/matches/{id}/join");
-    let (status, body) = http::request(addr, "POST", &path, r#"{"name":"crash"}"#).await?;
+    let (status, body) =
+        server::loopback::request(addr, "POST", &path, r#"{"name":"crash"}"#).await?;
     if status != 200 {
         return Err(CrashError::Http(format!("join {id}: {status} {body}")));
     }
@@ -998,7 +938,8 @@ async fn cross_check(
     let checks = futures_util::stream::iter(ids.iter().enumerate())
         .map(|(m, id)| async move {
             let acked = ledger.acked_of(m);
-            let answer = http::request(addr, "GET", &format!("/api/matches/{id}"), "").await;
+            let answer =
+                server::loopback::request(addr, "GET", &format!("/api/matches/{id}"), "").await;
             let summary = match answer {
                 Ok((200, body)) => serde_json::from_str::<server::store::Summary>(&body)
                     .map_err(|e| format!("{id}: {e}")),
@@ -1307,20 +1248,6 @@ fn main() -> ExitCode {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn http_answers_parse_plain_and_chunked() {
-        let plain = "HTTP/1.1 200 OK\r\ncontent-length: 2\r\n\r\n{}";
-        assert_eq!(http::parse(plain), Some((200, "{}".into())));
-        let chunked =
-            "HTTP/1.1 201 Created\r\ntransfer-encoding: chunked\r\n\r\n3\r\n{\"a\r\n2\r\n\":\r\n0\r\n\r\n";
-        assert_eq!(http::parse(chunked), Some((201, "{\"a\":".into())));
-        assert_eq!(http::parse("garbage"), None);
-        assert_eq!(
-            http::parse("HTTP/1.1 200 OK\r\ntransfer-encoding: chunked\r\n\r\nzz\r\n"),
-            None
-        );
-    }
 
     #[test]
     fn a_kill_counts_lost_shots_and_matches_not_back() {

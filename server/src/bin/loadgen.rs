@@ -25,7 +25,6 @@ use game::{Next, Phase, PieceId, Seat, Side};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
-use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::TcpStream;
 use tokio_tungstenite::tungstenite::Message;
 
@@ -70,26 +69,15 @@ enum LoadError {
     Json(#[from] serde_json::Error),
 }
 
+/// One request; the body of a 2xx answer.
 async fn http(addr: &str, method: &str, path: &str, body: &str) -> Result<String, LoadError> {
-    let mut s = TcpStream::connect(addr).await?;
-    let req = format!(
-        "{method} {path} HTTP/1.1\r\nHost: {addr}\r\nContent-Length: {}\r\nConnection: close\r\n\r\n{body}",
-        body.len()
-    );
-    s.write_all(req.as_bytes()).await?;
-    let mut raw = Vec::new();
-    s.read_to_end(&mut raw).await?;
-    let text = String::from_utf8_lossy(&raw).to_string();
-    let (head, rest) = text
-        .split_once("\r\n\r\n")
-        .ok_or_else(|| LoadError::Http("no header end".into()))?;
-    if !head.starts_with("HTTP/1.1 2") {
-        return Err(LoadError::Http(format!(
-            "{method} {path}: {}",
-            head.lines().next().unwrap_or("")
-        )));
+    let (status, text) = server::loopback::request(addr, method, path, body)
+        .await
+        .map_err(|e| LoadError::Http(e.to_string()))?;
+    if !(200..300).contains(&status) {
+        return Err(LoadError::Http(format!("{method} {path}: status {status}")));
     }
-    Ok(rest.to_string())
+    Ok(text)
 }
 
 /// A latency histogram of the server's `/metrics` (`name` without the
