@@ -631,7 +631,14 @@ impl Session {
                 self.restate(now);
             }
         }
-        if !self.closed && self.idle_deadline().is_some_and(|t| t <= now) {
+        // A call that asked for a write does not close for idleness: the
+        // write may yet fail, and the session must be there to hear it
+        // (its deadline, already past, fires on the next timer).
+        let writes = self
+            .out
+            .iter()
+            .any(|e| matches!(e, Effect::Store { .. } | Effect::StoreJoin { .. }));
+        if !self.closed && !writes && self.idle_deadline().is_some_and(|t| t <= now) {
             self.closed = true;
             self.out.push(Effect::Close);
         }
@@ -1673,6 +1680,33 @@ mod tests {
         assert_eq!(kinds(&e), ["close"]);
         assert!(s.is_closed());
         assert!(s.handle(Input::Timer, at(300)).is_empty());
+    }
+
+    #[test]
+    fn a_session_past_its_idle_time_stays_to_hear_about_its_last_write() {
+        let mut s = session_with(Config::default(), bot("easy"));
+        connect(&mut s, A, Some("tok-a"), 0);
+        say(&mut s, A, nudge(), 0);
+        s.handle(Input::Disconnect { conn: A }, at(100));
+        s.handle(Input::Timer, at(500));
+        // The bot resigns long after anyone watched: the match ends, and
+        // its last move is still to be written.
+        let resign = Input::BotMove {
+            seat: Seat::Second,
+            at_move: 1,
+            decision: BotDecision::Resign,
+        };
+        let e = s.handle(resign, at(100_000));
+        assert_eq!(s.status(), Status::Finished);
+        assert!(
+            kinds(&e).contains(&"store:Resign".to_string()),
+            "{:?}",
+            kinds(&e)
+        );
+        assert!(!s.is_closed(), "not closed before the write is through");
+        assert!(s.next_deadline().is_some_and(|t| t <= at(100_000)));
+        let e = s.handle(Input::StoreFailed { reloaded: None }, at(100_001));
+        assert_eq!(kinds(&e), ["close"]);
     }
 
     #[test]
