@@ -221,7 +221,20 @@ impl Driver {
                     "a failed join restates the status"
                 );
             }
-            None => self.check_state(),
+            None => {
+                // A call that asked for a write may leave the idle deadline
+                // already past (the session stays to hear how the write
+                // went): it fires at once, as the server's room fires it.
+                let wrote = effects
+                    .iter()
+                    .any(|e| matches!(e, Effect::Store { .. } | Effect::StoreJoin { .. }));
+                let past = self.session.next_deadline().is_some_and(|t| t <= self.now);
+                if wrote && past {
+                    self.feed(Input::Timer);
+                } else {
+                    self.check_state();
+                }
+            }
         }
         effects
     }

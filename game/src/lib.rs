@@ -47,7 +47,8 @@
 //! and refusals) and [`session`] (a live match — seats, connections, turn
 //! clock, rematch — as a state machine without I/O, driven by the server's
 //! rooms and by tests on a virtual clock), with [`token`] (seat tokens and
-//! the hashes a server keeps).
+//! the hashes a server keeps) and [`rating`] (Glicko-2 ratings and how a
+//! rated match moves them).
 
 pub mod batch;
 pub mod board;
@@ -61,6 +62,7 @@ pub mod physics;
 pub mod physics_version;
 pub mod piece;
 pub mod protocol;
+pub mod rating;
 pub mod record;
 pub mod replay;
 pub mod rows;
