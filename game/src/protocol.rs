@@ -209,6 +209,14 @@ pub enum ErrorCode {
     /// The match was played under a physics version this server cannot
     /// play; it is kept as stored, for a server that can.
     UnsupportedPhysics,
+    /// An account name that is not allowed (length, characters).
+    BadName,
+    /// The account name is someone else's.
+    NameTaken,
+    /// No account has this name.
+    NoSuchAccount,
+    /// The account key is missing, wrong or revoked.
+    BadKey,
 }
 
 impl ErrorCode {
@@ -244,6 +252,10 @@ impl ErrorCode {
             ErrorCode::BadBoard => "bad-board",
             ErrorCode::ForbiddenOrigin => "forbidden-origin",
             ErrorCode::UnsupportedPhysics => "unsupported-physics",
+            ErrorCode::BadName => "bad-name",
+            ErrorCode::NameTaken => "name-taken",
+            ErrorCode::NoSuchAccount => "no-such-account",
+            ErrorCode::BadKey => "bad-key",
         }
     }
 }

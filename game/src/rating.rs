@@ -234,7 +234,10 @@ mod tests {
             least = least.min(a.deviation).min(b.deviation);
         }
         assert_eq!(least, 45.0, "held at the floor");
-        assert!(a.rating > b.rating, "the one winning two in three is rated higher");
+        assert!(
+            a.rating > b.rating,
+            "the one winning two in three is rated higher"
+        );
     }
 
     #[test]

@@ -28,6 +28,7 @@ pub const MAX_LIST: usize = 100;
 /// Registers every route.
 pub fn routes(cfg: &mut web::ServiceConfig) {
     crate::assets::routes(cfg);
+    crate::accounts_api::routes(cfg);
     cfg.route("/api", web::get().to(api_page))
         .route("/healthz", web::get().to(healthz))
         .route("/metrics", web::get().to(metrics))
@@ -49,7 +50,7 @@ pub struct Creations(pub AddressLimiter);
 
 impl Creations {
     /// Refuses a creation from this request's address past the limit.
-    fn check(&self, req: &HttpRequest) -> Result<(), Refusal> {
+    pub(crate) fn check(&self, req: &HttpRequest) -> Result<(), Refusal> {
         self.0
             .check(req, "too many matches created from this address; slow down")
     }
@@ -89,7 +90,7 @@ pub(crate) fn refused(r: &Refusal) -> HttpResponse {
         .body(r.to_message().to_json())
 }
 
-fn json<T: Serialize>(status: StatusCode, body: &T) -> HttpResponse {
+pub(crate) fn json<T: Serialize>(status: StatusCode, body: &T) -> HttpResponse {
     match serde_json::to_string(body) {
         Ok(text) => HttpResponse::build(status)
             .content_type("application/json")
@@ -102,7 +103,7 @@ fn json<T: Serialize>(status: StatusCode, body: &T) -> HttpResponse {
 }
 
 /// Reads a JSON body (an empty body reads as `{}`).
-fn body<T: for<'de> Deserialize<'de>>(bytes: &[u8]) -> Result<T, Refusal> {
+pub(crate) fn read_body<T: for<'de> Deserialize<'de>>(bytes: &[u8]) -> Result<T, Refusal> {
     let text = if bytes.iter().all(u8::is_ascii_whitespace) {
         &b"{}"[..]
     } else {
@@ -126,12 +127,25 @@ fn name(n: Option<String>, default: &str) -> Result<String, Refusal> {
 async fn blocking<T: Send + 'static>(
     f: impl FnOnce() -> Result<T, StoreError> + Send + 'static,
 ) -> Result<T, Refusal> {
+    blocking_with(f, |e| Err(e.to_string())).await
+}
+
+/// Runs `f` on a blocking thread; its error is the client's (`Ok` of a
+/// refusal, sent as it is) or the server's (`Err`, logged, answered
+/// `internal`), as `classify` says.
+pub(crate) async fn blocking_with<T: Send + 'static, E: Send + 'static>(
+    f: impl FnOnce() -> Result<T, E> + Send + 'static,
+    classify: impl FnOnce(E) -> Result<Refusal, String>,
+) -> Result<T, Refusal> {
     match web::block(f).await {
         Ok(Ok(t)) => Ok(t),
-        Ok(Err(e)) => {
-            error!(error = %e, "store failure");
-            Err(Refusal::internal())
-        }
+        Ok(Err(e)) => match classify(e) {
+            Ok(refusal) => Err(refusal),
+            Err(e) => {
+                error!(error = %e, "store failure");
+                Err(Refusal::internal())
+            }
+        },
         Err(e) => {
             error!(error = %e, "blocking task failed");
             Err(Refusal::internal())
@@ -242,7 +256,7 @@ async fn create(
 ) -> HttpResponse {
     let result = async {
         creations.check(&req)?;
-        let b: CreateBody = body(&bytes)?;
+        let b: CreateBody = read_body(&bytes)?;
         let opponent = match b.opponent.as_deref().unwrap_or("person") {
             "person" => Opponent::Person,
             "bot" => Opponent::Bot(level(b.bot_level.as_deref())?),
@@ -289,7 +303,7 @@ async fn exhibition(
 ) -> HttpResponse {
     let result = async {
         creations.check(&req)?;
-        let b: ExhibitionBody = body(&bytes)?;
+        let b: ExhibitionBody = read_body(&bytes)?;
         let config = match (b.rules.as_deref(), b.config) {
             (None, None) => game::Preset::Standard.config(),
             (r, c) => rules(r, c)?,
@@ -317,7 +331,7 @@ struct JoinBody {
 
 async fn join(hub: web::Data<Hub>, id: web::Path<String>, bytes: web::Bytes) -> HttpResponse {
     let result = async {
-        let b: JoinBody = body(&bytes)?;
+        let b: JoinBody = read_body(&bytes)?;
         hub.join(&id, name(b.name, "second")?).await
     }
     .await;

@@ -12,6 +12,8 @@
 //! [`game::session`], a state machine without I/O; a [`room`] drives one.
 //!
 //! Modules: [`config`] (flags and limits), [`token`] (seat tokens and ids),
+//! [`accounts`] (names, keys and ratings that last; their HTTP API is
+//! [`accounts_api`]),
 //! [`refusal`] (errors sent to clients, with their HTTP statuses),
 //! [`store`] (SQLite, with [`readers`], its read connections), [`metrics`] (Prometheus), [`origin`] (cross-site
 //! requests refused), [`ratelimit`]
@@ -23,6 +25,8 @@
 //! `/`), [`ws`] (the WebSocket sessions), [`app`] (startup and
 //! shutdown) and [`loopback`] (the HTTP client of the server's own tools).
 
+pub mod accounts;
+pub mod accounts_api;
 pub mod app;
 pub mod assets;
 pub mod checkpointer;

@@ -16,8 +16,10 @@ pub trait HttpStatus {
 impl HttpStatus for Refusal {
     fn http_status(&self) -> u16 {
         match self.code {
-            ErrorCode::NoSuchMatch => 404,
+            ErrorCode::NoSuchMatch | ErrorCode::NoSuchAccount => 404,
+            ErrorCode::BadKey => 401,
             ErrorCode::MatchFull
+            | ErrorCode::NameTaken
             | ErrorCode::MatchOver
             | ErrorCode::MatchNotOver
             | ErrorCode::UnsupportedPhysics => 409,

@@ -302,7 +302,7 @@ fn add_physics_column(conn: &Connection) -> Result<(), StoreError> {
     Ok(())
 }
 
-fn now() -> u64 {
+pub(crate) fn now() -> u64 {
     SystemTime::now()
         .duration_since(UNIX_EPOCH)
         .map(|d| d.as_secs())
@@ -362,6 +362,7 @@ impl Store {
         conn.execute_batch(SCHEMA)?;
         hash_plain_tokens(&conn)?;
         add_physics_column(&conn)?;
+        crate::accounts::create_tables(&conn)?;
         let (checkpointer, readers, log) = match on_disk {
             Some((c, path, log)) => (Some(c), Some(Readers::open(path, READERS)?), Some(log)),
             None => (None, None, None),
@@ -390,13 +391,13 @@ impl Store {
         })
     }
 
-    fn lock(&self) -> Result<MutexGuard<'_, Connection>, StoreError> {
+    pub(crate) fn lock(&self) -> Result<MutexGuard<'_, Connection>, StoreError> {
         self.shared.conn.lock().map_err(|_| StoreError::Poisoned)
     }
 
     /// A connection for reading: a free read connection, never the writer's
     /// (but for a store in memory, which has no other).
-    fn read(&self) -> Result<MutexGuard<'_, Connection>, StoreError> {
+    pub(crate) fn read(&self) -> Result<MutexGuard<'_, Connection>, StoreError> {
         match &self.shared.readers {
             Some(readers) => readers.get().map_err(|_| StoreError::Poisoned),
             None => self.lock(),
