@@ -1,7 +1,7 @@
 //! The outside world as the client sees it, one API on both targets: a
 //! WebSocket, HTTP requests, the page address, persistent key-value
-//! storage, saving and opening files, and the readiness flag and state
-//! report that the browser test reads.
+//! storage, saving and opening files, pasted text, short sounds, and the
+//! readiness flag and state report that the browser test reads.
 //!
 //! In the browser every call goes to the small miniquad plugin in
 //! `js/chapaev.js` (loaded after macroquad's `mq_js_bundle.js`); on the
@@ -25,6 +25,17 @@ pub enum HttpReply {
     Done { status: u16, body: String },
     /// No answer (the server is unreachable).
     Failed(String),
+}
+
+/// The game's few short sounds (synthesised by the browser, off by default).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Sound {
+    /// A piece was flicked.
+    Flick = 0,
+    /// A piece fell off the board.
+    Fall = 1,
+    /// It is your turn.
+    YourTurn = 2,
 }
 
 #[cfg(target_arch = "wasm32")]
@@ -60,6 +71,8 @@ mod imp {
         fn chapaev_copy(ptr: *const u8, len: usize);
         fn chapaev_set_ready();
         fn chapaev_report(ptr: *const u8, len: usize);
+        fn chapaev_pasted_len() -> i32;
+        fn chapaev_beep(kind: i32);
     }
 
     /// The plugin's version, checked by miniquad's loader against `chapaev.js`.
@@ -178,6 +191,15 @@ mod imp {
 
     pub fn report(json: &str) {
         unsafe { chapaev_report(json.as_ptr(), json.len()) }
+    }
+
+    pub fn pasted() -> Option<String> {
+        let len = unsafe { chapaev_pasted_len() };
+        (len >= 0).then(|| take(len, |p, c| unsafe { chapaev_staged_take(p, c) }))
+    }
+
+    pub fn beep(sound: super::Sound) {
+        unsafe { chapaev_beep(sound as i32) }
     }
 }
 
@@ -353,9 +375,17 @@ mod imp {
     pub fn set_ready() {}
 
     pub fn report(_json: &str) {}
+
+    /// On the desktop nothing is pasted (no clipboard crate).
+    pub fn pasted() -> Option<String> {
+        None
+    }
+
+    /// On the desktop the game is silent.
+    pub fn beep(_sound: super::Sound) {}
 }
 
 pub use imp::{
-    copy_text, location, picked_file, report, request_file, save_file, set_hash, set_ready,
-    storage_get, storage_set, Request, Socket,
+    beep, copy_text, location, pasted, picked_file, report, request_file, save_file, set_hash,
+    set_ready, storage_get, storage_set, Request, Socket,
 };
