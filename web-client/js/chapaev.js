@@ -211,6 +211,28 @@
         } catch (e) { /* no audio here */ }
     }
 
+    // ---- Text on touch screens ------------------------------------------
+    // A canvas never raises a phone's keyboard: a text field tapped there
+    // asks with the browser's own prompt, after the frame (it blocks).
+    function coarse_pointer() {
+        return window.matchMedia && window.matchMedia("(pointer: coarse)").matches ? 1 : 0;
+    }
+    let prompted = null;
+    function ask(lptr, llen, vptr, vlen) {
+        const label = str(lptr, llen);
+        const value = str(vptr, vlen);
+        setTimeout(() => {
+            const answer = window.prompt(label, value);
+            if (answer !== null) prompted = answer;
+        }, 0);
+    }
+    function prompted_len() {
+        if (prompted === null) return -1;
+        const n = stage(prompted);
+        prompted = null;
+        return n;
+    }
+
     // ---- Test hooks ------------------------------------------------------
     function set_ready() {
         window.chapaev_ready_ms = performance.now();
@@ -245,6 +267,9 @@
         env.chapaev_report = report;
         env.chapaev_pasted_len = pasted_len;
         env.chapaev_beep = beep;
+        env.chapaev_coarse_pointer = coarse_pointer;
+        env.chapaev_prompt = ask;
+        env.chapaev_prompted_len = prompted_len;
     }
     // macroquad listens for the mouse on the canvas only: a slingshot pulled
     // past the page's edge would never be released. Forward what happens

@@ -645,21 +645,34 @@ impl Play {
             Phase::Shooting if self.my_turn() => "Your turn: drag back from a piece".to_string(),
             Phase::Shooting => format!("{} to shoot", side_name(v.turn)),
         };
-        let mut status_line = status;
-        if let (Some((_, _, deadline)), Phase::Shooting) = (self.clock, v.phase) {
-            let left = (deadline - self.now).max(0.0);
-            status_line = format!(
-                "{status_line} · {}:{:02}",
-                (left / 60.0) as u32,
-                left as u32 % 60
-            );
-        }
         let status_color = if self.my_turn() {
             colors::GOOD
         } else {
             colors::ACCENT
         };
-        line(&mut y, &status_line, 17.0, status_color);
+        let clock = match (self.clock, v.phase) {
+            (Some((_, _, deadline)), Phase::Shooting) => {
+                let left = (deadline - self.now).max(0.0);
+                Some((
+                    format!("{}:{:02}", (left / 60.0) as u32, left as u32 % 60),
+                    left < 10.0,
+                ))
+            }
+            _ => None,
+        };
+        match (&clock, compact) {
+            // In a compact panel the clock ends the status line.
+            (Some((c, _)), true) => line(&mut y, &format!("{status} · {c}"), 17.0, status_color),
+            _ => line(&mut y, &status, 17.0, status_color),
+        }
+        if let (Some((c, urgent)), false) = (&clock, compact) {
+            let color = if *urgent {
+                colors::DANGER
+            } else {
+                colors::TEXT
+            };
+            line(&mut y, &format!("clock {c}"), 16.0, color);
+        }
         // The shot log.
         let log_lines = if compact { 2 } else { LOG_LINES };
         for l in self
@@ -1123,7 +1136,9 @@ impl Screen for Play {
             .drawn
             .iter()
             .map(|(p, c, r)| {
-                serde_json::json!({"id": u8::from(*p), "x": c.x, "y": c.y, "r": r,
+                // CSS pixels, like the buttons.
+                let z = crate::scale::zoom();
+                serde_json::json!({"id": u8::from(*p), "x": c.x * z, "y": c.y * z, "r": r * z,
                     "mine": Some(p.side()) == mine})
             })
             .collect();

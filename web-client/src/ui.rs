@@ -159,6 +159,8 @@ pub struct Ui {
     focus: Option<String>,
     /// Whether a widget took this frame's press.
     captured: bool,
+    /// The text field whose text the browser's prompt is asking for.
+    prompting: Option<String>,
 }
 
 /// Draws `text` with its top-left corner near `(x, y)` at `size` pixels.
@@ -311,6 +313,21 @@ impl Ui {
         if self.input.pressed && r.contains(self.input.pointer) {
             self.focus = Some(name.to_string());
             self.captured = true;
+            // A phone opens no keyboard for a canvas: ask the browser.
+            if platform::coarse_pointer() {
+                platform::prompt(placeholder, value);
+                self.prompting = Some(name.to_string());
+            }
+        }
+        if self.prompting.as_deref() == Some(name) {
+            if let Some(answer) = platform::prompted() {
+                *value = answer
+                    .chars()
+                    .filter(|c| !c.is_control())
+                    .take(max)
+                    .collect();
+                self.prompting = None;
+            }
         }
         let focused = self.focus.as_deref() == Some(name);
         let mut entered = false;
