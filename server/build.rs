@@ -9,7 +9,11 @@
 //! from the very macroquad crate the client uses, found with `cargo
 //! metadata`) and the wasm (as `chapaev.wasm`) are copied into `OUT_DIR`,
 //! and `OUT_DIR/web_client.rs` names them with `include_bytes!` for
-//! `src/assets.rs`.
+//! `src/assets.rs`. Each file is also gzipped here (flate2, best
+//! compression), so the server sends the compressed copy with
+//! `Content-Encoding: gzip` without compressing anything per request, and
+//! the page asks for its scripts and wasm under `?v=<hash>` addresses that
+//! change with every build (so they can be cached for good).
 //!
 //! The server always builds: without the wasm target, or when the client
 //! does not compile, a `cargo:warning` says what happened and what to run,
@@ -20,6 +24,7 @@
 use std::collections::HashMap;
 use std::ffi::OsString;
 use std::fmt::Write as _;
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
@@ -55,9 +60,12 @@ enum NotBuilt {
     },
 }
 
-/// One embedded file: where it lies in `OUT_DIR` and its ETag.
+/// One embedded file: where it and its gzipped copy lie in `OUT_DIR`,
+/// its content hash and its ETag.
 struct Copied {
     path: PathBuf,
+    gzip: PathBuf,
+    hash: String,
     etag: String,
 }
 
@@ -74,6 +82,7 @@ fn main() {
         "web-client/src",
         "web-client/js",
         "web-client/index.html",
+        "web-client/assets",
         "web-client/Cargo.toml",
         "engine/src",
         "engine/Cargo.toml",
@@ -112,7 +121,8 @@ fn env_or_panic(name: &str) -> OsString {
     std::env::var_os(name).unwrap_or_else(|| panic!("cargo sets {name} for build scripts"))
 }
 
-/// Builds the client and copies its four files into `OUT_DIR/web`.
+/// Builds the client and copies its five files (and their gzipped copies)
+/// into `OUT_DIR/web`.
 fn build(workspace: &Path, out_dir: &Path) -> Result<HashMap<&'static str, Copied>, NotBuilt> {
     if std::env::var_os(SKIP_VAR).is_some_and(|v| !v.is_empty() && v != "0") {
         return Err(NotBuilt::Skipped);
@@ -146,20 +156,37 @@ fn build(workspace: &Path, out_dir: &Path) -> Result<HashMap<&'static str, Copie
     let mut files = HashMap::new();
     for (key, from, name) in [
         (
-            "index_html",
-            workspace.join("web-client/index.html"),
-            "index.html",
-        ),
-        (
             "chapaev_js",
             workspace.join("web-client/js/chapaev.js"),
             "chapaev.js",
         ),
         ("mq_js_bundle", bundle, "mq_js_bundle.js"),
         ("wasm", wasm, "chapaev.wasm"),
+        (
+            "favicon",
+            workspace.join("web-client/assets/favicon.svg"),
+            "favicon.svg",
+        ),
     ] {
-        files.insert(key, copy(&from, &web.join(name))?);
+        let bytes = read(&from)?;
+        files.insert(key, store(bytes, &web.join(name))?);
     }
+    // The page names each file with its hash, so a new build is a new address.
+    let mut page =
+        String::from_utf8_lossy(&read(&workspace.join("web-client/index.html"))?).into_owned();
+    for (key, name) in [
+        ("chapaev_js", "chapaev.js"),
+        ("mq_js_bundle", "mq_js_bundle.js"),
+        ("wasm", "chapaev.wasm"),
+        ("favicon", "favicon.svg"),
+    ] {
+        let versioned = format!("{name}?v={}", files[key].hash);
+        page = page.replace(&format!("\"{name}\""), &format!("\"{versioned}\""));
+    }
+    files.insert(
+        "index_html",
+        store(page.into_bytes(), &web.join("index.html"))?,
+    );
     Ok(files)
 }
 
@@ -376,18 +403,34 @@ fn mq_js_bundle(cargo: &OsString, workspace: &Path) -> Result<PathBuf, NotBuilt>
     }
 }
 
-fn copy(from: &Path, to: &Path) -> Result<Copied, NotBuilt> {
-    let bytes = std::fs::read(from).map_err(|source| NotBuilt::Io {
+fn read(from: &Path) -> Result<Vec<u8>, NotBuilt> {
+    std::fs::read(from).map_err(|source| NotBuilt::Io {
         what: format!("reading {}", from.display()),
         source,
-    })?;
-    std::fs::write(to, &bytes).map_err(|source| NotBuilt::Io {
-        what: format!("writing {}", to.display()),
-        source,
-    })?;
+    })
+}
+
+/// Writes `bytes` to `to` and their gzipped copy beside it (`.gz`).
+fn store(bytes: Vec<u8>, to: &Path) -> Result<Copied, NotBuilt> {
+    let io = |what: String| move |source| NotBuilt::Io { what, source };
+    std::fs::write(to, &bytes).map_err(io(format!("writing {}", to.display())))?;
+    let mut gz = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::best());
+    gz.write_all(&bytes)
+        .map_err(io(format!("compressing {}", to.display())))?;
+    let packed = gz
+        .finish()
+        .map_err(io(format!("compressing {}", to.display())))?;
+    let gzip = to.with_extension(format!(
+        "{}.gz",
+        to.extension().and_then(|e| e.to_str()).unwrap_or("")
+    ));
+    std::fs::write(&gzip, &packed).map_err(io(format!("writing {}", gzip.display())))?;
+    let hash = format!("{:016x}", fnv1a(&bytes));
     Ok(Copied {
         path: to.to_path_buf(),
-        etag: format!("\"{:016x}-{:x}\"", fnv1a(&bytes), bytes.len()),
+        gzip,
+        etag: format!("\"{hash}-{:x}\"", bytes.len()),
+        hash,
     })
 }
 
@@ -409,12 +452,16 @@ fn embedded(files: &HashMap<&'static str, Copied>) -> String {
         ("chapaev_js", "text/javascript; charset=utf-8"),
         ("mq_js_bundle", "text/javascript; charset=utf-8"),
         ("wasm", "application/wasm"),
+        ("favicon", "image/svg+xml"),
     ] {
         let file = &files[key];
         let _ = writeln!(
             code,
-            "    {key}: Asset {{ bytes: include_bytes!({:?}), etag: {:?}, content_type: {content_type:?} }},",
+            "    {key}: Asset {{ bytes: include_bytes!({:?}), gzip: include_bytes!({:?}), \
+             hash: {:?}, etag: {:?}, content_type: {content_type:?} }},",
             file.path.display().to_string(),
+            file.gzip.display().to_string(),
+            file.hash,
             file.etag,
         );
     }

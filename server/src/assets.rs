@@ -2,10 +2,18 @@
 //! `web-client` for wasm32 and embeds the page, macroquad's loader, our
 //! miniquad plugin and the wasm, which this module serves at `/`,
 //! `/mq_js_bundle.js`, `/chapaev.js` and `/chapaev.wasm` (as
-//! `application/wasm`, or browsers refuse to stream-compile it). Each
-//! answer carries an ETag computed at build time and `Cache-Control:
-//! no-cache`, so browsers revalidate (a `304` when nothing changed) and
-//! never mix files of two builds. When the build could not embed the client
+//! `application/wasm`, or browsers refuse to stream-compile it), and the
+//! page's icon at `/favicon.svg` (and `/favicon.ico`).
+//!
+//! Every file is also embedded gzipped (compressed once by `build.rs`) and
+//! sent as such, with `Content-Encoding: gzip`, to a request that accepts
+//! it; `Vary: Accept-Encoding` keeps caches apart. Each answer carries an
+//! ETag computed at build time. The page is `Cache-Control: no-cache`
+//! (revalidated, a `304` when nothing changed); it names its files with
+//! their build's hash (`chapaev.wasm?v=<hash>`), and a file asked for under
+//! its own hash is cached for a year as immutable, so a returning player
+//! downloads nothing and two builds' files never mix; under any other
+//! address a file is `no-cache` too. When the build could not embed the client
 //! (no wasm target, a compile error, or `CHAPAEV_SKIP_WEB_CLIENT=1`), `/`
 //! serves the API page with a note saying why, and the client's files are
 //! `404`.
@@ -17,6 +25,10 @@ use actix_web::{web, HttpRequest, HttpResponse};
 #[derive(Debug, Clone, Copy)]
 pub struct Asset {
     pub bytes: &'static [u8],
+    /// The same bytes, gzipped.
+    pub gzip: &'static [u8],
+    /// The content hash the page's addresses carry (`?v=`).
+    pub hash: &'static str,
     /// A quoted entity tag, unique to this build of the file.
     pub etag: &'static str,
     pub content_type: &'static str,
@@ -29,6 +41,7 @@ pub struct Bundle {
     pub chapaev_js: Asset,
     pub mq_js_bundle: Asset,
     pub wasm: Asset,
+    pub favicon: Asset,
 }
 
 /// Why the build embedded no client.
@@ -62,6 +75,14 @@ pub fn routes(cfg: &mut web::ServiceConfig) {
         .route(
             "/mq_js_bundle.js",
             web::get().to(|r: HttpRequest| file(r, |b| &b.mq_js_bundle)),
+        )
+        .route(
+            "/favicon.svg",
+            web::get().to(|r: HttpRequest| file(r, |b| &b.favicon)),
+        )
+        .route(
+            "/favicon.ico",
+            web::get().to(|r: HttpRequest| file(r, |b| &b.favicon)),
         );
 }
 
@@ -71,7 +92,7 @@ async fn index(req: HttpRequest) -> HttpResponse {
         Err(why) => HttpResponse::Ok()
             .content_type("text/html; charset=utf-8")
             .insert_header((header::CACHE_CONTROL, "no-cache"))
-            .body(fallback_page(why)),
+            .body(fallback_page(why, &crate::http::public_host(&req))),
     }
 }
 
@@ -84,31 +105,73 @@ async fn file(req: HttpRequest, pick: fn(&'static Bundle) -> &'static Asset) -> 
     }
 }
 
+/// How long a file asked for under its own hash may be cached.
+pub const IMMUTABLE: &str = "public, max-age=31536000, immutable";
+
+/// Whether the request's `Accept-Encoding` takes gzip (`gzip` or `*`,
+/// without `q=0`).
+pub fn accepts_gzip(req: &HttpRequest) -> bool {
+    req.headers()
+        .get_all(header::ACCEPT_ENCODING)
+        .filter_map(|v| v.to_str().ok())
+        .flat_map(|v| v.split(','))
+        .any(|item| {
+            let mut parts = item.split(';');
+            let coding = parts.next().unwrap_or("").trim();
+            let refused = parts.any(|p| {
+                p.trim()
+                    .strip_prefix("q=")
+                    .and_then(|q| q.trim().parse::<f32>().ok())
+                    .is_some_and(|q| q <= 0.0)
+            });
+            (coding.eq_ignore_ascii_case("gzip") || coding == "*") && !refused
+        })
+}
+
 fn serve(req: &HttpRequest, asset: &Asset) -> HttpResponse {
+    let gzip = accepts_gzip(req);
+    // The compressed answer is another representation: its own ETag.
+    let etag = if gzip {
+        format!("{}-gz\"", asset.etag.trim_end_matches('"'))
+    } else {
+        asset.etag.to_string()
+    };
     let unchanged = req
         .headers()
         .get_all(header::IF_NONE_MATCH)
         .filter_map(|v| v.to_str().ok())
         .flat_map(|v| v.split(','))
         .map(|tag| tag.trim().trim_start_matches("W/"))
-        .any(|tag| tag == asset.etag || tag == "*");
+        .any(|tag| tag == etag || tag == "*");
+    let versioned =
+        web::Query::<std::collections::HashMap<String, String>>::from_query(req.query_string())
+            .is_ok_and(|q| q.get("v").is_some_and(|v| v == asset.hash));
     let mut answer = if unchanged {
         HttpResponse::NotModified()
     } else {
         HttpResponse::Ok()
     };
     answer
-        .insert_header((header::ETAG, asset.etag))
-        .insert_header((header::CACHE_CONTROL, "no-cache"));
+        .insert_header((header::ETAG, etag))
+        .insert_header((header::VARY, "Accept-Encoding"))
+        .insert_header((
+            header::CACHE_CONTROL,
+            if versioned { IMMUTABLE } else { "no-cache" },
+        ));
     if unchanged {
         answer.finish()
+    } else if gzip {
+        answer
+            .insert_header((header::CONTENT_ENCODING, "gzip"))
+            .content_type(asset.content_type)
+            .body(asset.gzip)
     } else {
         answer.content_type(asset.content_type).body(asset.bytes)
     }
 }
 
 /// The API page, headed by a note saying why the game is not here.
-fn fallback_page(why: &NotBuilt) -> String {
+fn fallback_page(why: &NotBuilt, host: &str) -> String {
     let reason = escape(why.reason);
     let note = format!(
         "<h1>Chapaev online</h1>\n<p style=\"border:2px solid #c60;padding:.6em\"><b>The web client \
@@ -117,7 +180,7 @@ fn fallback_page(why: &NotBuilt) -> String {
          the server again (<code>cargo run --release -p server</code>) without \
          <code>CHAPAEV_SKIP_WEB_CLIENT</code>.</p>"
     );
-    crate::http::API_HTML.replacen("<h1>Chapaev online</h1>", &note, 1)
+    crate::http::api_html(host).replacen("<h1>Chapaev online</h1>", &note, 1)
 }
 
 fn escape(text: &str) -> String {
@@ -141,10 +204,21 @@ mod tests {
     }
 
     async fn get(path: &str, etag: Option<&str>) -> (u16, Vec<(String, String)>, Vec<u8>) {
+        get_with(path, etag, &[]).await
+    }
+
+    async fn get_with(
+        path: &str,
+        etag: Option<&str>,
+        headers: &[(&str, &str)],
+    ) -> (u16, Vec<(String, String)>, Vec<u8>) {
         let app = web_test::init_service(App::new().configure(crate::http::routes)).await;
         let mut req = web_test::TestRequest::get().uri(path);
         if let Some(tag) = etag {
             req = req.insert_header((header::IF_NONE_MATCH, tag));
+        }
+        for &(name, value) in headers {
+            req = req.insert_header((name, value));
         }
         let res = web_test::call_service(&app, req.to_request()).await;
         let status = res.status().as_u16();
@@ -223,6 +297,103 @@ mod tests {
         assert_eq!(get("/chapaev.wasm", Some("\"other\"")).await.0, 200);
     }
 
+    fn gunzip(bytes: &[u8]) -> Vec<u8> {
+        use std::io::Read as _;
+        let mut out = Vec::new();
+        flate2::read::GzDecoder::new(bytes)
+            .read_to_end(&mut out)
+            .expect("a gzip stream");
+        out
+    }
+
+    #[actix_web::test]
+    async fn a_browser_that_accepts_gzip_gets_the_wasm_compressed_and_cacheable_for_good() {
+        let bundle = match web_client() {
+            Ok(bundle) => bundle,
+            Err(why) => {
+                assert!(skipped(why), "the web client was not built: {}", why.reason);
+                return;
+            }
+        };
+        let accept = [("accept-encoding", "gzip, deflate, br")];
+        let versioned = format!("/chapaev.wasm?v={}", bundle.wasm.hash);
+        let (status, headers, body) = get_with(&versioned, None, &accept).await;
+        assert_eq!(status, 200);
+        assert_eq!(header(&headers, "content-encoding"), "gzip");
+        assert_eq!(header(&headers, "content-type"), "application/wasm");
+        assert_eq!(header(&headers, "vary"), "Accept-Encoding");
+        assert_eq!(header(&headers, "cache-control"), IMMUTABLE);
+        assert!(
+            body.len() * 2 < bundle.wasm.bytes.len(),
+            "gzip at least halves the wasm: {} of {} bytes",
+            body.len(),
+            bundle.wasm.bytes.len()
+        );
+        assert_eq!(gunzip(&body), bundle.wasm.bytes, "the same wasm, unpacked");
+        println!(
+            "web client wasm: {} bytes, {} gzipped",
+            bundle.wasm.bytes.len(),
+            body.len()
+        );
+
+        // The compressed answer has its own ETag, and revalidates with it.
+        let etag = header(&headers, "etag").to_string();
+        assert_ne!(etag, bundle.wasm.etag);
+        assert_eq!(get_with(&versioned, Some(&etag), &accept).await.0, 304);
+
+        // Without gzip in Accept-Encoding (or with q=0): the plain bytes.
+        for refusing in [None, Some("gzip;q=0, identity")] {
+            let extra: Vec<(&str, &str)> = refusing
+                .map(|v| vec![("accept-encoding", v)])
+                .unwrap_or_default();
+            let (status, headers, body) = get_with("/chapaev.wasm", None, &extra).await;
+            assert_eq!(status, 200);
+            assert!(!headers
+                .iter()
+                .any(|(k, _)| k.eq_ignore_ascii_case("content-encoding")));
+            assert_eq!(body, bundle.wasm.bytes);
+            // Not under its hash: revalidated every time.
+            assert_eq!(header(&headers, "cache-control"), "no-cache");
+        }
+    }
+
+    #[actix_web::test]
+    async fn the_page_names_its_files_by_their_build_hash_and_has_an_icon() {
+        let bundle = match web_client() {
+            Ok(bundle) => bundle,
+            Err(why) => {
+                assert!(skipped(why), "the web client was not built: {}", why.reason);
+                return;
+            }
+        };
+        let page = String::from_utf8(bundle.index_html.bytes.to_vec()).unwrap();
+        for (name, asset) in [
+            ("chapaev.wasm", &bundle.wasm),
+            ("chapaev.js", &bundle.chapaev_js),
+            ("mq_js_bundle.js", &bundle.mq_js_bundle),
+            ("favicon.svg", &bundle.favicon),
+        ] {
+            let address = format!("{name}?v={}", asset.hash);
+            assert!(page.contains(&address), "the page asks for {address}");
+        }
+        let (status, headers, body) = get("/favicon.ico", None).await;
+        assert_eq!(status, 200);
+        assert_eq!(header(&headers, "content-type"), "image/svg+xml");
+        assert!(String::from_utf8(body).unwrap().contains("<svg"));
+    }
+
+    #[actix_web::test]
+    async fn the_api_page_addresses_its_examples_to_the_host_it_was_asked_on() {
+        let (_, _, body) = get_with("/api", None, &[("host", "chapaev.example:9000")]).await;
+        let page = String::from_utf8(body).unwrap();
+        assert!(page.contains("chapaev.example:9000/api/matches"));
+        assert!(!page.contains("localhost:8080"));
+        // A host that is not a plain name is not echoed into the page.
+        let (_, _, body) = get_with("/api", None, &[("host", "<script>")]).await;
+        let page = String::from_utf8(body).unwrap();
+        assert!(!page.contains("<script>") && page.contains("localhost:8080"));
+    }
+
     /// The size budget of the browser build (the web client issue's target).
     const WASM_BUDGET_BYTES: usize = 1_500_000;
 
@@ -254,10 +425,13 @@ mod tests {
 
     #[test]
     fn the_fallback_page_says_why_and_what_to_run() {
-        let page = fallback_page(&NotBuilt {
-            reason: "the <wasm32> target is not installed",
-            skipped: false,
-        });
+        let page = fallback_page(
+            &NotBuilt {
+                reason: "the <wasm32> target is not installed",
+                skipped: false,
+            },
+            "localhost:8080",
+        );
         assert!(page.contains("&lt;wasm32&gt;"));
         assert!(page.contains("rustup target add wasm32-unknown-unknown"));
         assert!(page.contains("/api/matches"));

@@ -162,10 +162,33 @@ async fn schema() -> HttpResponse {
         .body(text.as_str())
 }
 
-async fn api_page() -> HttpResponse {
+async fn api_page(req: HttpRequest) -> HttpResponse {
     HttpResponse::Ok()
         .content_type("text/html; charset=utf-8")
-        .body(API_HTML)
+        .body(api_html(&public_host(&req)))
+}
+
+/// The host (and port) the request was addressed to, as the examples on
+/// the API page should name it: the `Host` header when it is a plain host
+/// name or address, else `localhost:8080`.
+pub(crate) fn public_host(req: &HttpRequest) -> String {
+    let info = req.connection_info();
+    let host = info.host();
+    let plain = !host.is_empty()
+        && host.len() <= 255
+        && host
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '.' | '-' | ':' | '[' | ']'));
+    if plain {
+        host.to_string()
+    } else {
+        "localhost:8080".to_string()
+    }
+}
+
+/// The API page with its examples addressed to `host`.
+pub(crate) fn api_html(host: &str) -> String {
+    API_HTML.replace("localhost:8080", host)
 }
 
 async fn healthz(hub: web::Data<Hub>) -> HttpResponse {

@@ -128,7 +128,19 @@ impl Driver {
 
     /// A new browser session in a fresh profile folder `profile`.
     pub async fn session(&self, programs: &Programs, profile: &Path) -> Result<Client> {
+        self.session_with(programs, profile, &[]).await
+    }
+
+    /// A new browser session with Chromium flags of its own added (a
+    /// window size, `--force-device-scale-factor=3`).
+    pub async fn session_with(
+        &self,
+        programs: &Programs,
+        profile: &Path,
+        extra: &[String],
+    ) -> Result<Client> {
         let mut args: Vec<String> = CHROME_ARGS.iter().map(|a| a.to_string()).collect();
+        args.extend(extra.iter().cloned());
         args.push(format!("--user-data-dir={}", profile.display()));
         args.push("--enable-logging=stderr".into());
         let caps = json!({
@@ -231,6 +243,45 @@ pub async fn click(client: &Client, x: f64, y: f64) -> Result<()> {
         .then(PointerAction::Up {
             button: MOUSE_BUTTON_LEFT,
         });
+    client.perform_actions(actions).await?;
+    Ok(client.release_actions().await?)
+}
+
+/// Presses at `from` and moves to `to` in `steps` small moves, holding the
+/// button (finish with [`release`]), so the page can be read mid-drag.
+pub async fn press_and_move(
+    client: &Client,
+    from: (f64, f64),
+    to: (f64, f64),
+    steps: u32,
+) -> Result<()> {
+    let mut actions = mouse()
+        .then(move_to(from.0, from.1, 50))
+        .pause(Duration::from_millis(50))
+        .then(PointerAction::Down {
+            button: MOUSE_BUTTON_LEFT,
+        })
+        .pause(Duration::from_millis(80));
+    let steps = steps.max(1);
+    for i in 1..=steps {
+        let t = f64::from(i) / f64::from(steps);
+        actions = actions.then(move_to(
+            from.0 + (to.0 - from.0) * t,
+            from.1 + (to.1 - from.1) * t,
+            30,
+        ));
+    }
+    actions = actions.pause(Duration::from_millis(150));
+    Ok(client.perform_actions(actions).await?)
+}
+
+/// Lets go of the button [`press_and_move`] holds.
+pub async fn release(client: &Client) -> Result<()> {
+    let actions = mouse()
+        .then(PointerAction::Up {
+            button: MOUSE_BUTTON_LEFT,
+        })
+        .pause(Duration::from_millis(80));
     client.perform_actions(actions).await?;
     Ok(client.release_actions().await?)
 }

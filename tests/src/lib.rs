@@ -10,7 +10,7 @@
 //! Modules: [`process`] (child processes that die with the test),
 //! [`browser`] (finding Chromium, the WebDriver session, pointer input),
 //! [`picture`] (decoding screenshots, telling a drawn scene from a blank
-//! one) and [`api`] (reading the server's HTTP API).
+//! one), [`layout`] (the rules every screen's controls keep) and [`api`] (reading the server's HTTP API).
 //!
 //! Screenshots and logs go to [`artifacts_dir`]; without Chromium the test
 //! fails unless `CHAPAEV_SKIP_BROWSER=1` says to skip it.
@@ -18,6 +18,7 @@
 pub mod api;
 pub mod browser;
 pub mod js;
+pub mod layout;
 pub mod picture;
 pub mod process;
 pub mod python;

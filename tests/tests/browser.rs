@@ -4,12 +4,19 @@
 //! one of the player's pieces is pulled back with the mouse and let go —
 //! the server's API then counts the shot. The player resigns, opens the
 //! replay and scrubs it, then opens the sandbox and plays its break.
+//! A second scenario opens the game at phone size (390x844 at a
+//! device-pixel ratio of 3), at a device-pixel ratio of 2 and at full HD,
+//! and checks from the client's own layout report that every control is
+//! inside the window, none overlap and (except the desktop-only sandbox)
+//! each is at least 44 px tall; there it pulls a back-row piece to the
+//! window's edge and reads full power, and plays through to the
+//! end-of-match screen and the replay.
 //! Screenshots and logs are left in
 //! the artifacts folder (`target/e2e-artifacts` or `$CHAPAEV_E2E_ARTIFACTS`).
 
 use e2e::browser::{self, Driver};
 use e2e::process::Server;
-use e2e::{api, artifacts_dir, picture, E2eError, Result};
+use e2e::{api, artifacts_dir, layout, picture, E2eError, Result};
 use fantoccini::Client;
 use serde_json::Value;
 use std::path::Path;
@@ -55,6 +62,276 @@ async fn a_player_opens_the_page_shoots_against_the_easy_bot_resigns_scrubs_the_
             artifacts.display()
         );
     }
+}
+
+/// One window the layout scenario runs in.
+struct Window {
+    name: &'static str,
+    width: u32,
+    height: u32,
+    dpr: u32,
+}
+
+const WINDOWS: [Window; 3] = [
+    Window {
+        name: "phone",
+        width: 390,
+        height: 844,
+        dpr: 3,
+    },
+    Window {
+        name: "sharp",
+        width: 1024,
+        height: 720,
+        dpr: 2,
+    },
+    Window {
+        name: "fullhd",
+        width: 1920,
+        height: 1080,
+        dpr: 1,
+    },
+];
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn on_a_phone_a_sharp_screen_and_full_hd_every_control_fits_and_the_slingshot_reaches_full_power(
+) {
+    let Some(programs) = browser::find_programs().unwrap_or_else(|e| panic!("{e}")) else {
+        return;
+    };
+    let artifacts = artifacts_dir().unwrap_or_else(|e| panic!("{e}"));
+    let scratch = tempfile::tempdir().unwrap();
+    let server = Server::start(
+        Path::new(env!("CARGO_BIN_EXE_e2e-server")),
+        &scratch.path().join("data"),
+        &artifacts.join("server-layout.log"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let driver = Driver::start(&programs, &artifacts.join("chromedriver-layout.log"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut failures = Vec::new();
+    for window in &WINDOWS {
+        let extra = [
+            format!("--window-size={},{}", window.width, window.height),
+            format!("--force-device-scale-factor={}", window.dpr),
+        ];
+        let profile = scratch.path().join(format!("profile-{}", window.name));
+        let client = match driver.session_with(&programs, &profile, &extra).await {
+            Ok(c) => c,
+            Err(e) => panic!("{e}"),
+        };
+        let outcome = layouts(&client, &server, &artifacts, window).await;
+        if let Err(e) = outcome {
+            let _ = browser::screenshot(
+                &client,
+                &artifacts.join(format!("failure-{}.png", window.name)),
+            )
+            .await;
+            if let Ok(state) = browser::eval(&client, STATE).await {
+                eprintln!("e2e: chapaev_state at the failure: {state}");
+            }
+            failures.push(format!("{}: {e}", window.name));
+        }
+        let _ = client.close().await;
+    }
+    drop(driver);
+    drop(server);
+    assert!(
+        failures.is_empty(),
+        "{}\n(screenshots and logs are in {})",
+        failures.join("\n"),
+        artifacts.display()
+    );
+}
+
+/// Checks the layout the app reports now: inside the window, no overlaps,
+/// finger-sized where `finger`; saves a screenshot as `shot`.
+async fn check_layout(
+    client: &Client,
+    artifacts: &Path,
+    shot: &str,
+    state: &Value,
+    finger: bool,
+) -> Result<()> {
+    let size = browser::eval(client, "return [window.innerWidth, window.innerHeight];").await?;
+    let (w, h) = (
+        size[0].as_f64().unwrap_or(0.0),
+        size[1].as_f64().unwrap_or(0.0),
+    );
+    let controls = layout::controls(&state["buttons"]).map_err(E2eError::Check)?;
+    let faults = layout::faults(&controls, w, h, if finger { 44.0 } else { 0.0 });
+    let png = browser::screenshot(client, &artifacts.join(shot)).await?;
+    picture::stats(&png)?.check_drawn(shot, 8, 0.001)?;
+    eprintln!(
+        "e2e: {shot}: {} controls in {w}x{h}, {} faults",
+        controls.len(),
+        faults.len()
+    );
+    if faults.is_empty() {
+        Ok(())
+    } else {
+        Err(E2eError::Check(format!(
+            "{shot} (screen {}): {}",
+            state["screen"],
+            faults.join("; ")
+        )))
+    }
+}
+
+async fn layouts(
+    client: &Client,
+    server: &Server,
+    artifacts: &Path,
+    window: &Window,
+) -> Result<()> {
+    let (w, h) = browser::fit_viewport(client, window.width, window.height).await?;
+    let dpr = browser::eval(client, "return window.devicePixelRatio;").await?;
+    eprintln!(
+        "e2e: {} viewport {w}x{h} at a device-pixel ratio of {dpr}",
+        window.name
+    );
+    client.goto(&server.url("/")).await?;
+    let name = window.name;
+    // The lobby, with the server's lists filled in.
+    let lobby = state_until(client, "the lobby", 30, |s| {
+        s["screen"] == "lobby" && s["buttons"]["vs-computer-easy"].is_array()
+    })
+    .await?;
+    // The canvas is drawn at device pixels.
+    let canvas = browser::eval(
+        client,
+        "const c = document.querySelector('#glcanvas'); return [c.width, c.clientWidth];",
+    )
+    .await?;
+    let (pixels, css) = (
+        canvas[0].as_f64().unwrap_or(0.0),
+        canvas[1].as_f64().unwrap_or(1.0),
+    );
+    let ratio = dpr.as_f64().unwrap_or(1.0);
+    if (pixels / css - ratio).abs() > 0.05 {
+        return Err(E2eError::Check(format!(
+            "the canvas is {pixels} pixels wide for {css} CSS pixels at a device-pixel ratio of {ratio}"
+        )));
+    }
+    check_layout(
+        client,
+        artifacts,
+        &format!("layout-{name}-1-lobby.png"),
+        &lobby,
+        true,
+    )
+    .await?;
+    // The rules over the lobby.
+    click_button(client, "help").await?;
+    let help = state_until(client, "the rules", 5, |s| {
+        s["buttons"]["help-close"].is_array()
+    })
+    .await?;
+    let close = &help["buttons"]["help-close"];
+    let only_close = serde_json::json!({ "help-close": close });
+    check_layout(
+        client,
+        artifacts,
+        &format!("layout-{name}-2-rules.png"),
+        &serde_json::json!({"buttons": only_close, "screen": "lobby"}),
+        true,
+    )
+    .await?;
+    click_button(client, "help-close").await?;
+
+    // A match against the easy computer.
+    click_button(client, "vs-computer-easy").await?;
+    let play = state_until(client, "our turn on the play screen", 30, |s| {
+        s["screen"] == "play" && s["my_turn"] == true && s["animating"] == false
+    })
+    .await?;
+    check_layout(
+        client,
+        artifacts,
+        &format!("layout-{name}-3-play.png"),
+        &play,
+        true,
+    )
+    .await?;
+    // Full power from a back-row piece: pull it straight down to the
+    // window's bottom edge; the meter stays inside the window.
+    let piece = play["pieces"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter(|p| p["mine"] == true)
+        .filter_map(|p| Some((p["x"].as_f64()?, p["y"].as_f64()?)))
+        .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.total_cmp(&a.0)))
+        .ok_or_else(|| E2eError::Check(format!("no piece of ours: {}", play["pieces"])))?;
+    let edge = (piece.0, f64::from(h) - 2.0);
+    browser::press_and_move(client, piece, edge, 10).await?;
+    let aiming = browser::eval(client, STATE).await?;
+    let _ = browser::screenshot(client, &artifacts.join(format!("layout-{name}-4-aim.png"))).await;
+    browser::release(client).await?;
+    let power = aiming["aim_power"].as_f64().unwrap_or(0.0);
+    eprintln!("e2e: {name}: pulled from {piece:?} to {edge:?}: power {power:.3}");
+    if power < 0.999 {
+        return Err(E2eError::Check(format!(
+            "a pull from the back row to the window's edge gave {:.0} % of full power: {aiming}",
+            power * 100.0
+        )));
+    }
+    let meter = serde_json::json!({ "meter": aiming["meter"] });
+    let meter = layout::controls(&meter).map_err(E2eError::Check)?;
+    let off = layout::faults(&meter, f64::from(w), f64::from(h), 0.0);
+    if !off.is_empty() {
+        return Err(E2eError::Check(format!(
+            "the power meter: {}",
+            off.join("; ")
+        )));
+    }
+    // The shot is played; then resign: the end-of-match screen.
+    state_until(client, "the shot counted", 20, |s| {
+        s["shots"].as_u64().is_some_and(|n| n >= 1)
+    })
+    .await?;
+    click_button(client, "resign").await?;
+    click_button(client, "resign-yes").await?;
+    let end = state_until(client, "the end-of-match screen", 30, |s| {
+        s["buttons"]["end-replay"].is_array() && s["animating"] == false
+    })
+    .await?;
+    check_layout(
+        client,
+        artifacts,
+        &format!("layout-{name}-5-end.png"),
+        &end,
+        true,
+    )
+    .await?;
+    click_button(client, "end-replay").await?;
+    let replay = state_until(client, "the replay loaded", 20, |s| {
+        s["screen"] == "replay" && s["shots"].as_u64().is_some_and(|n| n >= 1)
+    })
+    .await?;
+    check_layout(
+        client,
+        artifacts,
+        &format!("layout-{name}-6-replay.png"),
+        &replay,
+        true,
+    )
+    .await?;
+    // The sandbox is a desktop tool: zoomed out to fit, not finger-sized.
+    click_button(client, "lobby").await?;
+    click_button(client, "sandbox").await?;
+    let sandbox = state_until(client, "the sandbox", 10, |s| {
+        s["screen"] == "sandbox" && s["bodies"].as_u64().is_some_and(|n| n > 0)
+    })
+    .await?;
+    check_layout(
+        client,
+        artifacts,
+        &format!("layout-{name}-7-sandbox.png"),
+        &sandbox,
+        false,
+    )
+    .await
 }
 
 async fn play(client: &Client, server: &Server, artifacts: &Path) -> Result<()> {

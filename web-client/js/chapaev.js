@@ -1,7 +1,8 @@
 // The web client's miniquad plugin: what the wasm needs from the browser
 // beyond macroquad's own bundle. WebSockets, HTTP requests, the page
-// address, localStorage, file download and upload, and the readiness flag
-// and state report that the end-to-end test reads.
+// address, localStorage, file download and upload, pasted text, short
+// sounds, and the readiness flag and state report that the end-to-end test
+// reads.
 //
 // Strings and bytes cross the boundary by copy: Rust passes (pointer,
 // length) into its memory; JS results are queued and Rust asks for their
@@ -176,6 +177,62 @@
         }
     }
 
+    // ---- Paste and sound -------------------------------------------------
+    // Pasted text waits here until the frame loop takes it (macroquad only
+    // keeps it for its own clipboard call, which nothing polls).
+    let pasted = null;
+    window.addEventListener("paste", (e) => {
+        const data = e.clipboardData || window.clipboardData;
+        const text = data ? data.getData("text") : "";
+        if (text) pasted = pasted === null ? text : pasted + text;
+    }, true);
+    function pasted_len() {
+        if (pasted === null) return -1;
+        const n = stage(pasted);
+        pasted = null;
+        return n;
+    }
+    // Three short synthesised sounds: flick, fall, your turn.
+    let audio = null;
+    function beep(kind) {
+        try {
+            audio = audio || new (window.AudioContext || window.webkitAudioContext)();
+            const [freq, ms, type] = [[520, 60, "triangle"], [180, 140, "sine"], [880, 120, "sine"]][kind] || [440, 80, "sine"];
+            const osc = audio.createOscillator();
+            const gain = audio.createGain();
+            osc.type = type;
+            osc.frequency.value = freq;
+            const t = audio.currentTime;
+            gain.gain.setValueAtTime(0.12, t);
+            gain.gain.exponentialRampToValueAtTime(0.001, t + ms / 1000);
+            osc.connect(gain).connect(audio.destination);
+            osc.start(t);
+            osc.stop(t + ms / 1000 + 0.02);
+        } catch (e) { /* no audio here */ }
+    }
+
+    // ---- Text on touch screens ------------------------------------------
+    // A canvas never raises a phone's keyboard: a text field tapped there
+    // asks with the browser's own prompt, after the frame (it blocks).
+    function coarse_pointer() {
+        return window.matchMedia && window.matchMedia("(pointer: coarse)").matches ? 1 : 0;
+    }
+    let prompted = null;
+    function ask(lptr, llen, vptr, vlen) {
+        const label = str(lptr, llen);
+        const value = str(vptr, vlen);
+        setTimeout(() => {
+            const answer = window.prompt(label, value);
+            if (answer !== null) prompted = answer;
+        }, 0);
+    }
+    function prompted_len() {
+        if (prompted === null) return -1;
+        const n = stage(prompted);
+        prompted = null;
+        return n;
+    }
+
     // ---- Test hooks ------------------------------------------------------
     function set_ready() {
         window.chapaev_ready_ms = performance.now();
@@ -208,6 +265,11 @@
         env.chapaev_copy = copy_text;
         env.chapaev_set_ready = set_ready;
         env.chapaev_report = report;
+        env.chapaev_pasted_len = pasted_len;
+        env.chapaev_beep = beep;
+        env.chapaev_coarse_pointer = coarse_pointer;
+        env.chapaev_prompt = ask;
+        env.chapaev_prompted_len = prompted_len;
     }
     // macroquad listens for the mouse on the canvas only: a slingshot pulled
     // past the page's edge would never be released. Forward what happens
@@ -216,9 +278,11 @@
         const canvas = document.querySelector("#glcanvas");
         // The right button aims and pans in the sandbox: no context menu.
         canvas.addEventListener("contextmenu", (e) => e.preventDefault());
+        // In device pixels, as miniquad's own handlers report them.
         const at = (e) => {
             const r = canvas.getBoundingClientRect();
-            return [e.clientX - r.left, e.clientY - r.top];
+            const dpr = window.devicePixelRatio || 1;
+            return [(e.clientX - r.left) * dpr, (e.clientY - r.top) * dpr];
         };
         window.addEventListener("mousemove", (e) => {
             if (e.target === canvas) return;

@@ -63,10 +63,10 @@ pub fn board(v: &Viewport, size: f64) {
         } else {
             frame * 0.75
         };
-        draw_text(&s, f.x - label * 0.25, f.y + dy, label, WOOD_LIGHT);
+        crate::ui::draw_at_baseline(&s, f.x - label * 0.3, f.y + dy, label, WOOD_LIGHT);
         let r = v.to_screen(DVec2::new(0.0, (i as f64 + 0.5) * sq));
         let dx = if v.flipped { frame * 0.3 } else { -frame * 0.7 };
-        draw_text(
+        crate::ui::draw_at_baseline(
             &(i + 1).to_string(),
             r.x + dx,
             r.y + label * 0.3,

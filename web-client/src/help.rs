@@ -41,14 +41,14 @@ fn wrap(text: &str, size: f32, width: f32) -> Vec<String> {
 
 /// Draws the panel centred on the screen; `true` when it is closed.
 pub fn show(ui: &mut Ui) -> bool {
-    let (w, h) = (screen_width(), screen_height());
+    let (w, h) = crate::scale::size().into();
     draw_rectangle(0.0, 0.0, w, h, Color::new(0.0, 0.0, 0.0, 0.55));
-    let pw = (w - 40.0).min(640.0);
-    let size = 17.0;
+    let pw = (w - 24.0).min(640.0);
+    let size = if w < 500.0 { 15.0 } else { 17.0 };
     let text_w = pw - 40.0;
     let wrapped: Vec<Vec<String>> = RULES.iter().map(|r| wrap(r, size, text_w)).collect();
     let lines: usize = wrapped.iter().map(Vec::len).sum();
-    let ph = (90.0 + lines as f32 * (size + 4.0) + RULES.len() as f32 * 8.0 + 50.0).min(h - 20.0);
+    let ph = (90.0 + lines as f32 * (size + 4.0) + RULES.len() as f32 * 8.0 + 64.0).min(h - 20.0);
     let r = Rect::new((w - pw) / 2.0, (h - ph) / 2.0, pw, ph);
     ui::panel(r);
     ui::text(
@@ -66,6 +66,11 @@ pub fn show(ui: &mut Ui) -> bool {
         }
         y += 8.0;
     }
-    let close = Rect::new(r.x + r.w - 120.0, r.y + r.h - 48.0, 100.0, 34.0);
+    let close = Rect::new(
+        r.x + r.w - 120.0,
+        r.y + r.h - ui::TOUCH - 12.0,
+        100.0,
+        ui::TOUCH,
+    );
     ui.button("help-close", "Got it", close) || is_key_pressed(KeyCode::Escape)
 }

@@ -115,7 +115,7 @@ impl Lobby {
 }
 
 /// A name the server accepts: trimmed, at most 40 characters, `Player` if empty.
-fn clean_name(n: &str) -> String {
+pub fn clean_name(n: &str) -> String {
     let n: String = n
         .trim()
         .chars()
@@ -134,22 +134,26 @@ pub fn saved_name() -> String {
     clean_name(&platform::storage_get(NAME_KEY).unwrap_or_default())
 }
 
-fn describe(s: &Summary) -> String {
+/// A match in two lines: who plays whom, then how it stands.
+fn describe(s: &Summary) -> (String, String) {
     let first = s.first.as_deref().unwrap_or("?");
     let second = match (&s.second, &s.bot) {
         (_, Some(level)) => format!("computer ({level})"),
         (Some(n), None) => n.clone(),
         (None, None) => "...".to_string(),
     };
-    let mut d = format!("{first} vs {second}");
-    if let Some(r) = s.result.and_then(|r| r.winner()) {
-        let w = if r == Side::White { "White" } else { "Black" };
-        d.push_str(&format!(" · {w} won"));
+    let mut facts = Vec::new();
+    match s.result {
+        Some(r) => match r.winner() {
+            Some(Side::White) => facts.push("White won".to_string()),
+            Some(Side::Black) => facts.push("Black won".to_string()),
+            None => facts.push("drawn".to_string()),
+        },
+        None if s.second.is_none() && s.bot.is_none() => facts.push("waiting".to_string()),
+        None => {}
     }
-    if s.shots > 0 {
-        d.push_str(&format!(" · {} shots", s.shots));
-    }
-    d
+    facts.push(crate::story::count(s.shots, "shot"));
+    (format!("{first} vs {second}"), facts.join(" · "))
 }
 
 impl Screen for Lobby {
@@ -172,126 +176,190 @@ impl Lobby {
     /// The lobby itself (drawn under the rules when they are open).
     fn lists_and_controls(&mut self, ui: &mut Ui) -> Option<Route> {
         let mut go = self.poll();
-        let (w, h) = (screen_width(), screen_height());
-        let col = (w - 40.0).min(980.0);
+        let (w, h) = crate::scale::size().into();
+        let pad = if w < 600.0 { 12.0 } else { 20.0 };
+        let col = (w - 2.0 * pad).min(980.0);
         let x0 = (w - col) / 2.0;
-        let mut y = 24.0;
-        // The title, with two checkers for a logo.
-        draw::checker(vec2(x0 + 22.0, y + 22.0), 20.0, Side::White, 1.0);
-        draw::checker(vec2(x0 + 52.0, y + 30.0), 20.0, Side::Black, 1.0);
-        ui::text("Chapaev online", x0 + 86.0, y, 40.0, colors::ACCENT);
+        let narrow = col < 700.0;
+        let row = ui::TOUCH;
+        let gap = 8.0;
+        let mut y = if narrow { 10.0 } else { 24.0 };
+        // The title, with two checkers for a logo, and the rules beside it.
+        let help = if narrow {
+            Rect::new(x0 + col - 84.0, y + 2.0, 84.0, row)
+        } else {
+            Rect::new(x0 + col - 150.0, y + 4.0, 150.0, row)
+        };
+        let logo = if narrow { 14.0 } else { 20.0 };
+        draw::checker(
+            vec2(x0 + logo + 2.0, y + logo + 2.0),
+            logo,
+            Side::White,
+            1.0,
+        );
+        draw::checker(
+            vec2(x0 + logo * 2.6, y + logo * 1.5),
+            logo,
+            Side::Black,
+            1.0,
+        );
+        let tx = x0 + logo * 4.2;
+        let room = help.x - tx - gap;
+        let mut title = if narrow { 26.0 } else { 40.0 };
+        while title > 16.0 && ui::text_width("Chapaev online", title) > room {
+            title -= 1.0;
+        }
+        ui::text("Chapaev online", tx, y, title, colors::ACCENT);
         ui::text(
-            "flick your checkers, knock theirs off the board",
-            x0 + 88.0,
-            y + 42.0,
-            18.0,
+            &ui::fit(
+                "flick your checkers, knock theirs off the board",
+                if narrow { 13.0 } else { 18.0 },
+                room,
+            ),
+            tx + 2.0,
+            y + title + 4.0,
+            if narrow { 13.0 } else { 18.0 },
             colors::MUTED,
         );
-        if ui.button(
-            "help",
-            "How to play",
-            Rect::new(x0 + col - 140.0, y + 6.0, 140.0, 34.0),
-        ) {
+        let rules = if narrow { "Rules" } else { "How to play" };
+        if ui.button("help", rules, help) {
             self.help = true;
         }
-        y += 86.0;
-        ui::text("Your name", x0, y + 8.0, 18.0, colors::TEXT);
+        y += if narrow { 62.0 } else { 86.0 };
+        let label_w = if narrow { 98.0 } else { 100.0 };
+        ui::text("Your name", x0, y + 12.0, 17.0, colors::TEXT);
+        let field_w = (col - label_w).min(260.0);
         ui.text_field(
             "name",
             &mut self.name,
-            Rect::new(x0 + 100.0, y, 260.0, 34.0),
+            Rect::new(x0 + label_w, y, field_w, row),
             "Player",
             40,
         );
-        y += 52.0;
-        let bw = ((col - 32.0) / 5.0).min(200.0);
-        let b = |i: f32| Rect::new(x0 + i * (bw + 8.0), y, bw, 48.0);
-        if ui.button("vs-computer-easy", "Computer: easy", b(0.0)) {
-            self.create(Opponent::Bot("easy"));
+        y += row + 12.0;
+        // The matches to start: a row of five, or a grid of two columns.
+        let choices: [(&str, &str); 5] = [
+            ("vs-computer-easy", "Computer: easy"),
+            ("vs-computer-medium", "Computer: medium"),
+            ("vs-computer-hard", "Computer: hard"),
+            ("vs-person", "A friend (link)"),
+            ("sandbox", "Physics sandbox"),
+        ];
+        let per_row = if narrow { 2 } else { 5 };
+        let bw = (col - gap * (per_row - 1) as f32) / per_row as f32;
+        let bh = if narrow { row } else { 52.0 };
+        for (i, (name, label)) in choices.iter().enumerate() {
+            let (c, r) = ((i % per_row) as f32, (i / per_row) as f32);
+            let rect = Rect::new(x0 + c * (bw + gap), y + r * (bh + gap), bw, bh);
+            if ui.button(name, label, rect) {
+                match i {
+                    0 => self.create(Opponent::Bot("easy")),
+                    1 => self.create(Opponent::Bot("medium")),
+                    2 => self.create(Opponent::Bot("hard")),
+                    3 => self.create(Opponent::Person),
+                    _ => go = Some(Route::Sandbox),
+                }
+            }
         }
-        if ui.button("vs-computer-medium", "Computer: medium", b(1.0)) {
-            self.create(Opponent::Bot("medium"));
-        }
-        if ui.button("vs-computer-hard", "Computer: hard", b(2.0)) {
-            self.create(Opponent::Bot("hard"));
-        }
-        if ui.button("vs-person", "A friend (link)", b(3.0)) {
-            self.create(Opponent::Person);
-        }
-        if ui.button("sandbox", "Physics sandbox", b(4.0)) {
-            go = Some(Route::Sandbox);
-        }
-        y += 62.0;
-        ui::text("Join by id", x0, y + 8.0, 18.0, colors::TEXT);
-        let field = Rect::new(x0 + 100.0, y, 260.0, 34.0);
+        let rows = choices.len().div_ceil(per_row) as f32;
+        y += rows * (bh + gap) + 6.0;
+        ui::text("Join by id", x0, y + 12.0, 17.0, colors::TEXT);
+        let join_w = 80.0;
+        let field_w = (col - label_w - gap - join_w).min(300.0);
+        let field = Rect::new(x0 + label_w, y, field_w, row);
         let entered = ui.text_field("join-id-field", &mut self.join_id, field, "match id", 64);
         let id = self.join_id.trim().to_string();
         let ok = !id.is_empty() && id.chars().all(|c| c.is_ascii_alphanumeric());
-        if (ui.button_styled(
-            "join-id",
-            "Join",
-            Rect::new(x0 + 370.0, y, 90.0, 34.0),
-            ok,
-            false,
-        ) || entered)
-            && ok
-        {
-            platform::storage_set(NAME_KEY, self.name.trim());
+        let join = Rect::new(field.x + field.w + gap, y, join_w, row);
+        if (ui.button_styled("join-id", "Join", join, ok, false) || entered) && ok {
             go = Some(Route::Join { match_id: id });
         }
+        y += row + 10.0;
         if let Some(m) = &self.message {
-            ui::text(m, x0 + 480.0, y + 8.0, 16.0, colors::MUTED);
+            if narrow {
+                ui::text(&ui::fit(m, 15.0, col), x0, y, 15.0, colors::MUTED);
+                y += 22.0;
+            } else {
+                let mx = join.x + join.w + 16.0;
+                ui::text(
+                    &ui::fit(m, 16.0, x0 + col - mx),
+                    mx,
+                    join.y + 12.0,
+                    16.0,
+                    colors::MUTED,
+                );
+            }
         }
-        y += 54.0;
-        ui::text(
-            "Writing a bot? The HTTP and WebSocket protocol is described at /api",
-            x0,
-            h - 20.0,
-            14.0,
-            colors::MUTED,
-        );
+        let footer = if narrow {
+            "Writing a bot? See /api"
+        } else {
+            "Writing a bot? The HTTP and WebSocket protocol is described at /api"
+        };
+        ui::text(footer, x0, h - 22.0, 14.0, colors::MUTED);
         // The three lists side by side (or stacked on a narrow screen).
-        let narrow = col < 700.0;
-        let lw = if narrow { col } else { (col - 24.0) / 3.0 };
         let top = y;
+        let bottom = h - 30.0;
+        let lw = if narrow { col } else { (col - 24.0) / 3.0 };
         for (i, l) in self.lists.iter().enumerate() {
-            let (lx, mut ly) = if narrow {
-                (x0, top + i as f32 * ((h - top - 24.0) / 3.0))
+            let area = if narrow {
+                let lh = (bottom - top) / 3.0;
+                Rect::new(x0, top + i as f32 * lh, lw, lh - gap)
             } else {
-                (x0 + i as f32 * (lw + 12.0), top)
+                Rect::new(x0 + i as f32 * (lw + 12.0), top, lw, bottom - top)
             };
-            let lh = if narrow {
-                (h - top - 24.0) / 3.0 - 8.0
-            } else {
-                h - top - 36.0
-            };
-            ui::panel(Rect::new(lx, ly, lw, lh));
-            ui::text(l.title, lx + 10.0, ly + 8.0, 20.0, colors::ACCENT);
-            ly += 36.0;
-            if l.items.is_empty() {
-                ui::text("none yet", lx + 10.0, ly, 16.0, colors::MUTED);
+            if let Some(r) = list(ui, l, area) {
+                go = Some(r);
             }
-            for (k, s) in l.items.iter().enumerate() {
-                if ly + 30.0 > top + lh {
-                    break;
-                }
-                let text: String = describe(s)
-                    .chars()
-                    .take(((lw - 98.0) / 6.8).max(8.0) as usize)
-                    .collect();
-                ui::text(&text, lx + 10.0, ly + 6.0, 15.0, colors::TEXT);
-                let name = format!("{}-{k}", l.status);
-                if ui.button(&name, l.action, Rect::new(lx + lw - 78.0, ly, 68.0, 26.0)) {
-                    let match_id = s.match_id.clone();
-                    go = Some(match l.status {
-                        "open" => Route::Join { match_id },
-                        "live" => Route::Watch { match_id },
-                        _ => Route::Replay { match_id },
-                    });
-                }
-                ly += 32.0;
-            }
+        }
+        if go.is_some() {
+            platform::storage_set(NAME_KEY, self.name.trim());
         }
         go
     }
+}
+
+/// One list of matches in `area`, as many rows as fit (each a
+/// finger-sized button and two lines of description); where a click leads.
+fn list(ui: &mut Ui, l: &List, area: Rect) -> Option<Route> {
+    let mut go = None;
+    ui::panel(area);
+    ui::text(l.title, area.x + 10.0, area.y + 8.0, 19.0, colors::ACCENT);
+    let mut y = area.y + 34.0;
+    if l.items.is_empty() {
+        ui::text("none yet", area.x + 10.0, y, 16.0, colors::MUTED);
+    }
+    let button_w = 76.0;
+    let text_w = area.w - button_w - 28.0;
+    for (k, s) in l.items.iter().enumerate() {
+        if y + ui::TOUCH > area.y + area.h - 4.0 {
+            break;
+        }
+        let (names, facts) = describe(s);
+        ui::text(
+            &ui::fit(&names, 15.0, text_w),
+            area.x + 10.0,
+            y + 3.0,
+            15.0,
+            colors::TEXT,
+        );
+        ui::text(
+            &ui::fit(&facts, 13.0, text_w),
+            area.x + 10.0,
+            y + 24.0,
+            13.0,
+            colors::MUTED,
+        );
+        let name = format!("{}-{k}", l.status);
+        let r = Rect::new(area.x + area.w - button_w - 8.0, y, button_w, ui::TOUCH);
+        if ui.button(&name, l.action, r) {
+            let match_id = s.match_id.clone();
+            go = Some(match l.status {
+                "open" => Route::Join { match_id },
+                "live" => Route::Watch { match_id },
+                _ => Route::Replay { match_id },
+            });
+        }
+        y += ui::TOUCH + 6.0;
+    }
+    go
 }

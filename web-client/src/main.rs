@@ -16,7 +16,9 @@ mod play;
 mod replay;
 mod route;
 mod sandbox;
+mod scale;
 mod screen;
+mod story;
 mod timeline;
 mod ui;
 mod viewport;
@@ -31,7 +33,7 @@ fn conf() -> Conf {
         window_title: "Chapaev online".to_owned(),
         window_width: 1024,
         window_height: 720,
-        high_dpi: false,
+        high_dpi: true,
         sample_count: 4,
         ..Default::default()
     }
@@ -71,6 +73,7 @@ async fn main() {
     loop {
         let started = get_time();
         clear_background(ui::colors::BACKGROUND);
+        scale::begin_frame(screen.min_width());
         ui.begin(Input::read());
         let dt = (get_frame_time() as f64).min(0.1);
         let next = screen.frame(&mut ui, dt);

@@ -1,7 +1,8 @@
 //! The outside world as the client sees it, one API on both targets: a
 //! WebSocket, HTTP requests, the page address, persistent key-value
-//! storage, saving and opening files, and the readiness flag and state
-//! report that the browser test reads.
+//! storage, saving and opening files, pasted text, short sounds, the
+//! browser's own text prompt (a phone's keyboard never opens for a
+//! canvas), and the readiness flag and state report that the browser test reads.
 //!
 //! In the browser every call goes to the small miniquad plugin in
 //! `js/chapaev.js` (loaded after macroquad's `mq_js_bundle.js`); on the
@@ -25,6 +26,17 @@ pub enum HttpReply {
     Done { status: u16, body: String },
     /// No answer (the server is unreachable).
     Failed(String),
+}
+
+/// The game's few short sounds (synthesised by the browser, off by default).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Sound {
+    /// A piece was flicked.
+    Flick = 0,
+    /// A piece fell off the board.
+    Fall = 1,
+    /// It is your turn.
+    YourTurn = 2,
 }
 
 #[cfg(target_arch = "wasm32")]
@@ -60,6 +72,11 @@ mod imp {
         fn chapaev_copy(ptr: *const u8, len: usize);
         fn chapaev_set_ready();
         fn chapaev_report(ptr: *const u8, len: usize);
+        fn chapaev_pasted_len() -> i32;
+        fn chapaev_beep(kind: i32);
+        fn chapaev_coarse_pointer() -> i32;
+        fn chapaev_prompt(l: *const u8, ll: usize, v: *const u8, vl: usize);
+        fn chapaev_prompted_len() -> i32;
     }
 
     /// The plugin's version, checked by miniquad's loader against `chapaev.js`.
@@ -178,6 +195,28 @@ mod imp {
 
     pub fn report(json: &str) {
         unsafe { chapaev_report(json.as_ptr(), json.len()) }
+    }
+
+    pub fn pasted() -> Option<String> {
+        let len = unsafe { chapaev_pasted_len() };
+        (len >= 0).then(|| take(len, |p, c| unsafe { chapaev_staged_take(p, c) }))
+    }
+
+    pub fn beep(sound: super::Sound) {
+        unsafe { chapaev_beep(sound as i32) }
+    }
+
+    pub fn coarse_pointer() -> bool {
+        unsafe { chapaev_coarse_pointer() == 1 }
+    }
+
+    pub fn prompt(label: &str, value: &str) {
+        unsafe { chapaev_prompt(label.as_ptr(), label.len(), value.as_ptr(), value.len()) }
+    }
+
+    pub fn prompted() -> Option<String> {
+        let len = unsafe { chapaev_prompted_len() };
+        (len >= 0).then(|| take(len, |p, c| unsafe { chapaev_staged_take(p, c) }))
     }
 }
 
@@ -353,9 +392,28 @@ mod imp {
     pub fn set_ready() {}
 
     pub fn report(_json: &str) {}
+
+    /// On the desktop nothing is pasted (no clipboard crate).
+    pub fn pasted() -> Option<String> {
+        None
+    }
+
+    /// On the desktop the game is silent.
+    pub fn beep(_sound: super::Sound) {}
+
+    /// The desktop has a mouse and a keyboard.
+    pub fn coarse_pointer() -> bool {
+        false
+    }
+
+    pub fn prompt(_label: &str, _value: &str) {}
+
+    pub fn prompted() -> Option<String> {
+        None
+    }
 }
 
 pub use imp::{
-    copy_text, location, picked_file, report, request_file, save_file, set_hash, set_ready,
-    storage_get, storage_set, Request, Socket,
+    beep, coarse_pointer, copy_text, location, pasted, picked_file, prompt, prompted, report,
+    request_file, save_file, set_hash, set_ready, storage_get, storage_set, Request, Socket,
 };

@@ -1,15 +1,21 @@
 //! A live match, played or watched: the connection, the announcements
 //! queued and animated in order from their exact films, the slingshot for
-//! the player whose turn it is, and the side panel (players, round, rows,
-//! pieces left, the turn clock, the pie decision, resign, rematch, chat,
-//! the invitation link).
+//! the player whose turn it is, the side panel (players, round, rows,
+//! pieces left, the turn clock, the shot log, the pie decision, resign,
+//! rematch, sound, chat, the invitation link) and the end-of-match screen.
+//!
+//! In a wide window the panel stands to the right of the board; in a tall
+//! one (a phone held upright) the board takes the full width at the top
+//! and the panel lies below it. A player who opens an invitation link
+//! without a name is asked for one before taking the seat.
 
-use crate::aim::{Aim, Slingshot};
+use crate::aim::{self, Aim, Slingshot};
 use crate::api::{token_key, Api, Pending, SeatGrant};
 use crate::clip::{Clip, Frame};
 use crate::connection::{Connection, Link};
 use crate::route::{ws_origin, Route};
 use crate::screen::Screen;
+use crate::story::{self, side_name, Score};
 use crate::ui::{self, colors, Ui};
 use crate::viewport::Viewport;
 use crate::{draw, platform};
@@ -22,6 +28,9 @@ use std::collections::VecDeque;
 
 /// How the screen came to the match.
 enum Setup {
+    /// Opened from an invitation link by a player without a name: asking
+    /// for one before taking the seat.
+    Naming(String),
     /// Taking the empty seat first.
     Joining(Pending<SeatGrant>),
     /// Connected (or connecting) with a token, or watching without one.
@@ -65,16 +74,29 @@ pub struct Play {
     now: f64,
     /// Where the pieces were drawn this frame (for the test report).
     drawn: Vec<(PieceId, Vec2, f32)>,
+    /// The slingshot's power and the meter's rectangle while aiming.
+    aiming: Option<(f64, Rect)>,
+    /// The board's map this frame (the slingshot reads the pointer with it).
+    viewport: Option<Viewport>,
+    /// One line per shot shown, newest last.
+    log: VecDeque<String>,
+    /// The outcomes of the shots seen (the end screen's score).
+    outcomes: Vec<game::ShotOutcome>,
+    /// The whole match's score, from the record the server sent at its end.
+    final_score: Option<Score>,
+    /// The end-of-match screen was closed.
+    end_closed: bool,
+    /// Short sounds on (off by default; remembered by the browser).
+    sound: bool,
+    /// Whether it was the player's turn last frame, and since when it is.
+    was_my_turn: bool,
+    turn_since: f64,
 }
 
 const CHAT_LINES: usize = 6;
-
-fn side_name(s: Side) -> &'static str {
-    match s {
-        Side::White => "White",
-        Side::Black => "Black",
-    }
-}
+const LOG_LINES: usize = 4;
+const SOUND_KEY: &str = "chapaev.sound";
+const NAME_KEY: &str = "chapaev.name";
 
 impl Play {
     /// Plays (with the token this browser holds) or watches `match_id`;
@@ -85,7 +107,10 @@ impl Play {
         } else {
             platform::storage_get(&token_key(&match_id))
         };
-        let setup = if join && token.is_none() {
+        let named = platform::storage_get(NAME_KEY).is_some_and(|n| !n.trim().is_empty());
+        let setup = if join && token.is_none() && !named {
+            Setup::Naming(String::new())
+        } else if join && token.is_none() {
             Setup::Joining(api.join(&match_id, &name))
         } else {
             Setup::Live
@@ -113,6 +138,15 @@ impl Play {
             rematch_offer: None,
             now: 0.0,
             drawn: Vec::new(),
+            viewport: None,
+            aiming: None,
+            log: VecDeque::new(),
+            outcomes: Vec::new(),
+            final_score: None,
+            end_closed: false,
+            sound: platform::storage_get(SOUND_KEY).as_deref() == Some("on"),
+            was_my_turn: false,
+            turn_since: 0.0,
         };
         if matches!(p.setup, Setup::Live) {
             p.connect();
@@ -255,6 +289,18 @@ impl Play {
             };
             match m {
                 ServerMessage::ShotPlayed { outcome, film, .. } => {
+                    let line = story::shot_line(&outcome, self.my_side());
+                    self.log.push_back(line);
+                    while self.log.len() > LOG_LINES {
+                        self.log.pop_front();
+                    }
+                    if self.sound {
+                        platform::beep(platform::Sound::Flick);
+                        if !outcome.knocked_off.is_empty() {
+                            platform::beep(platform::Sound::Fall);
+                        }
+                    }
+                    self.outcomes.push(outcome.clone());
                     self.playing = Some((Clip::new(outcome, film), 0.0));
                 }
                 ServerMessage::PieDecided { swap } => {
@@ -267,10 +313,15 @@ impl Play {
                         self.view = Some(v.after_pass());
                     }
                 }
-                ServerMessage::MatchOver { result, .. } => {
+                ServerMessage::MatchOver { result, record } => {
                     if let Some(v) = &self.view {
                         self.view = Some(v.after_result(result));
                     }
+                    // The record has every shot, also those played before
+                    // this page connected.
+                    self.final_score = game::Replay::new(record)
+                        .ok()
+                        .map(|r| Score::of((0..r.shot_count()).filter_map(|n| r.outcome(n))));
                 }
                 _ => {}
             }
@@ -297,10 +348,12 @@ impl Play {
         sent
     }
 
-    /// The board, the pieces and the slingshot.
-    fn board(&mut self, ui: &mut Ui, area: Rect) {
+    /// The board and the pieces (drawn first: the panel covers what slides
+    /// off the board towards it).
+    fn board(&mut self, area: Rect) {
         let Some(v) = self.view.clone() else {
-            ui::text_centred("Connecting to the match...", area, 24.0, colors::MUTED);
+            self.viewport = None;
+            ui::text_centred("Connecting to the match...", area, 22.0, colors::MUTED);
             return;
         };
         let flipped = self.my_side() == Some(Side::Black);
@@ -310,10 +363,29 @@ impl Play {
             area.w.min(area.h) * 0.06,
             flipped,
         );
+        self.viewport = Some(vp);
+        let can_aim = self.my_turn();
+        // Your turn: the board's frame glows for a moment, then stays lit.
+        if can_aim {
+            let a = vp.to_screen(DVec2::ZERO);
+            let b = vp.to_screen(DVec2::splat(v.config.board_size()));
+            let (x0, y0) = (a.x.min(b.x), a.y.min(b.y));
+            let side = (a.x - b.x).abs();
+            let pad = side * 0.045 + 5.0;
+            let fresh = (1.0 - (self.now - self.turn_since) as f32 / 1.5).max(0.0);
+            let pulse = 0.35 + 0.65 * fresh * (0.5 + 0.5 * (self.now as f32 * 9.0).sin());
+            draw_rectangle_lines(
+                x0 - pad,
+                y0 - pad,
+                side + 2.0 * pad,
+                side + 2.0 * pad,
+                4.0,
+                Color::new(0.45, 0.85, 0.40, pulse),
+            );
+        }
         draw::board(&vp, v.config.board_size());
         let frame = self.current_frame();
         let mine = self.my_side();
-        let can_aim = self.my_turn();
         let dragging = self.drag.as_ref().map(|d| d.piece);
         draw::frame(&vp, v.config.piece_radius, &frame, |p| {
             if dragging == Some(p) {
@@ -330,11 +402,33 @@ impl Play {
             .iter()
             .map(|&(p, pos)| (p, vp.to_screen(pos), r))
             .collect();
-        self.aim(ui, &vp, &v, can_aim);
+        if can_aim && self.now - self.turn_since < 1.6 {
+            let msg = Rect::new(
+                area.x + area.w / 2.0 - 80.0,
+                area.y + area.h / 2.0 - 24.0,
+                160.0,
+                48.0,
+            );
+            let k = (1.6 - (self.now - self.turn_since) as f32).min(1.0);
+            draw_rectangle(
+                msg.x,
+                msg.y,
+                msg.w,
+                msg.h,
+                Color::new(0.0, 0.0, 0.0, 0.6 * k),
+            );
+            ui::text_centred("Your turn", msg, 24.0, Color::new(0.55, 0.95, 0.5, k));
+        }
     }
 
-    fn aim(&mut self, ui: &mut Ui, vp: &Viewport, v: &MatchView, can_aim: bool) {
-        if !can_aim {
+    /// The slingshot: takes presses the panel left, draws the pull, the
+    /// arrow and the power meter (kept inside the window), shoots on release.
+    fn aim(&mut self, ui: &mut Ui) {
+        self.aiming = None;
+        let (Some(vp), Some(v)) = (self.viewport, self.view.clone()) else {
+            return;
+        };
+        if !self.my_turn() {
             self.drag = None;
             return;
         }
@@ -361,9 +455,13 @@ impl Play {
         }
         let Some(drag) = &mut self.drag else { return };
         drag.pointer = pointer;
+        // The window in world metres: the pull's reach ends at its edge.
+        let window = crate::scale::size();
+        let (c0, c1) = (vp.to_world(vec2(0.0, 0.0)), vp.to_world(window));
+        let room = aim::room_along(drag.from, drag.pointer - drag.from, c0.min(c1), c0.max(c1));
         let sling = Slingshot {
             radius: v.config.piece_radius,
-            square: v.config.square,
+            full_pull: aim::full_pull(v.config.square, v.config.piece_radius, room),
             max_speed: v.config.max_speed,
         };
         let aim = sling.aim(drag.from, drag.pointer);
@@ -377,27 +475,42 @@ impl Play {
                 let tip = vp.to_screen(drag.from + dir * v.config.square * (0.8 + 3.2 * power));
                 let col = Color::new(1.0, 0.85 - 0.6 * power as f32, 0.25, 0.95);
                 draw::arrow(c, tip, col, 5.0);
-                // The power meter beside the pointer.
-                let (mx, my) = (p.x + 18.0, p.y - 40.0);
-                draw_rectangle(mx, my, 10.0, 60.0, Color::new(0.0, 0.0, 0.0, 0.5));
-                let h = 60.0 * power as f32;
-                draw_rectangle(mx, my + 60.0 - h, 10.0, h, col);
+                // The power meter beside the pointer, inside the window.
+                let meter = meter_rect(p, window);
+                self.aiming = Some((
+                    power,
+                    Rect::new(meter.x - 4.0, meter.y - 4.0, 62.0, meter.h + 8.0),
+                ));
+                draw_rectangle(
+                    meter.x - 4.0,
+                    meter.y - 4.0,
+                    62.0,
+                    meter.h + 8.0,
+                    Color::new(0.0, 0.0, 0.0, 0.55),
+                );
+                draw_rectangle(
+                    meter.x,
+                    meter.y,
+                    meter.w,
+                    meter.h,
+                    Color::new(1.0, 1.0, 1.0, 0.12),
+                );
+                let h = meter.h * power as f32;
+                draw_rectangle(meter.x, meter.y + meter.h - h, meter.w, h, col);
                 ui::text(
                     &format!("{:.0}%", power * 100.0),
-                    mx + 14.0,
-                    my + 20.0,
-                    16.0,
+                    meter.x + meter.w + 4.0,
+                    meter.y + meter.h / 2.0 - 8.0,
+                    15.0,
                     colors::TEXT,
                 );
             }
             Aim::Cancel => {
-                ui::text(
-                    "release here to cancel",
-                    p.x + 14.0,
-                    p.y - 10.0,
-                    16.0,
-                    colors::MUTED,
-                );
+                let msg = "release here to cancel";
+                let tw = ui::text_width(msg, 16.0);
+                let x = (p.x + 14.0).min(window.x - tw - 6.0).max(4.0);
+                let y = (p.y - 30.0).clamp(4.0, window.y - 24.0);
+                ui::text(msg, x, y, 16.0, colors::MUTED);
             }
         }
         if ui.input.released || !ui.input.down {
@@ -411,27 +524,33 @@ impl Play {
         }
     }
 
-    /// The side panel.
+    /// The side panel; `compact` in a tall window's lower part.
     fn panel(&mut self, ui: &mut Ui, area: Rect) -> Option<Route> {
         ui::panel(area);
-        let x = area.x + 14.0;
-        let w = area.w - 28.0;
-        let mut y = area.y + 12.0;
+        let compact = area.w > area.h * 0.75 || area.h < 560.0;
+        let x = area.x + 12.0;
+        let w = area.w - 24.0;
+        let bottom = area.y + area.h - 8.0;
+        let mut y = area.y + 10.0;
+        let row = ui::TOUCH;
+        let gap = 8.0;
         let line = |y: &mut f32, s: &str, size: f32, c: Color| {
-            ui::text(s, x, *y, size, c);
-            *y += size + 6.0;
+            ui::text(&ui::fit(s, size, w), x, *y, size, c);
+            *y += size + 5.0;
         };
-        line(&mut y, "Chapaev", 28.0, colors::ACCENT);
         let role = match self.my_side() {
             Some(s) => format!("You play {}", side_name(s)),
             None => "Watching".to_string(),
         };
-        line(
-            &mut y,
-            &format!("{role} · match {}", self.match_id),
-            16.0,
-            colors::MUTED,
-        );
+        if !compact {
+            line(&mut y, "Chapaev", 26.0, colors::ACCENT);
+            line(
+                &mut y,
+                &format!("{role} · match {}", self.match_id),
+                15.0,
+                colors::MUTED,
+            );
+        }
         let link = match self.conn.as_ref().map(Connection::link) {
             Some(Link::Open) => ("connected".to_string(), colors::GOOD),
             Some(Link::Connecting) => ("connecting...".to_string(), colors::MUTED),
@@ -445,15 +564,20 @@ impl Play {
             Some(Link::Failed(why)) => (format!("disconnected: {why}"), colors::DANGER),
             None => ("not connected".to_string(), colors::MUTED),
         };
-        line(&mut y, &link.0, 16.0, link.1);
-        y += 6.0;
+        if compact {
+            line(&mut y, &format!("{role} · {}", link.0), 15.0, link.1);
+        } else {
+            line(&mut y, &link.0, 15.0, link.1);
+        }
+        y += 4.0;
         let Some(v) = self.view.clone() else {
             return ui
-                .button("lobby", "Back to the lobby", Rect::new(x, y, w, 36.0))
+                .button("lobby", "Back to the lobby", Rect::new(x, y, w, row))
                 .then_some(Route::Lobby);
         };
         let frame = self.current_frame();
-        for side in [Side::White, Side::Black] {
+        let half = (w - gap) / 2.0;
+        for (i, side) in [Side::White, Side::Black].into_iter().enumerate() {
             let seat = Seat::of(side, v.swapped);
             let left = frame
                 .pieces
@@ -462,162 +586,168 @@ impl Play {
                 .count();
             let you = if Some(seat) == self.you { " (you)" } else { "" };
             let turn = v.to_shoot() == Some(side) && self.playing.is_none();
-            draw::checker(vec2(x + 10.0, y + 11.0), 9.0, side, 1.0);
-            let c = if turn { colors::ACCENT } else { colors::TEXT };
-            ui::text(
-                &format!("{}{you}", self.name_of(seat)),
-                x + 26.0,
-                y,
-                20.0,
-                c,
-            );
-            ui::text(&format!("{left}/8"), x + w - 40.0, y, 20.0, colors::TEXT);
-            y += 24.0;
             // Rows count from the side's own edge.
             let rank = v.rows.rank(side);
-            let row = if side == Side::White {
+            let row_no = if side == Side::White {
                 rank + 1
             } else {
                 8 - rank
             };
+            let (px, pw) = if compact {
+                (x + i as f32 * (half + gap), half)
+            } else {
+                (x, w)
+            };
+            draw::checker(vec2(px + 9.0, y + 10.0), 8.0, side, 1.0);
+            let c = if turn { colors::ACCENT } else { colors::TEXT };
+            let count = format!("{left}/8");
+            let cw = ui::text_width(&count, 18.0);
             ui::text(
-                &format!("on row {row} of 8 from its edge"),
-                x + 26.0,
+                &ui::fit(
+                    &format!("{}{you}", self.name_of(seat)),
+                    18.0,
+                    pw - 30.0 - cw,
+                ),
+                px + 22.0,
                 y,
-                15.0,
+                18.0,
+                c,
+            );
+            ui::text(&count, px + pw - cw, y, 18.0, colors::TEXT);
+            ui::text(
+                &format!("row {row_no} of 8"),
+                px + 22.0,
+                y + 21.0,
+                13.0,
                 colors::MUTED,
             );
-            y += 22.0;
+            if !compact {
+                y += 40.0;
+            }
         }
-        line(
-            &mut y,
-            &format!("Round {} · shot {}", v.round, v.shots + 1),
-            18.0,
-            colors::TEXT,
-        );
+        if compact {
+            y += 40.0;
+        }
+        let over = matches!(v.phase, Phase::Over { .. });
+        let busy = self.playing.is_some() || !self.queue.is_empty();
+        let shots = if over && !busy {
+            format!("Round {} · {}", v.round, story::count(v.shots, "shot"))
+        } else {
+            format!("Round {} · shot {}", v.round, v.shots + 1)
+        };
+        line(&mut y, &shots, 16.0, colors::TEXT);
         // Whose turn, and the clock.
         let status = match v.phase {
             Phase::Over { result } => result_text(result, self.my_side()),
             Phase::PieDecision => "Black decides: swap seats or not".to_string(),
-            Phase::Shooting if self.playing.is_some() || !self.queue.is_empty() => {
-                "...".to_string()
-            }
+            Phase::Shooting if busy => "...".to_string(),
             Phase::Shooting if self.awaiting => "shooting...".to_string(),
             Phase::Shooting if self.my_turn() => "Your turn: drag back from a piece".to_string(),
             Phase::Shooting => format!("{} to shoot", side_name(v.turn)),
         };
-        line(&mut y, &status, 18.0, colors::ACCENT);
-        if let (Some((_, _, deadline)), Phase::Shooting) = (self.clock, v.phase) {
-            let left = (deadline - self.now).max(0.0);
-            let c = if left < 10.0 {
+        let status_color = if self.my_turn() {
+            colors::GOOD
+        } else {
+            colors::ACCENT
+        };
+        let clock = match (self.clock, v.phase) {
+            (Some((_, _, deadline)), Phase::Shooting) => {
+                let left = (deadline - self.now).max(0.0);
+                Some((
+                    format!("{}:{:02}", (left / 60.0) as u32, left as u32 % 60),
+                    left < 10.0,
+                ))
+            }
+            _ => None,
+        };
+        match (&clock, compact) {
+            // In a compact panel the clock ends the status line.
+            (Some((c, _)), true) => line(&mut y, &format!("{status} · {c}"), 17.0, status_color),
+            _ => line(&mut y, &status, 17.0, status_color),
+        }
+        if let (Some((c, urgent)), false) = (&clock, compact) {
+            let color = if *urgent {
                 colors::DANGER
             } else {
                 colors::TEXT
             };
-            line(
-                &mut y,
-                &format!("clock {}:{:02}", (left / 60.0) as u32, left as u32 % 60),
-                18.0,
-                c,
-            );
+            line(&mut y, &format!("clock {c}"), 16.0, color);
         }
-        y += 4.0;
+        // The shot log.
+        let log_lines = if compact { 2 } else { LOG_LINES };
+        for l in self
+            .log
+            .iter()
+            .skip(self.log.len().saturating_sub(log_lines))
+        {
+            line(&mut y, l, 14.0, colors::MUTED);
+        }
+        y += 2.0;
         let mut go = None;
-        let half = (w - 8.0) / 2.0;
+        let mut buttons: Vec<(&str, String, bool)> = Vec::new();
         // Pie rule: Black's seat decides.
         if v.phase == Phase::PieDecision && self.my_side() == Some(Side::Black) {
-            if ui.button("pie-swap", "Swap seats", Rect::new(x, y, half, 34.0)) {
-                self.send(ClientMessage::PieDecision { swap: true });
-            }
-            if ui.button("pie-keep", "Keep", Rect::new(x + half + 8.0, y, half, 34.0)) {
-                self.send(ClientMessage::PieDecision { swap: false });
-            }
-            y += 42.0;
+            buttons.push(("pie-swap", "Swap seats".into(), true));
+            buttons.push(("pie-keep", "Keep".into(), true));
         }
         // Invite: the second seat is empty.
-        if self.players.second.is_none() && self.you == Some(Seat::First) {
+        let inviting = self.players.second.is_none() && self.you == Some(Seat::First);
+        if inviting {
             line(
                 &mut y,
                 "Waiting for an opponent: send them the link",
-                15.0,
+                14.0,
                 colors::MUTED,
             );
-            let link = format!("{}/#/join/{}", self.api.origin, self.match_id);
-            if ui.button(
-                "copy-link",
-                "Copy invitation link",
-                Rect::new(x, y, w, 34.0),
-            ) {
-                platform::copy_text(&link);
-                self.notify(format!("copied {link}"));
-            }
-            y += 42.0;
+            buttons.push(("copy-link", "Copy invitation link".into(), true));
         }
-        let over = matches!(v.phase, Phase::Over { .. });
         if self.you.is_some() && !over {
             if self.confirm_resign {
-                if ui.button("resign-yes", "Really resign", Rect::new(x, y, half, 34.0)) {
-                    self.send(ClientMessage::Resign);
-                    self.confirm_resign = false;
-                }
-                if ui.button(
-                    "resign-no",
-                    "Play on",
-                    Rect::new(x + half + 8.0, y, half, 34.0),
-                ) {
-                    self.confirm_resign = false;
-                }
-            } else if ui.button("resign", "Resign", Rect::new(x, y, half, 34.0)) {
-                self.confirm_resign = true;
+                buttons.push(("resign-yes", "Really resign".into(), true));
+                buttons.push(("resign-no", "Play on".into(), true));
+            } else {
+                buttons.push(("resign", "Resign".into(), true));
             }
-            y += 42.0;
         }
         if over {
             if self.you.is_some() {
-                let theirs = self.rematch_offer.is_some_and(|s| Some(s) != self.you);
-                let mine = self.rematch_offer.is_some() && !theirs;
-                let label = if theirs {
-                    "Accept the rematch"
-                } else if mine {
-                    "Rematch offered..."
-                } else {
-                    "Offer a rematch"
-                };
-                if ui.button_styled("rematch", label, Rect::new(x, y, w, 34.0), !mine, false) {
-                    self.send(if theirs {
-                        ClientMessage::AcceptRematch
-                    } else {
-                        ClientMessage::OfferRematch
-                    });
-                }
-                y += 42.0;
+                let (label, enabled) = self.rematch_label();
+                buttons.push(("rematch", label.into(), enabled));
             }
-            if ui.button("replay", "Watch the replay", Rect::new(x, y, w, 34.0)) {
-                go = Some(Route::Replay {
-                    match_id: self.match_id.clone(),
-                });
+            buttons.push(("replay", "Watch the replay".into(), true));
+        }
+        buttons.push(("lobby", "Lobby".into(), true));
+        buttons.push(("help", "Rules".into(), true));
+        let sound = if self.sound {
+            "Sound: on"
+        } else {
+            "Sound: off"
+        };
+        buttons.push(("sound", sound.into(), true));
+        // Two to a row (three in a wide compact panel).
+        let per_row = if compact && w > 520.0 { 3 } else { 2 };
+        let bw = (w - gap * (per_row - 1) as f32) / per_row as f32;
+        for (i, (name, label, enabled)) in buttons.iter().enumerate() {
+            let (c, r) = ((i % per_row) as f32, (i / per_row) as f32);
+            let rect = Rect::new(x + c * (bw + gap), y + r * (row + gap), bw, row);
+            if ui.button_styled(name, label, rect, *enabled, false) {
+                go = go.or(self.press(name, &v));
             }
-            y += 42.0;
         }
-        if ui.button("lobby", "Lobby", Rect::new(x, y, half, 34.0)) {
-            go = Some(Route::Lobby);
+        y += buttons.len().div_ceil(per_row) as f32 * (row + gap) + 4.0;
+        // Chat between the seats (spectators read it), above its field.
+        let field_y = bottom - row;
+        let seated = self.you.is_some();
+        let chat_bottom = if seated { field_y - 4.0 } else { bottom };
+        let fit_lines = ((chat_bottom - y) / 18.0).floor().max(0.0) as usize;
+        let shown = self.chat.len().min(fit_lines).min(CHAT_LINES);
+        let mut cy = chat_bottom - shown as f32 * 18.0;
+        for l in self.chat.iter().skip(self.chat.len() - shown) {
+            ui::text(&ui::fit(l, 14.0, w), x, cy, 14.0, colors::TEXT);
+            cy += 18.0;
         }
-        if ui.button("help", "Rules", Rect::new(x + half + 8.0, y, half, 34.0)) {
-            self.help = true;
-        }
-        y += 46.0;
-        // Chat between the seats (spectators read it).
-        let chat_top = y;
-        for l in &self.chat {
-            let shown: String = l.chars().take(60).collect();
-            ui::text(&shown, x, y, 15.0, colors::TEXT);
-            y += 19.0;
-        }
-        if self.you.is_some() {
-            let y = y
-                .max(chat_top + 19.0 * CHAT_LINES as f32)
-                .min(area.y + area.h - 44.0);
-            let field = Rect::new(x, y, w - 70.0, 32.0);
+        if seated && field_y >= y {
+            let field = Rect::new(x, field_y, w - 78.0, row);
             let entered = ui.text_field(
                 "chat",
                 &mut self.chat_draft,
@@ -625,13 +755,220 @@ impl Play {
                 "say something...",
                 MAX_CHAT_CHARS,
             );
-            let send = ui.button("chat-send", "Send", Rect::new(x + w - 62.0, y, 62.0, 32.0));
+            let send = ui.button(
+                "chat-send",
+                "Send",
+                Rect::new(x + w - 70.0, field_y, 70.0, row),
+            );
             if (entered || send) && !self.chat_draft.trim().is_empty() {
                 let text = std::mem::take(&mut self.chat_draft);
                 self.send(ClientMessage::Chat { text });
             }
         }
         go
+    }
+
+    /// The rematch button's label, and whether it can be pressed.
+    fn rematch_label(&self) -> (&'static str, bool) {
+        let theirs = self.rematch_offer.is_some_and(|s| Some(s) != self.you);
+        let mine = self.rematch_offer.is_some() && !theirs;
+        if theirs {
+            ("Accept the rematch", true)
+        } else if mine {
+            ("Rematch offered...", false)
+        } else {
+            ("Offer a rematch", true)
+        }
+    }
+
+    /// What a panel or end-screen button does.
+    fn press(&mut self, name: &str, v: &MatchView) -> Option<Route> {
+        let _ = v;
+        match name {
+            "pie-swap" => {
+                self.send(ClientMessage::PieDecision { swap: true });
+            }
+            "pie-keep" => {
+                self.send(ClientMessage::PieDecision { swap: false });
+            }
+            "copy-link" => {
+                let link = format!("{}/#/join/{}", self.api.origin, self.match_id);
+                platform::copy_text(&link);
+                self.notify(format!("copied {link}"));
+            }
+            "resign" => self.confirm_resign = true,
+            "resign-yes" => {
+                self.send(ClientMessage::Resign);
+                self.confirm_resign = false;
+            }
+            "resign-no" => self.confirm_resign = false,
+            "rematch" | "end-rematch" => {
+                let theirs = self.rematch_offer.is_some_and(|s| Some(s) != self.you);
+                self.send(if theirs {
+                    ClientMessage::AcceptRematch
+                } else {
+                    ClientMessage::OfferRematch
+                });
+            }
+            "replay" | "end-replay" => {
+                return Some(Route::Replay {
+                    match_id: self.match_id.clone(),
+                })
+            }
+            "lobby" | "end-lobby" => return Some(Route::Lobby),
+            "help" => self.help = true,
+            "sound" => {
+                self.sound = !self.sound;
+                platform::storage_set(SOUND_KEY, if self.sound { "on" } else { "off" });
+                if self.sound {
+                    platform::beep(platform::Sound::YourTurn);
+                }
+            }
+            "end-close" => self.end_closed = true,
+            _ => {}
+        }
+        None
+    }
+
+    /// The end-of-match screen over the board: the result, the rounds, the
+    /// shots, and one press to a rematch, the replay or the lobby.
+    fn end_screen(&mut self, ui: &mut Ui, area: Rect) -> Option<Route> {
+        let v = self.view.clone()?;
+        let Phase::Over { result } = v.phase else {
+            return None;
+        };
+        if self.end_closed || self.playing.is_some() || !self.queue.is_empty() {
+            return None;
+        }
+        let pw = (area.w - 24.0).min(420.0);
+        let seated = self.you.is_some();
+        let ph = 150.0 + (ui::TOUCH + 8.0) * if seated { 2.0 } else { 1.0 } + 8.0;
+        let r = Rect::new(
+            area.x + (area.w - pw) / 2.0,
+            area.y + (area.h - ph) / 2.0,
+            pw,
+            ph,
+        );
+        draw_rectangle(
+            r.x - 4.0,
+            r.y - 4.0,
+            r.w + 8.0,
+            r.h + 8.0,
+            Color::new(0.0, 0.0, 0.0, 0.45),
+        );
+        ui::panel(r);
+        let x = r.x + 16.0;
+        let w = r.w - 32.0;
+        let (title, color) = match (result.winner(), self.my_side()) {
+            (None, _) => ("Drawn".to_string(), colors::TEXT),
+            (Some(wn), Some(me)) if wn == me => ("You won!".to_string(), colors::GOOD),
+            (Some(_), Some(_)) => ("You lost".to_string(), colors::DANGER),
+            (Some(wn), None) => (format!("{} won", side_name(wn)), colors::ACCENT),
+        };
+        ui::text(&title, x, r.y + 14.0, 30.0, color);
+        ui::text(
+            &ui::fit(&result_reason(result), 15.0, w),
+            x,
+            r.y + 54.0,
+            15.0,
+            colors::MUTED,
+        );
+        let score = self
+            .final_score
+            .clone()
+            .unwrap_or_else(|| Score::of(&self.outcomes));
+        ui::text(
+            &ui::fit(&score.rounds_line(), 17.0, w),
+            x,
+            r.y + 80.0,
+            17.0,
+            colors::TEXT,
+        );
+        ui::text(
+            &format!(
+                "{} · {}",
+                story::count(v.shots, "shot"),
+                story::count(v.round, "round")
+            ),
+            x,
+            r.y + 104.0,
+            17.0,
+            colors::TEXT,
+        );
+        let mut y = r.y + 138.0;
+        let half = (w - 8.0) / 2.0;
+        let mut go = None;
+        let mut pressed = Vec::new();
+        if seated {
+            let (label, enabled) = self.rematch_label();
+            if ui.button_styled(
+                "end-rematch",
+                label,
+                Rect::new(x, y, w, ui::TOUCH),
+                enabled,
+                false,
+            ) {
+                pressed.push("end-rematch");
+            }
+            y += ui::TOUCH + 8.0;
+        }
+        if ui.button("end-replay", "Replay", Rect::new(x, y, half, ui::TOUCH)) {
+            pressed.push("end-replay");
+        }
+        if ui.button(
+            "end-close",
+            "Close",
+            Rect::new(x + half + 8.0, y, half, ui::TOUCH),
+        ) {
+            pressed.push("end-close");
+        }
+        for name in pressed {
+            go = go.or(self.press(name, &v));
+        }
+        go
+    }
+}
+
+/// Where the power meter goes: beside the pointer, moved inside `window`.
+fn meter_rect(pointer: Vec2, window: Vec2) -> Rect {
+    let (w, h) = (12.0, 64.0);
+    let mut x = pointer.x + 22.0;
+    if x + 58.0 > window.x {
+        x = pointer.x - 22.0 - 58.0;
+    }
+    let y = (pointer.y - h / 2.0).clamp(8.0, (window.y - h - 8.0).max(8.0));
+    Rect::new(x.clamp(8.0, (window.x - 62.0).max(8.0)), y, w, h)
+}
+
+/// The board's and the panel's areas in a `w` x `h` window: side by side
+/// when it is wide, the board on top at full width when it is tall.
+fn layout(w: f32, h: f32) -> (Rect, Rect) {
+    if w >= h * 1.1 {
+        let pw = (w * 0.32).clamp(270.0, 380.0);
+        (
+            Rect::new(0.0, 0.0, w - pw, h),
+            Rect::new(w - pw, 0.0, pw, h),
+        )
+    } else {
+        let bh = w.min(h * 0.56);
+        (Rect::new(0.0, 0.0, w, bh), Rect::new(0.0, bh, w, h - bh))
+    }
+}
+
+/// How the match was decided, in words for the end screen.
+fn result_reason(r: MatchResult) -> String {
+    match r {
+        MatchResult::Draw => "Both sides' last pieces fell together".to_string(),
+        MatchResult::Won { side, reason } => {
+            let how = match reason {
+                WinReason::FarEdge => "reached the far edge",
+                WinReason::QuickMatch => "won the round",
+                WinReason::Resignation => "won by resignation",
+                WinReason::Timeouts => "won: the other side ran out of time three times",
+                WinReason::Abandoned => "won: the other side left",
+            };
+            format!("{} {how}", side_name(side))
+        }
     }
 }
 
@@ -671,25 +1008,65 @@ impl Screen for Play {
                 None => {}
             }
         }
-        if let Setup::Refused(why) = &self.setup {
-            let area = Rect::new(0.0, 0.0, screen_width(), screen_height());
-            let box_ = Rect::new(area.w / 2.0 - 220.0, area.h / 2.0 - 90.0, 440.0, 180.0);
+        let window = crate::scale::size();
+        if let Setup::Naming(draft) = &mut self.setup {
+            let bw = (window.x - 24.0).min(440.0);
+            let box_ = Rect::new((window.x - bw) / 2.0, (window.y - 200.0) / 2.0, bw, 200.0);
             ui::panel(box_);
+            let (x, w) = (box_.x + 16.0, box_.w - 32.0);
             ui::text(
-                "Could not take the seat",
-                box_.x + 16.0,
+                "You are invited to a match",
+                x,
                 box_.y + 14.0,
-                22.0,
+                21.0,
                 colors::ACCENT,
             );
-            ui::text(why, box_.x + 16.0, box_.y + 50.0, 16.0, colors::TEXT);
-            let b = Rect::new(box_.x + 16.0, box_.y + 120.0, 190.0, 36.0);
+            ui::text("Your name", x, box_.y + 48.0, 16.0, colors::TEXT);
+            let field = Rect::new(x, box_.y + 72.0, w, ui::TOUCH);
+            let entered = ui.text_field("join-name", draft, field, "Player", 40);
+            let half = (w - 8.0) / 2.0;
+            let b = Rect::new(x, box_.y + 136.0, half, ui::TOUCH);
+            if ui.button("join-name-ok", "Take the seat", b) || entered {
+                let name = crate::lobby::clean_name(draft);
+                platform::storage_set(NAME_KEY, &name);
+                self.setup = Setup::Joining(self.api.join(&self.match_id, &name));
+                self.name = name;
+            } else if ui.button(
+                "watch",
+                "Just watch",
+                Rect::new(b.x + half + 8.0, b.y, half, b.h),
+            ) {
+                return Some(Route::Watch {
+                    match_id: self.match_id.clone(),
+                });
+            }
+            return None;
+        }
+        if let Setup::Refused(why) = &self.setup {
+            let bw = (window.x - 24.0).min(440.0);
+            let box_ = Rect::new((window.x - bw) / 2.0, (window.y - 190.0) / 2.0, bw, 190.0);
+            ui::panel(box_);
+            let (x, w) = (box_.x + 16.0, box_.w - 32.0);
+            ui::text(
+                "Could not take the seat",
+                x,
+                box_.y + 14.0,
+                21.0,
+                colors::ACCENT,
+            );
+            ui::text(&ui::fit(why, 15.0, w), x, box_.y + 50.0, 15.0, colors::TEXT);
+            let half = (w - 8.0) / 2.0;
+            let b = Rect::new(x, box_.y + 126.0, half, ui::TOUCH);
             if ui.button("watch", "Watch instead", b) {
                 return Some(Route::Watch {
                     match_id: self.match_id.clone(),
                 });
             }
-            if ui.button("lobby", "Lobby", Rect::new(b.x + 210.0, b.y, 190.0, 36.0)) {
+            if ui.button(
+                "lobby",
+                "Lobby",
+                Rect::new(b.x + half + 8.0, b.y, half, b.h),
+            ) {
                 return Some(Route::Lobby);
             }
             return None;
@@ -703,29 +1080,31 @@ impl Screen for Play {
             }
         }
         self.advance(dt);
-        let (w, h) = (screen_width(), screen_height());
-        let (board, panel) = if w >= h * 1.1 {
-            let pw = (w * 0.32).clamp(260.0, 360.0);
-            (
-                Rect::new(0.0, 0.0, w - pw, h),
-                Rect::new(w - pw, 0.0, pw, h),
-            )
-        } else {
-            let bh = (h * 0.62).min(w);
-            (Rect::new(0.0, 0.0, w, bh), Rect::new(0.0, bh, w, h - bh))
-        };
-        // The panel first, so its buttons take presses before the board does;
-        // with the rules open, neither sees the pointer.
+        let (w, h) = (window.x, window.y);
+        let (board, panel) = layout(w, h);
+        // Your turn: a cue (and a sound, if on) when it comes.
+        let my_turn = self.my_turn();
+        if my_turn && !self.was_my_turn {
+            self.turn_since = self.now;
+            if self.sound {
+                platform::beep(platform::Sound::YourTurn);
+            }
+        }
+        self.was_my_turn = my_turn;
+        // The board first (the panel covers what slides off it), then the
+        // panel and the end screen, whose buttons take presses before the
+        // slingshot does; with the rules open, nothing sees the pointer.
+        self.board(board);
         let help = self.help;
         let nav = if help {
             ui.without_input(|ui| {
                 let nav = self.panel(ui, panel);
-                self.board(ui, board);
-                nav
+                nav.or(self.end_screen(ui, board))
             })
         } else {
             let nav = self.panel(ui, panel);
-            self.board(ui, board);
+            let nav = nav.or(self.end_screen(ui, board));
+            self.aim(ui);
             nav
         };
         if help {
@@ -733,10 +1112,11 @@ impl Screen for Play {
         }
         if let Some((text, until)) = &self.notice {
             if self.now < *until {
-                let tw = ui::text_width(text, 18.0) + 24.0;
-                let r = Rect::new(board.x + (board.w - tw) / 2.0, board.y + 8.0, tw, 30.0);
+                let shown = ui::fit(text, 16.0, board.w - 40.0);
+                let tw = ui::text_width(&shown, 16.0) + 24.0;
+                let r = Rect::new(board.x + (board.w - tw) / 2.0, board.y + 6.0, tw, 28.0);
                 draw_rectangle(r.x, r.y, r.w, r.h, Color::new(0.0, 0.0, 0.0, 0.7));
-                ui::text_centred(text, r, 18.0, colors::TEXT);
+                ui::text_centred(&shown, r, 16.0, colors::TEXT);
             }
         }
         go.or(nav)
@@ -756,7 +1136,9 @@ impl Screen for Play {
             .drawn
             .iter()
             .map(|(p, c, r)| {
-                serde_json::json!({"id": u8::from(*p), "x": c.x, "y": c.y, "r": r,
+                // CSS pixels, like the buttons.
+                let z = crate::scale::zoom();
+                serde_json::json!({"id": u8::from(*p), "x": c.x * z, "y": c.y * z, "r": r * z,
                     "mine": Some(p.side()) == mine})
             })
             .collect();
@@ -780,6 +1162,23 @@ impl Screen for Play {
             self.view.as_ref().map_or(0, |v| v.shots).into(),
         );
         m.insert("pieces".into(), pieces.into());
+        if let Some((power, meter)) = self.aiming {
+            let r = crate::scale::css(meter);
+            m.insert("aim_power".into(), power.into());
+            m.insert("meter".into(), serde_json::json!([r.x, r.y, r.w, r.h]));
+        }
+        m.insert(
+            "log".into(),
+            self.log.iter().cloned().collect::<Vec<_>>().into(),
+        );
+        m.insert(
+            "end_screen".into(),
+            matches!(
+                self.view.as_ref().map(|v| v.phase),
+                Some(Phase::Over { .. })
+            )
+            .into(),
+        );
         m
     }
 }

@@ -124,9 +124,12 @@ impl Screen for Replay {
                 };
             }
         }
-        let (w, h) = (screen_width(), screen_height());
-        let bar_h = 120.0;
-        let lobby = Rect::new(w - 120.0, 10.0, 110.0, 32.0);
+        let (w, h) = crate::scale::size().into();
+        // Two rows of controls under the timeline when the window is narrow.
+        let narrow = w < 800.0;
+        let bar_h = if narrow { 170.0 } else { 118.0 };
+        let head_h = if narrow { 70.0 } else { 60.0 };
+        let lobby = Rect::new(w - 98.0, 8.0, 90.0, ui::TOUCH);
         let l = match &self.state {
             State::Ready(l) => l,
             State::Fetching(_) => {
@@ -152,8 +155,9 @@ impl Screen for Replay {
             }
         }
         let (view, frame, shot) = at(l, self.t);
-        let board = Rect::new(0.0, 0.0, w, h - bar_h);
-        let vp = Viewport::fit_square(view.config.board_size(), board, 40.0, false);
+        // The board between the heading and the control bar.
+        let board = Rect::new(0.0, head_h, w, h - bar_h - head_h);
+        let vp = Viewport::fit_square(view.config.board_size(), board, 24.0, false);
         draw::board(&vp, view.config.board_size());
         let shooter = shot.map(|n| l.clips[n].outcome.piece);
         draw::frame(&vp, view.config.piece_radius, &frame, |p| {
@@ -185,19 +189,49 @@ impl Screen for Replay {
             Some(r) if self.t >= l.timeline.total() => format!("{head} · {}", result_line(r)),
             _ => head,
         };
+        // The heading stays above the board (the board is drawn first, so
+        // a piece sliding off it goes under the heading and the bar).
+        draw_rectangle(0.0, 0.0, w, head_h, colors::BACKGROUND);
+        let text_w = lobby.x - 20.0;
         ui::text(
-            &format!("Replay of {}", self.match_id),
+            &ui::fit(&format!("Replay of {}", self.match_id), 19.0, text_w),
             12.0,
-            10.0,
-            20.0,
+            8.0,
+            19.0,
             colors::ACCENT,
         );
-        ui::text(&head, 12.0, 36.0, 16.0, colors::TEXT);
+        // The heading in one line, or two where the window is narrow.
+        let parts: Vec<&str> = head.splitn(3, " · ").collect();
+        if narrow && parts.len() == 3 {
+            let first = format!("{} · {}", parts[0], parts[1]);
+            ui::text(
+                &ui::fit(&first, 14.0, text_w),
+                12.0,
+                32.0,
+                14.0,
+                colors::TEXT,
+            );
+            ui::text(
+                &ui::fit(parts[2], 14.0, w - 24.0),
+                12.0,
+                50.0,
+                14.0,
+                colors::TEXT,
+            );
+        } else {
+            ui::text(
+                &ui::fit(&head, 15.0, w - 24.0),
+                12.0,
+                34.0,
+                15.0,
+                colors::TEXT,
+            );
+        }
         let mut go = ui.button("lobby", "Lobby", lobby).then_some(Route::Lobby);
         // The control bar: timeline, play/pause, shot jumps, speeds.
         let bar = Rect::new(0.0, h - bar_h, w, bar_h);
         ui::panel(bar);
-        let track = Rect::new(20.0, bar.y + 14.0, w - 40.0, 26.0);
+        let track = Rect::new(20.0, bar.y + 8.0, w - 40.0, ui::TOUCH);
         let total = l.timeline.total().max(1e-9);
         for n in 0..l.timeline.shots() {
             let x = track.x + track.w * (l.timeline.start(n) / total) as f32;
@@ -214,10 +248,10 @@ impl Screen for Replay {
         let t = ui.slider("timeline", self.t, 0.0, total, track);
         self.scrubbing = ui.input.down && t != before;
         self.t = t;
-        let y = bar.y + 56.0;
-        let mut x = 20.0;
+        let y = bar.y + 60.0;
+        let mut x = if narrow { 12.0 } else { 20.0 };
         let mut next = |wdt: f32| {
-            let r = Rect::new(x, y, wdt, 34.0);
+            let r = Rect::new(x, y, wdt, ui::TOUCH);
             x += wdt + 8.0;
             r
         };
@@ -234,9 +268,24 @@ impl Screen for Replay {
         if ui.button("next-shot", ">|", next(44.0)) {
             self.t = l.timeline.next_shot(self.t);
         }
-        next(8.0);
-        for s in SPEEDS {
-            let r = next(56.0);
+        let clock = next(0.0);
+        ui::text(
+            &format!("{:.1} / {:.1} s", self.t, l.timeline.total()),
+            clock.x + 4.0,
+            y + 13.0,
+            17.0,
+            colors::TEXT,
+        );
+        // The speeds: after the clock, or on a row of their own.
+        let (sx, sy, sw) = if narrow {
+            let sw = ((w - 24.0 - 6.0 * (SPEEDS.len() - 1) as f32) / SPEEDS.len() as f32).min(60.0);
+            (12.0, y + ui::TOUCH + 8.0, sw)
+        } else {
+            (clock.x + 120.0, y, 56.0)
+        };
+        for (i, s) in SPEEDS.into_iter().enumerate() {
+            let gap = if narrow { 6.0 } else { 8.0 };
+            let r = Rect::new(sx + i as f32 * (sw + gap), sy, sw, ui::TOUCH);
             if ui.button_styled(
                 &format!("speed{s}"),
                 &format!("{s}x"),
@@ -248,14 +297,6 @@ impl Screen for Replay {
                 self.playing = true;
             }
         }
-        let x = next(0.0).x;
-        ui::text(
-            &format!("{:.1} / {:.1} s", self.t, l.timeline.total()),
-            x + 12.0,
-            y + 8.0,
-            18.0,
-            colors::TEXT,
-        );
         if is_key_pressed(KeyCode::Space) {
             self.playing = !self.playing;
         }

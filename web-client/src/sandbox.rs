@@ -40,6 +40,8 @@ const COMPUTE_MS: f64 = 20.0;
 const TOP: f32 = 48.0;
 const BOTTOM: f32 = 56.0;
 const SIDE: f32 = 262.0;
+/// The narrowest window the toolbar fits (narrower ones zoom out).
+const MIN_WIDTH: f32 = 1000.0;
 
 /// Width the statistics panel takes from the world area (with margins).
 const STATS_W: f32 = 248.0;
@@ -913,7 +915,7 @@ impl Screen for Sandbox {
     fn frame(&mut self, ui: &mut Ui, dt: f64) -> Option<Route> {
         self.clock += dt;
         self.frame_ms = 0.9 * self.frame_ms + 0.1 * dt * 1000.0;
-        let (w, h) = (screen_width(), screen_height());
+        let (w, h) = crate::scale::size().into();
         let world = Rect::new(0.0, TOP, w - SIDE - 8.0, h - TOP - BOTTOM);
         let side = Rect::new(w - SIDE - 4.0, TOP, SIDE, h - TOP - BOTTOM - 4.0);
         let bar = Rect::new(4.0, h - BOTTOM, w - 8.0, BOTTOM - 4.0);
@@ -1009,6 +1011,11 @@ impl Screen for Sandbox {
 
     fn animating(&self) -> bool {
         self.sim.playing || self.gesture.is_some()
+    }
+
+    /// The toolbar's row of tools and the side panel need a desktop's width.
+    fn min_width(&self) -> f32 {
+        MIN_WIDTH
     }
 }
 

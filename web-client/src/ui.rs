@@ -6,15 +6,95 @@
 //! starts on the board never clicks a button). Every button drawn is
 //! remembered by name with its rectangle, so the app can tell whether the
 //! pointer is over a control and publish the layout to the browser test.
+//!
+//! Text is drawn in DejaVu Sans (a subset of Latin-1 and a little
+//! punctuation, about 17 kB, embedded): macroquad's own pixel font has a
+//! dotted zero that reads as an eight. Sizes are layout units; the glyphs
+//! are rasterised at the size they finally take on the screen.
 
+use crate::{platform, scale};
 use macroquad::prelude::*;
 use std::collections::BTreeMap;
+
+/// The smallest height of a control a finger can hit (CSS pixels).
+pub const TOUCH: f32 = 44.0;
+
+thread_local! {
+    static FONT: Option<Font> =
+        load_ttf_font_from_bytes(include_bytes!("../assets/DejaVuSans-subset.ttf")).ok();
+}
+
+/// The parameters that draw `size`-unit text crisply at the window's zoom.
+fn params(font: Option<&Font>, size: f32, color: Color) -> TextParams<'_> {
+    let zoom = scale::zoom();
+    let px = (size * zoom).round().clamp(1.0, 400.0);
+    TextParams {
+        font,
+        font_size: px as u16,
+        font_scale: size / px,
+        color,
+        ..Default::default()
+    }
+}
+
+thread_local! {
+    /// The glyphs (character, rasterised size) already in the font's atlas.
+    static CACHED: std::cell::RefCell<std::collections::HashSet<(char, u16)>> =
+        std::cell::RefCell::new(std::collections::HashSet::new());
+}
+
+/// Puts the glyphs of `s` at `p`'s size into the atlas before anything
+/// draws them. A new glyph can grow the atlas, which replaces its texture:
+/// the shapes queued earlier in the frame are drawn first, so none of them
+/// binds the deleted texture (Chromium's "glBindTexture called with an
+/// already deleted texture").
+fn cache_glyphs(font: Option<&Font>, s: &str, p: &TextParams) {
+    let Some(font) = font else { return };
+    let px = (f32::from(p.font_size) * screen_dpi_scale()).ceil() as u16;
+    let missing: Vec<char> = CACHED.with(|c| {
+        let mut cached = c.borrow_mut();
+        let mut missing: Vec<char> = s
+            .chars()
+            .filter(|ch| !cached.contains(&(*ch, px)))
+            .collect();
+        missing.sort_unstable();
+        missing.dedup();
+        for ch in &missing {
+            cached.insert((*ch, px));
+        }
+        missing
+    });
+    if !missing.is_empty() {
+        // SAFETY: flushing macroquad's queued draw calls from the frame
+        // loop, the only thread that draws, between two draw calls.
+        unsafe { get_internal_gl() }.flush();
+        font.populate_font_cache(&missing, px);
+    }
+}
+
+/// Draws `s` with its baseline at `(x, y)`.
+pub fn draw_at_baseline(s: &str, x: f32, y: f32, size: f32, color: Color) {
+    FONT.with(|f| {
+        let p = params(f.as_ref(), size, color);
+        cache_glyphs(f.as_ref(), s, &p);
+        draw_text_ex(s, x, y, p)
+    });
+}
+
+/// The size of `s` at `size` units.
+pub fn measure(s: &str, size: f32) -> TextDimensions {
+    FONT.with(|f| {
+        let p = params(f.as_ref(), size, WHITE);
+        cache_glyphs(f.as_ref(), s, &p);
+        measure_text(s, p.font, p.font_size, p.font_scale)
+    })
+}
 
 /// The palette.
 pub mod colors {
     use macroquad::prelude::Color;
     pub const BACKGROUND: Color = Color::new(0.16, 0.12, 0.09, 1.0);
-    pub const PANEL: Color = Color::new(0.23, 0.17, 0.13, 0.94);
+    pub const PANEL: Color = Color::new(0.23, 0.17, 0.13, 1.0);
     pub const TEXT: Color = Color::new(0.95, 0.90, 0.80, 1.0);
     pub const MUTED: Color = Color::new(0.72, 0.65, 0.55, 1.0);
     pub const ACCENT: Color = Color::new(0.93, 0.66, 0.25, 1.0);
@@ -38,12 +118,13 @@ pub struct Input {
     pub chars: Vec<char>,
     pub backspace: bool,
     pub enter: bool,
+    /// Text pasted this frame (Ctrl+V or the browser's paste event).
+    pub paste: Option<String>,
 }
 
 impl Input {
     /// Reads this frame's input from macroquad (touch arrives as mouse).
     pub fn read() -> Input {
-        let (x, y) = mouse_position();
         let mut chars = Vec::new();
         while let Some(c) = get_char_pressed() {
             if !c.is_control() {
@@ -51,7 +132,7 @@ impl Input {
             }
         }
         Input {
-            pointer: vec2(x, y),
+            pointer: scale::pointer(),
             pressed: is_mouse_button_pressed(MouseButton::Left),
             down: is_mouse_button_down(MouseButton::Left),
             released: is_mouse_button_released(MouseButton::Left),
@@ -60,6 +141,7 @@ impl Input {
             chars,
             backspace: is_key_pressed(KeyCode::Backspace),
             enter: is_key_pressed(KeyCode::Enter) || is_key_pressed(KeyCode::KpEnter),
+            paste: platform::pasted(),
         }
     }
 }
@@ -77,20 +159,22 @@ pub struct Ui {
     focus: Option<String>,
     /// Whether a widget took this frame's press.
     captured: bool,
+    /// The text field whose text the browser's prompt is asking for.
+    prompting: Option<String>,
 }
 
 /// Draws `text` with its top-left corner near `(x, y)` at `size` pixels.
 pub fn text(s: &str, x: f32, y: f32, size: f32, color: Color) {
-    draw_text(s, x, y + size * 0.75, size, color);
+    draw_at_baseline(s, x, y + size * 0.8, size, color);
 }
 
 /// Draws `text` centred in `r`.
 pub fn text_centred(s: &str, r: Rect, size: f32, color: Color) {
-    let m = measure_text(s, None, size as u16, 1.0);
-    draw_text(
+    let m = measure(s, size);
+    draw_at_baseline(
         s,
         r.x + (r.w - m.width) / 2.0,
-        r.y + (r.h + m.offset_y * 0.8) / 2.0,
+        r.y + (r.h + size * 0.72) / 2.0,
         size,
         color,
     );
@@ -98,7 +182,23 @@ pub fn text_centred(s: &str, r: Rect, size: f32, color: Color) {
 
 /// Width of `s` at `size` pixels.
 pub fn text_width(s: &str, size: f32) -> f32 {
-    measure_text(s, None, size as u16, 1.0).width
+    measure(s, size).width
+}
+
+/// `s` cut (with an ellipsis) to at most `width` units at `size`.
+pub fn fit(s: &str, size: f32, width: f32) -> String {
+    if text_width(s, size) <= width {
+        return s.to_string();
+    }
+    let mut cut: String = s.to_string();
+    while !cut.is_empty() {
+        cut.pop();
+        let candidate = format!("{}…", cut.trim_end());
+        if text_width(&candidate, size) <= width {
+            return candidate;
+        }
+    }
+    String::new()
 }
 
 /// Draws a rounded-looking panel.
@@ -138,12 +238,16 @@ impl Ui {
         r
     }
 
-    /// The buttons drawn this frame, as `{"name": [x, y, w, h]}`.
+    /// The buttons drawn this frame, as `{"name": [x, y, w, h]}` in CSS
+    /// pixels from the window's top-left.
     pub fn layout(&self) -> serde_json::Value {
         serde_json::Value::Object(
             self.buttons
                 .iter()
-                .map(|(k, r)| (k.clone(), serde_json::json!([r.x, r.y, r.w, r.h])))
+                .map(|(k, r)| {
+                    let r = scale::css(*r);
+                    (k.clone(), serde_json::json!([r.x, r.y, r.w, r.h]))
+                })
                 .collect(),
         )
     }
@@ -177,7 +281,10 @@ impl Ui {
         draw_rectangle(r.x, r.y + 2.0, r.w, r.h, Color::new(0.0, 0.0, 0.0, 0.35));
         draw_rectangle(r.x, r.y, r.w, r.h, color);
         draw_rectangle_lines(r.x, r.y, r.w, r.h, 1.0, Color::new(1.0, 0.9, 0.7, 0.25));
-        let size = (r.h * 0.5).clamp(12.0, 22.0);
+        let mut size = (r.h * 0.45).clamp(12.0, 20.0);
+        while size > 10.0 && text_width(label, size) > r.w - 10.0 {
+            size -= 1.0;
+        }
         let tc = if !enabled {
             colors::MUTED
         } else if selected || held {
@@ -206,6 +313,21 @@ impl Ui {
         if self.input.pressed && r.contains(self.input.pointer) {
             self.focus = Some(name.to_string());
             self.captured = true;
+            // A phone opens no keyboard for a canvas: ask the browser.
+            if platform::coarse_pointer() {
+                platform::prompt(placeholder, value);
+                self.prompting = Some(name.to_string());
+            }
+        }
+        if self.prompting.as_deref() == Some(name) {
+            if let Some(answer) = platform::prompted() {
+                *value = answer
+                    .chars()
+                    .filter(|c| !c.is_control())
+                    .take(max)
+                    .collect();
+                self.prompting = None;
+            }
         }
         let focused = self.focus.as_deref() == Some(name);
         let mut entered = false;
@@ -214,6 +336,10 @@ impl Ui {
                 if value.chars().count() < max {
                     value.push(c);
                 }
+            }
+            if let Some(pasted) = &self.input.paste {
+                let room = max.saturating_sub(value.chars().count());
+                value.extend(pasted.chars().filter(|c| !c.is_control()).take(room));
             }
             if self.input.backspace {
                 value.pop();
@@ -227,14 +353,14 @@ impl Ui {
             Color::new(0.45, 0.33, 0.24, 1.0)
         };
         draw_rectangle_lines(r.x, r.y, r.w, r.h, 1.5, border);
-        let size = (r.h * 0.55).clamp(12.0, 22.0);
+        let size = (r.h * 0.45).clamp(12.0, 20.0);
         let (shown, color) = if value.is_empty() && !focused {
             (placeholder.to_string(), colors::MUTED)
         } else {
             (value.clone(), colors::TEXT)
         };
         let y = r.y + (r.h - size) / 2.0;
-        text(&shown, r.x + 8.0, y, size, color);
+        text(&fit(&shown, size, r.w - 16.0), r.x + 8.0, y, size, color);
         if focused && (get_time() * 2.0) as i64 % 2 == 0 {
             let x = r.x + 9.0 + text_width(value, size);
             draw_line(x, y, x, y + size, 1.5, colors::TEXT);
