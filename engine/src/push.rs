@@ -87,14 +87,20 @@ pub const CAPTURE: f64 = 1e-6;
 /// `w^2 / (a (1 - e))`: at most `w / 2v`, below `CAPTURE / 2`, of the
 /// distance the pair slides in the meantime. Without this the last bounces fall below the
 /// approach threshold and the discs drift into each other.
+#[inline]
 pub fn chatters(ti: &Trajectory, tj: &Trajectory, n: DVec2, now: f64) -> bool {
-    if !ti.is_moving_at(now) || !tj.is_moving_at(now) {
+    // Cheapest test first: without pressing braking (frictionless pairs,
+    // Galperin's billiard) nothing else is looked at.
+    if ti.alpha() == 0.0 && tj.alpha() == 0.0 {
+        return false;
+    }
+    let a = (ti.acceleration(now) - tj.acceleration(now)).dot(n);
+    if !(a < 0.0) || !ti.is_moving_at(now) || !tj.is_moving_at(now) {
         return false;
     }
     let (vi, vj) = (ti.velocity(now), tj.velocity(now));
     let w = (vi - vj).dot(n);
-    let a = (ti.acceleration(now) - tj.acceleration(now)).dot(n);
-    a < 0.0 && w <= CAPTURE * (vi.length() + vj.length())
+    w <= CAPTURE * (vi.length() + vj.length())
 }
 
 /// One disc of a pushing chain: its velocity, mass and own braking.

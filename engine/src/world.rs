@@ -574,7 +574,8 @@ impl World {
         let mut instant = (self.last_event_t, 0u64);
         let mut recent: Vec<usize> = Vec::new();
         let stuck_after = STUCK_EVENTS + STUCK_EVENTS_PER_BODY * self.slots.len() as u64;
-        let tick = self.instant_tick();
+        // Worked out only once events have shared an instant.
+        let mut tick: Option<f64> = None;
         loop {
             let Some((slot, t)) = self.calendar.peek() else {
                 return self.end_at_rest();
@@ -601,7 +602,11 @@ impl World {
                 return self.end_on(EndReason::OutOfRange);
             }
             if let Some(event) = self.process(slot, t, handler) {
-                if t - instant.0 <= tick || same_instant(instant.0, t) {
+                let same = t == instant.0
+                    || same_instant(instant.0, t)
+                    || (instant.1 > 0
+                        && t - instant.0 <= *tick.get_or_insert_with(|| self.instant_tick()));
+                if same {
                     instant.1 += 1;
                     if instant.1 > stuck_after {
                         handler.on_event(self, &event);
