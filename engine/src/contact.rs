@@ -25,6 +25,10 @@ use glam::DVec2;
 /// gap is below rounding noise of the contact distance.
 const TOUCH: f64 = 1e-12;
 
+/// Rounding of a gap between two positions, relative to their magnitude:
+/// a few units in the last place of each coordinate.
+const COORDINATE_NOISE: f64 = 8.0 * f64::EPSILON;
+
 /// A moving disc's path from time `now`, worked out once per prediction:
 /// position `pos + w l`, where `l` is time (frictionless, `w` the velocity)
 /// or distance travelled (with friction, `w` the unit direction).
@@ -102,7 +106,7 @@ pub fn disc_point(m: &Mover, q: DVec2, s: f64) -> Option<f64> {
         // Touching now: a contact only if the approach is more than noise.
         return (b < -APPROACH * s * w.length()).then_some(m.now);
     }
-    let l = entry(w.length_squared(), b, c)?;
+    let l = entry(w.length_squared(), b, c, d.perp_dot(w), s * s)?;
     m.time_at(l * scale)
 }
 
@@ -129,11 +133,22 @@ fn well_scaled(w: DVec2) -> (DVec2, f64) {
 /// `c > 0`: approaching from outside), or `None` if the path misses or only
 /// grazes: a double root, within rounding of the discriminant, is a touch
 /// with no normal approach, not a contact.
+///
+/// The equation is `|d + w l|^2 = s^2` with `a = |w|^2`, `b = d . w`,
+/// `c = |d|^2 - s^2`; `cross = d x w` and `s2 = s^2`. From far away
+/// (`|d|` above about `1e7 s`) `b^2` and `a c` agree to rounding and their
+/// difference says nothing; there the discriminant is taken from
+/// Lagrange's identity instead, `b^2 - a c = a s^2 - cross^2`, free of
+/// that cancellation (only then, so nearby contacts keep their bits).
 #[inline(always)]
-fn entry(a: f64, b: f64, c: f64) -> Option<f64> {
+fn entry(a: f64, b: f64, c: f64, cross: f64, s2: f64) -> Option<f64> {
     let disc = b * b - a * c;
     if disc <= GRAZE * b * b {
-        return None;
+        let exact = a * s2 - cross * cross;
+        if !(exact > GRAZE * a * s2) {
+            return None;
+        }
+        return Some(c / (-b + exact.sqrt()));
     }
     Some(c / (-b + disc.sqrt()))
 }
@@ -260,7 +275,7 @@ fn linear_pair(pi: DVec2, ti: &Trajectory, tj: &Trajectory, s: f64, now: f64) ->
         let noise = APPROACH * s * scale * (ti.speed() + tj.speed());
         return (b < -noise).then_some(now);
     }
-    Some(now + entry(dv.length_squared(), b, c)? * scale)
+    Some(now + entry(dv.length_squared(), b, c, dp.perp_dot(dv), s * s)? * scale)
 }
 
 /// At least one of two moving discs slows down: solve the quartic on the
@@ -289,7 +304,12 @@ fn curved_pair(
     // f' = 2 (dp . dv) at a contact: an approach slower than `APPROACH` of
     // the speeds is rounding noise, not a contact.
     let min_slope = -2.0 * s * APPROACH * (ti.speed() + tj.speed());
-    let touching = c0 <= 2.0 * TOUCH * s * s;
+    // Touching: the gap is below `TOUCH` of the contact distance, or, far
+    // from the origin, below the rounding of the coordinates themselves
+    // (there a gap of a few units in the last place is all a position can
+    // say, and a touching pair must not be taken for one about to meet).
+    let resolution = COORDINATE_NOISE * (pi.abs().max_element() + pj.abs().max_element());
+    let touching = c0 <= 2.0 * s * (TOUCH * s).max(resolution);
     if touching && (c1 < min_slope || push::pushing(ti, pi, tj, pj, now)) {
         // Approaching, or pressed together by their braking: an event now.
         return Some(now);
@@ -405,6 +425,24 @@ mod tests {
         let b = mover((5.0, 0.0), (-1e-170, 0.0), 0.0);
         let t = disc_disc(&a, Mover::new(&a, 0.0).as_ref(), &b, 1.0, 0.0, &Production).unwrap();
         assert!((t - 2e170).abs() <= 2e170 * 1e-15, "{t}");
+    }
+
+    #[test]
+    fn a_disc_a_million_metres_away_heading_straight_at_a_point_hits_it() {
+        for dist in [1e6, 3e6, 1e7] {
+            let tr = mover((-dist, 0.0), (3.0, 0.0), 0.0);
+            let m = Mover::new(&tr, 0.0).unwrap();
+            let t = disc_point(&m, DVec2::ZERO, 0.02).unwrap();
+            assert!((t - (dist - 0.02) / 3.0).abs() <= 1e-15 * t, "{dist}: {t}");
+            // Passing just wide of it still misses.
+            let tr = mover((-dist, 0.0200001), (3.0, 0.0), 0.0);
+            let m = Mover::new(&tr, 0.0).unwrap();
+            assert_eq!(disc_point(&m, DVec2::ZERO, 0.02), None);
+        }
+        let a = mover((-1e6, 0.0), (1.0, 0.0), 0.0);
+        let b = mover((0.0, 0.0), (-1.0, 0.0), 0.0);
+        let t = disc_disc(&a, Mover::new(&a, 0.0).as_ref(), &b, 0.04, 0.0, &Production);
+        assert_eq!(t, Some((1e6 - 0.04) / 2.0));
     }
 
     #[test]

@@ -15,6 +15,18 @@
 //! The pair stays together until an event on one of them (another hit, a
 //! stop) gives each its own trajectory and friction again; if they still
 //! push, they are joined again at once.
+//!
+//! Three or more touching discs sliding along one line form a chain
+//! ([`pooled`]): contacts can only push, so the braking may not grow from
+//! the rear of the chain to its front. Wherever a rear disc brakes less than
+//! the disc in front, the two move as one block with their mass-weighted
+//! mean braking and velocity, and blocks are pooled again until the braking
+//! falls from rear to front (the pool-adjacent-violators construction).
+//! The result is the exact solution of the chain's contact forces: every
+//! force is a push, and only discs that move as one block press on each
+//! other. Blocks then separate (the front ones brake less) and each stops
+//! at its own time. Joining a whole chain at once is what keeps a chain
+//! from re-joining pair after pair at one instant without end.
 
 use crate::impulse;
 use crate::trajectory::Trajectory;
@@ -22,7 +34,11 @@ use glam::DVec2;
 
 /// Relative tolerance for "the same velocity" and "along the line of
 /// centres": rounding noise, far below any physical difference.
-const SAME: f64 = 1e-9;
+pub const SAME: f64 = 1e-9;
+
+/// Relative slack on the squared contact distance under which two discs of
+/// a chain count as touching.
+pub const TOUCHING: f64 = 2e-9;
 
 /// Whether the discs on `ti` and `tj`, touching at `now` with centres `pi`
 /// and `pj`, push on each other: both move, with the same velocity (to
@@ -53,6 +69,113 @@ pub fn pushing(ti: &Trajectory, pi: DVec2, tj: &Trajectory, pj: DVec2, now: f64)
 pub fn together(v: [DVec2; 2], m: [f64; 2], alpha: [f64; 2]) -> (DVec2, f64) {
     let (w_i, w_j) = impulse::weights(m[0], m[1]);
     (v[0] * w_i + v[1] * w_j, alpha[0] * w_i + alpha[1] * w_j)
+}
+
+/// Separation speed, relative to the speeds of the pair, under which a pair
+/// whose braking presses it together is taken to chatter to rest on each
+/// other (see [`chatters`]).
+pub const CAPTURE: f64 = 1e-6;
+
+/// Whether the discs on `ti` and `tj`, just hit along `n` (from `j` to
+/// `i`), separate so slowly while their braking presses them together that
+/// they would bounce again and again, each bounce `e` times slower and
+/// sooner than the last: a chatter of infinitely many hits that ends, a
+/// finite time `2 w / (a (1 - e))` later (`w` the separation speed, `a` the
+/// pressing deceleration), with the pair moving as one. The engine takes
+/// that end now, as one plastic hit: the centre of mass moves exactly as
+/// in the chatter, and the discs' positions differ from it by at most
+/// `w^2 / (a (1 - e))`: at most `w / 2v`, below `CAPTURE / 2`, of the
+/// distance the pair slides in the meantime. Without this the last bounces fall below the
+/// approach threshold and the discs drift into each other.
+#[inline]
+pub fn chatters(ti: &Trajectory, tj: &Trajectory, n: DVec2, now: f64) -> bool {
+    // Cheapest test first: without pressing braking (frictionless pairs,
+    // Galperin's billiard) nothing else is looked at.
+    if ti.alpha() == 0.0 && tj.alpha() == 0.0 {
+        return false;
+    }
+    let a = (ti.acceleration(now) - tj.acceleration(now)).dot(n);
+    if !(a < 0.0) || !ti.is_moving_at(now) || !tj.is_moving_at(now) {
+        return false;
+    }
+    let (vi, vj) = (ti.velocity(now), tj.velocity(now));
+    let w = (vi - vj).dot(n);
+    w <= CAPTURE * (vi.length() + vj.length())
+}
+
+/// One disc of a pushing chain: its velocity, mass and own braking.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Part {
+    pub vel: DVec2,
+    pub mass: f64,
+    pub alpha: f64,
+}
+
+/// The velocity and braking of each disc of a chain (given from rear to
+/// front) once its pushing blocks are joined: the pool-adjacent-violators
+/// solution, so braking never increases from rear to front. Two discs
+/// give exactly what [`together`] gives when they push, and their own
+/// motion when they do not.
+pub fn pooled(parts: &[Part]) -> Vec<(DVec2, f64)> {
+    // Each block: index of its first part, mass, velocity and braking.
+    let mut blocks: Vec<(usize, f64, DVec2, f64)> = Vec::with_capacity(parts.len());
+    for (k, p) in parts.iter().enumerate() {
+        blocks.push((k, p.mass, p.vel, p.alpha));
+        while let [.., rear, front] = blocks[..] {
+            if !(rear.3 < front.3) {
+                break;
+            }
+            let (w_r, w_f) = impulse::weights(rear.1, front.1);
+            let joined = (
+                rear.0,
+                rear.1 + front.1,
+                rear.2 * w_r + front.2 * w_f,
+                rear.3 * w_r + front.3 * w_f,
+            );
+            blocks.pop();
+            if let Some(last) = blocks.last_mut() {
+                *last = joined;
+            }
+        }
+    }
+    let mut out = Vec::with_capacity(parts.len());
+    for (b, &(first, _, v, a)) in blocks.iter().enumerate() {
+        let end = blocks.get(b + 1).map_or(parts.len(), |x| x.0);
+        out.extend((first..end).map(|_| (v, a)));
+    }
+    out
+}
+
+/// The velocities of a chain of touching discs on one line (given from
+/// rear to front along `u`) after a plastic impact of the whole chain at
+/// once: wherever a rear disc moves faster along `u` than the disc in
+/// front, the two move as one with their momentum-weighted mean velocity,
+/// pooled again until velocities never decrease from rear to front (the
+/// same pool-adjacent-violators construction as [`pooled`]). This is the
+/// limit of an endless sequence of ever slower inelastic hits at one
+/// instant (an inelastic collapse).
+pub fn plastic(parts: &[Part], u: DVec2) -> Vec<DVec2> {
+    let mut blocks: Vec<(usize, f64, DVec2)> = Vec::with_capacity(parts.len());
+    for (k, p) in parts.iter().enumerate() {
+        blocks.push((k, p.mass, p.vel));
+        while let [.., rear, front] = blocks[..] {
+            if !(rear.2.dot(u) > front.2.dot(u)) {
+                break;
+            }
+            let (w_r, w_f) = impulse::weights(rear.1, front.1);
+            let joined = (rear.0, rear.1 + front.1, rear.2 * w_r + front.2 * w_f);
+            blocks.pop();
+            if let Some(last) = blocks.last_mut() {
+                *last = joined;
+            }
+        }
+    }
+    let mut out = Vec::with_capacity(parts.len());
+    for (b, &(first, _, v)) in blocks.iter().enumerate() {
+        let end = blocks.get(b + 1).map_or(parts.len(), |x| x.0);
+        out.extend((first..end).map(|_| v));
+    }
+    out
 }
 
 #[cfg(test)]
@@ -95,5 +218,71 @@ mod tests {
         );
         assert_eq!(v, DVec2::new(1.0, 0.0));
         assert!((alpha - (0.2 + 3.0 * 0.6) / 4.0).abs() < 1e-15);
+    }
+
+    fn part(alpha: f64, mass: f64) -> Part {
+        Part {
+            vel: DVec2::new(1.0, 0.0),
+            mass,
+            alpha,
+        }
+    }
+
+    #[test]
+    fn a_chain_braking_more_towards_the_front_moves_as_one() {
+        let out = pooled(&[part(0.981, 1.0), part(1.962, 1.0), part(2.943, 1.0)]);
+        assert_eq!(out.len(), 3);
+        assert!(out.iter().all(|&x| x == out[0]));
+        assert!((out[0].1 - 1.962).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_chain_splits_where_the_front_brakes_less() {
+        // Rear pair presses (0.1 < 0.5); the front disc (0.2) runs away.
+        let out = pooled(&[part(0.1, 1.0), part(0.5, 1.0), part(0.2, 1.0)]);
+        assert_eq!(out[0], out[1]);
+        assert!((out[0].1 - 0.3).abs() < 1e-15);
+        assert_eq!(out[2].1, 0.2);
+        // Braking never grows from rear to front.
+        let out = pooled(&[
+            part(0.4, 2.0),
+            part(0.1, 1.0),
+            part(0.3, 1.0),
+            part(0.35, 3.0),
+        ]);
+        assert!(out.windows(2).all(|w| w[0].1 >= w[1].1), "{out:?}");
+    }
+
+    #[test]
+    fn a_pushing_pair_pools_exactly_as_together() {
+        let (a, b) = (part(0.2, 1.0), part(0.6, 3.0));
+        let out = pooled(&[a, b]);
+        let (v, alpha) = together([a.vel, b.vel], [a.mass, b.mass], [a.alpha, b.alpha]);
+        assert_eq!(out, vec![(v, alpha), (v, alpha)]);
+        // Not pushing: each keeps its own motion.
+        let out = pooled(&[b, a]);
+        assert_eq!(out, vec![(b.vel, b.alpha), (a.vel, a.alpha)]);
+    }
+
+    #[test]
+    fn a_plastic_chain_impact_merges_the_rear_that_runs_into_the_front() {
+        let at = |v: f64, mass: f64| Part {
+            vel: DVec2::new(v, 0.0),
+            mass,
+            alpha: 0.0,
+        };
+        // A striker into two resting discs: all three move on together.
+        let out = plastic(&[at(3.0, 1.0), at(0.0, 1.0), at(0.0, 1.0)], DVec2::X);
+        assert!(
+            out.iter().all(|v| (v.x - 1.0).abs() < 1e-15 && v.y == 0.0),
+            "{out:?}"
+        );
+        // A front disc already faster runs away untouched.
+        let out = plastic(&[at(2.0, 1.0), at(0.0, 3.0), at(5.0, 1.0)], DVec2::X);
+        assert!(
+            (out[0].x - 0.5).abs() < 1e-15 && out[0] == out[1],
+            "{out:?}"
+        );
+        assert_eq!(out[2].x, 5.0);
     }
 }

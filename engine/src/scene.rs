@@ -144,6 +144,8 @@ pub enum Problem {
     TooManySensors(usize),
     #[error("friction might only stop it beyond 1e150: the scene's kinetic energy over its friction force (mass * mu * g) is too large")]
     OutOfReach,
+    #[error("must be a whole number from 0 to 18446744073709551615, not {0}")]
+    BadId(String),
     #[error("{0}")]
     Malformed(String),
 }
@@ -199,7 +201,16 @@ impl Scene {
             .into_iter()
             .enumerate()
             .map(|(index, v)| {
-                let id = v.get("id").and_then(|x| x.as_u64()).map(BodyId);
+                let id = match v.get("id") {
+                    Some(x) => match x.as_u64() {
+                        Some(id) => Some(BodyId(id)),
+                        None => {
+                            let object = Object::Body { index, id: None };
+                            return Err(invalid(object, "id", Problem::BadId(x.to_string())));
+                        }
+                    },
+                    None => None,
+                };
                 item::<BodySpec>(v, Object::Body { index, id })
             })
             .collect::<Result<Vec<_>, _>>()?;
@@ -583,6 +594,21 @@ mod tests {
             err(&text),
             r#"bodies[0] (id 1): field "mu": mu * g overflows"#
         );
+    }
+
+    #[test]
+    fn an_id_that_is_not_a_whole_number_is_refused_naming_the_body_and_field() {
+        for (id, shown) in [("-1", "-1"), ("1.5", "1.5"), ("\"a\"", "\"a\"")] {
+            let text = with_body(&format!(
+                r#"{{ "id": {id}, "pos": [0.3, 0.3], "vel": [0, 0], "radius": 0.01, "mass": 1, "mu": 0 }}"#
+            ));
+            assert_eq!(
+                err(&text),
+                format!(
+                    r#"bodies[2]: field "id": must be a whole number from 0 to 18446744073709551615, not {shown}"#
+                )
+            );
+        }
     }
 
     #[test]

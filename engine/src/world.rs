@@ -123,6 +123,38 @@ impl Default for Limits {
     }
 }
 
+/// Events at one instant (see [`same_instant`]) beyond which a run is
+/// [`EndReason::Stuck`]: this many, plus [`STUCK_EVENTS_PER_BODY`] per body.
+/// A Newton's cradle of `n` discs resolves in `n - 1` events at one
+/// instant; only a configuration with no finite answer comes near this.
+pub const STUCK_EVENTS: u64 = 20_000;
+
+/// See [`STUCK_EVENTS`].
+pub const STUCK_EVENTS_PER_BODY: u64 = 100;
+
+/// Every this many events at one instant, the bodies of the latest
+/// [`COLLAPSE_WINDOW`] of them are checked for an inelastic collapse
+/// (see `World::collapse`).
+pub const COLLAPSE_EVENTS: u64 = 2_000;
+
+/// See [`COLLAPSE_EVENTS`].
+pub const COLLAPSE_WINDOW: u64 = 64;
+
+/// Past this time a run checks, before each event, that every moving body
+/// is still within [`MAX_COORDINATE`] (no scene reaches it otherwise:
+/// speeds stay below 1e150 and start positions too).
+pub const FAR_FUTURE: f64 = 1e150;
+
+/// Largest coordinate a moving body may reach: its square (contact
+/// equations square distances) stays finite.
+pub const MAX_COORDINATE: f64 = 1e154;
+
+/// Whether `t` is the same instant as `t0` up to rounding: within about a
+/// thousand units in the last place of the later time.
+pub fn same_instant(t0: f64, t: f64) -> bool {
+    t - t0 <= 2.5e-13 * t.abs().max(t0.abs())
+}
+
 /// Why a run stopped.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
@@ -137,6 +169,15 @@ pub enum EndReason {
     MaxCollisions,
     /// The event cap was reached.
     MaxEvents,
+    /// The model has no finite answer from here: events keep piling up at
+    /// one instant without end (a chain pressed between two walls, an
+    /// inelastic collapse). The state is frozen at the last event.
+    Stuck,
+    /// The next event lies so far in the future that positions there would
+    /// leave the range of doubles (an inelastic disc bouncing between two
+    /// walls pushes its event times towards 1e308). The state is frozen at
+    /// the last event.
+    OutOfRange,
 }
 
 /// Where and why a run stopped.
@@ -528,6 +569,13 @@ impl World {
     pub fn run<H: EventHandler + ?Sized>(&mut self, limits: &Limits, handler: &mut H) -> End {
         let mut events_left = limits.max_events;
         let mut collisions_left = limits.max_collisions;
+        // Events within one instant since it began, and the bodies of the
+        // latest of them (see `collapse`).
+        let mut instant = (self.last_event_t, 0u64);
+        let mut recent: Vec<usize> = Vec::new();
+        let stuck_after = STUCK_EVENTS + STUCK_EVENTS_PER_BODY * self.slots.len() as u64;
+        // Worked out only once events have shared an instant.
+        let mut tick: Option<f64> = None;
         loop {
             let Some((slot, t)) = self.calendar.peek() else {
                 return self.end_at_rest();
@@ -550,7 +598,35 @@ impl World {
             if collisions_left == 0 {
                 return self.end_on(EndReason::MaxCollisions);
             }
+            if t > FAR_FUTURE && !self.in_range_at(t) {
+                return self.end_on(EndReason::OutOfRange);
+            }
             if let Some(event) = self.process(slot, t, handler) {
+                let same = t == instant.0
+                    || same_instant(instant.0, t)
+                    || (instant.1 > 0
+                        && t - instant.0 <= *tick.get_or_insert_with(|| self.instant_tick()));
+                if same {
+                    instant.1 += 1;
+                    if instant.1 > stuck_after {
+                        handler.on_event(self, &event);
+                        return self.end_on(EndReason::Stuck);
+                    }
+                    let phase = instant.1 % COLLAPSE_EVENTS;
+                    if phase + COLLAPSE_WINDOW >= COLLAPSE_EVENTS {
+                        recent.extend(event.kind.bodies().filter_map(|id| self.slot_of(id)));
+                        if !matches!(event.kind, EventKind::BodyBody { .. }) {
+                            recent.push(usize::MAX);
+                        }
+                    }
+                    if phase == 0 {
+                        self.collapse(&mut recent, t);
+                        recent.clear();
+                    }
+                } else {
+                    instant = (t, 0);
+                    recent.clear();
+                }
                 events_left -= 1;
                 collisions_left -= event.kind.is_collision() as u64;
                 if self.config.recompute_all {
@@ -574,6 +650,122 @@ impl World {
                 return Some(event);
             }
         }
+    }
+
+    /// The slot of a body still in the scene.
+    fn slot_of(&self, id: BodyId) -> Option<usize> {
+        let k = self.by_id.binary_search_by_key(&id, |e| e.0).ok()?;
+        let i = self.by_id[k].1 as usize;
+        self.slots[i].alive.then_some(i)
+    }
+
+    /// How close in time two events must be to count as one instant beyond
+    /// rounding of the time itself: while the fastest disc moves less than
+    /// the rounding of a position at the scale of the smallest radius.
+    fn instant_tick(&self) -> f64 {
+        let t = self.t;
+        let mut speed: f64 = 0.0;
+        let mut radius = f64::INFINITY;
+        for s in self.slots.iter().filter(|s| s.alive) {
+            speed = speed.max(s.traj.velocity(t).length());
+            radius = radius.min(s.radius);
+        }
+        if speed > 0.0 {
+            2.5e-13 * radius / speed
+        } else {
+            0.0
+        }
+    }
+
+    /// An inelastic collapse at one instant: discs of restitution below one
+    /// hitting each other again and again at `t`, every hit slower than the
+    /// last, a sequence whose limit has the discs that press on each other
+    /// moving as one. When the latest events of such a run (`recent`,
+    /// slots; `usize::MAX` for a hit on an obstacle) were all between discs
+    /// touching along one line, that limit is taken at once for the whole
+    /// touching chain they belong to: the plastic impact of a chain
+    /// ([`push::plastic`]), momentum kept. Their braking is pooled by the
+    /// pushing events that follow. Anything else is left alone (and ends
+    /// the run as `stuck` if it goes on).
+    fn collapse(&mut self, recent: &mut Vec<usize>, t: f64) {
+        recent.sort_unstable();
+        recent.dedup();
+        if recent.len() < 2 || recent.last() == Some(&usize::MAX) {
+            return;
+        }
+        let p0 = self.slots[recent[0]].traj.position(t);
+        let Some(far) = recent
+            .iter()
+            .map(|&c| self.slots[c].traj.position(t) - p0)
+            .max_by(|a, b| a.length_squared().total_cmp(&b.length_squared()))
+        else {
+            return;
+        };
+        let u = far.normalize_or_zero();
+        if u == DVec2::ZERO {
+            return;
+        }
+        let on_line = |w: &World, c: usize| {
+            let s = &w.slots[c];
+            let v = s.traj.velocity(t);
+            (s.traj.position(t) - p0).perp_dot(u).abs() <= push::SAME * s.radius
+                && v.perp_dot(u).abs() <= push::SAME * v.length()
+        };
+        if !recent.iter().all(|&c| on_line(self, c)) {
+            return;
+        }
+        // The whole touching chain along the line.
+        let mut chain = recent.clone();
+        let mut k = 0;
+        while k < chain.len() {
+            let m = chain[k];
+            let pm = self.slots[m].traj.position(t);
+            for c in 0..self.slots.len() {
+                if !self.slots[c].alive || chain.contains(&c) || !on_line(self, c) {
+                    continue;
+                }
+                let s = self.slots[m].radius + self.slots[c].radius;
+                let gap = self.slots[c].traj.position(t) - pm;
+                if gap.length_squared() - s * s <= push::TOUCHING * s * s {
+                    chain.push(c);
+                }
+            }
+            k += 1;
+        }
+        chain.sort_by(|&a, &b| {
+            let (pa, pb) = (
+                self.slots[a].traj.position(t),
+                self.slots[b].traj.position(t),
+            );
+            pa.dot(u).total_cmp(&pb.dot(u)).then(a.cmp(&b))
+        });
+        let parts: Vec<push::Part> = chain
+            .iter()
+            .map(|&c| push::Part {
+                vel: self.slots[c].traj.velocity(t),
+                mass: self.material[c].mass,
+                alpha: self.material[c].mu * self.g,
+            })
+            .collect();
+        for (&c, v) in chain.iter().zip(push::plastic(&parts, u)) {
+            let p = self.slots[c].traj.position(t);
+            self.slots[c].traj = Trajectory::new(t, p, v, self.material[c].mu * self.g);
+            self.slots[c].gen = self.slots[c].gen.wrapping_add(1);
+        }
+        for &c in &chain {
+            self.predict(c, true);
+        }
+    }
+
+    /// Whether every moving body is still within the range where squared
+    /// distances are finite at time `t` (only asked far in the future).
+    fn in_range_at(&self, t: f64) -> bool {
+        self.slots.iter().all(|s| {
+            !s.alive || !s.traj.is_moving_at(t) || {
+                let p = s.traj.position(t);
+                p.x.abs() < MAX_COORDINATE && p.y.abs() < MAX_COORDINATE
+            }
+        })
     }
 
     fn end_on(&self, reason: EndReason) -> End {
@@ -735,17 +927,32 @@ impl World {
     fn collide(&mut self, i: usize, j: usize, t: f64) {
         let (ti, tj) = (self.slots[i].traj, self.slots[j].traj);
         let (pi, pj) = (ti.position(t), tj.position(t));
-        let (mi, mj) = (&self.material[i], &self.material[j]);
+        let (mi, mj) = (self.material[i], self.material[j]);
         let n = (pi - pj).normalize_or_zero();
         let e = mi.restitution.min(mj.restitution);
-        let (vi, vj) = impulse::body_body(ti.velocity(t), tj.velocity(t), mi.mass, mj.mass, e, n);
+        let (ui, uj) = (ti.velocity(t), tj.velocity(t));
+        let (mut vi, mut vj) = impulse::body_body(ui, uj, mi.mass, mj.mass, e, n);
         // Each gets its own friction back (a pushed pair shares one).
         let alpha = [mi.mu * self.g, mj.mu * self.g];
         let (mut new_i, mut new_j) = (
             Trajectory::new(t, pi, vi, alpha[0]),
             Trajectory::new(t, pj, vj, alpha[1]),
         );
+        if e > 0.0 && push::chatters(&new_i, &new_j, n, t) {
+            // The pair would bounce ever faster into a pressing contact:
+            // take the chatter's end, one plastic hit, now.
+            (vi, vj) = impulse::body_body(ui, uj, mi.mass, mj.mass, 0.0, n);
+            (new_i, new_j) = (
+                Trajectory::new(t, pi, vi, alpha[0]),
+                Trajectory::new(t, pj, vj, alpha[1]),
+            );
+        }
         if push::pushing(&new_i, pi, &new_j, pj, t) {
+            self.slots[i].traj = new_i;
+            self.slots[j].traj = new_j;
+            if self.push_chain(i, j, t) {
+                return;
+            }
             let (v, a) = push::together([vi, vj], [mi.mass, mj.mass], alpha);
             (new_i, new_j) = (Trajectory::new(t, pi, v, a), Trajectory::new(t, pj, v, a));
         }
@@ -756,6 +963,66 @@ impl World {
         // The pair (i, j) is solved once, for both.
         let pair = self.predict_with(i, true, Some((j, None)));
         self.predict_with(j, true, Some((i, pair)));
+    }
+
+    /// `i` and `j` push on each other: if other touching discs slide with
+    /// them along the same line, the whole chain is joined (each block of
+    /// it moving as one, see [`push::pooled`]) and `true` returned; a lone
+    /// pair is left to the caller.
+    fn push_chain(&mut self, i: usize, j: usize, t: f64) -> bool {
+        let v = self.slots[i].traj.velocity(t);
+        let speed = v.length();
+        let d = v / speed;
+        let mut chain = vec![i, j];
+        let mut k = 0;
+        while k < chain.len() {
+            let m = chain[k];
+            let pm = self.slots[m].traj.position(t);
+            for c in 0..self.slots.len() {
+                let sc = &self.slots[c];
+                if !sc.alive || chain.contains(&c) || !sc.traj.is_moving_at(t) {
+                    continue;
+                }
+                let pc = sc.traj.position(t);
+                let s = self.slots[m].radius + sc.radius;
+                let gap = pc - pm;
+                if gap.length_squared() - s * s > push::TOUCHING * s * s
+                    || (sc.traj.velocity(t) - v).length() > push::SAME * speed
+                    || gap.perp_dot(d).abs() > push::SAME * s
+                {
+                    continue;
+                }
+                chain.push(c);
+            }
+            k += 1;
+        }
+        if chain.len() == 2 {
+            return false;
+        }
+        chain.sort_by(|&a, &b| {
+            let (pa, pb) = (
+                self.slots[a].traj.position(t),
+                self.slots[b].traj.position(t),
+            );
+            pa.dot(d).total_cmp(&pb.dot(d)).then(a.cmp(&b))
+        });
+        let parts: Vec<push::Part> = chain
+            .iter()
+            .map(|&c| push::Part {
+                vel: self.slots[c].traj.velocity(t),
+                mass: self.material[c].mass,
+                alpha: self.material[c].mu * self.g,
+            })
+            .collect();
+        for (&c, (v, a)) in chain.iter().zip(push::pooled(&parts)) {
+            let p = self.slots[c].traj.position(t);
+            self.slots[c].traj = Trajectory::new(t, p, v, a);
+            self.slots[c].gen = self.slots[c].gen.wrapping_add(1);
+        }
+        for &c in &chain {
+            self.predict(c, true);
+        }
+        true
     }
 
     fn bounce(&mut self, i: usize, t: f64, n: DVec2) {

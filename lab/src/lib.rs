@@ -14,6 +14,7 @@ pub mod catalogue;
 pub mod error;
 pub mod failures;
 pub mod files;
+pub mod hostile;
 pub mod hp;
 pub mod outcome;
 pub mod pipeline;
