@@ -715,38 +715,8 @@ impl World {
             return;
         }
         // The whole touching chain along the line.
-        let mut chain = recent.clone();
-        let mut k = 0;
-        while k < chain.len() {
-            let m = chain[k];
-            let pm = self.slots[m].traj.position(t);
-            for c in 0..self.slots.len() {
-                if !self.slots[c].alive || chain.contains(&c) || !on_line(self, c) {
-                    continue;
-                }
-                let s = self.slots[m].radius + self.slots[c].radius;
-                let gap = self.slots[c].traj.position(t) - pm;
-                if gap.length_squared() - s * s <= push::TOUCHING * s * s {
-                    chain.push(c);
-                }
-            }
-            k += 1;
-        }
-        chain.sort_by(|&a, &b| {
-            let (pa, pb) = (
-                self.slots[a].traj.position(t),
-                self.slots[b].traj.position(t),
-            );
-            pa.dot(u).total_cmp(&pb.dot(u)).then(a.cmp(&b))
-        });
-        let parts: Vec<push::Part> = chain
-            .iter()
-            .map(|&c| push::Part {
-                vel: self.slots[c].traj.velocity(t),
-                mass: self.material[c].mass,
-                alpha: self.material[c].mu * self.g,
-            })
-            .collect();
+        let chain = self.touching_chain(recent.clone(), t, u, |w, _, c| on_line(w, c));
+        let parts = self.chain_parts(&chain, t);
         for (&c, v) in chain.iter().zip(push::plastic(&parts, u)) {
             let p = self.slots[c].traj.position(t);
             self.slots[c].traj = Trajectory::new(t, p, v, self.material[c].mu * self.g);
@@ -965,6 +935,54 @@ impl World {
         self.predict_with(j, true, Some((i, pair)));
     }
 
+    /// `chain` grown by every live disc that touches one of its members `m`
+    /// at `t` and that `joins(world, m, disc)` admits, then ordered along
+    /// `dir` (ties by index).
+    fn touching_chain(
+        &self,
+        mut chain: Vec<usize>,
+        t: f64,
+        dir: DVec2,
+        joins: impl Fn(&World, usize, usize) -> bool,
+    ) -> Vec<usize> {
+        let mut k = 0;
+        while k < chain.len() {
+            let m = chain[k];
+            let pm = self.slots[m].traj.position(t);
+            for c in 0..self.slots.len() {
+                if !self.slots[c].alive || chain.contains(&c) {
+                    continue;
+                }
+                let s = self.slots[m].radius + self.slots[c].radius;
+                let gap = self.slots[c].traj.position(t) - pm;
+                if gap.length_squared() - s * s <= push::TOUCHING * s * s && joins(self, m, c) {
+                    chain.push(c);
+                }
+            }
+            k += 1;
+        }
+        chain.sort_by(|&a, &b| {
+            let (pa, pb) = (
+                self.slots[a].traj.position(t),
+                self.slots[b].traj.position(t),
+            );
+            pa.dot(dir).total_cmp(&pb.dot(dir)).then(a.cmp(&b))
+        });
+        chain
+    }
+
+    /// What [`push`] needs of each disc of `chain` at `t`.
+    fn chain_parts(&self, chain: &[usize], t: f64) -> Vec<push::Part> {
+        chain
+            .iter()
+            .map(|&c| push::Part {
+                vel: self.slots[c].traj.velocity(t),
+                mass: self.material[c].mass,
+                alpha: self.material[c].mu * self.g,
+            })
+            .collect()
+    }
+
     /// `i` and `j` push on each other: if other touching discs slide with
     /// them along the same line, the whole chain is joined (each block of
     /// it moving as one, see [`push::pooled`]) and `true` returned; a lone
@@ -973,47 +991,18 @@ impl World {
         let v = self.slots[i].traj.velocity(t);
         let speed = v.length();
         let d = v / speed;
-        let mut chain = vec![i, j];
-        let mut k = 0;
-        while k < chain.len() {
-            let m = chain[k];
-            let pm = self.slots[m].traj.position(t);
-            for c in 0..self.slots.len() {
-                let sc = &self.slots[c];
-                if !sc.alive || chain.contains(&c) || !sc.traj.is_moving_at(t) {
-                    continue;
-                }
-                let pc = sc.traj.position(t);
-                let s = self.slots[m].radius + sc.radius;
-                let gap = pc - pm;
-                if gap.length_squared() - s * s > push::TOUCHING * s * s
-                    || (sc.traj.velocity(t) - v).length() > push::SAME * speed
-                    || gap.perp_dot(d).abs() > push::SAME * s
-                {
-                    continue;
-                }
-                chain.push(c);
-            }
-            k += 1;
-        }
+        let chain = self.touching_chain(vec![i, j], t, d, |w, m, c| {
+            let sc = &w.slots[c];
+            let s = w.slots[m].radius + sc.radius;
+            let gap = sc.traj.position(t) - w.slots[m].traj.position(t);
+            sc.traj.is_moving_at(t)
+                && (sc.traj.velocity(t) - v).length() <= push::SAME * speed
+                && gap.perp_dot(d).abs() <= push::SAME * s
+        });
         if chain.len() == 2 {
             return false;
         }
-        chain.sort_by(|&a, &b| {
-            let (pa, pb) = (
-                self.slots[a].traj.position(t),
-                self.slots[b].traj.position(t),
-            );
-            pa.dot(d).total_cmp(&pb.dot(d)).then(a.cmp(&b))
-        });
-        let parts: Vec<push::Part> = chain
-            .iter()
-            .map(|&c| push::Part {
-                vel: self.slots[c].traj.velocity(t),
-                mass: self.material[c].mass,
-                alpha: self.material[c].mu * self.g,
-            })
-            .collect();
+        let parts = self.chain_parts(&chain, t);
         for (&c, (v, a)) in chain.iter().zip(push::pooled(&parts)) {
             let p = self.slots[c].traj.position(t);
             self.slots[c].traj = Trajectory::new(t, p, v, a);
