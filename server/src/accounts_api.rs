@@ -41,6 +41,15 @@ struct WithKey {
     key: String,
 }
 
+impl From<(Profile, SeatToken)> for WithKey {
+    fn from((account, key): (Profile, SeatToken)) -> WithKey {
+        WithKey {
+            account,
+            key: key.expose().to_string(),
+        }
+    }
+}
+
 fn answer<T: Serialize>(status: StatusCode, r: Result<T, Refusal>) -> HttpResponse {
     match r {
         Ok(body) => json(status, &body),
@@ -91,12 +100,9 @@ async fn create(
         let body: CreateBody = read_body(&bytes)?;
         let name = AccountName::parse(body.name.trim())?;
         let store = hub.store().clone();
-        let (account, key) = run(move || store.create_account(&name, body.bot)).await?;
-        tracing::info!(account = %account.name, bot = account.bot, "account created");
-        Ok(WithKey {
-            account,
-            key: key.expose().to_string(),
-        })
+        let made = WithKey::from(run(move || store.create_account(&name, body.bot)).await?);
+        tracing::info!(account = %made.account.name, bot = made.account.bot, "account created");
+        Ok(made)
     };
     answer(StatusCode::CREATED, made.await)
 }
@@ -114,11 +120,7 @@ async fn add_key(req: HttpRequest, hub: web::Data<Hub>) -> HttpResponse {
     let made = async {
         let key = bearer(&req)?;
         let store = hub.store().clone();
-        let (account, key) = run(move || store.add_key(&key)).await?;
-        Ok(WithKey {
-            account,
-            key: key.expose().to_string(),
-        })
+        Ok(WithKey::from(run(move || store.add_key(&key)).await?))
     };
     answer(StatusCode::CREATED, made.await)
 }
