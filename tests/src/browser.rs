@@ -247,14 +247,9 @@ pub async fn click(client: &Client, x: f64, y: f64) -> Result<()> {
     Ok(client.release_actions().await?)
 }
 
-/// Presses at `from` and moves to `to` in `steps` small moves, holding the
-/// button (finish with [`release`]), so the page can be read mid-drag.
-pub async fn press_and_move(
-    client: &Client,
-    from: (f64, f64),
-    to: (f64, f64),
-    steps: u32,
-) -> Result<()> {
+/// The pointer pressed at `from` and moved to `to` in `steps` small moves
+/// (a frame or two each), still held.
+fn pressed_path(from: (f64, f64), to: (f64, f64), steps: u32) -> MouseActions {
     let mut actions = mouse()
         .then(move_to(from.0, from.1, 50))
         .pause(Duration::from_millis(50))
@@ -271,7 +266,18 @@ pub async fn press_and_move(
             30,
         ));
     }
-    actions = actions.pause(Duration::from_millis(150));
+    actions
+}
+
+/// Presses at `from` and moves to `to` in `steps` small moves, holding the
+/// button (finish with [`release`]), so the page can be read mid-drag.
+pub async fn press_and_move(
+    client: &Client,
+    from: (f64, f64),
+    to: (f64, f64),
+    steps: u32,
+) -> Result<()> {
+    let actions = pressed_path(from, to, steps).pause(Duration::from_millis(150));
     Ok(client.perform_actions(actions).await?)
 }
 
@@ -289,23 +295,7 @@ pub async fn release(client: &Client) -> Result<()> {
 /// Presses at `from`, moves to `to` in `steps` small moves (a frame or two
 /// each), and releases there.
 pub async fn drag(client: &Client, from: (f64, f64), to: (f64, f64), steps: u32) -> Result<()> {
-    let mut actions = mouse()
-        .then(move_to(from.0, from.1, 50))
-        .pause(Duration::from_millis(50))
-        .then(PointerAction::Down {
-            button: MOUSE_BUTTON_LEFT,
-        })
-        .pause(Duration::from_millis(80));
-    let steps = steps.max(1);
-    for i in 1..=steps {
-        let t = f64::from(i) / f64::from(steps);
-        actions = actions.then(move_to(
-            from.0 + (to.0 - from.0) * t,
-            from.1 + (to.1 - from.1) * t,
-            30,
-        ));
-    }
-    actions = actions
+    let actions = pressed_path(from, to, steps)
         .pause(Duration::from_millis(120))
         .then(PointerAction::Up {
             button: MOUSE_BUTTON_LEFT,

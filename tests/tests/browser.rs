@@ -24,22 +24,52 @@ use std::time::{Duration, Instant};
 
 const STATE: &str = "return window.chapaev_state || null;";
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn a_player_opens_the_page_shoots_against_the_easy_bot_resigns_scrubs_the_replay_and_plays_the_sandbox(
-) {
-    let Some(programs) = browser::find_programs().unwrap_or_else(|e| panic!("{e}")) else {
-        return;
-    };
+/// What each scenario starts with: the browser's programs, the artifacts
+/// folder, a scratch folder, the server and the browser driver.
+struct Setup {
+    programs: browser::Programs,
+    artifacts: std::path::PathBuf,
+    scratch: tempfile::TempDir,
+    server: Server,
+    driver: Driver,
+}
+
+/// Starts the server and the driver, their logs named with `tag`; `None`
+/// where this machine has no browser.
+fn setup(tag: &str) -> Option<Setup> {
+    let programs = browser::find_programs().unwrap_or_else(|e| panic!("{e}"))?;
     let artifacts = artifacts_dir().unwrap_or_else(|e| panic!("{e}"));
     let scratch = tempfile::tempdir().unwrap();
     let server = Server::start(
         Path::new(env!("CARGO_BIN_EXE_e2e-server")),
         &scratch.path().join("data"),
-        &artifacts.join("server.log"),
+        &artifacts.join(format!("server{tag}.log")),
     )
     .unwrap_or_else(|e| panic!("{e}"));
-    let driver = Driver::start(&programs, &artifacts.join("chromedriver.log"))
+    let driver = Driver::start(&programs, &artifacts.join(format!("chromedriver{tag}.log")))
         .unwrap_or_else(|e| panic!("{e}"));
+    Some(Setup {
+        programs,
+        artifacts,
+        scratch,
+        server,
+        driver,
+    })
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_player_opens_the_page_shoots_against_the_easy_bot_resigns_scrubs_the_replay_and_plays_the_sandbox(
+) {
+    let Some(Setup {
+        programs,
+        artifacts,
+        scratch,
+        server,
+        driver,
+    }) = setup("")
+    else {
+        return;
+    };
     let client = driver
         .session(&programs, &scratch.path().join("profile"))
         .await
@@ -96,19 +126,16 @@ const WINDOWS: [Window; 3] = [
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn on_a_phone_a_sharp_screen_and_full_hd_every_control_fits_and_the_slingshot_reaches_full_power(
 ) {
-    let Some(programs) = browser::find_programs().unwrap_or_else(|e| panic!("{e}")) else {
+    let Some(Setup {
+        programs,
+        artifacts,
+        scratch,
+        server,
+        driver,
+    }) = setup("-layout")
+    else {
         return;
     };
-    let artifacts = artifacts_dir().unwrap_or_else(|e| panic!("{e}"));
-    let scratch = tempfile::tempdir().unwrap();
-    let server = Server::start(
-        Path::new(env!("CARGO_BIN_EXE_e2e-server")),
-        &scratch.path().join("data"),
-        &artifacts.join("server-layout.log"),
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
-    let driver = Driver::start(&programs, &artifacts.join("chromedriver-layout.log"))
-        .unwrap_or_else(|e| panic!("{e}"));
     let mut failures = Vec::new();
     for window in &WINDOWS {
         let extra = [
