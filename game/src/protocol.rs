@@ -217,6 +217,11 @@ pub enum ErrorCode {
     NoSuchAccount,
     /// The account key is missing, wrong or revoked.
     BadKey,
+    /// Both seats of a rated match would be the same account.
+    SameAccount,
+    /// A bot's key was sent from a web page (a browser's request carries
+    /// an `Origin`): bot keys are for bot processes only.
+    BotKeyInBrowser,
 }
 
 impl ErrorCode {
@@ -256,6 +261,8 @@ impl ErrorCode {
             ErrorCode::NameTaken => "name-taken",
             ErrorCode::NoSuchAccount => "no-such-account",
             ErrorCode::BadKey => "bad-key",
+            ErrorCode::SameAccount => "same-account",
+            ErrorCode::BotKeyInBrowser => "bot-key-in-browser",
         }
     }
 }

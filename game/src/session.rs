@@ -258,6 +258,9 @@ pub struct AfterMove {
     pub shots: u32,
     /// The result, once the match is over.
     pub result: Option<MatchResult>,
+    /// The seat that won, once the match is over and was not drawn (the
+    /// pie rule may have given the first seat Black).
+    pub winner: Option<Seat>,
 }
 
 /// What a built-in bot decided to do.
@@ -972,6 +975,10 @@ impl Session {
             after: AfterMove {
                 status,
                 shots: self.game.shots(),
+                winner: result
+                    .as_ref()
+                    .and_then(MatchResult::winner)
+                    .map(|side| self.game.seat_of(side)),
                 result,
             },
         });

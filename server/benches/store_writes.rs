@@ -55,6 +55,7 @@ fn main() {
                         turn_seconds: 30,
                         seats: [StoredSeat::default(), StoredSeat::default()],
                         rematch_of: None,
+                        rated: false,
                     })
                     .expect("a match row");
             }
@@ -70,6 +71,7 @@ fn main() {
                                 status: Status::Live,
                                 shots: index as u32 + 1,
                                 result: None,
+                                winner: None,
                             };
                             store.submit_move(id, index, mv, &after).expect("queued")
                         })

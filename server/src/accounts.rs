@@ -54,7 +54,8 @@ pub struct AccountName(String);
 
 impl AccountName {
     /// `name` if it is 3 to 20 ASCII letters, digits, `_` or `-`, starting
-    /// with a letter or digit.
+    /// with a letter or digit, and not one of the computer levels'
+    /// (`computer-…`).
     pub fn parse(name: &str) -> Result<AccountName, Refusal> {
         let ok = (MIN_NAME..=MAX_NAME).contains(&name.chars().count())
             && name
@@ -64,6 +65,18 @@ impl AccountName {
                 .bytes()
                 .next()
                 .is_some_and(|b| b.is_ascii_alphanumeric());
+        let reserved = name
+            .get(..crate::ratings::COMPUTER_PREFIX.len())
+            .is_some_and(|p| p.eq_ignore_ascii_case(crate::ratings::COMPUTER_PREFIX));
+        if reserved {
+            return Err(Refusal::new(
+                ErrorCode::BadName,
+                format!(
+                    "names starting with {} are the computer levels'",
+                    crate::ratings::COMPUTER_PREFIX
+                ),
+            ));
+        }
         if ok {
             Ok(AccountName(name.to_string()))
         } else {
@@ -343,7 +356,11 @@ mod tests {
         assert_eq!(code(err), ErrorCode::NameTaken);
         let anka = store.account_of_key(&key).unwrap();
         assert!(!anka.bot);
-        assert_eq!(store.leaderboard(true, 10).unwrap(), vec![]);
+        assert!(store
+            .leaderboard(true, 10)
+            .unwrap()
+            .iter()
+            .all(|p| p.name.starts_with(crate::ratings::COMPUTER_PREFIX)));
     }
 
     #[test]
@@ -388,6 +405,7 @@ mod tests {
             .leaderboard(true, 10)
             .unwrap()
             .into_iter()
+            .filter(|p| !p.name.starts_with(crate::ratings::COMPUTER_PREFIX))
             .map(|p| (p.name, p.provisional))
             .collect();
         assert_eq!(

@@ -4,9 +4,12 @@
 //! one presented, and the leaderboards of people and of bots. Creating
 //! accounts shares the per-address limit on creating matches.
 
-use crate::accounts::{AccountError, AccountName, Profile, MAX_LEADERBOARD};
-use crate::http::{blocking_with, json, read_body, refused, Creations};
+use crate::accounts::{AccountName, Profile, MAX_LEADERBOARD};
+use crate::auth::proven;
+use crate::blocking::run_account;
+use crate::http::{json, read_body, refused, Creations};
 use crate::hub::Hub;
+use crate::ratings::MAX_LISTED;
 use crate::token::SeatToken;
 use actix_web::http::StatusCode;
 use actix_web::{web, HttpRequest, HttpResponse};
@@ -20,6 +23,8 @@ pub fn routes(cfg: &mut web::ServiceConfig) {
         .route("/api/accounts/me/keys", web::post().to(add_key))
         .route("/api/accounts/me/keys/current", web::delete().to(revoke))
         .route("/api/accounts/{name}", web::get().to(profile))
+        .route("/api/accounts/{name}/history", web::get().to(history))
+        .route("/api/accounts/{name}/matches", web::get().to(matches))
         .route("/api/leaderboard", web::get().to(leaderboard));
 }
 
@@ -57,38 +62,6 @@ fn answer<T: Serialize>(status: StatusCode, r: Result<T, Refusal>) -> HttpRespon
     }
 }
 
-/// Runs an account operation on a blocking thread.
-async fn run<T: Send + 'static>(
-    f: impl FnOnce() -> Result<T, AccountError> + Send + 'static,
-) -> Result<T, Refusal> {
-    blocking_with(f, |e| match e {
-        AccountError::Refused(r) => Ok(r),
-        AccountError::Store(e) => Err(e.to_string()),
-        AccountError::Random(e) => Err(e.to_string()),
-    })
-    .await
-}
-
-/// The key in the request's `Authorization: Bearer` header.
-fn bearer(req: &HttpRequest) -> Result<SeatToken, Refusal> {
-    let no_key = || {
-        Refusal::new(
-            ErrorCode::BadKey,
-            "send the account key as 'Authorization: Bearer KEY'",
-        )
-    };
-    let header = req
-        .headers()
-        .get(actix_web::http::header::AUTHORIZATION)
-        .ok_or_else(no_key)?;
-    let text = header.to_str().map_err(|_| no_key())?;
-    let key = text.strip_prefix("Bearer ").ok_or_else(no_key)?.trim();
-    if key.is_empty() || key.len() > 128 {
-        return Err(no_key());
-    }
-    Ok(SeatToken::new(key))
-}
-
 async fn create(
     req: HttpRequest,
     hub: web::Data<Hub>,
@@ -100,7 +73,7 @@ async fn create(
         let body: CreateBody = read_body(&bytes)?;
         let name = AccountName::parse(body.name.trim())?;
         let store = hub.store().clone();
-        let made = WithKey::from(run(move || store.create_account(&name, body.bot)).await?);
+        let made = WithKey::from(run_account(move || store.create_account(&name, body.bot)).await?);
         tracing::info!(account = %made.account.name, bot = made.account.bot, "account created");
         Ok(made)
     };
@@ -108,28 +81,24 @@ async fn create(
 }
 
 async fn me(req: HttpRequest, hub: web::Data<Hub>) -> HttpResponse {
-    let found = async {
-        let key = bearer(&req)?;
-        let store = hub.store().clone();
-        run(move || store.account_of_key(&key)).await
-    };
+    let found = async { Ok(proven(&req, &hub).await?.1) };
     answer(StatusCode::OK, found.await)
 }
 
 async fn add_key(req: HttpRequest, hub: web::Data<Hub>) -> HttpResponse {
     let made = async {
-        let key = bearer(&req)?;
+        let (key, _) = proven(&req, &hub).await?;
         let store = hub.store().clone();
-        Ok(WithKey::from(run(move || store.add_key(&key)).await?))
+        Ok(WithKey::from(run_account(move || store.add_key(&key)).await?))
     };
     answer(StatusCode::CREATED, made.await)
 }
 
 async fn revoke(req: HttpRequest, hub: web::Data<Hub>) -> HttpResponse {
     let done = async {
-        let key = bearer(&req)?;
+        let (key, _) = proven(&req, &hub).await?;
         let store = hub.store().clone();
-        run(move || store.revoke_key(&key)).await
+        run_account(move || store.revoke_key(&key)).await
     };
     match done.await {
         Ok(()) => HttpResponse::NoContent().finish(),
@@ -137,16 +106,53 @@ async fn revoke(req: HttpRequest, hub: web::Data<Hub>) -> HttpResponse {
     }
 }
 
+/// The account named `name`, or `no-such-account`.
+async fn existing(hub: &Hub, name: String) -> Result<Profile, Refusal> {
+    let store = hub.store().clone();
+    let wanted = name.clone();
+    run_account(move || Ok(store.account(&wanted)?))
+        .await?
+        .ok_or_else(|| Refusal::new(ErrorCode::NoSuchAccount, format!("no account {name}")))
+}
+
 async fn profile(hub: web::Data<Hub>, name: web::Path<String>) -> HttpResponse {
-    let name = name.into_inner();
-    let found = async {
+    answer(StatusCode::OK, existing(&hub, name.into_inner()).await)
+}
+
+/// `?limit=N` of an account's listings.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ListingQuery {
+    limit: Option<usize>,
+}
+
+fn listing_limit(req: &HttpRequest) -> Result<usize, Refusal> {
+    let q: ListingQuery = web::Query::from_query(req.query_string())
+        .map(web::Query::into_inner)
+        .map_err(|e| Refusal::new(ErrorCode::BadMessage, e.to_string()))?;
+    Ok(q.limit.unwrap_or(MAX_LISTED).min(MAX_LISTED))
+}
+
+/// `GET /api/accounts/{name}/history`: the rating after each rated match.
+async fn history(hub: web::Data<Hub>, name: web::Path<String>, req: HttpRequest) -> HttpResponse {
+    let listed = async {
+        let limit = listing_limit(&req)?;
+        let account = existing(&hub, name.into_inner()).await?;
         let store = hub.store().clone();
-        let wanted = name.clone();
-        run(move || Ok(store.account(&wanted)?))
-            .await?
-            .ok_or_else(|| Refusal::new(ErrorCode::NoSuchAccount, format!("no account {name}")))
+        run_account(move || Ok(store.rating_history(&account.name, limit)?)).await
     };
-    answer(StatusCode::OK, found.await)
+    answer(StatusCode::OK, listed.await)
+}
+
+/// `GET /api/accounts/{name}/matches`: the matches it played, newest first.
+async fn matches(hub: web::Data<Hub>, name: web::Path<String>, req: HttpRequest) -> HttpResponse {
+    let listed = async {
+        let limit = listing_limit(&req)?;
+        let account = existing(&hub, name.into_inner()).await?;
+        let store = hub.store().clone();
+        run_account(move || Ok(store.matches_of(&account.name, limit)?)).await
+    };
+    answer(StatusCode::OK, listed.await)
 }
 
 /// `GET /api/leaderboard?bots=true&limit=N`.
@@ -165,7 +171,7 @@ async fn leaderboard(hub: web::Data<Hub>, req: HttpRequest) -> HttpResponse {
             .map_err(|e| Refusal::new(ErrorCode::BadMessage, e.to_string()))?;
         let limit = q.limit.unwrap_or(MAX_LEADERBOARD);
         let store = hub.store().clone();
-        run(move || Ok(store.leaderboard(q.bots, limit)?)).await
+        run_account(move || Ok(store.leaderboard(q.bots, limit)?)).await
     };
     answer(StatusCode::OK, listed.await)
 }

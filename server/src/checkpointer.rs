@@ -182,12 +182,14 @@ mod tests {
                 turn_seconds: 60,
                 seats: [StoredSeat::default(), StoredSeat::default()],
                 rematch_of: None,
+                rated: false,
             })
             .unwrap();
         let after = AfterMove {
             status: Status::Live,
             shots: 0,
             result: None,
+            winner: None,
         };
         for k in 0..400 {
             let pass = RecordedMove::Pass { side: Side::White };

@@ -8,6 +8,8 @@
 //! `rate-limited`), and the hub holds the limit on matches in memory.
 //! The game itself (`/` and its files) is [`crate::assets`].
 
+use crate::auth::signed_in;
+use crate::blocking::blocking_with;
 use crate::hub::{Hub, NewMatch, Opponent, SeatGrant};
 use crate::ratelimit::AddressLimiter;
 use crate::refusal::{HttpStatus, Refusal};
@@ -130,29 +132,6 @@ async fn blocking<T: Send + 'static>(
     blocking_with(f, |e| Err(e.to_string())).await
 }
 
-/// Runs `f` on a blocking thread; its error is the client's (`Ok` of a
-/// refusal, sent as it is) or the server's (`Err`, logged, answered
-/// `internal`), as `classify` says.
-pub(crate) async fn blocking_with<T: Send + 'static, E: Send + 'static>(
-    f: impl FnOnce() -> Result<T, E> + Send + 'static,
-    classify: impl FnOnce(E) -> Result<Refusal, String>,
-) -> Result<T, Refusal> {
-    match web::block(f).await {
-        Ok(Ok(t)) => Ok(t),
-        Ok(Err(e)) => match classify(e) {
-            Ok(refusal) => Err(refusal),
-            Err(e) => {
-                error!(error = %e, "store failure");
-                Err(Refusal::internal())
-            }
-        },
-        Err(e) => {
-            error!(error = %e, "blocking task failed");
-            Err(Refusal::internal())
-        }
-    }
-}
-
 /// `GET /api/schema/v1.json`: the protocol's JSON Schema.
 async fn schema() -> HttpResponse {
     static SCHEMA: std::sync::OnceLock<String> = std::sync::OnceLock::new();
@@ -225,6 +204,10 @@ struct CreateBody {
     /// A full configuration instead of a named one.
     config: Option<Config>,
     turn_seconds: Option<u64>,
+    /// Whether the result moves the ratings (needs an account, and the
+    /// `standard` rules).
+    #[serde(default)]
+    rated: bool,
 }
 
 /// The rules of a new match: a preset by name, or a configuration (not
@@ -290,11 +273,27 @@ async fn create(
                 ))
             }
         };
+        let account = signed_in(&req, &hub).await?.map(|(_, a)| a.name);
+        let config = match (b.rated, b.rules.as_deref(), b.config) {
+            (true, None | Some("standard"), None) => game::Preset::Standard.config(),
+            (true, ..) => {
+                return Err(Refusal::new(
+                    ErrorCode::BadConfig,
+                    "a rated match is played under the standard rules",
+                ))
+            }
+            (false, r, c) => rules(r, c)?,
+        };
         let req = NewMatch {
-            name: name(b.name, "first")?,
+            name: match &account {
+                Some(a) => a.clone(),
+                None => name(b.name, "first")?,
+            },
+            account,
             opponent,
-            config: rules(b.rules.as_deref(), b.config)?,
+            config,
             turn_seconds: b.turn_seconds,
+            rated: b.rated,
         };
         hub.create(req).await
     }
@@ -352,10 +351,18 @@ struct JoinBody {
     name: Option<String>,
 }
 
-async fn join(hub: web::Data<Hub>, id: web::Path<String>, bytes: web::Bytes) -> HttpResponse {
+async fn join(
+    hub: web::Data<Hub>,
+    id: web::Path<String>,
+    req: HttpRequest,
+    bytes: web::Bytes,
+) -> HttpResponse {
     let result = async {
         let b: JoinBody = read_body(&bytes)?;
-        hub.join(&id, name(b.name, "second")?).await
+        match signed_in(&req, &hub).await? {
+            Some((_, a)) => hub.join(&id, a.name.clone(), Some(a.name)).await,
+            None => hub.join(&id, name(b.name, "second")?, None).await,
+        }
     }
     .await;
     match result {

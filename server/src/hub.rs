@@ -52,9 +52,40 @@ pub enum Opponent {
 #[derive(Clone, Debug)]
 pub struct NewMatch {
     pub name: String,
+    /// The creator's account, if signed in (`name` is then the account's).
+    pub account: Option<String>,
     pub opponent: Opponent,
     pub config: Config,
     pub turn_seconds: Option<u64>,
+    /// Whether the result moves the ratings (both seats need accounts: a
+    /// built-in level plays as its computer account).
+    pub rated: bool,
+}
+
+/// Who plays one seat of a match being started.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct NewSeat {
+    pub name: Option<String>,
+    /// The hash of the seat token (`None`: empty until someone joins, or a
+    /// built-in bot's).
+    pub token: Option<TokenHash>,
+    /// The built-in level playing the seat.
+    pub bot: Option<Level>,
+    /// The account playing the seat.
+    pub account: Option<String>,
+}
+
+impl NewSeat {
+    /// A built-in level's seat: named after it, and in a rated match
+    /// played as its computer account.
+    fn computer(level: Level, name: String, rated: bool) -> NewSeat {
+        NewSeat {
+            name: Some(name),
+            token: None,
+            bot: Some(level),
+            account: rated.then(|| crate::ratings::computer_account(level)),
+        }
+    }
 }
 
 /// A seat handed out.
@@ -242,16 +273,27 @@ impl Hub {
             ));
         }
         let token = random(token::seat_token())?;
-        let bot = match req.opponent {
-            Opponent::Person => None,
-            Opponent::Bot(level) => Some(level),
+        if req.rated && req.account.is_none() {
+            return Err(Refusal::new(
+                ErrorCode::BadKey,
+                "a rated match needs an account: send its key as 'Authorization: Bearer KEY'",
+            ));
+        }
+        let second = match req.opponent {
+            Opponent::Person => NewSeat::default(),
+            Opponent::Bot(level) => NewSeat::computer(level, format!("bot ({level})"), req.rated),
         };
         let seats = [
-            (Some(req.name), Some(token.hash()), None),
-            (None, None, bot),
+            NewSeat {
+                name: Some(req.name),
+                token: Some(token.hash()),
+                bot: None,
+                account: req.account,
+            },
+            second,
         ];
         let id = self
-            .start(slot, None, req.config, turn_seconds, seats)
+            .start(slot, None, req.config, turn_seconds, seats, req.rated)
             .await?;
         Ok(SeatGrant {
             match_id: id,
@@ -277,36 +319,45 @@ impl Hub {
                 "turn_seconds must be between 1 and 3600",
             ));
         }
-        let seat = |l: Level| (Some(format!("bot ({l})")), None, Some(l));
+        let seat = |l: Level| NewSeat::computer(l, format!("bot ({l})"), false);
         self.start(
             slot,
             None,
             config,
             turn_seconds,
             [seat(first), seat(second)],
+            false,
         )
         .await
     }
 
-    /// Starts the rematch of `of`: the same configuration and clock, the
-    /// players' seats (and so their colours) exchanged; a bot keeps the
-    /// second seat. The players keep their tokens.
+    /// Starts the rematch of `of`: the same configuration, clock and
+    /// rating, the players' seats (and so their colours) exchanged; a bot
+    /// keeps the second seat. The players keep their tokens and accounts.
     pub async fn create_rematch(
         &self,
         of: &str,
         config: Config,
         turn: Duration,
-        seats: [(Option<String>, Option<TokenHash>, Option<Level>); 2],
+        seats: [NewSeat; 2],
+        rated: bool,
     ) -> Result<String, Refusal> {
         let slot = self.reserve()?;
         let [first, second] = seats;
-        let seats = if second.2.is_some() {
+        let seats = if second.bot.is_some() {
             [first, second]
         } else {
             [second, first]
         };
-        self.start(slot, Some(of.to_string()), config, turn.as_secs(), seats)
-            .await
+        self.start(
+            slot,
+            Some(of.to_string()),
+            config,
+            turn.as_secs(),
+            seats,
+            rated,
+        )
+        .await
     }
 
     async fn start(
@@ -315,14 +366,15 @@ impl Hub {
         rematch_of: Option<String>,
         config: Config,
         turn_seconds: u64,
-        seats: [(Option<String>, Option<TokenHash>, Option<Level>); 2],
+        seats: [NewSeat; 2],
+        rated: bool,
     ) -> Result<String, Refusal> {
         let seed = random(token::seed())?;
         let game = Game::new(config.clone(), seed)
             .map_err(|e| Refusal::new(ErrorCode::BadConfig, e.to_string()))?;
         let id = random(token::match_id())?;
-        let bot = StoredMatch::bots_column([seats[0].2, seats[1].2]);
-        let both = seats.iter().all(|s| s.1.is_some() || s.2.is_some());
+        let bot = StoredMatch::bots_column([seats[0].bot, seats[1].bot]);
+        let both = seats.iter().all(|s| s.token.is_some() || s.bot.is_some());
         let stored = StoredMatch {
             id: id.clone(),
             created_at: 0,
@@ -332,8 +384,13 @@ impl Hub {
             status: if both { Status::Live } else { Status::Open },
             bot,
             turn_seconds,
-            seats: seats.map(|(name, token, _)| StoredSeat { name, token }),
+            seats: seats.map(|s| StoredSeat {
+                name: s.name,
+                token: s.token,
+                account: s.account,
+            }),
             rematch_of,
+            rated,
         };
         let store = self.inner.store.clone();
         let row = stored.clone();
@@ -430,12 +487,18 @@ impl Hub {
     }
 
     /// Takes the empty second seat of `id`.
-    pub async fn join(&self, id: &str, name: String) -> Result<SeatGrant, Refusal> {
+    pub async fn join(
+        &self,
+        id: &str,
+        name: String,
+        account: Option<String>,
+    ) -> Result<SeatGrant, Refusal> {
         let token = random(token::seat_token())?;
         let (_, seat) = self
             .ask(id, |reply| Command::Join {
                 name: name.clone(),
                 token: token.hash(),
+                account: account.clone(),
                 reply,
             })
             .await?;
@@ -548,10 +611,20 @@ impl RoomHost for Hub {
         config: Config,
         turn: Duration,
         seats: [SeatSpec; 2],
+        accounts: [Option<String>; 2],
+        rated: bool,
     ) -> impl Future<Output = Result<String, Refusal>> + Send {
         let hub = self.clone();
-        let seats = seats.map(|s| (s.name, s.token, s.bot.as_deref().and_then(Level::parse)));
-        async move { hub.create_rematch(&of, config, turn, seats).await }
+        let [a, b] = accounts;
+        let [s, t] = seats;
+        let seat = |s: SeatSpec, account| NewSeat {
+            bot: s.bot.as_deref().and_then(Level::parse),
+            name: s.name,
+            token: s.token,
+            account,
+        };
+        let seats = [seat(s, a), seat(t, b)];
+        async move { hub.create_rematch(&of, config, turn, seats, rated).await }
     }
     fn remove(&self, id: &str, generation: u64) {
         Hub::remove(self, id, generation)
@@ -644,9 +717,11 @@ mod tests {
     fn person(name: &str) -> NewMatch {
         NewMatch {
             name: name.into(),
+            account: None,
             opponent: Opponent::Person,
             config: Config::default(),
             turn_seconds: None,
+            rated: false,
         }
     }
 
@@ -654,7 +729,7 @@ mod tests {
     async fn a_shot_is_stored_before_it_is_broadcast_and_only_the_seat_token_can_shoot() {
         let hub = hub();
         let a = hub.create(person("Petka")).await.unwrap();
-        let b = hub.join(&a.match_id, "Anka".into()).await.unwrap();
+        let b = hub.join(&a.match_id, "Anka".into(), None).await.unwrap();
         assert_eq!(b.seat, Seat::Second);
         assert_ne!(a.token, b.token);
         let (room, mut white) = hub
@@ -722,7 +797,7 @@ mod tests {
         };
         let first = mk(store.clone());
         let a = first.create(person("a")).await.unwrap();
-        first.join(&a.match_id, "b".into()).await.unwrap();
+        first.join(&a.match_id, "b".into(), None).await.unwrap();
         let (room, mut c) = first
             .connect(&a.match_id, Some(a.token.clone()))
             .await
@@ -770,7 +845,7 @@ mod tests {
         // Both live (only live matches resume on start).
         for m in [id, a.match_id.as_str()] {
             hub.store()
-                .seat_second(m, "Anka", &TokenHash::of("b"))
+                .seat_second(m, "Anka", &TokenHash::of("b"), None)
                 .unwrap();
         }
         // A fresh hub on the same store, as after a restart.
@@ -858,7 +933,7 @@ mod tests {
             .await
             .unwrap();
         assert_eq!(
-            hub.join(&a.match_id, "x".into()).await.unwrap_err().code,
+            hub.join(&a.match_id, "x".into(), None).await.unwrap_err().code,
             ErrorCode::MatchFull
         );
         let (room, mut c) = hub.connect(&a.match_id, Some(a.token)).await.unwrap();

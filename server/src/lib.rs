@@ -28,6 +28,8 @@
 pub mod accounts;
 pub mod accounts_api;
 pub mod app;
+pub mod auth;
+pub mod blocking;
 pub mod assets;
 pub mod checkpointer;
 pub mod config;
@@ -37,6 +39,7 @@ pub mod loopback;
 pub mod metrics;
 pub mod origin;
 pub mod ratelimit;
+pub mod ratings;
 pub mod readers;
 pub mod refusal;
 pub mod room;

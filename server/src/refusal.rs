@@ -22,8 +22,9 @@ impl HttpStatus for Refusal {
             | ErrorCode::NameTaken
             | ErrorCode::MatchOver
             | ErrorCode::MatchNotOver
+            | ErrorCode::SameAccount
             | ErrorCode::UnsupportedPhysics => 409,
-            ErrorCode::BadToken | ErrorCode::ForbiddenOrigin => 403,
+            ErrorCode::BadToken | ErrorCode::ForbiddenOrigin | ErrorCode::BotKeyInBrowser => 403,
             ErrorCode::RateLimited => 429,
             ErrorCode::MessageTooLarge => 413,
             ErrorCode::ServerBusy => 503,

@@ -19,7 +19,7 @@ use crate::refusal::Refusal;
 use crate::store::{AfterMove, Store, StoredMatch};
 use bots::{Bot, Context, Decision};
 use bytestring::ByteString;
-use game::protocol::{ClientMessage, ForfeitReason, ServerMessage};
+use game::protocol::{ClientMessage, ErrorCode, ForfeitReason, ServerMessage};
 use game::session::{
     BotDecision, ConnId, Effect, Input, Moment, Request, SeatSpec, Session, SessionLimits, Status,
     To,
@@ -87,13 +87,16 @@ pub trait RoomHost: Clone + Send + Sync + 'static {
     fn limits(&self) -> &Limits;
     /// A connection id never handed out before.
     fn next_conn_id(&self) -> u64;
-    /// Stores and starts the rematch of match `of`; its id.
+    /// Stores and starts the rematch of match `of` (`seats` as they were
+    /// in it, with their `accounts`; rated if it was); its id.
     fn start_rematch(
         &self,
         of: String,
         config: Config,
         turn: Duration,
         seats: [SeatSpec; 2],
+        accounts: [Option<String>; 2],
+        rated: bool,
     ) -> impl Future<Output = Result<String, Refusal>> + Send;
     /// Forgets the room of `id` (unless a newer one, of a later
     /// `generation`, took its place).
@@ -121,6 +124,8 @@ pub enum Command {
         name: String,
         /// The hash of the seat token made for them.
         token: TokenHash,
+        /// Their account, if they signed in.
+        account: Option<String>,
         reply: oneshot::Sender<Result<Seat, Refusal>>,
     },
     /// Finish the command in hand and stop (server shutdown).
@@ -199,6 +204,12 @@ pub struct Room<H: RoomHost> {
     /// What the session has said while handling the command in hand;
     /// handed to the connections when it is done ([`Room::flush`]).
     outbox: Vec<(To, ByteString)>,
+    /// The account playing each seat, if any.
+    accounts: [Option<String>; 2],
+    /// Whether the match is rated (then both seats have accounts).
+    rated: bool,
+    /// The account of the join being handled, stored with the seat.
+    joining: Option<String>,
 }
 
 /// A bot's slot (a panic while it was held cannot leave it half-changed).
@@ -253,6 +264,9 @@ impl<H: RoomHost> Room<H> {
             bot_tx,
             bot_rx: Some(bot_rx),
             outbox: Vec::new(),
+            accounts: stored.seats.clone().map(|s| s.account),
+            rated: stored.rated,
+            joining: None,
         }
     }
 
@@ -343,8 +357,22 @@ impl<H: RoomHost> Room<H> {
                     self.host.metrics().shot_broadcast(received.elapsed());
                 }
             }
-            Command::Join { name, token, reply } => {
+            Command::Join {
+                name,
+                token,
+                account,
+                reply,
+            } => {
+                if let Err(r) = self.may_join(account.as_deref()) {
+                    let _ = reply.send(Err(r));
+                    return;
+                }
+                self.joining = account;
                 let carried = self.feed(Input::Join { name, token }).await;
+                let joining = self.joining.take();
+                if carried.joined.is_some() && !carried.write_failed {
+                    self.accounts[1] = joining;
+                }
                 let answer = match (carried.write_failed, carried.joined, carried.refused) {
                     (false, Some(seat), _) => Ok(seat),
                     (false, None, Some(r)) => Err(r),
@@ -354,6 +382,31 @@ impl<H: RoomHost> Room<H> {
             }
             Command::Shutdown { .. } => {}
         }
+    }
+
+    /// Whether the holder of `account` (if signed in) may take the second
+    /// seat: a rated match needs an account, and not the first seat's.
+    fn may_join(&self, account: Option<&str>) -> Result<(), Refusal> {
+        if !self.rated {
+            return Ok(());
+        }
+        let Some(account) = account else {
+            return Err(Refusal::new(
+                ErrorCode::BadKey,
+                "this match is rated: sign in (send your account key as \
+                 'Authorization: Bearer KEY') to join it",
+            ));
+        };
+        if self.accounts[0]
+            .as_deref()
+            .is_some_and(|a| a.eq_ignore_ascii_case(account))
+        {
+            return Err(Refusal::new(
+                ErrorCode::SameAccount,
+                "a rated match is between two accounts: this one holds the first seat",
+            ));
+        }
+        Ok(())
     }
 
     async fn disconnect(&mut self, conn: u64) {
@@ -439,8 +492,10 @@ impl<H: RoomHost> Room<H> {
                 Effect::StoreJoin { name, token } => {
                     let store = self.host.store().clone();
                     let id = self.id.clone();
-                    let stored =
-                        tokio::task::spawn_blocking(move || store.seat_second(&id, &name, &token))
+                    let account = self.joining.clone();
+                    let stored = tokio::task::spawn_blocking(move || {
+                        store.seat_second(&id, &name, &token, account.as_deref())
+                    })
                             .await
                             .map_err(|e| e.to_string())
                             .and_then(|r| r.map_err(|e| e.to_string()));
@@ -457,7 +512,14 @@ impl<H: RoomHost> Room<H> {
                 } => {
                     let created = self
                         .host
-                        .start_rematch(self.id.clone(), config, turn, seats)
+                        .start_rematch(
+                            self.id.clone(),
+                            config,
+                            turn,
+                            seats,
+                            self.accounts.clone(),
+                            self.rated,
+                        )
                         .await;
                     let input = match created {
                         Ok(match_id) => {
@@ -494,6 +556,7 @@ impl<H: RoomHost> Room<H> {
             status: after.status,
             shots: after.shots,
             result: after.result.as_ref(),
+            winner: after.winner,
         };
         self.host
             .store()
@@ -667,6 +730,8 @@ mod tests {
             _config: Config,
             _turn: Duration,
             _seats: [SeatSpec; 2],
+            _accounts: [Option<String>; 2],
+            _rated: bool,
         ) -> Result<String, Refusal> {
             Err(Refusal::internal())
         }
@@ -691,6 +756,7 @@ mod tests {
         let seat = |name: &str, token: &str| StoredSeat {
             name: Some(name.into()),
             token: Some(TokenHash::of(token)),
+            account: None,
         };
         let stored = StoredMatch {
             id: "m1".into(),
@@ -703,6 +769,7 @@ mod tests {
             turn_seconds: 30,
             seats: [seat("Petka", "tok-a"), seat("Anka", "tok-b")],
             rematch_of: None,
+            rated: false,
         };
         host.store.create(&stored).unwrap();
         let game = Game::new(stored.config.clone(), stored.seed).unwrap();

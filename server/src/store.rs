@@ -14,6 +14,8 @@ use crate::metrics::Histogram;
 use crate::readers::{Readers, READERS};
 use game::token::TokenHash;
 use game::{Config, MatchRecord, MatchResult, PhysicsVersion, RecordedMove, RECORD_VERSION};
+use game::rating::Score;
+use game::Seat;
 use rusqlite::{params, Connection, OptionalExtension};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -54,6 +56,9 @@ pub struct StoredSeat {
     pub name: Option<String>,
     /// The hash of the seat token (`None`: empty seat, or a bot's seat).
     pub token: Option<TokenHash>,
+    /// The account playing the seat, if its player signed in (the seat's
+    /// name is then the account's).
+    pub account: Option<String>,
 }
 
 /// A match row.
@@ -74,6 +79,8 @@ pub struct StoredMatch {
     pub turn_seconds: u64,
     pub seats: [StoredSeat; 2],
     pub rematch_of: Option<String>,
+    /// Whether the result moves the two accounts' ratings.
+    pub rated: bool,
 }
 
 impl StoredMatch {
@@ -119,6 +126,22 @@ pub struct Summary {
     /// Whether this server can play that version (a match it cannot play
     /// is kept as stored, not resumed, until a server that can).
     pub playable: bool,
+    /// Whether the result moves the players' ratings.
+    pub rated: bool,
+    /// The current rating of the account in the first seat (`None`: the
+    /// seat has no account).
+    pub first_rating: Option<SeatRating>,
+    /// The same for the second seat.
+    pub second_rating: Option<SeatRating>,
+}
+
+/// An account's rating as a listing shows it next to a seat.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SeatRating {
+    /// Rounded.
+    pub rating: i64,
+    /// Whether it is still provisional (too few rated games).
+    pub provisional: bool,
 }
 
 /// The row update that goes with a move.
@@ -127,6 +150,8 @@ pub struct AfterMove<'a> {
     pub status: Status,
     pub shots: u32,
     pub result: Option<&'a MatchResult>,
+    /// The seat that won, once the match is over and not drawn.
+    pub winner: Option<Seat>,
 }
 
 /// The SQLite store: one connection for reads and writes (SQLite has one
@@ -200,6 +225,9 @@ struct QueuedMove {
     status: &'static str,
     shots: i64,
     result: Option<String>,
+    /// For a finished match: the first seat's score, which rates a rated
+    /// match in the move's own transaction.
+    score: Option<Score>,
     done: Answer,
 }
 
@@ -292,12 +320,28 @@ fn hash_plain_tokens(conn: &Connection) -> Result<(), StoreError> {
 /// kept their physics version (and to a new table: [`SCHEMA`] predates
 /// it). Every match stored before then was played under version 1.
 fn add_physics_column(conn: &Connection) -> Result<(), StoreError> {
+    add_column(conn, "physics", "INTEGER NOT NULL DEFAULT 1")
+}
+
+/// Adds the columns of accounts to a `matches` table made before seats
+/// had accounts: which account plays each seat, and whether the match is
+/// rated (none of the matches stored before then is).
+fn add_account_columns(conn: &Connection) -> Result<(), StoreError> {
+    add_column(conn, "first_account", "TEXT")?;
+    add_column(conn, "second_account", "TEXT")?;
+    add_column(conn, "rated", "INTEGER NOT NULL DEFAULT 0")
+}
+
+/// Adds `column` to the `matches` table unless it has it.
+fn add_column(conn: &Connection, column: &str, definition: &str) -> Result<(), StoreError> {
     let mut stmt = conn.prepare("PRAGMA table_info(matches)")?;
     let columns = stmt
         .query_map([], |r| r.get::<_, String>("name"))?
         .collect::<Result<Vec<_>, _>>()?;
-    if !columns.iter().any(|c| c == "physics") {
-        conn.execute_batch("ALTER TABLE matches ADD COLUMN physics INTEGER NOT NULL DEFAULT 1")?;
+    if !columns.iter().any(|c| c == column) {
+        conn.execute_batch(&format!(
+            "ALTER TABLE matches ADD COLUMN {column} {definition}"
+        ))?;
     }
     Ok(())
 }
@@ -362,7 +406,9 @@ impl Store {
         conn.execute_batch(SCHEMA)?;
         hash_plain_tokens(&conn)?;
         add_physics_column(&conn)?;
+        add_account_columns(&conn)?;
         crate::accounts::create_tables(&conn)?;
+        crate::ratings::create_tables(&conn)?;
         let (checkpointer, readers, log) = match on_disk {
             Some((c, path, log)) => (Some(c), Some(Readers::open(path, READERS)?), Some(log)),
             None => (None, None, None),
@@ -411,8 +457,8 @@ impl Store {
         conn.execute(
             "INSERT INTO matches (id, created_at, updated_at, config, seed, status, bot, turn_seconds,
                                   first_name, first_token_hash, second_name, second_token_hash, rematch_of,
-                                  physics)
-             VALUES (?1, ?2, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13)",
+                                  physics, first_account, second_account, rated)
+             VALUES (?1, ?2, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16)",
             params![
                 m.id,
                 t as i64,
@@ -427,19 +473,30 @@ impl Store {
                 m.seats[1].token.map(|h| h.to_hex()),
                 m.rematch_of,
                 m.physics,
+                m.seats[0].account,
+                m.seats[1].account,
+                m.rated,
             ],
         )?;
         self.shared.log_grew();
         Ok(())
     }
 
-    /// Fills the second seat; the match becomes live.
-    pub fn seat_second(&self, id: &str, name: &str, token: &TokenHash) -> Result<(), StoreError> {
+    /// Fills the second seat (with the account playing it, if any); the
+    /// match becomes live.
+    pub fn seat_second(
+        &self,
+        id: &str,
+        name: &str,
+        token: &TokenHash,
+        account: Option<&str>,
+    ) -> Result<(), StoreError> {
         let conn = self.lock()?;
         let n = conn.execute(
-            "UPDATE matches SET second_name = ?2, second_token_hash = ?3, status = 'live', updated_at = ?4
+            "UPDATE matches SET second_name = ?2, second_token_hash = ?3, second_account = ?5,
+                                status = 'live', updated_at = ?4
              WHERE id = ?1 AND second_token_hash IS NULL AND bot IS NULL",
-            params![id, name, token.to_hex(), now() as i64],
+            params![id, name, token.to_hex(), now() as i64, account],
         )?;
         self.shared.log_grew();
         if n != 1 {
@@ -485,6 +542,12 @@ impl Store {
             body,
             status: after.status.as_str(),
             shots: after.shots as i64,
+            score: match (after.status, after.winner) {
+                (Status::Finished, Some(Seat::First)) => Some(Score::Win),
+                (Status::Finished, Some(Seat::Second)) => Some(Score::Loss),
+                (Status::Finished, None) => Some(Score::Draw),
+                _ => None,
+            },
             result,
             done,
         });
@@ -508,13 +571,16 @@ impl Store {
                 second_token_hash: row.get(10)?,
                 rematch_of: row.get(11)?,
                 physics: row.get(12)?,
+                accounts: [row.get(13)?, row.get(14)?],
+                rated: row.get(15)?,
             },
             row.get(2)?,
         ))
     }
 
     const MATCH_COLUMNS: &'static str = "id, created_at, config, seed, status, bot, turn_seconds,
-        first_name, first_token_hash, second_name, second_token_hash, rematch_of, physics";
+        first_name, first_token_hash, second_name, second_token_hash, rematch_of, physics,
+        first_account, second_account, rated";
 
     /// One match row.
     pub fn get(&self, id: &str) -> Result<Option<StoredMatch>, StoreError> {
@@ -612,16 +678,28 @@ impl Store {
 
     /// Summaries, newest first, optionally of one status only.
     pub fn list(&self, status: Option<Status>, limit: usize) -> Result<Vec<Summary>, StoreError> {
+        self.summaries_where(
+            "?1 IS NULL OR m.status = ?1",
+            status.map(Status::as_str),
+            limit,
+        )
+    }
+
+    /// The summaries of the matches that `condition` (on `m`, the match,
+    /// with `?1` bound to `param`) selects, most recently played first.
+    pub(crate) fn summaries_where(
+        &self,
+        condition: &str,
+        param: impl rusqlite::ToSql,
+        limit: usize,
+    ) -> Result<Vec<Summary>, StoreError> {
         let conn = self.read()?;
         let mut stmt = conn.prepare(&format!(
-            "SELECT {SUMMARY_COLUMNS} FROM matches WHERE (?1 IS NULL OR status = ?1)
-             ORDER BY updated_at DESC, id LIMIT ?2"
+            "SELECT {SUMMARY_COLUMNS} FROM {SUMMARY_FROM} WHERE {condition}
+             ORDER BY m.updated_at DESC, m.id LIMIT ?2"
         ))?;
         let rows = stmt
-            .query_map(
-                params![status.map(Status::as_str), limit as i64],
-                SummaryRaw::read,
-            )?
+            .query_map(params![param, limit as i64], SummaryRaw::read)?
             .collect::<Result<Vec<_>, _>>()?;
         rows.into_iter().map(SummaryRaw::finish).collect()
     }
@@ -631,7 +709,7 @@ impl Store {
         let conn = self.read()?;
         let raw = conn
             .query_row(
-                &format!("SELECT {SUMMARY_COLUMNS} FROM matches WHERE id = ?1"),
+                &format!("SELECT {SUMMARY_COLUMNS} FROM {SUMMARY_FROM} WHERE m.id = ?1"),
                 params![id],
                 SummaryRaw::read,
             )
@@ -665,8 +743,16 @@ impl Store {
     }
 }
 
-const SUMMARY_COLUMNS: &str = "id, status, created_at, updated_at, first_name, second_name, bot,
-    shots, turn_seconds, result, physics";
+/// A summary's columns, read from `matches` joined to the seats' accounts
+/// (`a` and `b`).
+const SUMMARY_COLUMNS: &str = "m.id, m.status, m.created_at, m.updated_at, m.first_name,
+    m.second_name, m.bot, m.shots, m.turn_seconds, m.result, m.physics, m.rated,
+    a.rating, a.deviation, b.rating, b.deviation";
+
+/// The tables a summary reads.
+const SUMMARY_FROM: &str = "matches m
+    LEFT JOIN accounts a ON a.name = m.first_account
+    LEFT JOIN accounts b ON b.name = m.second_account";
 
 struct SummaryRaw {
     id: String,
@@ -680,6 +766,18 @@ struct SummaryRaw {
     turn_seconds: i64,
     result: Option<String>,
     physics: i64,
+    rated: bool,
+    /// Each seat's account's rating and deviation.
+    ratings: [(Option<f64>, Option<f64>); 2],
+}
+
+/// A seat's account's rating as listed.
+fn seat_rating((rating, deviation): (Option<f64>, Option<f64>)) -> Option<SeatRating> {
+    let (rating, deviation) = (rating?, deviation?);
+    Some(SeatRating {
+        rating: rating.round() as i64,
+        provisional: deviation > game::rating::RatingSystem::default().provisional_above,
+    })
 }
 
 impl SummaryRaw {
@@ -696,6 +794,8 @@ impl SummaryRaw {
             turn_seconds: r.get(8)?,
             result: r.get(9)?,
             physics: r.get(10)?,
+            rated: r.get(11)?,
+            ratings: [(r.get(12)?, r.get(13)?), (r.get(14)?, r.get(15)?)],
         })
     }
 
@@ -716,6 +816,9 @@ impl SummaryRaw {
             shots: self.shots as u32,
             turn_seconds: self.turn_seconds as u64,
             result: self.result.map(|r| serde_json::from_str(&r)).transpose()?,
+            rated: self.rated,
+            first_rating: seat_rating(self.ratings[0]),
+            second_rating: seat_rating(self.ratings[1]),
         })
     }
 }
@@ -733,6 +836,8 @@ struct StoredMatchRaw {
     second_token_hash: Option<String>,
     rematch_of: Option<String>,
     physics: i64,
+    accounts: [Option<String>; 2],
+    rated: bool,
 }
 
 /// A stored physics version, checked to be one.
@@ -752,6 +857,7 @@ impl StoredMatchRaw {
                 .map_err(|e| StoreError::Corrupt(format!("match {}: {e}", self.id)))
         };
         let tokens = [hash(self.first_token_hash)?, hash(self.second_token_hash)?];
+        let [first_account, second_account] = self.accounts;
         Ok(StoredMatch {
             physics: physics_of(&self.id, self.physics)?,
             config: serde_json::from_str(config)?,
@@ -765,13 +871,16 @@ impl StoredMatchRaw {
                 StoredSeat {
                     name: self.first_name,
                     token: tokens[0],
+                    account: first_account,
                 },
                 StoredSeat {
                     name: self.second_name,
                     token: tokens[1],
+                    account: second_account,
                 },
             ],
             rematch_of: self.rematch_of,
+            rated: self.rated,
             id: self.id,
         })
     }
@@ -899,6 +1008,9 @@ fn write_one(tx: &mut rusqlite::Transaction<'_>, m: &QueuedMove) -> Result<(), S
         // Dropping the savepoint unfinished rolls it back.
         return Err(StoreError::Corrupt(format!("no match {}", m.id)));
     }
+    if let Some(score) = m.score {
+        crate::ratings::rate_finished(&sp, &m.id, score)?;
+    }
     sp.commit()?;
     Ok(())
 }
@@ -923,10 +1035,12 @@ mod tests {
                 StoredSeat {
                     name: Some("Petka".into()),
                     token: Some(TokenHash::of("t1")),
+                    account: None,
                 },
                 StoredSeat::default(),
             ],
             rematch_of: None,
+            rated: false,
         }
     }
 
@@ -935,7 +1049,7 @@ mod tests {
         let store = Store::in_memory().unwrap();
         store.create(&stored("m1")).unwrap();
         store
-            .seat_second("m1", "Anka", &TokenHash::of("t2"))
+            .seat_second("m1", "Anka", &TokenHash::of("t2"), None)
             .unwrap();
         let mut g = Game::new(Config::default(), u64::MAX - 1).unwrap();
         let piece = PieceId::new(Side::White, 4).unwrap();
@@ -948,6 +1062,7 @@ mod tests {
             status: Status::Live,
             shots: 1,
             result: None,
+            winner: None,
         };
         store
             .append_move("m1", 0, &g.record().moves[0], &after)
@@ -982,6 +1097,7 @@ mod tests {
                                 status: Status::Live,
                                 shots: k + 1,
                                 result: None,
+                                winner: None,
                             };
                             let pass = RecordedMove::Pass { side: Side::White };
                             store.append_move(&id, k as usize, &pass, &after).is_ok()
@@ -1015,6 +1131,7 @@ mod tests {
             status: Status::Live,
             shots: 0,
             result: None,
+            winner: None,
         };
         let resign = RecordedMove::Resign { side: Side::White };
         store.append_move("m1", 0, &resign, &after).unwrap();
@@ -1030,8 +1147,8 @@ mod tests {
         let store = Store::in_memory().unwrap();
         store.create(&stored("a")).unwrap();
         store.create(&stored("b")).unwrap();
-        store.seat_second("a", "x", &TokenHash::of("t")).unwrap();
-        assert!(store.seat_second("a", "y", &TokenHash::of("u")).is_err());
+        store.seat_second("a", "x", &TokenHash::of("t"), None).unwrap();
+        assert!(store.seat_second("a", "y", &TokenHash::of("u"), None).is_err());
         let open = store.list(Some(Status::Open), 10).unwrap();
         assert_eq!(open.len(), 1);
         assert_eq!(open[0].match_id, "b");
@@ -1095,7 +1212,7 @@ mod tests {
             store.create(&stored(id)).unwrap();
         }
         for id in ["live-a", "live-b"] {
-            store.seat_second(id, "Anka", &TokenHash::of("t2")).unwrap();
+            store.seat_second(id, "Anka", &TokenHash::of("t2"), None).unwrap();
         }
         let age = |id: &str, at: i64| {
             store
@@ -1143,6 +1260,7 @@ mod tests {
             status: Status::Live,
             shots: 0,
             result: None,
+            winner: None,
         };
         let started = Instant::now();
         let (mut k, mut largest) = (0, 0);
@@ -1242,6 +1360,7 @@ mod tests {
             status: Status::Live,
             shots: 0,
             result: None,
+            winner: None,
         };
         for k in 0..3 {
             let pass = RecordedMove::Pass { side: Side::White };
