@@ -89,7 +89,9 @@ async fn add_key(req: HttpRequest, hub: web::Data<Hub>) -> HttpResponse {
     let made = async {
         let (key, _) = proven(&req, &hub).await?;
         let store = hub.store().clone();
-        Ok(WithKey::from(run_account(move || store.add_key(&key)).await?))
+        Ok(WithKey::from(
+            run_account(move || store.add_key(&key)).await?,
+        ))
     };
     answer(StatusCode::CREATED, made.await)
 }

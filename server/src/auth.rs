@@ -68,4 +68,3 @@ pub async fn signed_in(
 pub(crate) async fn proven(req: &HttpRequest, hub: &Hub) -> Result<(SeatToken, Profile), Refusal> {
     signed_in(req, hub).await?.ok_or_else(no_key)
 }
-

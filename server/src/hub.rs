@@ -933,7 +933,10 @@ mod tests {
             .await
             .unwrap();
         assert_eq!(
-            hub.join(&a.match_id, "x".into(), None).await.unwrap_err().code,
+            hub.join(&a.match_id, "x".into(), None)
+                .await
+                .unwrap_err()
+                .code,
             ErrorCode::MatchFull
         );
         let (room, mut c) = hub.connect(&a.match_id, Some(a.token)).await.unwrap();

@@ -28,9 +28,9 @@
 pub mod accounts;
 pub mod accounts_api;
 pub mod app;
+pub mod assets;
 pub mod auth;
 pub mod blocking;
-pub mod assets;
 pub mod checkpointer;
 pub mod config;
 pub mod http;

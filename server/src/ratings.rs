@@ -93,11 +93,7 @@ pub(crate) fn rate_finished(conn: &Connection, id: &str, score: Score) -> Result
         return Ok(());
     }
     let system = RatingSystem::default();
-    let (a, b) = system.after_match(
-        rating_of(conn, &first)?,
-        rating_of(conn, &second)?,
-        score,
-    );
+    let (a, b) = system.after_match(rating_of(conn, &first)?, rating_of(conn, &second)?, score);
     let at = now() as i64;
     for (account, r) in [(&first, a), (&second, b)] {
         conn.execute(
@@ -224,7 +220,10 @@ mod tests {
         store.create(&rated("m1", ["Anka", "Petka"])).unwrap();
         resign_first(&store, "m1", 0).unwrap();
         let (anka, petka) = (account(&store, "Anka"), account(&store, "Petka"));
-        assert!(anka.rating < 1500 && petka.rating > 1500, "{anka:?} {petka:?}");
+        assert!(
+            anka.rating < 1500 && petka.rating > 1500,
+            "{anka:?} {petka:?}"
+        );
         assert_eq!(anka.rating + petka.rating, 3000, "equals exchange points");
         assert_eq!((anka.games, petka.games), (1, 1));
         // The same last move again is refused (its index is taken) and
@@ -233,7 +232,10 @@ mod tests {
         assert_eq!(account(&store, "Anka"), anka);
         let history = store.rating_history("anka", 10).unwrap();
         assert_eq!(history.len(), 1);
-        assert_eq!((history[0].match_id.as_str(), history[0].rating), ("m1", anka.rating));
+        assert_eq!(
+            (history[0].match_id.as_str(), history[0].rating),
+            ("m1", anka.rating)
+        );
         let played = store.matches_of("PETKA", 10).unwrap();
         assert_eq!(played.len(), 1);
         assert!(played[0].rated);

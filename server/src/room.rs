@@ -496,9 +496,9 @@ impl<H: RoomHost> Room<H> {
                     let stored = tokio::task::spawn_blocking(move || {
                         store.seat_second(&id, &name, &token, account.as_deref())
                     })
-                            .await
-                            .map_err(|e| e.to_string())
-                            .and_then(|r| r.map_err(|e| e.to_string()));
+                    .await
+                    .map_err(|e| e.to_string())
+                    .and_then(|r| r.map_err(|e| e.to_string()));
                     if let Err(e) = stored {
                         error!(match_id = %self.id, error = %e, "storing a join failed");
                         carried.write_failed = true;

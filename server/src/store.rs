@@ -12,10 +12,10 @@ use crate::checkpointer::{Checkpointer, Nudge};
 use crate::config::SyncMode;
 use crate::metrics::Histogram;
 use crate::readers::{Readers, READERS};
-use game::token::TokenHash;
-use game::{Config, MatchRecord, MatchResult, PhysicsVersion, RecordedMove, RECORD_VERSION};
 use game::rating::Score;
+use game::token::TokenHash;
 use game::Seat;
+use game::{Config, MatchRecord, MatchResult, PhysicsVersion, RecordedMove, RECORD_VERSION};
 use rusqlite::{params, Connection, OptionalExtension};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -1147,8 +1147,12 @@ mod tests {
         let store = Store::in_memory().unwrap();
         store.create(&stored("a")).unwrap();
         store.create(&stored("b")).unwrap();
-        store.seat_second("a", "x", &TokenHash::of("t"), None).unwrap();
-        assert!(store.seat_second("a", "y", &TokenHash::of("u"), None).is_err());
+        store
+            .seat_second("a", "x", &TokenHash::of("t"), None)
+            .unwrap();
+        assert!(store
+            .seat_second("a", "y", &TokenHash::of("u"), None)
+            .is_err());
         let open = store.list(Some(Status::Open), 10).unwrap();
         assert_eq!(open.len(), 1);
         assert_eq!(open[0].match_id, "b");
@@ -1212,7 +1216,9 @@ mod tests {
             store.create(&stored(id)).unwrap();
         }
         for id in ["live-a", "live-b"] {
-            store.seat_second(id, "Anka", &TokenHash::of("t2"), None).unwrap();
+            store
+                .seat_second(id, "Anka", &TokenHash::of("t2"), None)
+                .unwrap();
         }
         let age = |id: &str, at: i64| {
             store

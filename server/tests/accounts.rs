@@ -5,7 +5,8 @@
 
 mod common;
 
-use common::{http_with, Server};
+use common::{http_with, Client, Server};
+use game::protocol::ClientMessage;
 use serde_json::Value;
 
 fn json(text: &str) -> Value {
@@ -51,7 +52,14 @@ async fn an_account_is_created_proved_by_its_key_revoked_and_listed() {
     assert_eq!((status, json(&text)["bot"].clone()), (200, true.into()));
     let (status, text) = s.http("GET", "/api/leaderboard?bots=true", "").await;
     assert_eq!(status, 200, "{text}");
-    assert_eq!(json(&text).as_array().unwrap().len(), 1);
+    let bots: Vec<String> = json(&text)
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["name"].as_str().unwrap().to_string())
+        .collect();
+    assert!(bots.contains(&"Furmanov".to_string()), "{bots:?}");
+    assert_eq!(bots.len(), 4, "Furmanov and the three computer levels");
     let (_, text) = s.http("GET", "/api/leaderboard", "").await;
     assert_eq!(json(&text), serde_json::json!([]), "no people yet");
 
@@ -121,4 +129,139 @@ async fn bad_names_taken_names_and_wrong_keys_get_stable_codes_and_change_nothin
     assert_eq!((status, code(&text)), (400, "bad-message".into()));
     let (_, text) = s.http("GET", "/api/leaderboard", "").await;
     assert_eq!(json(&text).as_array().unwrap().len(), 1, "only Anka");
+}
+
+async fn account(s: &Server, name: &str, bot: bool) -> String {
+    let body = format!(r#"{{"name":"{name}","bot":{bot}}}"#);
+    let (status, text) = s.http("POST", "/api/accounts", &body).await;
+    assert_eq!(status, 201, "{text}");
+    json(&text)["key"].as_str().unwrap().to_string()
+}
+
+async fn with_key(s: &Server, path: &str, key: &str, extra: &str, body: &str) -> (u16, String) {
+    http_with(
+        &s.addr,
+        "POST",
+        path,
+        &format!("Authorization: Bearer {key}\r\n{extra}"),
+        body,
+    )
+    .await
+}
+
+fn profile_of(text: &str) -> (i64, u64) {
+    let p = json(text);
+    (p["rating"].as_i64().unwrap(), p["games"].as_u64().unwrap())
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_rated_match_between_two_accounts_moves_both_ratings_once_and_keeps_a_history() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut s = Server::start(dir.path(), &[]);
+    let anka = account(&s, "Anka", false).await;
+    let petka = account(&s, "Petka", false).await;
+    let furmanov = account(&s, "Furmanov", true).await;
+
+    // Refused, changing nothing: rated without an account, rated under
+    // other rules, joining without an account, as the same account, or
+    // with a bot's key from a web page.
+    let (status, text) = s.http("POST", "/api/matches", r#"{"rated":true}"#).await;
+    assert_eq!((status, code(&text)), (401, "bad-key".into()));
+    let casual = r#"{"rated":true,"rules":"casual"}"#;
+    let (status, text) = with_key(&s, "/api/matches", &anka, "", casual).await;
+    assert_eq!((status, code(&text)), (400, "bad-config".into()));
+    let (status, text) = with_key(
+        &s,
+        "/api/matches",
+        &anka,
+        "",
+        r#"{"rated":true,"name":"X"}"#,
+    )
+    .await;
+    assert_eq!(status, 201, "{text}");
+    let id = json(&text)["match_id"].as_str().unwrap().to_string();
+    let first = json(&text)["token"].as_str().unwrap().to_string();
+    let join = format!("/api/matches/{id}/join");
+    let (status, text) = s.http("POST", &join, "{}").await;
+    assert_eq!((status, code(&text)), (401, "bad-key".into()));
+    let (status, text) = with_key(&s, &join, &anka, "", "{}").await;
+    assert_eq!((status, code(&text)), (409, "same-account".into()));
+    let page = "Sec-Fetch-Site: same-origin\r\n";
+    let (status, text) = with_key(&s, &join, &furmanov, page, "{}").await;
+    assert_eq!((status, code(&text)), (403, "bot-key-in-browser".into()));
+    let (status, text) = s.http("GET", &format!("/api/matches/{id}"), "").await;
+    assert_eq!(
+        (status, json(&text)["status"].clone()),
+        (200, "open".into()),
+        "{text}"
+    );
+
+    let (status, text) = with_key(&s, &join, &petka, "", r#"{"name":"Y"}"#).await;
+    assert_eq!(status, 200, "{text}");
+    let second = json(&text)["token"].as_str().unwrap().to_string();
+    let (_, text) = s.http("GET", &format!("/api/matches/{id}"), "").await;
+    let summary = json(&text);
+    assert_eq!(
+        (summary["first"].clone(), summary["second"].clone()),
+        ("Anka".into(), "Petka".into())
+    );
+    assert_eq!(summary["rated"], true);
+    assert_eq!(
+        summary["first_rating"],
+        serde_json::json!({"rating": 1500, "provisional": true})
+    );
+
+    // Anka resigns: the match is over, and by then (the last move is
+    // stored before it is announced) both ratings have moved.
+    let mut a = Client::connect(&s.addr, &id, Some(&first)).await;
+    let mut b = Client::connect(&s.addr, &id, Some(&second)).await;
+    a.send(&ClientMessage::Resign).await;
+    b.next_of("match-over").await;
+    let (_, text) = s.http("GET", "/api/accounts/anka", "").await;
+    let (anka_rating, games) = profile_of(&text);
+    assert_eq!(games, 1);
+    let (_, text) = s.http("GET", "/api/accounts/petka", "").await;
+    let (petka_rating, _) = profile_of(&text);
+    assert!(anka_rating < 1500 && petka_rating > 1500);
+    assert!(
+        (anka_rating + petka_rating - 3000).abs() <= 1,
+        "{anka_rating} {petka_rating}"
+    );
+    let (status, text) = s.http("GET", "/api/accounts/Petka/history", "").await;
+    assert_eq!(status, 200, "{text}");
+    let history = json(&text);
+    assert_eq!(history.as_array().unwrap().len(), 1);
+    assert_eq!(
+        (
+            history[0]["match_id"].as_str(),
+            history[0]["rating"].as_i64()
+        ),
+        (Some(id.as_str()), Some(petka_rating))
+    );
+    let (_, text) = s
+        .http("GET", "/api/accounts/anka/matches?limit=5", "")
+        .await;
+    assert_eq!(json(&text)[0]["match_id"].as_str(), Some(id.as_str()));
+    let (status, text) = s.http("GET", "/api/accounts/nobody/history", "").await;
+    assert_eq!((status, code(&text)), (404, "no-such-account".into()));
+
+    // Killed and started again: rated once, still.
+    s.kill();
+    let s = Server::start(dir.path(), &[]);
+    let (_, text) = s.http("GET", "/api/accounts/anka", "").await;
+    assert_eq!(profile_of(&text), (anka_rating, 1));
+    let (_, text) = s.http("GET", "/api/accounts/anka/history", "").await;
+    assert_eq!(json(&text).as_array().unwrap().len(), 1);
+
+    // Against the computer, rated: the level plays as its account.
+    let body = r#"{"rated":true,"opponent":"bot","bot_level":"easy"}"#;
+    let (status, text) = with_key(&s, "/api/matches", &anka, "", body).await;
+    assert_eq!(status, 201, "{text}");
+    let id = json(&text)["match_id"].as_str().unwrap().to_string();
+    let (_, text) = s.http("GET", &format!("/api/matches/{id}"), "").await;
+    assert_eq!(json(&text)["second_rating"]["rating"], 1500, "{text}");
+    let (_, text) = s
+        .http("GET", "/api/accounts/computer-easy/matches", "")
+        .await;
+    assert_eq!(json(&text)[0]["match_id"].as_str(), Some(id.as_str()));
 }
