@@ -36,6 +36,7 @@ pub mod eval;
 pub mod follow;
 pub mod greedy;
 pub mod level;
+pub mod online;
 pub mod pie;
 pub mod random;
 pub mod remote;

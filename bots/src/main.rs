@@ -24,6 +24,9 @@ enum Command {
     Tournament(TournamentArgs),
     /// One match on a server: create it, join it, or play a built-in level.
     Play(PlayArgs),
+    /// Stay online as a bot account: join the ladder, accept challenges,
+    /// play every match given (several at once).
+    Online(OnlineArgs),
     /// Simulated shots per CPU-second over random positions: the native
     /// twin of the JavaScript and Python bindings' throughput benchmarks
     /// (the same requests for the same seed).
@@ -36,6 +39,32 @@ struct ThroughputArgs {
     #[arg(long, default_value_t = 20_000)]
     count: u32,
     /// Their seed (`game::simulate::random_request` from one generator).
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+}
+
+#[derive(Parser, Debug)]
+struct OnlineArgs {
+    /// The server, `http://HOST:PORT`.
+    #[arg(long, default_value = "http://127.0.0.1:8080")]
+    server: String,
+    /// The bot account's key (create the account with `POST /api/accounts`
+    /// `{"name":...,"bot":true}`); read from CHAPAEV_KEY if not given.
+    #[arg(long, env = "CHAPAEV_KEY", hide_env_values = true)]
+    key: String,
+    /// The bot: random, greedy, search, easy, medium, hard.
+    #[arg(long, default_value = "greedy")]
+    bot: String,
+    /// Stay off the ladder (only accept challenges).
+    #[arg(long)]
+    no_ladder: bool,
+    /// Most matches played at once.
+    #[arg(long, default_value_t = 4)]
+    max_matches: usize,
+    /// Stop after this many matches (default: never).
+    #[arg(long)]
+    matches: Option<u64>,
+    /// The bots' seed (each match's bot gets its own, from this).
     #[arg(long, default_value_t = 1)]
     seed: u64,
 }
@@ -156,6 +185,7 @@ fn main() -> ExitCode {
     let done = match cli.command {
         Command::Tournament(args) => tournament_command(args),
         Command::Play(args) => play_command(args),
+        Command::Online(args) => online_command(args),
         Command::Throughput(args) => throughput_command(args),
     };
     match done {
@@ -200,6 +230,42 @@ fn throughput_command(args: ThroughputArgs) -> Result<(), Box<dyn std::error::Er
             "knocked_off": knocked,
             "cpu_seconds": cpu,
             "shots_per_cpu_second": f64::from(args.count) / cpu,
+        })
+    );
+    Ok(())
+}
+
+fn online_command(args: OnlineArgs) -> Result<(), Box<dyn std::error::Error>> {
+    if by_name(&args.bot, args.seed).is_none() {
+        return Err(format!(
+            "unknown bot {:?}: one of {}",
+            args.bot,
+            bots::BOT_NAMES.join(", ")
+        )
+        .into());
+    }
+    let runner = Runner::new(&args.server)?;
+    let (name, seed) = (args.bot.clone(), args.seed);
+    let make = move |n: u64| {
+        // Checked above: the name is a bot's.
+        by_name(&name, seed.wrapping_add(n)).expect("a known bot")
+    };
+    let options = bots::online::OnlineOptions {
+        ladder: !args.no_ladder,
+        max_matches: args.max_matches,
+        stop_after: args.matches,
+    };
+    let online = bots::online::Online::new(runner, &args.key, make, options);
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()?;
+    let report = runtime.block_on(online.run())?;
+    println!(
+        "{}",
+        serde_json::json!({
+            "finished": report.finished,
+            "failed": report.failed,
+            "rating": report.rating,
         })
     );
     Ok(())

@@ -71,6 +71,7 @@ pub mod session;
 pub mod shot;
 pub mod side;
 pub mod simulate;
+pub mod stream;
 #[cfg(test)]
 mod testing;
 pub mod token;

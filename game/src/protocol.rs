@@ -219,6 +219,9 @@ pub enum ErrorCode {
     BadKey,
     /// Both seats of a rated match would be the same account.
     SameAccount,
+    /// No open challenge has this id (for this account): it was answered,
+    /// withdrawn or expired, or was never made to it.
+    NoSuchChallenge,
     /// A bot's key was sent from a web page (a browser's request carries
     /// an `Origin`): bot keys are for bot processes only.
     BotKeyInBrowser,
@@ -262,6 +265,7 @@ impl ErrorCode {
             ErrorCode::NoSuchAccount => "no-such-account",
             ErrorCode::BadKey => "bad-key",
             ErrorCode::SameAccount => "same-account",
+            ErrorCode::NoSuchChallenge => "no-such-challenge",
             ErrorCode::BotKeyInBrowser => "bot-key-in-browser",
         }
     }
@@ -343,7 +347,8 @@ pub const SCHEMA_PATH: &str = "/api/schema/v1.json";
 /// `ClientMessage` (what a client sends on the WebSocket),
 /// `ServerMessage` (what it receives), `SimulateRequest` and `Simulation`
 /// (the body and answer of `POST /api/simulate`); `MatchRecord` is the
-/// replayable record. A message is valid when it validates against
+/// replayable record; `StreamClientMessage` and `StreamServerMessage` are
+/// the account event stream's. A message is valid when it validates against
 /// `{"$ref": "#/$defs/ServerMessage"}` within this document.
 pub fn schema() -> serde_json::Value {
     let mut generator = schemars::generate::SchemaSettings::draft2020_12().into_generator();
@@ -359,13 +364,21 @@ pub fn schema() -> serde_json::Value {
             generator.subschema_for::<crate::simulate::Simulation>(),
         ),
         ("MatchRecord", generator.subschema_for::<MatchRecord>()),
+        (
+            "StreamClientMessage",
+            generator.subschema_for::<crate::stream::StreamClientMessage>(),
+        ),
+        (
+            "StreamServerMessage",
+            generator.subschema_for::<crate::stream::StreamServerMessage>(),
+        ),
     ];
     let defs = generator.take_definitions(true);
     serde_json::json!({
         "$schema": "https://json-schema.org/draft/2020-12/schema",
         "$id": SCHEMA_PATH,
         "title": format!("Chapaev online protocol {PROTOCOL_VERSION}"),
-        "description": "Every message of the match server's WebSocket and the bodies of POST /api/simulate, generated from the server's Rust types. Validate a message against {\"$ref\": \"#/$defs/ServerMessage\"} (or ClientMessage, SimulateRequest, Simulation, MatchRecord).",
+        "description": "Every message of the match server's WebSocket and the bodies of POST /api/simulate, generated from the server's Rust types. Validate a message against {\"$ref\": \"#/$defs/ServerMessage\"} (or ClientMessage, SimulateRequest, Simulation, MatchRecord, and for the account event stream StreamClientMessage and StreamServerMessage).",
         "anyOf": roots.iter().map(|(name, _)| serde_json::json!({"$ref": format!("#/$defs/{name}")})).collect::<Vec<_>>(),
         "$defs": defs,
     })

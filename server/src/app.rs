@@ -80,7 +80,12 @@ pub fn run(config: Config) -> Result<(), AppError> {
         Duration::from_secs(config.open_match_expiry_seconds),
     ));
 
-    let served = actix_web::rt::System::new().block_on(serve(&config, hub.clone(), &game_rt));
+    let streams = {
+        let _in_game_rt = game_rt.enter();
+        crate::stream::Streams::start(hub.clone(), config.lobby_limits())
+    };
+    let served =
+        actix_web::rt::System::new().block_on(serve(&config, hub.clone(), streams, &game_rt));
     // Rooms were stopped by the signal handler; make sure of it.
     game_rt.block_on(hub.shutdown(Duration::from_secs(config.shutdown_seconds)));
     game_rt.shutdown_timeout(Duration::from_secs(config.shutdown_seconds));
@@ -94,10 +99,12 @@ pub fn run(config: Config) -> Result<(), AppError> {
 async fn serve(
     config: &Config,
     hub: Hub,
+    streams: crate::stream::Streams,
     game_rt: &tokio::runtime::Runtime,
 ) -> Result<(), AppError> {
     let limit = config.max_message_bytes;
     let data = web::Data::new(hub.clone());
+    let streams = web::Data::new(streams);
     let simulations = web::Data::new(crate::ratelimit::AddressLimiter::new(
         config.simulate_per_sec,
         config.simulate_burst,
@@ -109,6 +116,7 @@ async fn serve(
     let server = HttpServer::new(move || {
         App::new()
             .app_data(data.clone())
+            .app_data(streams.clone())
             .app_data(origins.clone())
             .wrap(actix_web::middleware::from_fn(crate::origin::check))
             .app_data(simulations.clone())

@@ -33,7 +33,7 @@ fn bearer(req: &HttpRequest) -> Result<SeatToken, Refusal> {
 /// Whether a request comes from a web page: browsers send `Origin` with
 /// every request that can change something, and `Sec-Fetch-Site` with all
 /// of them; bot processes send neither.
-fn from_browser(req: &HttpRequest) -> bool {
+pub(crate) fn from_browser(req: &HttpRequest) -> bool {
     let h = req.headers();
     h.contains_key(actix_web::http::header::ORIGIN) || h.contains_key("sec-fetch-site")
 }

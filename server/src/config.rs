@@ -131,6 +131,15 @@ pub struct Config {
     #[arg(long, env = "CHAPAEV_OPEN_MATCH_EXPIRY_SECONDS", default_value_t = 3600, value_parser = clap::value_parser!(u64).range(10..=30 * 24 * 3600))]
     pub open_match_expiry_seconds: u64,
 
+    /// Seconds between two rounds of the bot ladder, which pairs the
+    /// online ladder bots (and the computer levels) in rated matches.
+    #[arg(long, env = "CHAPAEV_LADDER_SECONDS", default_value_t = 10, value_parser = clap::value_parser!(u64).range(1..=24 * 3600))]
+    pub ladder_seconds: u64,
+
+    /// Seconds a challenge waits for an answer before it expires.
+    #[arg(long, env = "CHAPAEV_CHALLENGE_SECONDS", default_value_t = 60, value_parser = clap::value_parser!(u64).range(5..=24 * 3600))]
+    pub challenge_seconds: u64,
+
     /// How hard SQLite syncs each accepted move: `full` survives power loss,
     /// `normal` survives a crash of the server process only.
     #[arg(long, env = "CHAPAEV_SYNC", value_enum, default_value_t = SyncMode::Full)]
@@ -189,6 +198,15 @@ pub struct Limits {
 
 impl Config {
     /// The limits part of the configuration.
+    /// The lobby's settings.
+    pub fn lobby_limits(&self) -> crate::lobby::LobbyLimits {
+        crate::lobby::LobbyLimits {
+            challenge_ttl: Duration::from_secs(self.challenge_seconds),
+            ladder_every: Duration::from_secs(self.ladder_seconds),
+            ..Default::default()
+        }
+    }
+
     pub fn limits(&self) -> Limits {
         Limits {
             max_matches: self.max_matches,

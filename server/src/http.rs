@@ -35,6 +35,7 @@ pub fn routes(cfg: &mut web::ServiceConfig) {
         .route("/healthz", web::get().to(healthz))
         .route("/metrics", web::get().to(metrics))
         .route("/ws", web::get().to(crate::ws::handler))
+        .route("/api/stream", web::get().to(crate::stream::handler))
         .route("/api/matches", web::post().to(create))
         .route("/api/matches", web::get().to(list))
         .route("/api/matches/{id}", web::get().to(summary))

@@ -14,7 +14,7 @@
 use crate::config::Limits;
 use crate::metrics::Metrics;
 use crate::refusal::Refusal;
-use crate::room::{Command, Connected, Room, RoomHost};
+use crate::room::{Command, Connected, FinishedMatch, MatchListener, Room, RoomHost};
 use crate::store::{Status, Store, StoreError, StoredMatch, StoredSeat};
 use crate::token::{self, SeatToken, TokenHash};
 use bots::Level;
@@ -78,7 +78,7 @@ pub struct NewSeat {
 impl NewSeat {
     /// A built-in level's seat: named after it, and in a rated match
     /// played as its computer account.
-    fn computer(level: Level, name: String, rated: bool) -> NewSeat {
+    pub fn computer(level: Level, name: String, rated: bool) -> NewSeat {
         NewSeat {
             name: Some(name),
             token: None,
@@ -114,6 +114,8 @@ struct Inner {
     next_conn: AtomicU64,
     next_generation: AtomicU64,
     closing: AtomicBool,
+    /// Told when a match ends (the account event streams).
+    listener: std::sync::OnceLock<Arc<dyn MatchListener>>,
 }
 
 /// The registry of rooms (cheap to clone).
@@ -150,12 +152,51 @@ impl Hub {
                 next_conn: AtomicU64::new(1),
                 next_generation: AtomicU64::new(1),
                 closing: AtomicBool::new(false),
+                listener: std::sync::OnceLock::new(),
             }),
         }
     }
 
     pub fn store(&self) -> &Arc<Store> {
         &self.inner.store
+    }
+
+    /// Sets who hears of matches ending (once; later calls are ignored).
+    pub fn set_listener(&self, listener: Arc<dyn MatchListener>) {
+        let _ = self.inner.listener.set(listener);
+    }
+
+    /// Stores and starts a match whose seats are both decided now (a
+    /// challenge accepted, two seekers or two ladder bots paired): a seat
+    /// with an account but no bot gets a fresh token, returned for its
+    /// player (and only there; the store keeps its hash).
+    pub async fn create_between(
+        &self,
+        mut seats: [NewSeat; 2],
+        config: Config,
+        turn_seconds: Option<u64>,
+        rated: bool,
+    ) -> Result<(String, [Option<SeatToken>; 2]), Refusal> {
+        let slot = self.reserve()?;
+        let turn_seconds = turn_seconds.unwrap_or(self.inner.limits.turn.as_secs());
+        if !(1..=3600).contains(&turn_seconds) {
+            return Err(Refusal::new(
+                ErrorCode::BadConfig,
+                "turn_seconds must be between 1 and 3600",
+            ));
+        }
+        let mut tokens = [None, None];
+        for (seat, token) in seats.iter_mut().zip(&mut tokens) {
+            if seat.bot.is_none() {
+                let t = random(token::seat_token())?;
+                seat.token = Some(t.hash());
+                *token = Some(t);
+            }
+        }
+        let id = self
+            .start(slot, None, config, turn_seconds, seats, rated)
+            .await?;
+        Ok((id, tokens))
     }
     pub fn metrics(&self) -> &Arc<Metrics> {
         &self.inner.metrics
@@ -595,6 +636,11 @@ impl Hub {
 impl RoomHost for Hub {
     fn store(&self) -> &Arc<Store> {
         Hub::store(self)
+    }
+    fn finished(&self, m: FinishedMatch) {
+        if let Some(l) = self.inner.listener.get() {
+            l.finished(m);
+        }
     }
     fn metrics(&self) -> &Arc<Metrics> {
         Hub::metrics(self)

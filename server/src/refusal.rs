@@ -16,7 +16,7 @@ pub trait HttpStatus {
 impl HttpStatus for Refusal {
     fn http_status(&self) -> u16 {
         match self.code {
-            ErrorCode::NoSuchMatch | ErrorCode::NoSuchAccount => 404,
+            ErrorCode::NoSuchMatch | ErrorCode::NoSuchAccount | ErrorCode::NoSuchChallenge => 404,
             ErrorCode::BadKey => 401,
             ErrorCode::MatchFull
             | ErrorCode::NameTaken

@@ -101,6 +101,26 @@ pub trait RoomHost: Clone + Send + Sync + 'static {
     /// Forgets the room of `id` (unless a newer one, of a later
     /// `generation`, took its place).
     fn remove(&self, id: &str, generation: u64);
+    /// The match has just ended, its last move stored. By default nobody
+    /// is told.
+    fn finished(&self, _m: FinishedMatch) {}
+}
+
+/// A match that just ended, as its room saw it.
+#[derive(Clone, Debug)]
+pub struct FinishedMatch {
+    pub match_id: String,
+    /// The account playing each seat, if any.
+    pub accounts: [Option<String>; 2],
+    pub result: game::MatchResult,
+    pub rated: bool,
+}
+
+/// Hears of every match that ends (after its last move is stored). One
+/// required method; its implementation must not block (it runs on the
+/// room's task).
+pub trait MatchListener: Send + Sync {
+    fn finished(&self, m: FinishedMatch);
 }
 
 /// What a room is asked to do.
@@ -537,7 +557,18 @@ impl<H: RoomHost> Room<H> {
                     at_move,
                     view,
                 } => self.ask_bot(seat, side, &level, at_move, view),
-                Effect::Status(status) => self.set_live(status == Status::Live),
+                Effect::Status(status) => {
+                    self.set_live(status == Status::Live);
+                    if let (Status::Finished, Some(result)) = (status, self.session.game().result())
+                    {
+                        self.host.finished(FinishedMatch {
+                            match_id: self.id.clone(),
+                            accounts: self.accounts.clone(),
+                            result,
+                            rated: self.rated,
+                        });
+                    }
+                }
                 Effect::Close => debug!(match_id = %self.id, "the session closed"),
             }
         }

@@ -40,14 +40,14 @@ use std::time::{Duration, Instant};
 use tracing::debug;
 
 /// How often the server pings a quiet connection.
-const PING_EVERY: Duration = Duration::from_secs(15);
+pub(crate) const PING_EVERY: Duration = Duration::from_secs(15);
 /// A connection silent this long (no pong either) is closed.
-const SILENT_FOR: Duration = Duration::from_secs(45);
+pub(crate) const SILENT_FOR: Duration = Duration::from_secs(45);
 /// Dropped messages in a row after which a flooding connection is closed.
-const FLOOD_CLOSE_AFTER: u32 = 200;
+pub(crate) const FLOOD_CLOSE_AFTER: u32 = 200;
 
 /// How long a new connection has to say hello.
-const HELLO_WITHIN: Duration = Duration::from_secs(10);
+pub(crate) const HELLO_WITHIN: Duration = Duration::from_secs(10);
 
 /// The query of `/ws`.
 #[derive(Debug, Deserialize)]
@@ -135,7 +135,7 @@ pub fn on_connect(conn: &dyn std::any::Any, data: &mut actix_web::dev::Extension
 /// (`Overflow`), or a message fragmented into continuation frames that add
 /// up to more (actix-ws reports that one only as an I/O error with this
 /// text, having no variant of its own for it).
-fn too_large(e: &ProtocolError) -> bool {
+pub(crate) fn too_large(e: &ProtocolError) -> bool {
     match e {
         ProtocolError::Overflow => true,
         ProtocolError::Io(io) => io.to_string().contains("maximum continuation size"),
@@ -144,11 +144,11 @@ fn too_large(e: &ProtocolError) -> bool {
 }
 
 /// Writes within the write timeout; `false`: the socket is gone or stuck.
-async fn timely<E>(limit: Duration, write: impl Future<Output = Result<(), E>>) -> bool {
+pub(crate) async fn timely<E>(limit: Duration, write: impl Future<Output = Result<(), E>>) -> bool {
     matches!(tokio::time::timeout(limit, write).await, Ok(Ok(())))
 }
 
-fn http_refusal(r: &Refusal) -> HttpResponse {
+pub(crate) fn http_refusal(r: &Refusal) -> HttpResponse {
     let status = actix_web::http::StatusCode::from_u16(r.http_status())
         .unwrap_or(actix_web::http::StatusCode::BAD_REQUEST);
     HttpResponse::build(status)
@@ -178,33 +178,59 @@ pub async fn handler(
              (URLs end up in logs); connect to /ws?match=ID",
         )));
     }
+    let admitted = match admit(&req, &hub) {
+        Ok(a) => a,
+        Err(refused) => return Ok(refused),
+    };
+    let (response, session, stream) = actix_ws::handle(&req, body)?;
+    let hub = hub.get_ref().clone();
+    actix_web::rt::spawn(async move {
+        let stuck = run(hub.clone(), query, session, stream).await;
+        admitted.release(&hub, stuck).await;
+    });
+    Ok(response)
+}
+
+/// A WebSocket connection counted against the server's and its address's
+/// limits for as long as it lives.
+pub(crate) struct Admitted {
+    guards: (ConnectionGuard, AddressGuard),
+    socket: Option<ConnSocket>,
+}
+
+/// Counts a WebSocket connection about to be upgraded, or the answer that
+/// refuses it (`server-busy`: too many connections, in all or from its
+/// address).
+pub(crate) fn admit(req: &HttpRequest, hub: &Hub) -> Result<Admitted, HttpResponse> {
     let metrics = hub.metrics().clone();
     metrics.connection_opened();
     let guard = ConnectionGuard(metrics.clone());
     if metrics.connections() > hub.limits().max_connections as i64 {
-        return Ok(http_refusal(&Refusal::new(
+        return Err(http_refusal(&Refusal::new(
             ErrorCode::ServerBusy,
             "the server holds as many connections as it can; try later",
         )));
     }
-    let addr = crate::ratelimit::client_ip(&req);
+    let addr = crate::ratelimit::client_ip(req);
     let Some(address_guard) = hub.admit_address(addr) else {
-        return Ok(http_refusal(&Refusal::new(
+        return Err(http_refusal(&Refusal::new(
             ErrorCode::ServerBusy,
             "this address holds as many connections as it may; try later",
         )));
     };
-    let socket = req.conn_data::<ConnSocket>().cloned();
-    let (response, session, stream) = actix_ws::handle(&req, body)?;
-    let hub = hub.get_ref().clone();
-    actix_web::rt::spawn(async move {
-        let guards = (guard, address_guard);
-        let stuck = run(hub.clone(), query, session, stream).await;
-        if let Some(socket) = socket {
-            release(&hub, socket, stuck, guards).await;
+    Ok(Admitted {
+        guards: (guard, address_guard),
+        socket: req.conn_data::<ConnSocket>().cloned(),
+    })
+}
+
+impl Admitted {
+    /// After the session: see [`release`].
+    pub(crate) async fn release(self, hub: &Hub, stuck: bool) {
+        if let Some(socket) = self.socket {
+            release(hub, socket, stuck, self.guards).await;
         }
-    });
-    Ok(response)
+    }
 }
 
 /// After a session: a socket whose writes got stuck is shut down at once;

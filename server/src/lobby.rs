@@ -1,0 +1,817 @@
+//! The lobby: everything between accounts that is not one match — who is
+//! online on the event stream, challenges (made, accepted, declined,
+//! withdrawn, expired), quick pairing of seekers, and the bot ladder that
+//! pairs online ladder bots (and the built-in computer levels) all day.
+//!
+//! It is a state machine without I/O, like a match's session:
+//! [`Lobby::handle`] takes an [`Input`] and the time, and returns the
+//! [`Effect`]s for its driver to carry out (send a stream message, start a
+//! match). The driver (`crate::stream` and the hub) owns the sockets, the
+//! store and the timer; tests drive it with a virtual clock.
+
+use game::session::Moment;
+use game::stream::{ChallengeInfo, StreamClientMessage, StreamServerMessage};
+use game::{protocol::ErrorCode, protocol::Refusal, Preset};
+use std::collections::{BTreeMap, HashMap};
+use std::time::Duration;
+
+/// One event-stream connection, named by the driver.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct StreamId(pub u64);
+
+/// The lobby's settings.
+#[derive(Clone, Debug)]
+pub struct LobbyLimits {
+    /// How long a challenge waits for an answer.
+    pub challenge_ttl: Duration,
+    /// Most open challenges one account may have made.
+    pub challenges_per_account: usize,
+    /// How often the ladder pairs its bots.
+    pub ladder_every: Duration,
+    /// Two rated seekers are paired when their ratings are this close.
+    pub seek_rating_gap: f64,
+}
+
+impl Default for LobbyLimits {
+    fn default() -> LobbyLimits {
+        LobbyLimits {
+            challenge_ttl: Duration::from_secs(60),
+            challenges_per_account: 20,
+            ladder_every: Duration::from_secs(10),
+            seek_rating_gap: 300.0,
+        }
+    }
+}
+
+/// A signed-in account, as the lobby knows it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Member {
+    /// The account's name as registered.
+    pub name: String,
+    pub bot: bool,
+    pub rating: f64,
+}
+
+/// Who plays one seat of a match the lobby starts.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Player {
+    /// A registered account, playing through its own client.
+    Account(String),
+    /// A built-in computer level, played by the server as its account.
+    Computer(bots::Level),
+}
+
+/// Why the lobby starts a match.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Pairing {
+    Challenge(String),
+    Seek,
+    Ladder,
+}
+
+/// What the lobby has its driver do.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Effect {
+    /// Send `msg` on one stream.
+    Send(StreamId, StreamServerMessage),
+    /// Send `msg` on every stream of the account (none if it is offline).
+    Tell(String, StreamServerMessage),
+    /// Start a match: `seats[0]` takes the first seat (White unless the pie
+    /// rule swaps). The driver tells each account its seat token with
+    /// `match-start`, and feeds [`Input::Finished`] when it ends.
+    Start {
+        seats: [Player; 2],
+        rated: bool,
+        rules: Preset,
+        turn_seconds: Option<u64>,
+        why: Pairing,
+    },
+}
+
+/// What happens to the lobby.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Input {
+    /// A stream said hello as `member`.
+    Online { stream: StreamId, member: Member },
+    /// A stream closed.
+    Offline { stream: StreamId },
+    /// A stream sent a message (a challenge's `to` already checked to be an
+    /// account, and given as registered).
+    Message {
+        stream: StreamId,
+        msg: StreamClientMessage,
+    },
+    /// A match the lobby started (or any match between accounts) ended;
+    /// `ratings` are the accounts' ratings after it.
+    Finished { ratings: Vec<(String, f64)> },
+    /// A match the lobby asked for could not be started.
+    StartFailed { seats: [Player; 2] },
+    /// Time passed (expire challenges, pair the ladder).
+    Tick,
+}
+
+struct Online {
+    member: Member,
+    /// On the ladder (bots only).
+    ladder: bool,
+    /// Seeking a match: rated or not.
+    seeking: Option<bool>,
+}
+
+struct Open {
+    info: ChallengeInfo,
+    rules: Preset,
+    turn_seconds: Option<u64>,
+    expires: Moment,
+}
+
+/// The lobby's state.
+pub struct Lobby {
+    limits: LobbyLimits,
+    streams: BTreeMap<StreamId, Online>,
+    challenges: BTreeMap<String, Open>,
+    /// Matches the lobby started and not yet finished, per account
+    /// (lower-case name): a ladder bot plays one ladder match at a time.
+    playing: HashMap<String, u32>,
+    /// The computer levels' ratings.
+    computers: Vec<(bots::Level, f64)>,
+    next_challenge: u64,
+    next_ladder: Moment,
+    /// Which of an odd number of ladder bots sits out (turns round).
+    rounds: u64,
+    out: Vec<Effect>,
+}
+
+fn key(name: &str) -> String {
+    name.to_ascii_lowercase()
+}
+
+fn refused(code: ErrorCode, message: impl Into<String>) -> Refusal {
+    Refusal::new(code, message)
+}
+
+impl Lobby {
+    /// An empty lobby; `computers` are the built-in levels on the ladder,
+    /// with their current ratings.
+    pub fn new(limits: LobbyLimits, computers: Vec<(bots::Level, f64)>, now: Moment) -> Lobby {
+        Lobby {
+            next_ladder: now + limits.ladder_every,
+            limits,
+            streams: BTreeMap::new(),
+            challenges: BTreeMap::new(),
+            playing: HashMap::new(),
+            computers,
+            next_challenge: 1,
+            rounds: 0,
+            out: Vec::new(),
+        }
+    }
+
+    /// When the lobby next needs [`Input::Tick`].
+    pub fn next_deadline(&self) -> Moment {
+        self.challenges
+            .values()
+            .map(|c| c.expires)
+            .fold(self.next_ladder, std::cmp::min)
+    }
+
+    /// The challenges open to or from `account`, for its welcome.
+    pub fn challenges_of(&self, account: &str, now: Moment) -> Vec<ChallengeInfo> {
+        let k = key(account);
+        self.challenges
+            .values()
+            .filter(|c| key(&c.info.from) == k || key(&c.info.to) == k)
+            .map(|c| self.shown(c, now))
+            .collect()
+    }
+
+    fn shown(&self, c: &Open, now: Moment) -> ChallengeInfo {
+        ChallengeInfo {
+            expires_in: c.expires.saturating_since(now).as_secs(),
+            ..c.info.clone()
+        }
+    }
+
+    /// Handles one input; what the driver must do, in order.
+    pub fn handle(&mut self, input: Input, now: Moment) -> Vec<Effect> {
+        match input {
+            Input::Online { stream, member } => {
+                self.streams.insert(
+                    stream,
+                    Online {
+                        member,
+                        ladder: false,
+                        seeking: None,
+                    },
+                );
+            }
+            Input::Offline { stream } => {
+                self.streams.remove(&stream);
+            }
+            Input::Message { stream, msg } => {
+                if let Err(r) = self.message(stream, msg, now) {
+                    self.out
+                        .push(Effect::Send(stream, StreamServerMessage::refused(&r)));
+                }
+            }
+            Input::Finished { ratings } => {
+                for (account, rating) in ratings {
+                    self.done_playing(&account);
+                    self.rated(&account, rating);
+                }
+            }
+            Input::StartFailed { seats } => {
+                for seat in seats {
+                    self.done_playing(&self.player_name(&seat));
+                }
+            }
+            Input::Tick => self.tick(now),
+        }
+        std::mem::take(&mut self.out)
+    }
+
+    fn player_name(&self, p: &Player) -> String {
+        match p {
+            Player::Account(a) => a.clone(),
+            Player::Computer(l) => crate::ratings::computer_account(*l),
+        }
+    }
+
+    fn done_playing(&mut self, account: &str) {
+        if let Some(n) = self.playing.get_mut(&key(account)) {
+            *n = n.saturating_sub(1);
+            if *n == 0 {
+                self.playing.remove(&key(account));
+            }
+        }
+    }
+
+    fn rated(&mut self, account: &str, rating: f64) {
+        for s in self.streams.values_mut() {
+            if key(&s.member.name) == key(account) {
+                s.member.rating = rating;
+            }
+        }
+        for (level, r) in &mut self.computers {
+            if key(&crate::ratings::computer_account(*level)) == key(account) {
+                *r = rating;
+            }
+        }
+    }
+
+    fn member(&self, stream: StreamId) -> Result<&Member, Refusal> {
+        self.streams
+            .get(&stream)
+            .map(|s| &s.member)
+            .ok_or_else(Refusal::internal)
+    }
+
+    fn message(
+        &mut self,
+        stream: StreamId,
+        msg: StreamClientMessage,
+        now: Moment,
+    ) -> Result<(), Refusal> {
+        let me = self.member(stream)?.clone();
+        match msg {
+            StreamClientMessage::Hello { .. } => Err(refused(
+                ErrorCode::BadMessage,
+                "hello is the first message of a stream, and only the first",
+            )),
+            StreamClientMessage::Challenge {
+                to,
+                rated,
+                rules,
+                turn_seconds,
+            } => self.challenge(&me, to, rated, rules, turn_seconds, now),
+            StreamClientMessage::Accept { challenge } => {
+                let c = self.addressed_to(&me, &challenge)?;
+                self.challenges.remove(&challenge);
+                self.start(
+                    [Player::Account(c.info.from), Player::Account(c.info.to)],
+                    c.info.rated,
+                    c.rules,
+                    c.turn_seconds,
+                    Pairing::Challenge(challenge),
+                );
+                Ok(())
+            }
+            StreamClientMessage::Decline { challenge, reason } => {
+                let c = self.addressed_to(&me, &challenge)?;
+                self.challenges.remove(&challenge);
+                self.closed(
+                    &c,
+                    "declined",
+                    reason.map(|r| r.chars().take(200).collect()),
+                );
+                Ok(())
+            }
+            StreamClientMessage::Withdraw { challenge } => {
+                match self.challenges.get(&challenge) {
+                    Some(c) if key(&c.info.from) == key(&me.name) => {}
+                    _ => return Err(no_challenge(&challenge)),
+                }
+                if let Some(c) = self.challenges.remove(&challenge) {
+                    self.closed(&c, "withdrawn", None);
+                }
+                Ok(())
+            }
+            StreamClientMessage::Seek { rated, cancel } => {
+                if let Some(s) = self.streams.get_mut(&stream) {
+                    s.seeking = (!cancel).then_some(rated);
+                }
+                if !cancel {
+                    self.pair_seekers(stream, rated);
+                }
+                Ok(())
+            }
+            StreamClientMessage::Ladder { join } => {
+                if !me.bot {
+                    return Err(refused(
+                        ErrorCode::BadMessage,
+                        "the ladder is for bot accounts; people seek a match instead",
+                    ));
+                }
+                if let Some(s) = self.streams.get_mut(&stream) {
+                    s.ladder = join;
+                }
+                Ok(())
+            }
+        }
+    }
+
+    fn challenge(
+        &mut self,
+        me: &Member,
+        to: String,
+        rated: bool,
+        rules: Option<String>,
+        turn_seconds: Option<u64>,
+        now: Moment,
+    ) -> Result<(), Refusal> {
+        if key(&to) == key(&me.name) {
+            return Err(refused(
+                ErrorCode::SameAccount,
+                "a challenge is to someone else",
+            ));
+        }
+        if to
+            .to_ascii_lowercase()
+            .starts_with(crate::ratings::COMPUTER_PREFIX)
+        {
+            return Err(refused(
+                ErrorCode::BadMessage,
+                "the computer levels are played from POST /api/matches (opponent bot)",
+            ));
+        }
+        let rules = match rules.as_deref() {
+            None => Preset::Standard,
+            Some(name) => Preset::parse(name)
+                .ok_or_else(|| refused(ErrorCode::BadConfig, "rules are standard or casual"))?,
+        };
+        if rated && rules != Preset::Standard {
+            return Err(refused(
+                ErrorCode::BadConfig,
+                "a rated match is played under the standard rules",
+            ));
+        }
+        if let Some(t) = turn_seconds {
+            if !(1..=3600).contains(&t) {
+                return Err(refused(
+                    ErrorCode::BadConfig,
+                    "turn_seconds must be between 1 and 3600",
+                ));
+            }
+        }
+        let made = self
+            .challenges
+            .values()
+            .filter(|c| key(&c.info.from) == key(&me.name))
+            .count();
+        if made >= self.limits.challenges_per_account {
+            return Err(refused(
+                ErrorCode::RateLimited,
+                "too many open challenges; wait for answers or withdraw some",
+            ));
+        }
+        let id = format!("c{}", self.next_challenge);
+        self.next_challenge += 1;
+        let open = Open {
+            info: ChallengeInfo {
+                id: id.clone(),
+                from: me.name.clone(),
+                to,
+                rated,
+                rules: rules.as_str().to_string(),
+                turn_seconds: turn_seconds.unwrap_or(0),
+                expires_in: 0,
+            },
+            rules,
+            turn_seconds,
+            expires: now + self.limits.challenge_ttl,
+        };
+        let shown = self.shown(&open, now);
+        for who in [&open.info.from, &open.info.to] {
+            self.out.push(Effect::Tell(
+                who.clone(),
+                StreamServerMessage::Challenge {
+                    challenge: shown.clone(),
+                },
+            ));
+        }
+        self.challenges.insert(id, open);
+        Ok(())
+    }
+
+    /// The open challenge `id`, if it is addressed to `me`.
+    fn addressed_to(&self, me: &Member, id: &str) -> Result<Open, Refusal> {
+        match self.challenges.get(id) {
+            Some(c) if key(&c.info.to) == key(&me.name) => Ok(Open {
+                info: c.info.clone(),
+                rules: c.rules,
+                turn_seconds: c.turn_seconds,
+                expires: c.expires,
+            }),
+            _ => Err(no_challenge(id)),
+        }
+    }
+
+    fn closed(&mut self, c: &Open, why: &str, reason: Option<String>) {
+        for who in [&c.info.from, &c.info.to] {
+            self.out.push(Effect::Tell(
+                who.clone(),
+                StreamServerMessage::ChallengeClosed {
+                    id: c.info.id.clone(),
+                    why: why.into(),
+                    reason: reason.clone(),
+                },
+            ));
+        }
+    }
+
+    fn start(
+        &mut self,
+        seats: [Player; 2],
+        rated: bool,
+        rules: Preset,
+        turn_seconds: Option<u64>,
+        why: Pairing,
+    ) {
+        for s in &seats {
+            *self.playing.entry(key(&self.player_name(s))).or_insert(0) += 1;
+        }
+        self.out.push(Effect::Start {
+            seats,
+            rated,
+            rules,
+            turn_seconds,
+            why,
+        });
+    }
+
+    /// Pairs the seeker on `stream` with the longest-waiting other seeker
+    /// of the same kind (rated: within the rating gap), if there is one.
+    fn pair_seekers(&mut self, stream: StreamId, rated: bool) {
+        let me = match self.streams.get(&stream) {
+            Some(s) => s.member.clone(),
+            None => return,
+        };
+        let other = self.streams.iter().find(|(id, s)| {
+            **id != stream
+                && s.seeking == Some(rated)
+                && key(&s.member.name) != key(&me.name)
+                && (!rated || (s.member.rating - me.rating).abs() <= self.limits.seek_rating_gap)
+        });
+        let Some((&other_id, other)) = other else {
+            return;
+        };
+        let them = other.member.name.clone();
+        for id in [stream, other_id] {
+            if let Some(s) = self.streams.get_mut(&id) {
+                s.seeking = None;
+            }
+        }
+        let rules = if rated {
+            Preset::Standard
+        } else {
+            Preset::Casual
+        };
+        self.start(
+            [Player::Account(them), Player::Account(me.name)],
+            rated,
+            rules,
+            None,
+            Pairing::Seek,
+        );
+    }
+
+    fn tick(&mut self, now: Moment) {
+        let expired: Vec<String> = self
+            .challenges
+            .iter()
+            .filter(|(_, c)| c.expires <= now)
+            .map(|(id, _)| id.clone())
+            .collect();
+        for id in expired {
+            if let Some(c) = self.challenges.remove(&id) {
+                self.closed(&c, "expired", None);
+            }
+        }
+        if now >= self.next_ladder {
+            self.next_ladder = now + self.limits.ladder_every;
+            self.pair_ladder();
+        }
+    }
+
+    /// One round of the ladder: every ladder bot that is not playing a
+    /// ladder match, and every idle computer level, sorted by rating and
+    /// paired with its neighbour; a pair of two computer levels is skipped
+    /// (the ladder is for the registered bots). With an odd number, a
+    /// different one sits out each round.
+    fn pair_ladder(&mut self) {
+        let mut pool: Vec<(Player, f64)> = Vec::new();
+        let mut seen = std::collections::HashSet::new();
+        for s in self.streams.values() {
+            let k = key(&s.member.name);
+            if s.ladder && !self.playing.contains_key(&k) && seen.insert(k) {
+                pool.push((Player::Account(s.member.name.clone()), s.member.rating));
+            }
+        }
+        if pool.is_empty() {
+            return;
+        }
+        for (level, rating) in &self.computers {
+            let k = key(&crate::ratings::computer_account(*level));
+            if !self.playing.contains_key(&k) {
+                pool.push((Player::Computer(*level), *rating));
+            }
+        }
+        pool.sort_by(|a, b| b.1.total_cmp(&a.1));
+        if pool.len() % 2 == 1 {
+            let out = (self.rounds as usize) % pool.len();
+            pool.remove(out);
+        }
+        self.rounds += 1;
+        let mut pairs = Vec::new();
+        for pair in pool.chunks(2) {
+            let (a, b) = (pair[0].0.clone(), pair[1].0.clone());
+            if matches!((&a, &b), (Player::Computer(_), Player::Computer(_))) {
+                continue;
+            }
+            // Colours alternate round by round.
+            pairs.push(if self.rounds % 2 == 0 { [a, b] } else { [b, a] });
+        }
+        for seats in pairs {
+            self.start(seats, true, Preset::Standard, None, Pairing::Ladder);
+        }
+    }
+}
+
+fn no_challenge(id: &str) -> Refusal {
+    refused(
+        ErrorCode::NoSuchChallenge,
+        format!("no open challenge {id:?} for you"),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn at(s: u64) -> Moment {
+        Moment::new(Duration::from_secs(s))
+    }
+
+    fn member(name: &str, bot: bool, rating: f64) -> Member {
+        Member {
+            name: name.into(),
+            bot,
+            rating,
+        }
+    }
+
+    fn lobby() -> Lobby {
+        Lobby::new(
+            LobbyLimits::default(),
+            vec![(bots::Level::Easy, 1500.0)],
+            at(0),
+        )
+    }
+
+    fn online(l: &mut Lobby, id: u64, m: Member) -> StreamId {
+        let s = StreamId(id);
+        l.handle(
+            Input::Online {
+                stream: s,
+                member: m,
+            },
+            at(0),
+        );
+        s
+    }
+
+    fn say(l: &mut Lobby, s: StreamId, msg: StreamClientMessage, t: u64) -> Vec<Effect> {
+        l.handle(Input::Message { stream: s, msg }, at(t))
+    }
+
+    fn error_code(effects: &[Effect]) -> Option<ErrorCode> {
+        effects.iter().find_map(|e| match e {
+            Effect::Send(_, StreamServerMessage::Error { code, .. }) => Some(*code),
+            _ => None,
+        })
+    }
+
+    fn challenge_to(to: &str) -> StreamClientMessage {
+        StreamClientMessage::Challenge {
+            to: to.into(),
+            rated: true,
+            rules: None,
+            turn_seconds: None,
+        }
+    }
+
+    #[test]
+    fn a_challenge_is_told_to_both_accepted_once_and_starts_a_rated_match() {
+        let mut l = lobby();
+        let a = online(&mut l, 1, member("Anka", false, 1500.0));
+        let p = online(&mut l, 2, member("Petka", false, 1500.0));
+        let fx = say(&mut l, a, challenge_to("Petka"), 1);
+        assert_eq!(fx.len(), 2, "{fx:?}");
+        let id = match &fx[1] {
+            Effect::Tell(who, StreamServerMessage::Challenge { challenge }) => {
+                assert_eq!(who, "Petka");
+                assert_eq!(challenge.expires_in, 60);
+                challenge.id.clone()
+            }
+            other => panic!("{other:?}"),
+        };
+        // Only the one challenged may accept; then it is gone.
+        let fx = say(
+            &mut l,
+            a,
+            StreamClientMessage::Accept {
+                challenge: id.clone(),
+            },
+            2,
+        );
+        assert_eq!(error_code(&fx), Some(ErrorCode::NoSuchChallenge));
+        let fx = say(
+            &mut l,
+            p,
+            StreamClientMessage::Accept {
+                challenge: id.clone(),
+            },
+            2,
+        );
+        assert!(matches!(
+            &fx[..],
+            [Effect::Start {
+                rated: true,
+                rules: Preset::Standard,
+                why: Pairing::Challenge(_),
+                ..
+            }]
+        ));
+        let fx = say(&mut l, p, StreamClientMessage::Accept { challenge: id }, 3);
+        assert_eq!(error_code(&fx), Some(ErrorCode::NoSuchChallenge));
+    }
+
+    #[test]
+    fn a_challenge_can_be_declined_with_a_reason_withdrawn_or_left_to_expire() {
+        let mut l = lobby();
+        let a = online(&mut l, 1, member("Anka", false, 1500.0));
+        let p = online(&mut l, 2, member("Petka", false, 1500.0));
+        say(&mut l, a, challenge_to("Petka"), 0);
+        let decline = StreamClientMessage::Decline {
+            challenge: "c1".into(),
+            reason: Some("later".into()),
+        };
+        let fx = say(&mut l, p, decline, 1);
+        assert!(fx.iter().all(|e| matches!(e,
+            Effect::Tell(_, StreamServerMessage::ChallengeClosed { why, reason: Some(r), .. })
+                if why == "declined" && r == "later")));
+        say(&mut l, a, challenge_to("Petka"), 1);
+        let fx = say(
+            &mut l,
+            p,
+            StreamClientMessage::Withdraw {
+                challenge: "c2".into(),
+            },
+            2,
+        );
+        assert_eq!(
+            error_code(&fx),
+            Some(ErrorCode::NoSuchChallenge),
+            "only its maker"
+        );
+        assert_eq!(l.challenges_of("petka", at(2)).len(), 1);
+        assert_eq!(
+            l.next_deadline(),
+            at(10),
+            "the ladder's next round comes first"
+        );
+        let fx = l.handle(Input::Tick, at(61));
+        assert!(
+            fx.iter().any(|e| matches!(e,
+            Effect::Tell(_, StreamServerMessage::ChallengeClosed { why, .. }) if why == "expired"))
+        );
+        assert!(l.challenges_of("Anka", at(61)).is_empty());
+    }
+
+    #[test]
+    fn bad_challenges_are_refused_with_a_code() {
+        let mut l = lobby();
+        let a = online(&mut l, 1, member("Anka", false, 1500.0));
+        let cases = [
+            (challenge_to("anka"), ErrorCode::SameAccount),
+            (
+                StreamClientMessage::Challenge {
+                    to: "Petka".into(),
+                    rated: true,
+                    rules: Some("casual".into()),
+                    turn_seconds: None,
+                },
+                ErrorCode::BadConfig,
+            ),
+            (
+                StreamClientMessage::Challenge {
+                    to: "Petka".into(),
+                    rated: false,
+                    rules: None,
+                    turn_seconds: Some(0),
+                },
+                ErrorCode::BadConfig,
+            ),
+            (
+                StreamClientMessage::Ladder { join: true },
+                ErrorCode::BadMessage,
+            ),
+        ];
+        for (msg, code) in cases {
+            let fx = say(&mut l, a, msg.clone(), 0);
+            assert_eq!(error_code(&fx), Some(code), "{msg:?}");
+        }
+        for _ in 0..20 {
+            say(&mut l, a, challenge_to("Petka"), 0);
+        }
+        let fx = say(&mut l, a, challenge_to("Petka"), 0);
+        assert_eq!(error_code(&fx), Some(ErrorCode::RateLimited));
+    }
+
+    #[test]
+    fn two_rated_seekers_of_similar_rating_are_paired_and_distant_ones_wait() {
+        let mut l = lobby();
+        let a = online(&mut l, 1, member("Anka", false, 1500.0));
+        let p = online(&mut l, 2, member("Petka", false, 2100.0));
+        let v = online(&mut l, 3, member("Vasya", false, 1600.0));
+        let seek = StreamClientMessage::Seek {
+            rated: true,
+            cancel: false,
+        };
+        assert!(say(&mut l, a, seek.clone(), 0).is_empty());
+        assert!(say(&mut l, p, seek.clone(), 0).is_empty(), "too far apart");
+        let fx = say(&mut l, v, seek, 0);
+        assert!(
+            matches!(&fx[..], [Effect::Start { seats, why: Pairing::Seek, .. }]
+            if seats == &[Player::Account("Anka".into()), Player::Account("Vasya".into())])
+        );
+    }
+
+    #[test]
+    fn the_ladder_pairs_idle_bots_by_rating_with_the_computer_and_not_twice_at_once() {
+        let mut l = lobby();
+        let bots = [("random", 1200.0), ("greedy", 1550.0), ("search", 1800.0)];
+        for (i, (name, r)) in bots.iter().enumerate() {
+            let s = online(&mut l, i as u64, member(name, true, *r));
+            assert!(say(&mut l, s, StreamClientMessage::Ladder { join: true }, 0).is_empty());
+        }
+        assert!(l.handle(Input::Tick, at(5)).is_empty(), "not yet");
+        let fx = l.handle(Input::Tick, at(10));
+        let starts: Vec<&[Player; 2]> = fx
+            .iter()
+            .filter_map(|e| match e {
+                Effect::Start {
+                    seats,
+                    rated: true,
+                    why: Pairing::Ladder,
+                    ..
+                } => Some(seats),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(starts.len(), 2, "{fx:?}");
+        // Sorted: search 1800, greedy 1550, computer 1500, random 1200.
+        let names = |p: &[Player; 2]| p.clone().map(|x| format!("{x:?}"));
+        assert!(names(starts[0]).contains(&"Account(\"search\")".to_string()));
+        assert!(names(starts[0]).contains(&"Account(\"greedy\")".to_string()));
+        assert!(names(starts[1]).contains(&"Computer(Easy)".to_string()));
+        // While those play, the next round pairs nobody.
+        assert!(l.handle(Input::Tick, at(20)).is_empty());
+        let finished = Input::Finished {
+            ratings: vec![("search".into(), 1810.0), ("greedy".into(), 1540.0)],
+        };
+        l.handle(finished, at(21));
+        let fx = l.handle(Input::Tick, at(30));
+        assert_eq!(fx.len(), 1, "search and greedy again: {fx:?}");
+    }
+}
