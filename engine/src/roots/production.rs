@@ -582,6 +582,8 @@ fn halley<const N: usize>(
     let mut last = f64::INFINITY;
     let mut stalls = 0;
     let mut fallbacks = 0;
+    let mut last_step = f64::INFINITY;
+    let mut crawl = 0;
     for _ in 0..128 {
         let (f, df, h2) = taylor2::<N>(p, x);
         d = df;
@@ -618,13 +620,23 @@ fn halley<const N: usize>(
             step = f / df;
             xn = x - step;
         }
-        if xn > a && xn < b {
+        // A step not below half the one before does not converge: after
+        // four in a row (a crawl, e.g. from next to a flat `p' = 0` where
+        // each step only triples the distance from it) bisect instead.
+        crawl = if step.abs() > 0.5 * last_step {
+            crawl + 1
+        } else {
+            0
+        };
+        last_step = step.abs();
+        if xn > a && xn < b && crawl < 4 {
             fallbacks = 0;
             x = xn;
             if step.abs() <= tol * xn.abs() {
                 return (x, d);
             }
         } else {
+            crawl = 0;
             fallbacks += 1;
             let m = if fallbacks < 4 {
                 a + 0.5 * (b - a)
