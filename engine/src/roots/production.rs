@@ -68,7 +68,10 @@ impl RootSolver for Production {
     }
 
     /// As `solve`, but without the result array on the fast paths: a
-    /// shortcut's answer comes back in registers.
+    /// shortcut's answer comes back in registers. Inlined, so that a caller
+    /// with constant bounds (the usual `0` and `inf`) gets the shortcuts
+    /// specialised for them.
+    #[inline]
     fn first_root(&self, coeffs: &[f64], lo: f64, hi: f64) -> Option<f64> {
         if !(lo < hi) {
             return None;
