@@ -18,7 +18,10 @@
 //!   they settle most separating contacts, including those whose roots are
 //!   all in the past). Then a discriminant test with an a-priori rounding
 //!   bound proves "no real root at all". `first_root` returns a shortcut's
-//!   answer directly, without building the result array.
+//!   answer directly, without building the result array. Every shortcut
+//!   and the walk take the same steps for `first_root` as for `roots_in`
+//!   (the walk just stops at the first root), so `first_root` is bit for
+//!   bit `roots_in(..).first()` (property-tested in `first_root_props.rs`).
 //! * Otherwise the critical points (roots of `p'`) split the search interval
 //!   into pieces on which `p` is monotone; a piece holds a root iff its ends
 //!   have opposite signs. A quartic's critical points are the roots of the
@@ -33,7 +36,9 @@
 //!   root, reported once and placed where the compensated `p'` vanishes.
 //! * Inside a piece: Halley's method (cubic convergence) from the root of the
 //!   quadratic Taylor model at the end nearer the root, kept inside the
-//!   bracket with Newton and bisection fallbacks; then the compensated polish:
+//!   bracket with Newton and bisection fallbacks (bisection also after four
+//!   steps in a row that fail to halve, a crawl away from a flat start such
+//!   as `p'(0) = 0` in `x^4 - 11x^2 - 46`); then the compensated polish:
 //!   Newton/secant corrections with residuals from compensated Horner (exact
 //!   expansion arithmetic when even that cannot decide), accepted when the
 //!   certified sign changes between neighbouring floats or the correction is
