@@ -5,7 +5,7 @@
 //!
 //! The default run takes a few seconds; the `#[ignore]`d
 //! `first_root_is_roots_in_first_millions` runs `FIRST_ROOT_CASES` cases
-//! (two million unless set): `cargo test -p engine --release
+//! (two million unless set; about 30 s here): `cargo test -p engine --lib
 //! first_root_is_roots_in_first_millions -- --ignored --nocapture`.
 
 use super::reference::reference_roots;
