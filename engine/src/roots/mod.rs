@@ -35,6 +35,8 @@ mod bisection;
 #[cfg(test)]
 mod cases;
 mod closed_form;
+#[cfg(test)]
+mod first_root_props;
 mod poly;
 mod production;
 #[cfg(test)]

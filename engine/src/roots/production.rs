@@ -18,7 +18,10 @@
 //!   they settle most separating contacts, including those whose roots are
 //!   all in the past). Then a discriminant test with an a-priori rounding
 //!   bound proves "no real root at all". `first_root` returns a shortcut's
-//!   answer directly, without building the result array.
+//!   answer directly, without building the result array. Every shortcut
+//!   and the walk take the same steps for `first_root` as for `roots_in`
+//!   (the walk just stops at the first root), so `first_root` is bit for
+//!   bit `roots_in(..).first()` (property-tested in `first_root_props.rs`).
 //! * Otherwise the critical points (roots of `p'`) split the search interval
 //!   into pieces on which `p` is monotone; a piece holds a root iff its ends
 //!   have opposite signs. A quartic's critical points are the roots of the
@@ -33,7 +36,9 @@
 //!   root, reported once and placed where the compensated `p'` vanishes.
 //! * Inside a piece: Halley's method (cubic convergence) from the root of the
 //!   quadratic Taylor model at the end nearer the root, kept inside the
-//!   bracket with Newton and bisection fallbacks; then the compensated polish:
+//!   bracket with Newton and bisection fallbacks (bisection also after four
+//!   steps in a row that fail to halve, a crawl away from a flat start such
+//!   as `p'(0) = 0` in `x^4 - 11x^2 - 46`); then the compensated polish:
 //!   Newton/secant corrections with residuals from compensated Horner (exact
 //!   expansion arithmetic when even that cannot decide), accepted when the
 //!   certified sign changes between neighbouring floats or the correction is
@@ -68,7 +73,10 @@ impl RootSolver for Production {
     }
 
     /// As `solve`, but without the result array on the fast paths: a
-    /// shortcut's answer comes back in registers.
+    /// shortcut's answer comes back in registers. Inlined, so that a caller
+    /// with constant bounds (the usual `0` and `inf`) gets the shortcuts
+    /// specialised for them.
+    #[inline]
     fn first_root(&self, coeffs: &[f64], lo: f64, hi: f64) -> Option<f64> {
         if !(lo < hi) {
             return None;
@@ -582,6 +590,8 @@ fn halley<const N: usize>(
     let mut last = f64::INFINITY;
     let mut stalls = 0;
     let mut fallbacks = 0;
+    let mut last_step = f64::INFINITY;
+    let mut crawl = 0;
     for _ in 0..128 {
         let (f, df, h2) = taylor2::<N>(p, x);
         d = df;
@@ -618,13 +628,23 @@ fn halley<const N: usize>(
             step = f / df;
             xn = x - step;
         }
-        if xn > a && xn < b {
+        // A step not below half the one before does not converge: after
+        // four in a row (a crawl, e.g. from next to a flat `p' = 0` where
+        // each step only triples the distance from it) bisect instead.
+        crawl = if step.abs() > 0.5 * last_step {
+            crawl + 1
+        } else {
+            0
+        };
+        last_step = step.abs();
+        if xn > a && xn < b && crawl < 4 {
             fallbacks = 0;
             x = xn;
             if step.abs() <= tol * xn.abs() {
                 return (x, d);
             }
         } else {
+            crawl = 0;
             fallbacks += 1;
             let m = if fallbacks < 4 {
                 a + 0.5 * (b - a)
