@@ -1,0 +1,236 @@
+//! The account event stream through the real server: the welcome's full
+//! picture, challenges (refused, made, accepted once, played with the
+//! seat tokens the stream hands over, finished with the new rating), the
+//! ladder pairing a bot with a computer level, and hostile openings (a
+//! wrong key, a bot's key from a web page) refused with a stable code.
+
+mod common;
+
+use common::{Client, Server};
+use futures_util::{SinkExt, StreamExt};
+use game::protocol::{ClientMessage, ErrorCode, PROTOCOL_VERSION};
+use game::stream::{StreamClientMessage, StreamServerMessage};
+use game::token::SeatToken;
+use std::time::Duration;
+use tokio::net::TcpStream;
+use tokio_tungstenite::tungstenite::client::IntoClientRequest;
+use tokio_tungstenite::tungstenite::Message;
+use tokio_tungstenite::{MaybeTlsStream, WebSocketStream};
+
+type Ws = WebSocketStream<MaybeTlsStream<TcpStream>>;
+
+async fn account(s: &Server, name: &str, bot: bool) -> String {
+    let body = format!(r#"{{"name":"{name}","bot":{bot}}}"#);
+    let (status, text) = s.http("POST", "/api/accounts", &body).await;
+    assert_eq!(status, 201, "{text}");
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v["key"].as_str().unwrap().to_string()
+}
+
+struct Stream {
+    ws: Ws,
+}
+
+impl Stream {
+    /// Opens a stream (with extra request headers) and says hello with `key`.
+    async fn open_with(addr: &str, key: &str, headers: &[(&'static str, &str)]) -> Stream {
+        let mut req = format!("ws://{addr}/api/stream")
+            .into_client_request()
+            .unwrap();
+        for (name, value) in headers {
+            req.headers_mut().insert(*name, value.parse().unwrap());
+        }
+        let (ws, _) = tokio_tungstenite::connect_async(req).await.unwrap();
+        let mut s = Stream { ws };
+        s.send(&StreamClientMessage::Hello {
+            protocol: PROTOCOL_VERSION,
+            key: SeatToken::new(key),
+        })
+        .await;
+        s
+    }
+
+    async fn open(addr: &str, key: &str) -> Stream {
+        Stream::open_with(addr, key, &[]).await
+    }
+
+    async fn send(&mut self, m: &StreamClientMessage) {
+        self.ws.send(Message::text(m.to_json())).await.unwrap();
+    }
+
+    /// The next message (skipping keep-alives), within 10 s.
+    async fn next(&mut self) -> StreamServerMessage {
+        loop {
+            let frame = tokio::time::timeout(Duration::from_secs(10), self.ws.next())
+                .await
+                .expect("a stream message in time")
+                .expect("the stream is open")
+                .unwrap();
+            if let Message::Text(t) = frame {
+                let m = StreamServerMessage::from_json(&t).unwrap();
+                if m != StreamServerMessage::KeepAlive {
+                    return m;
+                }
+            }
+        }
+    }
+
+    async fn error(&mut self) -> ErrorCode {
+        match self.next().await {
+            StreamServerMessage::Error { code, .. } => code,
+            other => panic!("expected an error, got {other:?}"),
+        }
+    }
+}
+
+fn challenge_id(m: StreamServerMessage) -> String {
+    match m {
+        StreamServerMessage::Challenge { challenge } => challenge.id,
+        other => panic!("expected a challenge, got {other:?}"),
+    }
+}
+
+/// (match id, token) of a match-start.
+fn started(m: StreamServerMessage) -> (String, String, String) {
+    match m {
+        StreamServerMessage::MatchStart {
+            match_id,
+            token,
+            opponent,
+            rated,
+            ..
+        } => {
+            assert!(rated);
+            (match_id, token.expose().to_string(), opponent)
+        }
+        other => panic!("expected a match start, got {other:?}"),
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_challenge_is_accepted_once_played_with_the_streamed_tokens_and_rated() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = Server::start(dir.path(), &[]);
+    let furmanov = account(&s, "Furmanov", true).await;
+    let anka = account(&s, "Anka", false).await;
+
+    let mut f = Stream::open(&s.addr, &furmanov).await;
+    match f.next().await {
+        StreamServerMessage::Welcome {
+            account,
+            bot,
+            rating,
+            matches,
+            challenges,
+            ..
+        } => {
+            assert_eq!((account.as_str(), bot, rating), ("Furmanov", true, 1500));
+            assert!(matches.is_empty() && challenges.is_empty());
+        }
+        other => panic!("{other:?}"),
+    }
+    let mut a = Stream::open(&s.addr, &anka).await;
+    a.next().await;
+
+    let to = |who: &str| StreamClientMessage::Challenge {
+        to: who.into(),
+        rated: true,
+        rules: None,
+        turn_seconds: Some(30),
+    };
+    a.send(&to("nobody")).await;
+    assert_eq!(a.error().await, ErrorCode::NoSuchAccount);
+    a.send(&to("anka")).await;
+    assert_eq!(a.error().await, ErrorCode::SameAccount);
+    a.send(&StreamClientMessage::Ladder { join: true }).await;
+    assert_eq!(
+        a.error().await,
+        ErrorCode::BadMessage,
+        "people do not ladder"
+    );
+    a.send(&to("furmanov")).await;
+    let id = challenge_id(a.next().await);
+    assert_eq!(challenge_id(f.next().await), id);
+
+    f.send(&StreamClientMessage::Accept {
+        challenge: id.clone(),
+    })
+    .await;
+    let (match_id, f_token, opponent) = started(f.next().await);
+    assert_eq!(opponent, "Anka");
+    let (same, a_token, _) = started(a.next().await);
+    assert_eq!(same, match_id);
+    f.send(&StreamClientMessage::Accept { challenge: id }).await;
+    assert_eq!(f.error().await, ErrorCode::NoSuchChallenge, "accepted once");
+
+    // The streamed tokens hold the seats; a resignation ends the match and
+    // each stream hears of it with its new rating.
+    let mut fm = Client::connect(&s.addr, &match_id, Some(&f_token)).await;
+    let _am = Client::connect(&s.addr, &match_id, Some(&a_token)).await;
+    fm.send(&ClientMessage::Resign).await;
+    for stream in [&mut f, &mut a] {
+        match stream.next().await {
+            StreamServerMessage::MatchFinish {
+                match_id: m,
+                rating: Some(r),
+                ..
+            } => {
+                assert_eq!(m, match_id);
+                assert_ne!(r, 1500);
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
+    // A reopened stream's welcome shows no match left to play.
+    let mut again = Stream::open(&s.addr, &anka).await;
+    match again.next().await {
+        StreamServerMessage::Welcome { matches, .. } => assert!(matches.is_empty()),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_ladder_pairs_an_online_bot_with_a_computer_level_in_a_rated_match() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = Server::start(dir.path(), &["--ladder-seconds", "1"]);
+    let key = account(&s, "Chapaev", true).await;
+    let mut c = Stream::open(&s.addr, &key).await;
+    c.next().await;
+    c.send(&StreamClientMessage::Ladder { join: true }).await;
+    let (match_id, token, opponent) = started(c.next().await);
+    assert!(opponent.starts_with("computer-"), "{opponent}");
+    let (_, text) = s.http("GET", &format!("/api/matches/{match_id}"), "").await;
+    let summary: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(summary["rated"], true, "{text}");
+    // Still playing it: the next rounds pair it with nobody else.
+    tokio::time::sleep(Duration::from_millis(2500)).await;
+    let mut m = Client::connect(&s.addr, &match_id, Some(&token)).await;
+    m.send(&ClientMessage::Resign).await;
+    assert!(matches!(
+        c.next().await,
+        StreamServerMessage::MatchFinish { rating: Some(r), .. } if r < 1500
+    ));
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_stream_with_a_wrong_key_or_a_bot_key_from_a_web_page_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = Server::start(dir.path(), &[]);
+    let bot = account(&s, "Furmanov", true).await;
+    let mut wrong = Stream::open(&s.addr, "0123456789abcdef0123456789abcdef").await;
+    assert_eq!(wrong.error().await, ErrorCode::BadKey);
+    let page = [("sec-fetch-site", "same-origin")];
+    let mut from_page = Stream::open_with(&s.addr, &bot, &page).await;
+    assert_eq!(from_page.error().await, ErrorCode::BotKeyInBrowser);
+    // A bad first message.
+    let (ws, _) = tokio_tungstenite::connect_async(format!("ws://{}/api/stream", s.addr))
+        .await
+        .unwrap();
+    let mut junk = Stream { ws };
+    junk.ws
+        .send(Message::text("{\"type\":\"ladder\",\"join\":true}"))
+        .await
+        .unwrap();
+    assert_eq!(junk.error().await, ErrorCode::NoHello);
+}
