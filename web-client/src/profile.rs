@@ -87,7 +87,7 @@ impl Screen for Profile {
         y += 34.0;
         let facts = match &self.account {
             Answer::Got(a) => format!(
-                "{} · rating {} (± {}) · {}",
+                "{} · rating {} ±{} · {}",
                 if a.bot { "bot" } else { "person" },
                 account::profile_rating(a),
                 a.deviation.round() as i64,

@@ -49,7 +49,7 @@ const MIN_WIDTH: f32 = 1000.0;
 /// Gap between controls.
 const GAP: f32 = 4.0;
 /// The compact toolbar's buttons: Lobby, the tools, Wall/Edge, Panel,
-/// Import, Export.
+/// Import, Export (about 70 units each).
 const TOOLBAR_BUTTONS: usize = TOOLS.len() + 5;
 
 /// Height of a row of the side panel (a finger-sized control and a gap).
@@ -550,7 +550,7 @@ impl Sandbox {
         );
         let c = if *error { colors::DANGER } else { colors::TEXT };
         ui::text(
-            text,
+            &ui::fit(text, size, area.w - 24.0),
             r.x + 10.0,
             r.y + 6.0,
             size,
@@ -591,8 +591,8 @@ impl Sandbox {
         if compact {
             items.push(("panel".into(), "Panel", 0.0, self.panel_open));
         }
-        items.push(("import".into(), "Import", 0.0, false));
         items.push(("export".into(), "Export", 0.0, false));
+        items.push(("import".into(), "Import", 0.0, false));
         let rects: Vec<Rect> = if compact {
             let per_row = toolbar_per_row(w);
             let bw = (w - 16.0 - GAP * (per_row - 1) as f32) / per_row as f32;
@@ -893,7 +893,12 @@ impl Sandbox {
                 .iter()
                 .enumerate()
                 {
-                    ui::text(line, x, y + 22.0 + 18.0 * k as f32, 15.0, colors::MUTED);
+                    let ly = y + 22.0 + 18.0 * k as f32;
+                    // As many as the panel holds.
+                    if ly + 18.0 > r.y + r.h {
+                        break;
+                    }
+                    ui::text(line, x, ly, 15.0, colors::MUTED);
                 }
             }
         }
@@ -922,7 +927,8 @@ impl Sandbox {
         ) {
             self.toggle_play();
         }
-        x += 70.0 + 8.0;
+        // Room for the slider's knob beside Play.
+        x += 70.0 + 24.0;
         let n = SPEEDS.len() as f32;
         let (mut sx, sy, sw) = if compact {
             let sw = (r.w - 16.0 - GAP / 2.0 * (n - 1.0)) / n;
@@ -948,7 +954,7 @@ impl Sandbox {
             sx += sw + GAP / 2.0;
         }
         if !compact {
-            x = sx + 8.0;
+            x = sx + 24.0;
         }
         let label_w = if compact { 96.0 } else { 120.0 };
         let slider = Rect::new(x, y, (r.x + r.w - label_w - 16.0 - x).max(40.0), h);
@@ -1034,7 +1040,9 @@ impl Screen for Sandbox {
 
         let scene = self.sim.scene();
         if self.refit {
-            self.view = fit(&scene, self.board, world);
+            // The compact layout has no statistics panel to leave room for.
+            let left = if compact { 0.0 } else { STATS_W };
+            self.view = fit(&scene, self.board, world, left);
             self.refit = false;
         }
         self.keys(&scene);
@@ -1045,7 +1053,9 @@ impl Screen for Sandbox {
         self.tally = self.sim.tally();
 
         self.draw_world(world, &scene);
-        self.stats_panel(world, &scene);
+        if !compact {
+            self.stats_panel(world, &scene);
+        }
         if let Kind::Galperin(n) = self.kind {
             self.galperin_panel(world, n);
         }
@@ -1112,9 +1122,9 @@ impl Screen for Sandbox {
 }
 
 /// How many buttons a row of the compact toolbar holds in a window `w`
-/// units wide (at least 4, about 76 units each).
+/// units wide (at least 4, about 70 units each).
 fn toolbar_per_row(w: f32) -> usize {
-    (((w - 16.0) / 76.0).floor() as usize).clamp(4, TOOLBAR_BUTTONS)
+    (((w - 16.0) / 70.0).floor() as usize).clamp(4, TOOLBAR_BUTTONS)
 }
 
 /// The rows the compact toolbar takes in a window `w` units wide.
@@ -1207,7 +1217,7 @@ fn grid_step(scale: f64) -> f64 {
 }
 
 /// A view that shows the whole scene (and the board) in `area`.
-fn fit(scene: &Scene, board: Option<f64>, area: Rect) -> Viewport {
+fn fit(scene: &Scene, board: Option<f64>, area: Rect, stats_w: f32) -> Viewport {
     let mut lo = DVec2::splat(f64::INFINITY);
     let mut hi = DVec2::splat(f64::NEG_INFINITY);
     let mut take = |p: DVec2, r: f64| {
@@ -1236,7 +1246,7 @@ fn fit(scene: &Scene, board: Option<f64>, area: Rect) -> Viewport {
     }
     let size = (hi - lo).max(DVec2::splat(0.05));
     // Leave room for the statistics panel on the left of the world area.
-    let left = STATS_W.min(area.w * 0.4);
+    let left = stats_w.min(area.w * 0.4);
     let usable = Rect::new(area.x + left, area.y, area.w - left, area.h - 40.0);
     let scale = (usable.w as f64 / size.x).min(usable.h as f64 / size.y) * 0.9;
     Viewport {
@@ -1300,16 +1310,26 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_fitted_view_shows_every_body() {
-        let area = Rect::new(0.0, 48.0, 750.0, 600.0);
-        for kind in [Kind::Galperin(4), Kind::Brownian, Kind::Break] {
-            let p = presets::build(kind);
-            let v = fit(&p.scene, p.board, area);
-            for b in &p.scene.bodies {
-                let s = v.to_screen(b.pos);
-                assert!(area.contains(s), "{kind:?}: {s} outside");
+    fn the_fitted_view_shows_every_body_on_a_desktop_and_a_phone() {
+        let desktop = (Rect::new(0.0, 56.0, 750.0, 600.0), STATS_W);
+        let phone = (Rect::new(0.0, 152.0, 390.0, 584.0), 0.0);
+        for (area, stats_w) in [desktop, phone] {
+            for kind in [Kind::Galperin(4), Kind::Brownian, Kind::Break] {
+                let p = presets::build(kind);
+                let v = fit(&p.scene, p.board, area, stats_w);
+                for b in &p.scene.bodies {
+                    let s = v.to_screen(b.pos);
+                    assert!(area.contains(s), "{kind:?} in {area:?}: {s} outside");
+                }
             }
         }
+    }
+
+    #[test]
+    fn the_compact_toolbar_takes_three_rows_on_a_phone_and_one_on_a_wide_window() {
+        assert_eq!(toolbar_rows(390.0), 3.0);
+        assert_eq!(toolbar_rows(999.0), 1.0);
+        assert_eq!(toolbar_rows(200.0), 4.0);
     }
 
     #[test]
