@@ -442,6 +442,13 @@ impl Lobby {
     }
 }
 
+/// Whether a match in the list of `status` gets its button: a match this
+/// server cannot play (another physics version) is neither joined nor
+/// watched, only replayed once finished.
+fn offered(status: &str, s: &Summary) -> bool {
+    s.playable || status == "finished"
+}
+
 /// One list of matches in `area`, as many rows as fit (each a
 /// finger-sized button and two lines of description); where a click leads.
 fn list(ui: &mut Ui, l: &List, area: Rect) -> Option<Route> {
@@ -473,8 +480,7 @@ fn list(ui: &mut Ui, l: &List, area: Rect) -> Option<Route> {
             13.0,
             colors::MUTED,
         );
-        // A match this server cannot play can only be replayed.
-        let offered = s.playable || l.status == "finished";
+        let offered = offered(l.status, s);
         let name = format!("{}-{k}", l.status);
         let r = Rect::new(area.x + area.w - button_w - 8.0, y, button_w, ui::TOUCH);
         if offered && ui.button(&name, l.action, r) {
@@ -488,4 +494,40 @@ fn list(ui: &mut Ui, l: &List, area: Rect) -> Option<Route> {
         y += ui::TOUCH + 6.0;
     }
     go
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn summary(json: serde_json::Value) -> Summary {
+        serde_json::from_value(json).expect("a summary")
+    }
+
+    #[test]
+    fn a_rated_match_shows_each_seats_rating_and_is_marked_rated() {
+        let s = summary(serde_json::json!({
+            "match_id": "ab", "first": "Petka", "second": null, "bot": "hard", "shots": 2,
+            "result": null, "rated": true,
+            "first_rating": {"rating": 1523, "provisional": false},
+            "second_rating": {"rating": 1500, "provisional": true}}));
+        let (names, facts) = describe(&s);
+        assert_eq!(names, "Petka (1523) vs computer (hard) (1500?)");
+        assert_eq!(facts, "rated · 2 shots");
+    }
+
+    #[test]
+    fn a_match_this_server_cannot_play_is_only_replayed() {
+        let s = summary(serde_json::json!({
+            "match_id": "ab", "first": "Anka", "second": "Petka", "bot": null, "shots": 0,
+            "result": null, "playable": false}));
+        assert!(!offered("open", &s) && !offered("live", &s));
+        assert!(offered("finished", &s));
+        assert_eq!(describe(&s).1, "not playable here · 0 shots");
+        let playable = summary(serde_json::json!({
+            "match_id": "ab", "first": "Anka", "second": null, "bot": null, "shots": 0,
+            "result": null}));
+        assert!(offered("open", &playable));
+        assert_eq!(describe(&playable).0, "Anka vs ...");
+    }
 }

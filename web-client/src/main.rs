@@ -85,7 +85,7 @@ async fn main() {
     loop {
         let started = get_time();
         clear_background(ui::colors::BACKGROUND);
-        scale::begin_frame(screen.min_width());
+        scale::begin_frame();
         ui.begin(Input::read());
         let dt = (get_frame_time() as f64).min(0.1);
         let next = screen.frame(&mut ui, dt);
