@@ -81,3 +81,50 @@ pub fn check(
         )),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use game::noise::SplitMix64;
+    use game::simulate::random_request;
+
+    fn requests(n: usize) -> Vec<SimulateRequest> {
+        let mut rng = SplitMix64::new(7);
+        (0..n).map(|_| random_request(&mut rng)).collect()
+    }
+
+    #[test]
+    fn answers_with_the_native_bits_pass_and_are_tallied() {
+        let reqs = requests(20);
+        let answers: Vec<String> = reqs.iter().map(native_line).collect();
+        let tally = check("echo", 7, &reqs, &answers).unwrap();
+        assert_eq!(tally.errors, 0);
+    }
+
+    #[test]
+    fn one_number_off_names_the_first_request_that_differs() {
+        let reqs = requests(5);
+        let mut answers: Vec<String> = reqs.iter().map(native_line).collect();
+        let mut sim: serde_json::Value = serde_json::from_str(&answers[3]).unwrap();
+        sim["duration"] = serde_json::json!(sim["duration"].as_f64().unwrap() + 1e-12);
+        answers[3] = sim.to_string();
+        let err = check("echo", 7, &reqs, &answers).unwrap_err();
+        assert!(
+            err.starts_with("1 of 5 requests differ; the first, request 3"),
+            "{err}"
+        );
+        assert!(
+            check("echo", 7, &reqs, &answers[..4]).is_err(),
+            "a missing line"
+        );
+    }
+
+    #[test]
+    fn an_error_answer_is_compared_by_its_code_alone() {
+        assert_eq!(
+            normalise(r#"{"error": "too-fast", "message": "slower"}"#).unwrap(),
+            r#"{"error":"too-fast"}"#
+        );
+        assert!(normalise("not json").is_err());
+    }
+}
