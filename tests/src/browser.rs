@@ -3,7 +3,8 @@
 //! `CHAPAEV_SKIP_BROWSER=1`), starting chromedriver on a free port, a
 //! session with software WebGL (SwiftShader) in a fresh profile, and the
 //! page-level helpers the scenarios use: evaluating JavaScript, polling for
-//! a condition, clicking and dragging with the mouse, screenshots.
+//! a condition, clicking and dragging with the mouse, dragging a finger
+//! (touch events), pasting text, screenshots.
 
 use crate::process::{free_port, wait_for_port, Guard};
 use crate::{E2eError, Result};
@@ -302,6 +303,57 @@ pub async fn drag(client: &Client, from: (f64, f64), to: (f64, f64), steps: u32)
         });
     client.perform_actions(actions).await?;
     Ok(client.release_actions().await?)
+}
+
+/// Dispatches one touch event (`touchstart`, `touchmove` or `touchend`)
+/// of one finger at (`x`, `y`) CSS pixels on the game's canvas, as a
+/// phone's browser does.
+async fn touch(client: &Client, kind: &str, x: f64, y: f64) -> Result<()> {
+    const SCRIPT: &str = "const [kind, x, y] = arguments;
+        const c = document.querySelector('#glcanvas');
+        const t = new Touch({identifier: 1, target: c, clientX: x, clientY: y,
+                             pageX: x, pageY: y, screenX: x, screenY: y});
+        const down = kind === 'touchend' ? [] : [t];
+        c.dispatchEvent(new TouchEvent(kind, {touches: down, targetTouches: down,
+            changedTouches: [t], bubbles: true, cancelable: true}));
+        return true;";
+    client
+        .execute(SCRIPT, vec![json!(kind), json!(x), json!(y)])
+        .await?;
+    Ok(())
+}
+
+/// A finger put down at `from`, slid to `to` in `steps` moves (a frame or
+/// two each) and lifted there: touch events on the canvas.
+pub async fn touch_drag(
+    client: &Client,
+    from: (f64, f64),
+    to: (f64, f64),
+    steps: u32,
+) -> Result<()> {
+    let frame = Duration::from_millis(40);
+    touch(client, "touchstart", from.0, from.1).await?;
+    tokio::time::sleep(frame * 2).await;
+    let steps = steps.max(1);
+    let mut at = from;
+    for i in 1..=steps {
+        let t = f64::from(i) / f64::from(steps);
+        at = (from.0 + (to.0 - from.0) * t, from.1 + (to.1 - from.1) * t);
+        touch(client, "touchmove", at.0, at.1).await?;
+        tokio::time::sleep(frame).await;
+    }
+    tokio::time::sleep(frame * 3).await;
+    touch(client, "touchend", at.0, at.1).await
+}
+
+/// Pastes `text` into the page as the browser's paste event carries it.
+pub async fn paste(client: &Client, text: &str) -> Result<()> {
+    const SCRIPT: &str = "const data = new DataTransfer();
+        data.setData('text', arguments[0]);
+        window.dispatchEvent(new ClipboardEvent('paste', {clipboardData: data}));
+        return true;";
+    client.execute(SCRIPT, vec![json!(text)]).await?;
+    Ok(())
 }
 
 /// Takes a screenshot, writes it to `path`, returns the PNG.

@@ -5,6 +5,7 @@
 //! Without `node` the tests fail with a clear message unless
 //! `CHAPAEV_SKIP_BINDINGS=1` says to skip them.
 
+use crate::process::run_to_end;
 use crate::{E2eError, Result};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
@@ -68,23 +69,16 @@ pub fn build_package() -> Result<()> {
     if guard.is_none() {
         let start = Instant::now();
         let script = package_dir().join("build.sh");
-        let out = Command::new("bash")
-            .arg(&script)
+        let mut cmd = Command::new("bash");
+        cmd.arg(&script)
             .current_dir(workspace())
-            .stdin(Stdio::null())
-            .output();
-        let outcome = match out {
-            Ok(o) if o.status.success() => {
+            .stdin(Stdio::null());
+        let outcome = match run_to_end(&format!("`{}`", script.display()), &mut cmd) {
+            Ok(_) => {
                 eprintln!("bots/js/build.sh: {:.1} s", start.elapsed().as_secs_f64());
                 Ok(())
             }
-            Ok(o) => Err(format!(
-                "`{}` failed ({}):\n{}",
-                script.display(),
-                o.status,
-                tail(&String::from_utf8_lossy(&o.stderr), 4000)
-            )),
-            Err(e) => Err(format!("cannot run `{}`: {e}", script.display())),
+            Err(e) => Err(e.to_string()),
         };
         *guard = Some(outcome);
     }
@@ -98,24 +92,11 @@ pub fn build_package() -> Result<()> {
 /// Runs `node` with `args` in `bots/js`, its stdout and stderr captured; an
 /// error unless it exits 0.
 pub fn node(args: &[&std::ffi::OsStr]) -> Result<Output> {
-    let out = Command::new("node")
-        .args(args)
+    let mut cmd = Command::new("node");
+    cmd.args(args)
         .current_dir(package_dir())
-        .stdin(Stdio::null())
-        .output()
-        .map_err(|source| E2eError::Io {
-            what: "running node".into(),
-            source,
-        })?;
-    if !out.status.success() {
-        return Err(E2eError::Check(format!(
-            "node {:?} failed ({}):\n{}",
-            args,
-            out.status,
-            tail(&String::from_utf8_lossy(&out.stderr), 4000)
-        )));
-    }
-    Ok(out)
+        .stdin(Stdio::null());
+    run_to_end(&format!("node {args:?}"), &mut cmd)
 }
 
 /// The last `n` bytes of `s` (at a character boundary).

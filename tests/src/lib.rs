@@ -10,7 +10,9 @@
 //! Modules: [`process`] (child processes that die with the test),
 //! [`browser`] (finding Chromium, the WebDriver session, pointer input),
 //! [`picture`] (decoding screenshots, telling a drawn scene from a blank
-//! one), [`layout`] (the rules every screen's controls keep) and [`api`] (reading the server's HTTP API).
+//! one), [`layout`] (the rules every screen's controls keep), [`api`]
+//! (reading the server's HTTP API), [`js`] and [`python`] (the bindings'
+//! tools) and [`same_bits`] (their answers compared with native Rust's).
 //!
 //! Screenshots and logs go to [`artifacts_dir`]; without Chromium the test
 //! fails unless `CHAPAEV_SKIP_BROWSER=1` says to skip it.
@@ -22,6 +24,7 @@ pub mod layout;
 pub mod picture;
 pub mod process;
 pub mod python;
+pub mod same_bits;
 
 use std::path::PathBuf;
 

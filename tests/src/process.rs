@@ -1,14 +1,15 @@
-//! Child processes that die with the test: the server and chromedriver are
-//! started in process groups of their own and killed, group and all (the
-//! browser chromedriver launched included), when their guard drops —
-//! whether the scenario passed, failed or panicked.
+//! Child processes: the server and chromedriver are started in process
+//! groups of their own and killed, group and all (the browser chromedriver
+//! launched included), when their guard drops — whether the scenario
+//! passed, failed or panicked; and a command run to its end whose exit
+//! status is checked ([`run_to_end`]).
 
 use crate::{E2eError, Result};
 use std::io::{BufRead, BufReader};
 use std::net::{Ipv4Addr, TcpListener, TcpStream};
 use std::os::unix::process::CommandExt;
 use std::path::Path;
-use std::process::{Child, Command, Stdio};
+use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 /// A child process, killed with its whole process group on drop.
@@ -57,6 +58,25 @@ impl Drop for Guard {
         let _ = self.child.wait();
         eprintln!("e2e: stopped {}", self.name);
     }
+}
+
+/// Runs `cmd` (described as `what`) to its end, its standard output
+/// captured, and its standard error too unless the caller set it (to let
+/// it through); its output, or unless it exited 0 an error saying so with
+/// the end of its standard error.
+pub fn run_to_end(what: &str, cmd: &mut Command) -> Result<Output> {
+    let out = cmd.output().map_err(|source| E2eError::Io {
+        what: format!("running {what}"),
+        source,
+    })?;
+    if out.status.success() {
+        return Ok(out);
+    }
+    Err(E2eError::Check(format!(
+        "{what} failed ({}):\n{}",
+        out.status,
+        crate::js::tail(&String::from_utf8_lossy(&out.stderr), 4000)
+    )))
 }
 
 /// A free TCP port on 127.0.0.1 (free when asked; taken by whoever binds first).

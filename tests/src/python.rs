@@ -6,6 +6,7 @@
 //! Without `python3` the tests fail with a clear message, unless
 //! `CHAPAEV_SKIP_BINDINGS=1` says to skip them.
 
+use crate::process::run_to_end;
 use crate::{E2eError, Result};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -61,20 +62,9 @@ fn build() -> Result<Option<PathBuf>> {
     // The binding builds in a target folder of its own (build.sh's
     // default), never in the one this test was built in.
     cmd.env_remove("CARGO_TARGET_DIR");
-    let out = cmd
-        .stderr(Stdio::inherit())
-        .output()
-        .map_err(|source| E2eError::Io {
-            what: format!("running {}", script.display()),
-            source,
-        })?;
-    if !out.status.success() {
-        return Err(E2eError::Setup(format!(
-            "{} failed ({}); its output is above",
-            script.display(),
-            out.status
-        )));
-    }
+    cmd.stderr(Stdio::inherit());
+    let out = run_to_end(&script.display().to_string(), &mut cmd)
+        .map_err(|e| E2eError::Setup(format!("{e}; its output is above")))?;
     let stdout = String::from_utf8_lossy(&out.stdout);
     let venv_python = stdout
         .lines()
@@ -91,23 +81,10 @@ fn build() -> Result<Option<PathBuf>> {
 
 /// `python script args...` run to the end; its stdout (stderr passes through).
 pub fn run_script(python: &Path, script: &Path, args: &[&str]) -> Result<String> {
-    let out = Command::new(python)
-        .arg(script)
-        .args(args)
-        .stderr(Stdio::inherit())
-        .output()
-        .map_err(|source| E2eError::Io {
-            what: format!("running {}", script.display()),
-            source,
-        })?;
-    if !out.status.success() {
-        return Err(E2eError::Check(format!(
-            "{} {} failed ({})",
-            script.display(),
-            args.join(" "),
-            out.status
-        )));
-    }
+    let what = format!("{} {}", script.display(), args.join(" "));
+    let mut cmd = Command::new(python);
+    cmd.arg(script).args(args).stderr(Stdio::inherit());
+    let out = run_to_end(&what, &mut cmd)?;
     String::from_utf8(out.stdout)
         .map_err(|e| E2eError::Check(format!("{}: stdout is not UTF-8: {e}", script.display())))
 }

@@ -9,6 +9,7 @@
 //! `CHAPAEV_SKIP_BINDINGS=1`.
 
 use e2e::js;
+use e2e::same_bits;
 use game::noise::{NoiseDraw, SplitMix64};
 use game::simulate::random_request;
 use game::{Config, Film, PieceId, SimulateRequest, Simulation};
@@ -21,28 +22,6 @@ use std::time::Instant;
 const CASES: usize = 10_000;
 /// The seed they are drawn from.
 const SEED: u64 = 0x00C4_A9AE_5EED;
-
-/// What the native side answers for a request, as the script writes it.
-fn native_line(req: &SimulateRequest) -> String {
-    match req.run() {
-        Ok(sim) => serde_json::to_string(&sim).unwrap(),
-        Err(e) => serde_json::json!({ "error": e.code().as_str() }).to_string(),
-    }
-}
-
-/// A JS answer line in the native form: a Simulation re-serialised by
-/// serde_json (so only the numbers' bits can differ, never their spelling),
-/// or the error code alone.
-fn js_line(line: &str) -> Result<String, String> {
-    let v: serde_json::Value =
-        serde_json::from_str(line).map_err(|e| format!("not JSON ({e}): {line}"))?;
-    if let Some(code) = v.get("error") {
-        return Ok(serde_json::json!({ "error": code }).to_string());
-    }
-    let sim: Simulation =
-        serde_json::from_str(line).map_err(|e| format!("not a Simulation ({e}): {line}"))?;
-    Ok(serde_json::to_string(&sim).unwrap())
-}
 
 /// Runs `same_bits.mjs` on `requests` (JSON lines); its answer lines.
 fn run_same_bits(requests: &[String]) -> Vec<String> {
@@ -84,30 +63,11 @@ fn ten_thousand_random_requests_give_the_same_bits_in_node_as_natively() {
     let answers = run_same_bits(&lines);
     let node_s = start.elapsed().as_secs_f64();
     let start = Instant::now();
-    let expected: Vec<String> = requests.iter().map(native_line).collect();
+    let tally =
+        same_bits::check("node", SEED, &requests, &answers).unwrap_or_else(|e| panic!("{e}"));
     let native_s = start.elapsed().as_secs_f64();
-    eprintln!("{CASES} requests: node {node_s:.2} s (start, wasm and JSON included), native {native_s:.2} s");
-
-    assert_eq!(answers.len(), CASES, "one answer line per request");
-    let mut differ = Vec::new();
-    for (k, (answer, want)) in answers.iter().zip(&expected).enumerate() {
-        let got = js_line(answer).unwrap_or_else(|e| panic!("request {k}: {e}"));
-        if &got != want {
-            differ.push(k);
-        }
-    }
-    if let Some(&k) = differ.first() {
-        panic!(
-            "{} of {CASES} requests differ; the first, request {k} (seed {SEED:#x}, {k} calls of \
-             random_request in):\n  request: {}\n  native:  {}\n  node:    {}",
-            differ.len(),
-            lines[k],
-            expected[k],
-            js_line(&answers[k]).unwrap()
-        );
-    }
-    let errors = expected.iter().filter(|l| l.contains("\"error\"")).count();
-    assert_eq!(errors, 0, "random requests are all valid");
+    eprintln!("{CASES} requests: node {node_s:.2} s (start, wasm and JSON included), native and the comparison {native_s:.2} s");
+    assert_eq!(tally.errors, 0, "random requests are all valid");
 }
 
 #[test]

@@ -11,6 +11,7 @@
 //! fails, unless `CHAPAEV_SKIP_BINDINGS=1`.
 
 use e2e::python::{repo_root, run_script, venv_python};
+use e2e::same_bits;
 use game::noise::SplitMix64;
 use game::simulate::{random_request, SimulateRequest, Simulation};
 use std::io::Write;
@@ -53,40 +54,14 @@ fn python_simulates_ten_thousand_random_requests_with_the_bits_of_native_rust() 
         .map(|r| serde_json::to_string(r).unwrap())
         .collect();
 
-    let start = Instant::now();
-    let native: Vec<String> = requests
-        .iter()
-        .map(|r| match r.run() {
-            Ok(sim) => serde_json::to_string(&sim).unwrap(),
-            Err(e) => format!("{{\"error\":\"{}\"}}", e.code().as_str()),
-        })
-        .collect();
-    let native_s = start.elapsed().as_secs_f64();
-
     let scratch = tempfile::tempdir().unwrap();
     let start = Instant::now();
     let python_lines = through_python(&python, scratch.path(), &lines);
     let python_s = start.elapsed().as_secs_f64();
-    eprintln!(
-        "{REQUESTS} requests: native {native_s:.2} s, python (start, JSON and all) {python_s:.2} s"
-    );
-
-    assert_eq!(python_lines.len(), REQUESTS, "one line per request");
-    let mut knocked = 0;
-    for (k, (ours, theirs)) in native.iter().zip(&python_lines).enumerate() {
-        let theirs = match serde_json::from_str::<Simulation>(theirs) {
-            Ok(sim) => {
-                knocked += sim.knocked_off.len();
-                serde_json::to_string(&sim).unwrap()
-            }
-            Err(_) => theirs.replace(' ', ""),
-        };
-        assert_eq!(
-            *ours, theirs,
-            "request {k} (seed {SEED}) differs:\n request {}\n native  {ours}\n python  {theirs}",
-            lines[k]
-        );
-    }
+    eprintln!("{REQUESTS} requests: python (start, JSON and all) {python_s:.2} s");
+    let same_bits::Tally { knocked, .. } =
+        same_bits::check("python", SEED, &requests, &python_lines)
+            .unwrap_or_else(|e| panic!("{e}"));
     assert!(
         knocked > REQUESTS / 5,
         "the shots knock pieces off: {knocked}"

@@ -7,10 +7,14 @@
 //! A second scenario opens the game at phone size (390x844 at a
 //! device-pixel ratio of 3), at a device-pixel ratio of 2 and at full HD,
 //! and checks from the client's own layout report that every control is
-//! inside the window, none overlap and (except the desktop-only sandbox)
-//! each is at least 44 px tall; there it pulls a back-row piece to the
-//! window's edge and reads full power, and plays through to the
-//! end-of-match screen and the replay.
+//! inside the window, none overlap and each is at least 44 px tall: on the
+//! lobby, the rules, the leaderboard (both tabs), the account screen signed
+//! out and signed in, the lobby signed in and the player's page (with the
+//! server's real answers, empty or not) — signing in on the way with a key
+//! pasted into the account screen — then on the match, where it pulls a
+//! back-row piece to the window's edge and reads full power, and at phone
+//! size shoots a second time with a finger (touch events); then the
+//! end-of-match screen, the replay and the sandbox.
 //! Screenshots and logs are left in
 //! the artifacts folder (`target/e2e-artifacts` or `$CHAPAEV_E2E_ARTIFACTS`).
 
@@ -265,6 +269,7 @@ async fn layouts(
     )
     .await?;
     click_button(client, "help-close").await?;
+    accounts(client, server, artifacts, name).await?;
 
     // A match against the easy computer.
     click_button(client, "vs-computer-easy").await?;
@@ -312,11 +317,15 @@ async fn layouts(
             off.join("; ")
         )));
     }
-    // The shot is played; then resign: the end-of-match screen.
+    // The shot is played.
     state_until(client, "the shot counted", 20, |s| {
         s["shots"].as_u64().is_some_and(|n| n >= 1)
     })
     .await?;
+    if name == "phone" {
+        shoot_by_touch(client, h).await?;
+    }
+    // Then resign: the end-of-match screen.
     click_button(client, "resign").await?;
     click_button(client, "resign-yes").await?;
     let end = state_until(client, "the end-of-match screen", 30, |s| {
@@ -344,7 +353,6 @@ async fn layouts(
         true,
     )
     .await?;
-    // The sandbox is a desktop tool: zoomed out to fit, not finger-sized.
     click_button(client, "lobby").await?;
     click_button(client, "sandbox").await?;
     let sandbox = state_until(client, "the sandbox", 10, |s| {
@@ -356,9 +364,143 @@ async fn layouts(
         artifacts,
         &format!("layout-{name}-7-sandbox.png"),
         &sandbox,
-        false,
+        true,
     )
-    .await
+    .await?;
+    // On a phone the side panel opens over the world.
+    if name == "phone" {
+        click_button(client, "panel").await?;
+        let panel = state_until(client, "the sandbox's panel open", 10, |s| {
+            s["panel_open"] == true && s["buttons"]["preset-break"].is_array()
+        })
+        .await?;
+        check_layout(
+            client,
+            artifacts,
+            &format!("layout-{name}-8-sandbox-panel.png"),
+            &panel,
+            true,
+        )
+        .await?;
+    }
+    Ok(())
+}
+
+/// The account screens, each checked: the leaderboard's two tabs, the
+/// account screen signed out; then signing in with the key of an account
+/// made through the API, pasted into the account screen; the lobby and the
+/// account screen signed in, the player's page; and signing out again.
+async fn accounts(client: &Client, server: &Server, artifacts: &Path, window: &str) -> Result<()> {
+    click_button(client, "leaderboard").await?;
+    let people = state_until(client, "the people's leaderboard", 15, |s| {
+        s["screen"] == "leaderboard" && s["bots"] == false && s["loaded"] == true
+    })
+    .await?;
+    let shot = |n: &str| format!("layout-{window}-2{n}.png");
+    check_layout(client, artifacts, &shot("a-leaderboard"), &people, true).await?;
+    click_button(client, "tab-bots").await?;
+    let bots = state_until(client, "the bots' leaderboard", 15, |s| {
+        s["screen"] == "leaderboard" && s["bots"] == true && s["loaded"] == true
+    })
+    .await?;
+    check_layout(client, artifacts, &shot("b-leaderboard-bots"), &bots, true).await?;
+    click_button(client, "lobby").await?;
+    click_button(client, "sign-in").await?;
+    let signed_out = state_until(client, "the account screen, signed out", 10, |s| {
+        s["screen"] == "account" && s["buttons"]["account-use-key"].is_array()
+    })
+    .await?;
+    check_layout(client, artifacts, &shot("c-sign-in"), &signed_out, true).await?;
+    // An account made elsewhere; its key pasted here.
+    let account = format!("e2e-{window}");
+    let (status, made) = api::post_json(
+        &server.addr,
+        "/api/accounts",
+        &serde_json::json!({ "name": account, "bot": false }),
+    )
+    .await?;
+    let key = made["key"]
+        .as_str()
+        .filter(|_| status == 201)
+        .ok_or_else(|| E2eError::Check(format!("POST /api/accounts: {status} {made}")))?
+        .to_string();
+    click_button(client, "account-key").await?;
+    browser::paste(client, &key).await?;
+    click_button(client, "account-use-key").await?;
+    let lobby = state_until(client, "the lobby, signed in with its rating", 15, |s| {
+        s["screen"] == "lobby" && s["signed_in"] == account.as_str() && s["rating"] == "1500?"
+    })
+    .await?;
+    check_layout(client, artifacts, &shot("d-lobby-signed-in"), &lobby, true).await?;
+    click_button(client, "account").await?;
+    state_until(client, "the account screen, signed in", 10, |s| {
+        s["screen"] == "account" && s["signed_in"] == account.as_str()
+    })
+    .await?;
+    click_button(client, "export-key").await?;
+    let exported = state_until(client, "the key exported", 10, |s| {
+        s["message"].as_str().is_some_and(|m| m.contains("copied"))
+    })
+    .await?;
+    check_layout(client, artifacts, &shot("e-account"), &exported, true).await?;
+    click_button(client, "account-page").await?;
+    let page = state_until(
+        client,
+        "the player's page with the server's answers",
+        15,
+        |s| s["screen"] == "profile" && s["loaded"] == true && s["rating"] == "1500?",
+    )
+    .await?;
+    eprintln!(
+        "e2e: {window}: {account}'s page: history {}, matches {}",
+        page["history"], page["matches"]
+    );
+    check_layout(client, artifacts, &shot("f-player"), &page, true).await?;
+    click_button(client, "lobby").await?;
+    click_button(client, "sign-out").await?;
+    state_until(client, "the lobby, signed out", 10, |s| {
+        s["screen"] == "lobby" && s["signed_in"].is_null() && s["buttons"]["sign-in"].is_array()
+    })
+    .await?;
+    Ok(())
+}
+
+/// On our turn again, a finger pulls the piece nearest the middle down
+/// (touch events, as a phone sends them) and lets go: the client's report
+/// counts one more shot.
+async fn shoot_by_touch(client: &Client, height: u32) -> Result<()> {
+    let ready = state_until(client, "our turn again, nothing moving", 60, |s| {
+        s["my_turn"] == true && s["animating"] == false
+    })
+    .await?;
+    let before = ready["shots"].as_u64().unwrap_or(0);
+    let width = browser::eval(client, "return window.innerWidth;")
+        .await?
+        .as_f64()
+        .unwrap_or(390.0);
+    let bottom = f64::from(height) - 2.0;
+    let piece = ready["pieces"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter(|p| p["mine"] == true)
+        .filter_map(|p| Some((p["x"].as_f64()?, p["y"].as_f64()?)))
+        .filter(|&(_, y)| y + 40.0 < bottom)
+        .min_by(|a, b| {
+            let off = |p: &(f64, f64)| (p.0 - width / 2.0).abs();
+            off(a).total_cmp(&off(b))
+        })
+        .ok_or_else(|| {
+            E2eError::Check(format!("no piece of ours to touch: {}", ready["pieces"]))
+        })?;
+    let to = (piece.0, (piece.1 + 80.0).min(bottom));
+    eprintln!("e2e: a finger pulls the piece at {piece:?} to {to:?}");
+    browser::touch_drag(client, piece, to, 8).await?;
+    state_until(client, "the touch shot counted", 20, |s| {
+        s["shots"].as_u64().is_some_and(|n| n > before)
+    })
+    .await?;
+    Ok(())
 }
 
 async fn play(client: &Client, server: &Server, artifacts: &Path) -> Result<()> {

@@ -89,15 +89,17 @@
     const requests = new Map();
     let next_request = 1;
 
-    function http_start(mptr, mlen, uptr, ulen, bptr, blen) {
+    // `aptr, alen`: an Authorization header's value (empty: none).
+    function http_start(mptr, mlen, uptr, ulen, bptr, blen, aptr, alen) {
         const id = next_request++;
         const entry = { status: 0, body: new Uint8Array(0) };
         requests.set(id, entry);
-        const init = { method: str(mptr, mlen) };
+        const init = { method: str(mptr, mlen), headers: {} };
         if (blen > 0) {
             init.body = str(bptr, blen);
-            init.headers = { "content-type": "application/json" };
+            init.headers["content-type"] = "application/json";
         }
+        if (alen > 0) init.headers["authorization"] = str(aptr, alen);
         fetch(str(uptr, ulen), init)
             .then(async (r) => {
                 entry.body = new Uint8Array(await r.arrayBuffer());

@@ -1,9 +1,13 @@
-//! The lobby: your name, a match against the computer (easy, medium or
-//! hard) or a friend (a link to send), joining by id, and the server's open, live
-//! and finished matches to join, watch or replay. The lists refresh every
-//! few seconds.
+//! The lobby: your name (or, signed in, your account with its rating and
+//! whether new matches are rated), a match against the computer (easy,
+//! medium or hard) or a friend (a link to send), joining by id, the way to
+//! the leaderboard, and the server's open, live and finished matches — with
+//! the seats' ratings and rated matches marked — to join, watch or replay.
+//! A match this server cannot play (another physics version) offers no
+//! Join or Watch. The lists refresh every few seconds.
 
-use crate::api::{token_key, Api, Opponent, Pending, SeatGrant, Summary};
+use crate::account::{self, Account};
+use crate::api::{token_key, Api, Opponent, Pending, Profile, SeatGrant, Summary};
 use crate::route::Route;
 use crate::screen::Screen;
 use crate::ui::{self, colors, Ui};
@@ -14,6 +18,7 @@ use macroquad::prelude::*;
 /// Seconds between refreshes of the match lists.
 const REFRESH_SECONDS: f64 = 5.0;
 const NAME_KEY: &str = "chapaev.name";
+const RATED_KEY: &str = "chapaev.rated";
 
 /// One of the three lists.
 struct List {
@@ -35,6 +40,12 @@ pub struct Lobby {
     message: Option<String>,
     /// The rules are open over the lobby.
     help: bool,
+    /// The account this browser is signed in to, its profile once fetched.
+    account: Option<Account>,
+    profile: Option<Profile>,
+    fetching_profile: Option<Pending<Profile>>,
+    /// New matches are rated (signed in only).
+    rated: bool,
 }
 
 impl Lobby {
@@ -46,7 +57,13 @@ impl Lobby {
             items: Vec::new(),
             pending: None,
         };
+        let account = account::signed_in();
+        let fetching_profile = account.as_ref().map(|a| api.me(&a.key));
         Lobby {
+            account,
+            profile: None,
+            fetching_profile,
+            rated: platform::storage_get(RATED_KEY).as_deref() != Some("off"),
             api,
             name: platform::storage_get(NAME_KEY).unwrap_or_default(),
             join_id: String::new(),
@@ -71,12 +88,30 @@ impl Lobby {
     fn create(&mut self, opponent: Opponent) {
         if self.creating.is_none() {
             platform::storage_set(NAME_KEY, self.name.trim());
-            self.creating = Some(self.api.create(&self.player_name(), opponent));
+            let rated = self.rated && self.account.is_some();
+            self.creating = Some(self.api.create(&self.player_name(), opponent, rated));
             self.message = Some("creating the match...".into());
         }
     }
 
     fn poll(&mut self) -> Option<Route> {
+        if let Some(p) = &mut self.fetching_profile {
+            if let Some(r) = p.poll() {
+                let refused = p.status() == Some(401);
+                self.fetching_profile = None;
+                match r {
+                    Ok(profile) => self.profile = Some(profile),
+                    // The key proves nothing any more: forget it.
+                    Err(e) if refused => {
+                        account::sign_out();
+                        self.account = None;
+                        self.api.key = None;
+                        self.message = Some(format!("signed out: {e}"));
+                    }
+                    Err(e) => self.message = Some(e),
+                }
+            }
+        }
         if self.now - self.refreshed > REFRESH_SECONDS {
             self.refreshed = self.now;
             for l in &mut self.lists {
@@ -134,15 +169,22 @@ pub fn saved_name() -> String {
     clean_name(&platform::storage_get(NAME_KEY).unwrap_or_default())
 }
 
-/// A match in two lines: who plays whom, then how it stands.
-fn describe(s: &Summary) -> (String, String) {
-    let first = s.first.as_deref().unwrap_or("?");
+/// A match in two lines: who plays whom (with their ratings where the
+/// seats have them), then how it stands.
+pub fn describe(s: &Summary) -> (String, String) {
+    let first = account::with_rating(s.first.as_deref().unwrap_or("?"), s.first_rating);
     let second = match (&s.second, &s.bot) {
-        (_, Some(level)) => format!("computer ({level})"),
-        (Some(n), None) => n.clone(),
+        (_, Some(level)) => account::with_rating(&format!("computer ({level})"), s.second_rating),
+        (Some(n), None) => account::with_rating(n, s.second_rating),
         (None, None) => "...".to_string(),
     };
     let mut facts = Vec::new();
+    if s.rated {
+        facts.push("rated".to_string());
+    }
+    if !s.playable {
+        facts.push("not playable here".to_string());
+    }
     match s.result {
         Some(r) => match r.winner() {
             Some(Side::White) => facts.push("White won".to_string()),
@@ -170,9 +212,95 @@ impl Screen for Lobby {
     fn name(&self) -> &'static str {
         "lobby"
     }
+
+    fn report(&self) -> serde_json::Map<String, serde_json::Value> {
+        let mut m = serde_json::Map::new();
+        m.insert(
+            "signed_in".into(),
+            self.account.as_ref().map(|a| a.name.clone()).into(),
+        );
+        m.insert(
+            "rating".into(),
+            self.profile.as_ref().map(account::profile_rating).into(),
+        );
+        m.insert(
+            "rated".into(),
+            (self.rated && self.account.is_some()).into(),
+        );
+        let listed: Vec<serde_json::Value> = self
+            .lists
+            .iter()
+            .flat_map(|l| &l.items)
+            .map(|s| {
+                serde_json::json!({"match_id": s.match_id, "rated": s.rated,
+                    "playable": s.playable, "names": describe(s).0})
+            })
+            .collect();
+        m.insert("listed".into(), listed.into());
+        m
+    }
 }
 
 impl Lobby {
+    /// The row under the title: the name to play under and "Sign in", or
+    /// the signed-in account (its page), "Rated" and "Sign out".
+    fn account_row(
+        &mut self,
+        ui: &mut Ui,
+        x0: f32,
+        y: f32,
+        col: f32,
+        label_w: f32,
+        narrow: bool,
+    ) -> Option<Route> {
+        let row = ui::TOUCH;
+        let gap = 8.0;
+        let Some(a) = self.account.clone() else {
+            ui::text("Your name", x0, y + 12.0, 17.0, colors::TEXT);
+            let sign_w = if narrow { 84.0 } else { 110.0 };
+            let field_w = (col - label_w - gap - sign_w).min(260.0);
+            let field = Rect::new(x0 + label_w, y, field_w, row);
+            ui.text_field("name", &mut self.name, field, "Player", 40);
+            let b = Rect::new(field.x + field.w + gap, y, sign_w, row);
+            return ui.button("sign-in", "Sign in", b).then_some(Route::SignIn);
+        };
+        let rating = self
+            .profile
+            .as_ref()
+            .map_or_else(|| "—".to_string(), account::profile_rating);
+        let (x, w) = if narrow {
+            (x0, col)
+        } else {
+            ui::text("Signed in", x0, y + 12.0, 17.0, colors::TEXT);
+            (x0 + label_w, (col - label_w).min(560.0))
+        };
+        let name_w = (w - 2.0 * gap) * 0.46;
+        let other_w = (w - 2.0 * gap - name_w) / 2.0;
+        let mut go = None;
+        let label = format!("{} · {rating}", a.name);
+        if ui.button("account", &label, Rect::new(x, y, name_w, row)) {
+            go = Some(Route::SignIn);
+        }
+        let rated = Rect::new(x + name_w + gap, y, other_w, row);
+        let label = if self.rated {
+            "Rated: on"
+        } else {
+            "Rated: off"
+        };
+        if ui.button_styled("rated", label, rated, true, self.rated) {
+            self.rated = !self.rated;
+            platform::storage_set(RATED_KEY, if self.rated { "on" } else { "off" });
+        }
+        let out = Rect::new(rated.x + other_w + gap, y, other_w, row);
+        if ui.button("sign-out", "Sign out", out) {
+            account::sign_out();
+            self.account = None;
+            self.profile = None;
+            self.api.key = None;
+        }
+        go
+    }
+
     /// The lobby itself (drawn under the rules when they are open).
     fn lists_and_controls(&mut self, ui: &mut Ui) -> Option<Route> {
         let mut go = self.poll();
@@ -227,25 +355,20 @@ impl Lobby {
         }
         y += if narrow { 62.0 } else { 86.0 };
         let label_w = if narrow { 98.0 } else { 100.0 };
-        ui::text("Your name", x0, y + 12.0, 17.0, colors::TEXT);
-        let field_w = (col - label_w).min(260.0);
-        ui.text_field(
-            "name",
-            &mut self.name,
-            Rect::new(x0 + label_w, y, field_w, row),
-            "Player",
-            40,
-        );
+        if let Some(r) = self.account_row(ui, x0, y, col, label_w, narrow) {
+            go = Some(r);
+        }
         y += row + 12.0;
         // The matches to start: a row of five, or a grid of two columns.
-        let choices: [(&str, &str); 5] = [
+        let choices: [(&str, &str); 6] = [
             ("vs-computer-easy", "Computer: easy"),
             ("vs-computer-medium", "Computer: medium"),
             ("vs-computer-hard", "Computer: hard"),
             ("vs-person", "A friend (link)"),
             ("sandbox", "Physics sandbox"),
+            ("leaderboard", "Leaderboard"),
         ];
-        let per_row = if narrow { 2 } else { 5 };
+        let per_row = if narrow { 2 } else { 6 };
         let bw = (col - gap * (per_row - 1) as f32) / per_row as f32;
         let bh = if narrow { row } else { 52.0 };
         for (i, (name, label)) in choices.iter().enumerate() {
@@ -257,7 +380,8 @@ impl Lobby {
                     1 => self.create(Opponent::Bot("medium")),
                     2 => self.create(Opponent::Bot("hard")),
                     3 => self.create(Opponent::Person),
-                    _ => go = Some(Route::Sandbox),
+                    4 => go = Some(Route::Sandbox),
+                    _ => go = Some(Route::Leaderboard { bots: false }),
                 }
             }
         }
@@ -318,6 +442,13 @@ impl Lobby {
     }
 }
 
+/// Whether a match in the list of `status` gets its button: a match this
+/// server cannot play (another physics version) is neither joined nor
+/// watched, only replayed once finished.
+fn offered(status: &str, s: &Summary) -> bool {
+    s.playable || status == "finished"
+}
+
 /// One list of matches in `area`, as many rows as fit (each a
 /// finger-sized button and two lines of description); where a click leads.
 fn list(ui: &mut Ui, l: &List, area: Rect) -> Option<Route> {
@@ -349,9 +480,10 @@ fn list(ui: &mut Ui, l: &List, area: Rect) -> Option<Route> {
             13.0,
             colors::MUTED,
         );
+        let offered = offered(l.status, s);
         let name = format!("{}-{k}", l.status);
         let r = Rect::new(area.x + area.w - button_w - 8.0, y, button_w, ui::TOUCH);
-        if ui.button(&name, l.action, r) {
+        if offered && ui.button(&name, l.action, r) {
             let match_id = s.match_id.clone();
             go = Some(match l.status {
                 "open" => Route::Join { match_id },
@@ -362,4 +494,40 @@ fn list(ui: &mut Ui, l: &List, area: Rect) -> Option<Route> {
         y += ui::TOUCH + 6.0;
     }
     go
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn summary(json: serde_json::Value) -> Summary {
+        serde_json::from_value(json).expect("a summary")
+    }
+
+    #[test]
+    fn a_rated_match_shows_each_seats_rating_and_is_marked_rated() {
+        let s = summary(serde_json::json!({
+            "match_id": "ab", "first": "Petka", "second": null, "bot": "hard", "shots": 2,
+            "result": null, "rated": true,
+            "first_rating": {"rating": 1523, "provisional": false},
+            "second_rating": {"rating": 1500, "provisional": true}}));
+        let (names, facts) = describe(&s);
+        assert_eq!(names, "Petka (1523) vs computer (hard) (1500?)");
+        assert_eq!(facts, "rated · 2 shots");
+    }
+
+    #[test]
+    fn a_match_this_server_cannot_play_is_only_replayed() {
+        let s = summary(serde_json::json!({
+            "match_id": "ab", "first": "Anka", "second": "Petka", "bot": null, "shots": 0,
+            "result": null, "playable": false}));
+        assert!(!offered("open", &s) && !offered("live", &s));
+        assert!(offered("finished", &s));
+        assert_eq!(describe(&s).1, "not playable here · 0 shots");
+        let playable = summary(serde_json::json!({
+            "match_id": "ab", "first": "Anka", "second": null, "bot": null, "shots": 0,
+            "result": null}));
+        assert!(offered("open", &playable));
+        assert_eq!(describe(&playable).0, "Anka vs ...");
+    }
 }

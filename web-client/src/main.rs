@@ -1,23 +1,29 @@
 //! Chapaev online in the browser: the lobby, live play against people or
-//! the server's bots, the replay viewer and the offline physics sandbox,
+//! the server's bots (rated for a signed-in player), the replay viewer,
+//! the leaderboard and players' pages, and the offline physics sandbox,
 //! drawn with macroquad and compiled to `wasm32-unknown-unknown` (the
 //! server embeds the build and serves it at `/`). The same code runs on
 //! the desktop against `CHAPAEV_SERVER` (default `http://127.0.0.1:8080`).
 
+mod account;
 mod aim;
 mod api;
+mod chart;
 mod clip;
 mod connection;
 mod draw;
 mod help;
+mod leaderboard;
 mod lobby;
 mod platform;
 mod play;
+mod profile;
 mod replay;
 mod route;
 mod sandbox;
 mod scale;
 mod screen;
+mod sign_in;
 mod story;
 mod timeline;
 mod ui;
@@ -41,10 +47,13 @@ fn conf() -> Conf {
 
 /// Opens the screen for `route`.
 fn open(route: &Route) -> Box<dyn Screen> {
+    let signed_in = account::signed_in();
     let api = api::Api {
         origin: route::origin(&platform::location()),
+        key: signed_in.as_ref().map(|a| a.key.clone()),
     };
-    let name = lobby::saved_name();
+    // A signed-in player plays under the account's name.
+    let name = signed_in.map_or_else(lobby::saved_name, |a| a.name);
     match route {
         Route::Lobby => Box::new(lobby::Lobby::new(api)),
         Route::Play { match_id } => {
@@ -58,6 +67,9 @@ fn open(route: &Route) -> Box<dyn Screen> {
         }
         Route::Replay { match_id } => Box::new(replay::Replay::new(api, match_id.clone())),
         Route::Sandbox => Box::new(sandbox::Sandbox::new()),
+        Route::SignIn => Box::new(sign_in::SignIn::new(api)),
+        Route::Leaderboard { bots } => Box::new(leaderboard::Leaderboard::new(&api, *bots)),
+        Route::Account { name } => Box::new(profile::Profile::new(&api, name.clone())),
     }
 }
 
@@ -73,7 +85,7 @@ async fn main() {
     loop {
         let started = get_time();
         clear_background(ui::colors::BACKGROUND);
-        scale::begin_frame(screen.min_width());
+        scale::begin_frame();
         ui.begin(Input::read());
         let dt = (get_frame_time() as f64).min(0.1);
         let next = screen.frame(&mut ui, dt);

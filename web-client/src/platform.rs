@@ -1,5 +1,5 @@
 //! The outside world as the client sees it, one API on both targets: a
-//! WebSocket, HTTP requests, the page address, persistent key-value
+//! WebSocket, HTTP requests (with an optional `Authorization` header), the page address, persistent key-value
 //! storage, saving and opening files, pasted text, short sounds, the
 //! browser's own text prompt (a phone's keyboard never opens for a
 //! canvas), and the readiness flag and state report that the browser test reads.
@@ -57,6 +57,8 @@ mod imp {
             ul: usize,
             b: *const u8,
             bl: usize,
+            a: *const u8,
+            al: usize,
         ) -> i32;
         fn chapaev_http_status(id: i32) -> i32;
         fn chapaev_http_body_len(id: i32) -> i32;
@@ -126,8 +128,10 @@ mod imp {
     pub struct Request(i32);
 
     impl Request {
-        pub fn start(method: &str, url: &str, body: Option<&str>) -> Request {
+        /// `auth`: the value of an `Authorization` header to send.
+        pub fn start(method: &str, url: &str, body: Option<&str>, auth: Option<&str>) -> Request {
             let b = body.unwrap_or("");
+            let a = auth.unwrap_or("");
             Request(unsafe {
                 chapaev_http_start(
                     method.as_ptr(),
@@ -136,6 +140,8 @@ mod imp {
                     url.len(),
                     b.as_ptr(),
                     b.len(),
+                    a.as_ptr(),
+                    a.len(),
                 )
             })
         }
@@ -310,11 +316,16 @@ mod imp {
     pub struct Request(Receiver<HttpReply>);
 
     impl Request {
-        pub fn start(method: &str, url: &str, body: Option<&str>) -> Request {
+        /// `auth`: the value of an `Authorization` header to send.
+        pub fn start(method: &str, url: &str, body: Option<&str>, auth: Option<&str>) -> Request {
             let (tx, rx) = channel();
             let (method, url, body) = (method.to_string(), url.to_string(), body.map(String::from));
+            let auth = auth.map(String::from);
             thread::spawn(move || {
-                let req = ureq::request(&method, &url).set("content-type", "application/json");
+                let mut req = ureq::request(&method, &url).set("content-type", "application/json");
+                if let Some(a) = &auth {
+                    req = req.set("authorization", a);
+                }
                 let res = match body {
                     Some(b) => req.send_string(&b),
                     None => req.call(),

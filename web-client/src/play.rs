@@ -107,7 +107,9 @@ impl Play {
         } else {
             platform::storage_get(&token_key(&match_id))
         };
-        let named = platform::storage_get(NAME_KEY).is_some_and(|n| !n.trim().is_empty());
+        // A signed-in player joins under the account's name: nothing to ask.
+        let named = api.key.is_some()
+            || platform::storage_get(NAME_KEY).is_some_and(|n| !n.trim().is_empty());
         let setup = if join && token.is_none() && !named {
             Setup::Naming(String::new())
         } else if join && token.is_none() {
@@ -289,7 +291,7 @@ impl Play {
             };
             match m {
                 ServerMessage::ShotPlayed { outcome, film, .. } => {
-                    let line = story::shot_line(&outcome, self.my_side());
+                    let line = story::shot_line(&outcome, self.my_side(), true);
                     self.log.push_back(line);
                     while self.log.len() > LOG_LINES {
                         self.log.pop_front();
@@ -314,6 +316,13 @@ impl Play {
                     }
                 }
                 ServerMessage::MatchOver { result, record } => {
+                    // The last shot's line was written while the match
+                    // went on: after a resignation or forfeit nobody
+                    // shoots again.
+                    let me = self.my_side();
+                    if let (Some(o), Some(line)) = (self.outcomes.last(), self.log.back_mut()) {
+                        *line = story::shot_line(o, me, false);
+                    }
                     if let Some(v) = &self.view {
                         self.view = Some(v.after_result(result));
                     }

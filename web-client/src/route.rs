@@ -1,6 +1,7 @@
 //! Where the app is: the screens as addresses in the page's `#` fragment,
-//! so a link opens a match, a replay or the sandbox directly, and the
-//! browser's address always says where the player is.
+//! so a link opens a match, a replay, the sandbox, the leaderboard or a
+//! player's page directly, and the browser's address always says where
+//! the player is.
 
 /// One screen of the app and what it shows.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -17,6 +18,13 @@ pub enum Route {
     Replay { match_id: String },
     /// The offline physics sandbox.
     Sandbox,
+    /// Signing in (create an account or paste a key), or the signed-in
+    /// account's key and sign-out.
+    SignIn,
+    /// The best rated people (or bots).
+    Leaderboard { bots: bool },
+    /// An account's page: profile, rating over time, matches.
+    Account { name: String },
 }
 
 /// Whether `id` looks like a match id (hex, as the server makes them).
@@ -32,6 +40,12 @@ impl Route {
         let parts: Vec<&str> = frag.trim_start_matches('/').split('/').collect();
         match parts.as_slice() {
             ["sandbox"] => Route::Sandbox,
+            ["account"] => Route::SignIn,
+            ["leaderboard"] => Route::Leaderboard { bots: false },
+            ["leaderboard", "bots"] => Route::Leaderboard { bots: true },
+            ["player", name] if crate::account::valid_name(name) => Route::Account {
+                name: name.to_string(),
+            },
             [kind, id] if valid_id(id) => {
                 let match_id = id.to_string();
                 match *kind {
@@ -55,6 +69,10 @@ impl Route {
             Route::Watch { match_id } => format!("#/watch/{match_id}"),
             Route::Replay { match_id } => format!("#/replay/{match_id}"),
             Route::Sandbox => "#/sandbox".to_string(),
+            Route::SignIn => "#/account".to_string(),
+            Route::Leaderboard { bots: false } => "#/leaderboard".to_string(),
+            Route::Leaderboard { bots: true } => "#/leaderboard/bots".to_string(),
+            Route::Account { name } => format!("#/player/{name}"),
         }
     }
 }
@@ -103,6 +121,12 @@ mod tests {
             },
             Route::Replay { match_id: id },
             Route::Sandbox,
+            Route::SignIn,
+            Route::Leaderboard { bots: false },
+            Route::Leaderboard { bots: true },
+            Route::Account {
+                name: "Petka_2".into(),
+            },
         ] {
             let addr = format!("http://127.0.0.1:8080/{}", r.hash());
             assert_eq!(Route::parse(&addr), r);
@@ -117,6 +141,8 @@ mod tests {
             "http://h/#/play/",
             "http://h/#/play/a%20b",
             "#/play/<x>",
+            "#/player/a%20b",
+            "#/player/x",
         ] {
             assert_eq!(Route::parse(a), Route::Lobby, "{a}");
         }

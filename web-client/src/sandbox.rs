@@ -9,7 +9,10 @@
 //! the wheel.
 //!
 //! This module owns the screen: layout, input routing, drawing and the
-//! panels. The logic lives in submodules: [`sim`] (the model and its
+//! panels. Every control is finger-sized; a window narrower than a
+//! desktop's (a phone) gets the compact layout: the tools wrap in rows
+//! above the world, the playback bar takes two rows below it, and the side
+//! panel opens over the world with the "Panel" button. The logic lives in submodules: [`sim`] (the model and its
 //! playback), [`tools`] (the editing state machine), [`presets`] (the
 //! ready-made scenes).
 
@@ -37,11 +40,20 @@ const MAX_BUDGET: u64 = 400_000;
 const COMPUTE_MS: f64 = 20.0;
 
 /// Height of the toolbar and the playback bar; width of the side panel.
-const TOP: f32 = 48.0;
-const BOTTOM: f32 = 56.0;
+const TOP: f32 = 56.0;
+const BOTTOM: f32 = 60.0;
 const SIDE: f32 = 262.0;
-/// The narrowest window the toolbar fits (narrower ones zoom out).
+/// The narrowest window the desktop layout fits (narrower ones get the
+/// compact layout).
 const MIN_WIDTH: f32 = 1000.0;
+/// Gap between controls.
+const GAP: f32 = 4.0;
+/// The compact toolbar's buttons: Lobby, the tools, Wall/Edge, Panel,
+/// Import, Export (about 70 units each).
+const TOOLBAR_BUTTONS: usize = TOOLS.len() + 5;
+
+/// Height of a row of the side panel (a finger-sized control and a gap).
+const ROW: f32 = ui::TOUCH + GAP;
 
 /// Width the statistics panel takes from the world area (with margins).
 const STATS_W: f32 = 248.0;
@@ -76,6 +88,8 @@ pub struct Sandbox {
     frame_ms: f64,
     clock: f64,
     tally: Tally,
+    /// The side panel is open over the world (compact layout only).
+    panel_open: bool,
 }
 
 impl Sandbox {
@@ -115,6 +129,7 @@ impl Sandbox {
             frame_ms: 0.0,
             clock: 0.0,
             tally: Tally::default(),
+            panel_open: false,
         };
         if let Kind::Galperin(n) = kind {
             s.galperin_n = n;
@@ -535,7 +550,7 @@ impl Sandbox {
         );
         let c = if *error { colors::DANGER } else { colors::TEXT };
         ui::text(
-            text,
+            &ui::fit(text, size, area.w - 24.0),
             r.x + 10.0,
             r.y + 6.0,
             size,
@@ -545,13 +560,14 @@ impl Sandbox {
 
     // ---- controls -----------------------------------------------------
 
-    fn toolbar(&mut self, ui: &mut Ui, w: f32) -> Option<Route> {
+    /// The toolbar: one row on a desktop; in the compact layout the
+    /// buttons wrap in rows of equal width, with "Panel" among them.
+    fn toolbar(&mut self, ui: &mut Ui, w: f32, compact: bool) -> Option<Route> {
+        let h = ui::TOUCH;
         let y = 6.0;
-        let h = 34.0;
-        if ui.button("lobby", "Lobby", Rect::new(8.0, y, 70.0, h)) {
-            return Some(Route::Lobby);
-        }
-        let mut x = 92.0;
+        // (name, label, width on a desktop (0: at the right), selected).
+        let mut items: Vec<(String, &str, f32, bool)> =
+            vec![("lobby".into(), "Lobby", 70.0, false)];
         for tool in TOOLS {
             let label = match tool {
                 Tool::Select => "Select",
@@ -563,48 +579,95 @@ impl Sandbox {
                 Tool::Line(LineKind::Segment) => "Segment",
                 Tool::Delete => "Delete",
             };
-            let bw = 74.0;
-            let name = format!("tool-{}", tool.name());
-            if ui.button_styled(
-                &name,
+            items.push((
+                format!("tool-{}", tool.name()),
                 label,
-                Rect::new(x, y, bw, h),
-                true,
+                74.0,
                 self.tool == tool,
-            ) {
-                self.tool = tool;
-            }
-            x += bw + 4.0;
+            ));
         }
-        x += 8.0;
-        let label = if self.sensor { "Edge" } else { "Wall" };
-        if ui.button_styled("sensor", label, Rect::new(x, y, 58.0, h), true, self.sensor) {
-            self.sensor = !self.sensor;
-            self.say(
-                if self.sensor {
-                    "new lines are edges: a disc whose centre crosses one falls off"
-                } else {
-                    "new lines are walls: discs bounce off them"
+        let sensor = if self.sensor { "Edge" } else { "Wall" };
+        items.push(("sensor".into(), sensor, 58.0, self.sensor));
+        if compact {
+            items.push(("panel".into(), "Panel", 0.0, self.panel_open));
+        }
+        items.push(("export".into(), "Export", 0.0, false));
+        items.push(("import".into(), "Import", 0.0, false));
+        let rects: Vec<Rect> = if compact {
+            let per_row = toolbar_per_row(w);
+            let bw = (w - 16.0 - GAP * (per_row - 1) as f32) / per_row as f32;
+            (0..items.len())
+                .map(|i| {
+                    let (c, r) = ((i % per_row) as f32, (i / per_row) as f32);
+                    Rect::new(8.0 + c * (bw + GAP), y + r * (h + GAP), bw, h)
+                })
+                .collect()
+        } else {
+            let mut x = 8.0;
+            let mut right = w - 8.0;
+            items
+                .iter()
+                .map(|(name, _, bw, _)| {
+                    if *bw == 0.0 {
+                        right -= 74.0;
+                        let r = Rect::new(right, y, 74.0, h);
+                        right -= GAP;
+                        r
+                    } else {
+                        let r = Rect::new(x, y, *bw, h);
+                        let after = if name == "lobby" || name == "tool-delete" {
+                            14.0
+                        } else {
+                            GAP
+                        };
+                        x += bw + after;
+                        r
+                    }
+                })
+                .collect()
+        };
+        let mut go = None;
+        for ((name, label, _, selected), r) in items.iter().zip(rects) {
+            if !ui.button_styled(name, label, r, true, *selected) {
+                continue;
+            }
+            match name.as_str() {
+                "lobby" => go = Some(Route::Lobby),
+                "sensor" => {
+                    self.sensor = !self.sensor;
+                    self.say(
+                        if self.sensor {
+                            "new lines are edges: a disc whose centre crosses one falls off"
+                        } else {
+                            "new lines are walls: discs bounce off them"
+                        },
+                        false,
+                    );
+                }
+                "panel" => {
+                    self.panel_open = !self.panel_open;
+                    self.gesture = None;
+                }
+                "import" => {
+                    platform::request_file();
+                    self.waiting_file = true;
+                    self.say("choose a scene file (JSON)", false);
+                }
+                "export" => match platform::save_file("scene.json", &self.sim.export()) {
+                    Ok(m) => self.say(
+                        format!("{m} (the scene at t = {} s)", num(self.sim.t)),
+                        false,
+                    ),
+                    Err(e) => self.say(e, true),
                 },
-                false,
-            );
-        }
-        let right = w - 8.0;
-        if ui.button("export", "Export", Rect::new(right - 74.0, y, 74.0, h)) {
-            match platform::save_file("scene.json", &self.sim.export()) {
-                Ok(m) => self.say(
-                    format!("{m} (the scene at t = {} s)", num(self.sim.t)),
-                    false,
-                ),
-                Err(e) => self.say(e, true),
+                tool => {
+                    if let Some(t) = TOOLS.iter().find(|t| format!("tool-{}", t.name()) == tool) {
+                        self.tool = *t;
+                    }
+                }
             }
         }
-        if ui.button("import", "Import", Rect::new(right - 152.0, y, 74.0, h)) {
-            platform::request_file();
-            self.waiting_file = true;
-            self.say("choose a scene file (JSON)", false);
-        }
-        None
+        go
     }
 
     /// The material of new discs; returns where the next section starts.
@@ -622,15 +685,15 @@ impl Sandbox {
         ) {
             self.template.radius = (t.radius * f).clamp(1e-4, 1e3);
         }
-        y += 28.0;
+        y += ROW;
         if let Some(f) = stepper(ui, "new-mass", &format!("mass {}", num(t.mass)), x, y, w) {
             self.template.mass = (t.mass * f * f).clamp(1e-6, 1e12);
         }
-        y += 28.0;
+        y += ROW;
         self.template.mu = unit_slider(ui, "new-mu", "mu", t.mu, x, y, w);
-        y += 26.0;
+        y += ROW;
         self.template.restitution = unit_slider(ui, "new-e", "e", t.restitution, x, y, w);
-        y += 34.0;
+        y += ROW + 6.0;
         y
     }
 
@@ -639,7 +702,7 @@ impl Sandbox {
         let x = r.x + 10.0;
         let w = r.w - 20.0;
         let mut y = r.y + 8.0;
-        let h = 26.0;
+        let h = ui::TOUCH;
         let heading = |s: &str, y: f32| ui::text(s, x, y, 17.0, colors::ACCENT);
 
         heading("Presets", y);
@@ -648,7 +711,7 @@ impl Sandbox {
         if ui.button_styled(
             "preset-galperin",
             &format!("Galperin n={n}"),
-            Rect::new(x, y, w - 64.0, h),
+            Rect::new(x, y, w - 2.0 * (h + GAP), h),
             true,
             self.kind == Kind::Galperin(n),
         ) {
@@ -657,7 +720,7 @@ impl Sandbox {
         if ui.button_styled(
             "galperin-less",
             "-",
-            Rect::new(x + w - 60.0, y, 28.0, h),
+            Rect::new(x + w - 2.0 * h - GAP, y, h, h),
             n > 1,
             false,
         ) {
@@ -667,7 +730,7 @@ impl Sandbox {
         if ui.button_styled(
             "galperin-more",
             "+",
-            Rect::new(x + w - 28.0, y, 28.0, h),
+            Rect::new(x + w - h, y, h, h),
             n < MAX_GALPERIN,
             false,
         ) {
@@ -724,7 +787,7 @@ impl Sandbox {
             g_now,
             0.0,
             20.0,
-            Rect::new(x + 118.0, y, w - 118.0, 22.0),
+            Rect::new(x + 118.0, y, w - 118.0, ui::TOUCH),
         );
         if g != g_now {
             self.g_edit = Some((g * 100.0).round() / 100.0);
@@ -737,8 +800,10 @@ impl Sandbox {
                 }
             }
         }
-        y += 28.0;
-        let compact = r.h < 540.0;
+        y += ROW;
+        // Without the room for both, a selected body's controls replace
+        // those of new discs.
+        let compact = r.h < 720.0;
         if !(compact && self.selected_body(scene).is_some()) {
             y = self.new_disc_controls(ui, x, y, w);
         }
@@ -770,19 +835,19 @@ impl Sandbox {
                 ) {
                     self.update_selected(scene, |b| b.radius *= f);
                 }
-                y += 28.0;
+                y += ROW;
                 if let Some(f) = stepper(ui, "body-mass", &format!("mass {}", num(b.mass)), x, y, w)
                 {
                     self.update_selected(scene, |b| b.mass *= f * f);
                 }
-                y += 28.0;
+                y += ROW;
                 if let Some(f) = stepper(ui, "body-mu", &format!("mu {:.2}", b.mu), x, y, w) {
                     let step = if f > 1.0 { 0.05 } else { -0.05 };
                     self.update_selected(scene, |b| {
                         b.mu = ((b.mu + step) * 100.0).round().max(0.0) / 100.0
                     });
                 }
-                y += 28.0;
+                y += ROW;
                 if let Some(f) = stepper(ui, "body-e", &format!("e {:.2}", b.restitution), x, y, w)
                 {
                     let step = if f > 1.0 { 0.1 } else { -0.1 };
@@ -791,7 +856,7 @@ impl Sandbox {
                             ((b.restitution + step) * 10.0).round().clamp(0.0, 10.0) / 10.0
                     });
                 }
-                y += 30.0;
+                y += ROW + 2.0;
                 if ui.button("body-stop", "Stop it", Rect::new(x, y, half, h)) {
                     self.edit(Action::SetVelocity {
                         id: b.id,
@@ -828,23 +893,30 @@ impl Sandbox {
                 .iter()
                 .enumerate()
                 {
-                    ui::text(line, x, y + 22.0 + 18.0 * k as f32, 15.0, colors::MUTED);
+                    let ly = y + 22.0 + 18.0 * k as f32;
+                    // As many as the panel holds.
+                    if ly + 18.0 > r.y + r.h {
+                        break;
+                    }
+                    ui::text(line, x, ly, 15.0, colors::MUTED);
                 }
             }
         }
     }
 
-    fn playback_bar(&mut self, ui: &mut Ui, r: Rect) {
+    /// Rewind, play, the speeds and the time slider: one row on a
+    /// desktop; two in the compact layout (the speeds below).
+    fn playback_bar(&mut self, ui: &mut Ui, r: Rect, compact: bool) {
         ui::panel(r);
-        let y = r.y + 8.0;
-        let h = r.h - 16.0;
+        let h = ui::TOUCH;
+        let y = r.y + 6.0;
         let mut x = r.x + 8.0;
-        if ui.button("rewind", "|<", Rect::new(x, y, 40.0, h)) {
+        if ui.button("rewind", "|<", Rect::new(x, y, h, h)) {
             self.sim.playing = false;
             let start = self.sim.start();
             self.sim.seek(start);
         }
-        x += 44.0;
+        x += h + GAP;
         let label = if self.sim.playing { "Pause" } else { "Play" };
         if ui.button_styled(
             "play",
@@ -855,14 +927,22 @@ impl Sandbox {
         ) {
             self.toggle_play();
         }
-        x += 78.0;
+        // Room for the slider's knob beside Play.
+        x += 70.0 + 24.0;
+        let n = SPEEDS.len() as f32;
+        let (mut sx, sy, sw) = if compact {
+            let sw = (r.w - 16.0 - GAP / 2.0 * (n - 1.0)) / n;
+            (r.x + 8.0, y + h + GAP, sw)
+        } else {
+            (x, y, 44.0)
+        };
         for s in SPEEDS {
             let name = format!("speed-{s}");
             let selected = self.sim.speed == s;
             if ui.button_styled(
                 &name,
                 &speed_label(s),
-                Rect::new(x, y, 44.0, h),
+                Rect::new(sx, sy, sw, h),
                 true,
                 selected,
             ) {
@@ -871,16 +951,13 @@ impl Sandbox {
                     self.sim.playing = true;
                 }
             }
-            x += 46.0;
+            sx += sw + GAP / 2.0;
         }
-        x += 8.0;
-        let label_w = 120.0;
-        let slider = Rect::new(
-            x,
-            y + 2.0,
-            (r.x + r.w - label_w - 16.0 - x).max(40.0),
-            h - 4.0,
-        );
+        if !compact {
+            x = sx + 24.0;
+        }
+        let label_w = if compact { 96.0 } else { 120.0 };
+        let slider = Rect::new(x, y, (r.x + r.w - label_w - 16.0 - x).max(40.0), h);
         let start = self.sim.start();
         let computed = self.sim.computed_to();
         let last = self.sim.model.events().last().map_or(start, |e| e.t);
@@ -896,9 +973,9 @@ impl Sandbox {
             self.sim.seek(t);
         }
         ui::text(
-            &format!("t = {} s", num(self.sim.t)),
-            slider.x + slider.w + 22.0,
-            y + 8.0,
+            &ui::fit(&format!("t = {} s", num(self.sim.t)), 17.0, label_w),
+            slider.x + slider.w + 12.0,
+            y + 13.0,
             17.0,
             colors::TEXT,
         );
@@ -916,9 +993,30 @@ impl Screen for Sandbox {
         self.clock += dt;
         self.frame_ms = 0.9 * self.frame_ms + 0.1 * dt * 1000.0;
         let (w, h) = crate::scale::size().into();
-        let world = Rect::new(0.0, TOP, w - SIDE - 8.0, h - TOP - BOTTOM);
-        let side = Rect::new(w - SIDE - 4.0, TOP, SIDE, h - TOP - BOTTOM - 4.0);
-        let bar = Rect::new(4.0, h - BOTTOM, w - 8.0, BOTTOM - 4.0);
+        let compact = w < MIN_WIDTH;
+        let (top, bottom) = if compact {
+            let rows = toolbar_rows(w);
+            (
+                6.0 + rows * (ui::TOUCH + GAP) + 2.0,
+                2.0 * (ui::TOUCH + GAP) + 12.0,
+            )
+        } else {
+            (TOP, BOTTOM)
+        };
+        let world = if compact {
+            Rect::new(0.0, top, w, h - top - bottom)
+        } else {
+            Rect::new(0.0, top, w - SIDE - 8.0, h - top - bottom)
+        };
+        let side = if compact {
+            Rect::new(4.0, top, w - 8.0, h - top - bottom - 4.0)
+        } else {
+            Rect::new(w - SIDE - 4.0, top, SIDE, h - top - bottom - 4.0)
+        };
+        let bar = Rect::new(4.0, h - bottom, w - 8.0, bottom - 4.0);
+        if !compact {
+            self.panel_open = false;
+        }
 
         if self.waiting_file {
             if let Some(text) = platform::picked_file() {
@@ -942,33 +1040,41 @@ impl Screen for Sandbox {
 
         let scene = self.sim.scene();
         if self.refit {
-            self.view = fit(&scene, self.board, world);
+            // The compact layout has no statistics panel to leave room for.
+            let left = if compact { 0.0 } else { STATS_W };
+            self.view = fit(&scene, self.board, world, left);
             self.refit = false;
         }
         self.keys(&scene);
-        self.world_input(ui, world, &scene);
+        if !self.panel_open {
+            self.world_input(ui, world, &scene);
+        }
         let scene = self.sim.scene();
         self.tally = self.sim.tally();
 
         self.draw_world(world, &scene);
-        self.stats_panel(world, &scene);
+        if !compact {
+            self.stats_panel(world, &scene);
+        }
         if let Kind::Galperin(n) = self.kind {
             self.galperin_panel(world, n);
         }
         self.message_line(world);
         // The world stays out of the bars and the side panel.
-        draw_rectangle(0.0, 0.0, w, TOP - 2.0, colors::BACKGROUND);
-        draw_rectangle(0.0, h - BOTTOM - 4.0, w, BOTTOM + 4.0, colors::BACKGROUND);
+        draw_rectangle(0.0, 0.0, w, top - 2.0, colors::BACKGROUND);
+        draw_rectangle(0.0, h - bottom - 4.0, w, bottom + 4.0, colors::BACKGROUND);
         draw_rectangle(
             world.x + world.w,
-            TOP - 2.0,
+            top - 2.0,
             w - world.x - world.w,
             h,
             colors::BACKGROUND,
         );
-        let route = self.toolbar(ui, w);
-        self.side_panel(ui, side, &scene);
-        self.playback_bar(ui, bar);
+        let route = self.toolbar(ui, w, compact);
+        if !compact || self.panel_open {
+            self.side_panel(ui, side, &scene);
+        }
+        self.playback_bar(ui, bar, compact);
         route
     }
 
@@ -1002,6 +1108,7 @@ impl Screen for Sandbox {
         m.insert("tool".into(), self.tool.name().into());
         m.insert("preset".into(), self.kind.name().into());
         m.insert("selected".into(), self.selected.map(|b| b.0).into());
+        m.insert("panel_open".into(), self.panel_open.into());
         if let Some((text, error, _)) = &self.message {
             m.insert("message".into(), text.clone().into());
             m.insert("error".into(), (*error).into());
@@ -1012,11 +1119,17 @@ impl Screen for Sandbox {
     fn animating(&self) -> bool {
         self.sim.playing || self.gesture.is_some()
     }
+}
 
-    /// The toolbar's row of tools and the side panel need a desktop's width.
-    fn min_width(&self) -> f32 {
-        MIN_WIDTH
-    }
+/// How many buttons a row of the compact toolbar holds in a window `w`
+/// units wide (at least 4, about 70 units each).
+fn toolbar_per_row(w: f32) -> usize {
+    (((w - 16.0) / 70.0).floor() as usize).clamp(4, TOOLBAR_BUTTONS)
+}
+
+/// The rows the compact toolbar takes in a window `w` units wide.
+fn toolbar_rows(w: f32) -> f32 {
+    TOOLBAR_BUTTONS.div_ceil(toolbar_per_row(w)) as f32
 }
 
 /// A labelled slider over `[0, 1]` at `(x, y)`, `w` wide: the value shown
@@ -1034,24 +1147,21 @@ fn unit_slider(ui: &mut Ui, id: &str, label: &str, value: f64, x: f32, y: f32, w
         value,
         0.0,
         1.0,
-        Rect::new(x + 118.0, y, w - 118.0, 22.0),
+        Rect::new(x + 118.0, y, w - 118.0, ui::TOUCH),
     );
     (v * 100.0).round() / 100.0
 }
 
 /// A `-` / `+` pair with a label; the factor 1/1.25 or 1.25 when clicked.
 fn stepper(ui: &mut Ui, name: &str, label: &str, x: f32, y: f32, w: f32) -> Option<f64> {
-    ui::text(label, x, y + 4.0, 16.0, colors::TEXT);
+    let h = ui::TOUCH;
+    ui::text(label, x, y + 13.0, 16.0, colors::TEXT);
     let less = ui.button(
         &format!("{name}-less"),
         "-",
-        Rect::new(x + w - 60.0, y, 28.0, 24.0),
+        Rect::new(x + w - 2.0 * h - GAP, y, h, h),
     );
-    let more = ui.button(
-        &format!("{name}-more"),
-        "+",
-        Rect::new(x + w - 28.0, y, 28.0, 24.0),
-    );
+    let more = ui.button(&format!("{name}-more"), "+", Rect::new(x + w - h, y, h, h));
     if less {
         Some(1.0 / 1.25)
     } else if more {
@@ -1107,7 +1217,7 @@ fn grid_step(scale: f64) -> f64 {
 }
 
 /// A view that shows the whole scene (and the board) in `area`.
-fn fit(scene: &Scene, board: Option<f64>, area: Rect) -> Viewport {
+fn fit(scene: &Scene, board: Option<f64>, area: Rect, stats_w: f32) -> Viewport {
     let mut lo = DVec2::splat(f64::INFINITY);
     let mut hi = DVec2::splat(f64::NEG_INFINITY);
     let mut take = |p: DVec2, r: f64| {
@@ -1136,7 +1246,7 @@ fn fit(scene: &Scene, board: Option<f64>, area: Rect) -> Viewport {
     }
     let size = (hi - lo).max(DVec2::splat(0.05));
     // Leave room for the statistics panel on the left of the world area.
-    let left = STATS_W.min(area.w * 0.4);
+    let left = stats_w.min(area.w * 0.4);
     let usable = Rect::new(area.x + left, area.y, area.w - left, area.h - 40.0);
     let scale = (usable.w as f64 / size.x).min(usable.h as f64 / size.y) * 0.9;
     Viewport {
@@ -1200,16 +1310,26 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_fitted_view_shows_every_body() {
-        let area = Rect::new(0.0, 48.0, 750.0, 600.0);
-        for kind in [Kind::Galperin(4), Kind::Brownian, Kind::Break] {
-            let p = presets::build(kind);
-            let v = fit(&p.scene, p.board, area);
-            for b in &p.scene.bodies {
-                let s = v.to_screen(b.pos);
-                assert!(area.contains(s), "{kind:?}: {s} outside");
+    fn the_fitted_view_shows_every_body_on_a_desktop_and_a_phone() {
+        let desktop = (Rect::new(0.0, 56.0, 750.0, 600.0), STATS_W);
+        let phone = (Rect::new(0.0, 152.0, 390.0, 584.0), 0.0);
+        for (area, stats_w) in [desktop, phone] {
+            for kind in [Kind::Galperin(4), Kind::Brownian, Kind::Break] {
+                let p = presets::build(kind);
+                let v = fit(&p.scene, p.board, area, stats_w);
+                for b in &p.scene.bodies {
+                    let s = v.to_screen(b.pos);
+                    assert!(area.contains(s), "{kind:?} in {area:?}: {s} outside");
+                }
             }
         }
+    }
+
+    #[test]
+    fn the_compact_toolbar_takes_three_rows_on_a_phone_and_one_on_a_wide_window() {
+        assert_eq!(toolbar_rows(390.0), 3.0);
+        assert_eq!(toolbar_rows(999.0), 1.0);
+        assert_eq!(toolbar_rows(200.0), 4.0);
     }
 
     #[test]

@@ -24,27 +24,21 @@ thread_local! {
 
 /// How much a window of `w` x `h` CSS pixels zooms the interface: 1 up to
 /// the design size, then with the window's shorter proportion, at most
-/// [`MAX_ZOOM`]. A screen that needs at least `min_width` units (the
-/// sandbox's desktop toolbar) is zoomed out below 1 to fit a narrower
-/// window.
-pub fn zoom_for(w: f32, h: f32, min_width: f32) -> f32 {
+/// [`MAX_ZOOM`]. Never below 1: every screen lays itself out for a
+/// narrow window (a phone) rather than being zoomed out to fit.
+pub fn zoom_for(w: f32, h: f32) -> f32 {
     let z = (w / DESIGN.0).min(h / DESIGN.1);
     if !z.is_finite() {
         return 1.0;
     }
-    let z = z.clamp(1.0, MAX_ZOOM);
-    if min_width > 0.0 && w / z < min_width {
-        (w / min_width).max(0.1)
-    } else {
-        z
-    }
+    z.clamp(1.0, MAX_ZOOM)
 }
 
 /// Starts a frame: measures the window and sets the camera that maps
-/// layout units to the screen (see [`zoom_for`] for `min_width`).
-pub fn begin_frame(min_width: f32) {
+/// layout units to the screen.
+pub fn begin_frame() {
     let (w, h) = (screen_width(), screen_height());
-    let zoom = zoom_for(w, h, min_width);
+    let zoom = zoom_for(w, h);
     ZOOM.with(|z| z.set(zoom));
     let (lw, lh) = (w / zoom, h / zoom);
     set_camera(&Camera2D {
@@ -82,23 +76,15 @@ mod tests {
 
     #[test]
     fn phones_and_laptops_are_not_zoomed() {
-        assert_eq!(zoom_for(390.0, 844.0, 0.0), 1.0);
-        assert_eq!(zoom_for(1024.0, 720.0, 0.0), 1.0);
+        assert_eq!(zoom_for(390.0, 844.0), 1.0);
+        assert_eq!(zoom_for(1024.0, 720.0), 1.0);
     }
 
     #[test]
     fn a_full_hd_window_zooms_with_its_shorter_proportion() {
-        let z = zoom_for(1920.0, 1080.0, 0.0);
+        let z = zoom_for(1920.0, 1080.0);
         assert!((z - 1080.0 / 760.0).abs() < 1e-4, "{z}");
-        assert_eq!(zoom_for(8000.0, 5000.0, 0.0), MAX_ZOOM);
-        assert_eq!(zoom_for(f32::NAN, 1.0, 0.0), 1.0);
-    }
-
-    #[test]
-    fn a_screen_wider_than_the_window_is_zoomed_out_to_fit() {
-        let z = zoom_for(390.0, 844.0, 1000.0);
-        assert!((390.0 / z - 1000.0).abs() < 1e-3);
-        // Wide enough: no change.
-        assert_eq!(zoom_for(1024.0, 720.0, 1000.0), 1.0);
+        assert_eq!(zoom_for(8000.0, 5000.0), MAX_ZOOM);
+        assert_eq!(zoom_for(f32::NAN, 1.0), 1.0);
     }
 }

@@ -19,12 +19,6 @@ pub trait Screen {
         serde_json::Map::new()
     }
 
-    /// The narrowest layout the screen can draw, in layout units (0: any);
-    /// a narrower window zooms the screen out to fit.
-    fn min_width(&self) -> f32 {
-        0.0
-    }
-
     /// Whether something moves on screen, so the app must keep drawing at
     /// full rate. The default is `false`.
     fn animating(&self) -> bool {

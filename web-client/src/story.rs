@@ -26,7 +26,10 @@ fn pieces(n: usize) -> String {
 }
 
 /// One line about a shot, told to the player of `me` (`None`: a spectator).
-pub fn shot_line(o: &ShotOutcome, me: Option<Side>) -> String {
+/// `goes_on`: whether the match went on after it (false once it ended by
+/// resignation or forfeit), so "shoot again" is said only of a shot that
+/// is really followed by the same side's next one.
+pub fn shot_line(o: &ShotOutcome, me: Option<Side>, goes_on: bool) -> String {
     let mine = me == Some(o.shooter);
     let who = if mine {
         "You".to_string()
@@ -51,7 +54,7 @@ pub fn shot_line(o: &ShotOutcome, me: Option<Side>) -> String {
         (Some(RoundResult::Won(s)), _) => format!(" — {} won the round", side_name(s)),
         (Some(RoundResult::Draw), _) => " — the round is drawn".to_string(),
         (None, Next::Shoot { side }) | (None, Next::PieDecision { then: side })
-            if side == o.shooter =>
+            if side == o.shooter && goes_on =>
         {
             if mine {
                 " — shoot again".to_string()
@@ -134,22 +137,36 @@ mod tests {
         let off = [pid(Side::Black, 2), pid(Side::Black, 5)];
         let o = outcome(Side::White, &off, Next::Shoot { side: Side::White }, None);
         assert_eq!(
-            shot_line(&o, Some(Side::White)),
+            shot_line(&o, Some(Side::White), true),
             "You knocked off 2 pieces — shoot again"
         );
         assert_eq!(
-            shot_line(&o, Some(Side::Black)),
+            shot_line(&o, Some(Side::Black), true),
             "White knocked off 2 pieces — shoots again"
+        );
+    }
+
+    #[test]
+    fn a_shot_followed_by_a_resignation_never_says_shoot_again() {
+        let off = [pid(Side::Black, 2)];
+        let o = outcome(Side::White, &off, Next::Shoot { side: Side::White }, None);
+        assert_eq!(
+            shot_line(&o, Some(Side::White), false),
+            "You knocked off 1 piece"
+        );
+        assert_eq!(
+            shot_line(&o, Some(Side::Black), false),
+            "White knocked off 1 piece"
         );
     }
 
     #[test]
     fn a_miss_and_a_lost_piece_pass_the_turn_quietly() {
         let o = outcome(Side::Black, &[], Next::Shoot { side: Side::White }, None);
-        assert_eq!(shot_line(&o, None), "Black: nothing fell");
+        assert_eq!(shot_line(&o, None, true), "Black: nothing fell");
         let own = [pid(Side::Black, 1)];
         let o = outcome(Side::Black, &own, Next::Shoot { side: Side::White }, None);
-        assert_eq!(shot_line(&o, Some(Side::Black)), "You lost 1 piece");
+        assert_eq!(shot_line(&o, Some(Side::Black), true), "You lost 1 piece");
     }
 
     #[test]
@@ -165,7 +182,7 @@ mod tests {
         assert_eq!((s.white_rounds, s.black_rounds, s.shots), (2, 1, 4));
         assert_eq!(s.rounds_line(), "Rounds won: White 2 · Black 1");
         assert_eq!(
-            shot_line(&shots[1], Some(Side::White)),
+            shot_line(&shots[1], Some(Side::White), true),
             "You: nothing fell — you won the round"
         );
     }
