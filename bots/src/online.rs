@@ -197,10 +197,8 @@ where
                                     let _ = tx.send(done);
                                 });
                             }
-                            StreamServerMessage::MatchFinish { rating, .. } => {
-                                if rating.is_some() {
-                                    report.rating = rating;
-                                }
+                            StreamServerMessage::MatchFinish { rating: Some(r), .. } => {
+                                report.rating = Some(r);
                             }
                             _ => {}
                         }

@@ -559,7 +559,7 @@ impl Lobby {
                 continue;
             }
             // Colours alternate round by round.
-            pairs.push(if self.rounds % 2 == 0 { [a, b] } else { [b, a] });
+            pairs.push(if self.rounds & 1 == 0 { [a, b] } else { [b, a] });
         }
         for seats in pairs {
             self.start(seats, true, Preset::Standard, None, Pairing::Ladder);

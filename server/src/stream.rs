@@ -22,7 +22,7 @@ use crate::refusal::Refusal;
 use crate::room::{FinishedMatch, MatchListener};
 use crate::store::Status;
 use crate::ws::{
-    admit, timely, too_large, FLOOD_CLOSE_AFTER, HELLO_WITHIN, PING_EVERY, SILENT_FOR,
+    admit, http_refusal, timely, too_large, FLOOD_CLOSE_AFTER, HELLO_WITHIN, PING_EVERY, SILENT_FOR,
 };
 use actix_web::{web, HttpRequest, HttpResponse};
 use actix_ws::{AggregatedMessage, CloseCode, CloseReason, Session};
@@ -300,7 +300,7 @@ pub async fn handler(
 ) -> Result<HttpResponse, actix_web::Error> {
     let admitted = match admit(&req, &hub) {
         Ok(a) => a,
-        Err(refused) => return Ok(refused),
+        Err(r) => return Ok(http_refusal(&r)),
     };
     let browser = from_browser(&req);
     let (response, session, messages) = actix_ws::handle(&req, body)?;

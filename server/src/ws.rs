@@ -180,7 +180,7 @@ pub async fn handler(
     }
     let admitted = match admit(&req, &hub) {
         Ok(a) => a,
-        Err(refused) => return Ok(refused),
+        Err(r) => return Ok(http_refusal(&r)),
     };
     let (response, session, stream) = actix_ws::handle(&req, body)?;
     let hub = hub.get_ref().clone();
@@ -201,22 +201,22 @@ pub(crate) struct Admitted {
 /// Counts a WebSocket connection about to be upgraded, or the answer that
 /// refuses it (`server-busy`: too many connections, in all or from its
 /// address).
-pub(crate) fn admit(req: &HttpRequest, hub: &Hub) -> Result<Admitted, HttpResponse> {
+pub(crate) fn admit(req: &HttpRequest, hub: &Hub) -> Result<Admitted, Refusal> {
     let metrics = hub.metrics().clone();
     metrics.connection_opened();
     let guard = ConnectionGuard(metrics.clone());
     if metrics.connections() > hub.limits().max_connections as i64 {
-        return Err(http_refusal(&Refusal::new(
+        return Err(Refusal::new(
             ErrorCode::ServerBusy,
             "the server holds as many connections as it can; try later",
-        )));
+        ));
     }
     let addr = crate::ratelimit::client_ip(req);
     let Some(address_guard) = hub.admit_address(addr) else {
-        return Err(http_refusal(&Refusal::new(
+        return Err(Refusal::new(
             ErrorCode::ServerBusy,
             "this address holds as many connections as it may; try later",
-        )));
+        ));
     };
     Ok(Admitted {
         guards: (guard, address_guard),
