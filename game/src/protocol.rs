@@ -219,6 +219,9 @@ pub enum ErrorCode {
     BadKey,
     /// Both seats of a rated match would be the same account.
     SameAccount,
+    /// A password too short or too long, or a sign-in with a wrong name
+    /// or password.
+    BadPassword,
     /// No open challenge has this id (for this account): it was answered,
     /// withdrawn or expired, or was never made to it.
     NoSuchChallenge,
@@ -266,6 +269,7 @@ impl ErrorCode {
             ErrorCode::BadKey => "bad-key",
             ErrorCode::SameAccount => "same-account",
             ErrorCode::NoSuchChallenge => "no-such-challenge",
+            ErrorCode::BadPassword => "bad-password",
             ErrorCode::BotKeyInBrowser => "bot-key-in-browser",
         }
     }

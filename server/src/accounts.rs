@@ -20,6 +20,11 @@ use serde::Serialize;
 pub const MIN_NAME: usize = 3;
 /// Longest account name, in characters.
 pub const MAX_NAME: usize = 20;
+/// Shortest password, in characters.
+pub const MIN_PASSWORD: usize = 8;
+/// Longest password, in characters.
+pub const MAX_PASSWORD: usize = 128;
+
 /// Most accounts one leaderboard lists.
 pub const MAX_LEADERBOARD: usize = 100;
 
@@ -34,6 +39,11 @@ CREATE TABLE IF NOT EXISTS accounts (
     games INTEGER NOT NULL DEFAULT 0
 );
 CREATE INDEX IF NOT EXISTS accounts_by_rating ON accounts (bot, rating DESC);
+CREATE TABLE IF NOT EXISTS account_passwords (
+    account TEXT PRIMARY KEY COLLATE NOCASE REFERENCES accounts (name),
+    hash TEXT NOT NULL,
+    set_at INTEGER NOT NULL
+);
 CREATE TABLE IF NOT EXISTS account_keys (
     hash TEXT PRIMARY KEY,
     account TEXT NOT NULL REFERENCES accounts (name) COLLATE NOCASE,
@@ -264,6 +274,79 @@ impl Store {
         Ok((account, new))
     }
 
+    /// Sets (or replaces) the password of the person's account `key`
+    /// proves: 8 to 128 characters, kept only as an Argon2id hash. Bots
+    /// use keys only.
+    pub fn set_password(&self, key: &SeatToken, password: &str) -> Result<(), AccountError> {
+        let account = self.account_of_key(key)?;
+        if account.bot {
+            return Err(refused(
+                ErrorCode::BadMessage,
+                "a bot account signs in with its keys only",
+            ));
+        }
+        let n = password.chars().count();
+        if !(MIN_PASSWORD..=MAX_PASSWORD).contains(&n) {
+            return Err(refused(
+                ErrorCode::BadPassword,
+                format!("a password is {MIN_PASSWORD} to {MAX_PASSWORD} characters"),
+            ));
+        }
+        use argon2::password_hash::{rand_core::OsRng, PasswordHasher, SaltString};
+        let salt = SaltString::generate(&mut OsRng);
+        let hash = argon2::Argon2::default()
+            .hash_password(password.as_bytes(), &salt)
+            .map_err(|e| StoreError::Corrupt(format!("hashing a password: {e}")))?
+            .to_string();
+        let conn = self.lock()?;
+        conn.execute(
+            "INSERT INTO account_passwords (account, hash, set_at) VALUES (?1, ?2, ?3)
+             ON CONFLICT (account) DO UPDATE SET hash = ?2, set_at = ?3",
+            params![account.name, hash, now() as i64],
+        )?;
+        Ok(())
+    }
+
+    /// Signs in to `name` with its password: a new key for this browser.
+    /// A wrong password, an unknown name and an account without a
+    /// password are refused alike (`bad-password`).
+    pub fn sign_in(
+        &self,
+        name: &str,
+        password: &str,
+    ) -> Result<(Profile, SeatToken), AccountError> {
+        let wrong = || refused(ErrorCode::BadPassword, "wrong name or password");
+        let stored: Option<(String, String)> = self
+            .read()?
+            .query_row(
+                "SELECT account, hash FROM account_passwords WHERE account = ?1",
+                params![name],
+                |r| Ok((r.get(0)?, r.get(1)?)),
+            )
+            .optional()?;
+        let Some((account, hash)) = stored else {
+            return Err(wrong());
+        };
+        use argon2::password_hash::{PasswordHash, PasswordVerifier};
+        let parsed = PasswordHash::new(&hash)
+            .map_err(|e| StoreError::Corrupt(format!("a stored password hash: {e}")))?;
+        if argon2::Argon2::default()
+            .verify_password(password.as_bytes(), &parsed)
+            .is_err()
+        {
+            return Err(wrong());
+        }
+        let key = seat_token()?;
+        self.lock()?.execute(
+            "INSERT INTO account_keys (hash, account, created_at) VALUES (?1, ?2, ?3)",
+            params![key.hash().to_hex(), account, now() as i64],
+        )?;
+        let profile = self
+            .account(&account)?
+            .ok_or_else(|| StoreError::Corrupt(format!("account {account} vanished")))?;
+        Ok((profile, key))
+    }
+
     /// Revokes `key`: from now on it proves nothing.
     pub fn revoke_key(&self, key: &SeatToken) -> Result<(), AccountError> {
         self.account_of_key(key)?;
@@ -413,5 +496,30 @@ mod tests {
             [("search".to_string(), false), ("greedy".to_string(), true)]
         );
         assert_eq!(store.leaderboard(false, 10).unwrap().len(), 1);
+    }
+
+    #[test]
+    fn a_person_may_add_a_password_and_sign_in_with_it_for_a_new_key() {
+        let store = Store::in_memory().unwrap();
+        let (_, key) = store.create_account(&name("Anka"), false).unwrap();
+        let short = store.set_password(&key, "short").unwrap_err();
+        assert_eq!(code(short), ErrorCode::BadPassword);
+        store.set_password(&key, "machine-gun cart").unwrap();
+        let stored: String = store
+            .read()
+            .unwrap()
+            .query_row("SELECT hash FROM account_passwords", [], |r| r.get(0))
+            .unwrap();
+        assert!(stored.starts_with("$argon2id$") && !stored.contains("machine-gun"));
+        let (profile, new_key) = store.sign_in("anka", "machine-gun cart").unwrap();
+        assert_eq!(profile.name, "Anka");
+        assert_eq!(store.account_of_key(&new_key).unwrap().name, "Anka");
+        for (who, password) in [("Anka", "machine-gun car"), ("Petka", "machine-gun cart")] {
+            let e = store.sign_in(who, password).unwrap_err();
+            assert_eq!(code(e), ErrorCode::BadPassword, "{who}");
+        }
+        let (_, bot) = store.create_account(&name("Furmanov"), true).unwrap();
+        let e = store.set_password(&bot, "machine-gun cart").unwrap_err();
+        assert_eq!(code(e), ErrorCode::BadMessage);
     }
 }

@@ -22,6 +22,8 @@ pub fn routes(cfg: &mut web::ServiceConfig) {
         .route("/api/accounts/me", web::get().to(me))
         .route("/api/accounts/me/keys", web::post().to(add_key))
         .route("/api/accounts/me/keys/current", web::delete().to(revoke))
+        .route("/api/accounts/me/password", web::put().to(set_password))
+        .route("/api/accounts/sign-in", web::post().to(sign_in))
         .route("/api/accounts/{name}", web::get().to(profile))
         .route("/api/accounts/{name}/history", web::get().to(history))
         .route("/api/accounts/{name}/matches", web::get().to(matches))
@@ -92,6 +94,53 @@ async fn add_key(req: HttpRequest, hub: web::Data<Hub>) -> HttpResponse {
         Ok(WithKey::from(
             run_account(move || store.add_key(&key)).await?,
         ))
+    };
+    answer(StatusCode::CREATED, made.await)
+}
+
+/// `PUT /api/accounts/me/password`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PasswordBody {
+    password: String,
+}
+
+async fn set_password(req: HttpRequest, hub: web::Data<Hub>, bytes: web::Bytes) -> HttpResponse {
+    let done = async {
+        let body: PasswordBody = read_body(&bytes)?;
+        let (key, _) = proven(&req, &hub).await?;
+        let store = hub.store().clone();
+        run_account(move || store.set_password(&key, &body.password)).await
+    };
+    match done.await {
+        Ok(()) => HttpResponse::NoContent().finish(),
+        Err(r) => refused(&r),
+    }
+}
+
+/// `POST /api/accounts/sign-in`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SignInBody {
+    name: String,
+    password: String,
+}
+
+/// Signs in with a password: a new key. Attempts share the per-address
+/// limit on creating matches and accounts, so passwords cannot be tried
+/// fast.
+async fn sign_in(
+    req: HttpRequest,
+    hub: web::Data<Hub>,
+    creations: web::Data<Creations>,
+    bytes: web::Bytes,
+) -> HttpResponse {
+    let made = async {
+        creations.check(&req)?;
+        let body: SignInBody = read_body(&bytes)?;
+        let store = hub.store().clone();
+        let made = run_account(move || store.sign_in(body.name.trim(), &body.password)).await?;
+        Ok(WithKey::from(made))
     };
     answer(StatusCode::CREATED, made.await)
 }

@@ -17,7 +17,7 @@ impl HttpStatus for Refusal {
     fn http_status(&self) -> u16 {
         match self.code {
             ErrorCode::NoSuchMatch | ErrorCode::NoSuchAccount | ErrorCode::NoSuchChallenge => 404,
-            ErrorCode::BadKey => 401,
+            ErrorCode::BadKey | ErrorCode::BadPassword => 401,
             ErrorCode::MatchFull
             | ErrorCode::NameTaken
             | ErrorCode::MatchOver

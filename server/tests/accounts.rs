@@ -265,3 +265,50 @@ async fn a_rated_match_between_two_accounts_moves_both_ratings_once_and_keeps_a_
         .await;
     assert_eq!(json(&text)[0]["match_id"].as_str(), Some(id.as_str()));
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_person_signs_in_with_an_optional_password_for_a_new_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = Server::start(dir.path(), &[]);
+    let key = account(&s, "Anka", false).await;
+    let set = |password: &str| format!(r#"{{"password":"{password}"}}"#);
+    let put = |body: String| {
+        let (addr, key) = (s.addr.clone(), key.clone());
+        async move {
+            http_with(
+                &addr,
+                "PUT",
+                "/api/accounts/me/password",
+                &format!("Authorization: Bearer {key}\r\n"),
+                &body,
+            )
+            .await
+        }
+    };
+    let (status, text) = put(set("short")).await;
+    assert_eq!((status, code(&text)), (401, "bad-password".into()));
+    let (status, _) = put(set("machine-gun cart")).await;
+    assert_eq!(status, 204);
+    let sign_in =
+        |name: &str, password: &str| format!(r#"{{"name":"{name}","password":"{password}"}}"#);
+    let (status, text) = s
+        .http(
+            "POST",
+            "/api/accounts/sign-in",
+            &sign_in("anka", "machine-gun car"),
+        )
+        .await;
+    assert_eq!((status, code(&text)), (401, "bad-password".into()));
+    let (status, text) = s
+        .http(
+            "POST",
+            "/api/accounts/sign-in",
+            &sign_in("anka", "machine-gun cart"),
+        )
+        .await;
+    assert_eq!(status, 201, "{text}");
+    let new_key = json(&text)["key"].as_str().unwrap().to_string();
+    assert_ne!(new_key, key);
+    let (status, text) = as_key(&s, "GET", "/api/accounts/me", &new_key).await;
+    assert_eq!((status, json(&text)["name"].clone()), (200, "Anka".into()));
+}
