@@ -525,9 +525,10 @@ impl Lobby {
 
     /// One round of the ladder: every ladder bot that is not playing a
     /// ladder match, and every idle computer level, sorted by rating and
-    /// paired with its neighbour; a pair of two computer levels is skipped
-    /// (the ladder is for the registered bots). With an odd number, a
-    /// different one sits out each round.
+    /// paired with its neighbour — the one above in one round, the one
+    /// below in the next; a pair of two computer levels is skipped (the
+    /// ladder is for the registered bots). With an odd number, a different
+    /// one sits out each round.
     fn pair_ladder(&mut self) {
         let mut pool: Vec<(Player, f64)> = Vec::new();
         let mut seen = std::collections::HashSet::new();
@@ -547,6 +548,11 @@ impl Lobby {
             }
         }
         pool.sort_by(|a, b| b.1.total_cmp(&a.1));
+        // Every other round the pairs shift by one (the top one sits out),
+        // so that each meets both its neighbours, not always the same one.
+        if self.rounds & 1 == 1 && pool.len() >= 4 {
+            pool.remove(0);
+        }
         if pool.len() % 2 == 1 {
             let out = (self.rounds as usize) % pool.len();
             pool.remove(out);
