@@ -4,15 +4,17 @@
 //! once; past that it declines, saying it is busy), and plays every match
 //! it is given — each on its own match WebSocket with a fresh bot, all at
 //! once, through the [`Runner`]. A dropped stream is reopened with
-//! exponential backoff. [`Online::run`] returns after a number of matches,
-//! or never.
+//! exponential backoff, and the matches the welcome lists that this process
+//! is not playing (left by a restart) are taken back with the account's
+//! key. [`Online::run`] returns after a number of matches, or never.
 
 use crate::bot::Bot;
-use crate::runner::{Runner, RunnerError, SeatGrant};
+use crate::runner::{Runner, RunnerError, RunnerOptions, SeatGrant};
 use futures_util::{SinkExt, StreamExt};
 use game::protocol::PROTOCOL_VERSION;
 use game::stream::{StreamClientMessage, StreamServerMessage};
 use game::token::SeatToken;
+use std::collections::HashSet;
 use std::sync::Arc;
 use std::time::Duration;
 use tokio::sync::mpsc;
@@ -77,10 +79,10 @@ pub struct Online<F> {
     options: OnlineOptions,
 }
 
-/// What the match tasks tell the stream loop.
-enum Done {
-    Played,
-    Failed(RunnerError),
+/// What a match task tells the stream loop: its match, and how it went.
+struct Done {
+    match_id: String,
+    failed: Option<RunnerError>,
 }
 
 impl<F, B> Online<F>
@@ -108,13 +110,31 @@ where
         }
     }
 
+    /// Plays `grant` with a new bot on its own task; tells `done` when over.
+    fn spawn_match(&self, grant: SeatGrant, n: u64, done: &mpsc::UnboundedSender<Done>) {
+        let runner = self.runner.clone().with_options(RunnerOptions {
+            account_key: Some(self.key.clone()),
+            ..self.runner.options().clone()
+        });
+        let bot = (self.make_bot)(n);
+        let tx = done.clone();
+        tokio::spawn(async move {
+            let failed = runner.play(&grant, bot).await.err();
+            let _ = tx.send(Done {
+                match_id: grant.match_id,
+                failed,
+            });
+        });
+    }
+
     /// Stays online until `stop_after` matches have finished (forever
     /// without it); reopens a dropped stream, giving up after 8 failed
     /// attempts in a row.
     pub async fn run(&self) -> Result<OnlineReport, OnlineError> {
         let mut report = OnlineReport::default();
         let (done_tx, mut done_rx) = mpsc::unbounded_channel::<Done>();
-        let mut playing = 0usize;
+        // The matches being played by this process.
+        let mut playing: HashSet<String> = HashSet::new();
         let mut started = 0u64;
         let mut failures = 0u32;
         let mut wait = Duration::from_millis(200);
@@ -155,8 +175,23 @@ where
                             continue;
                         };
                         match msg {
-                            StreamServerMessage::Welcome { account, .. } => {
+                            StreamServerMessage::Welcome { account, matches, .. } => {
                                 me = account;
+                                // Matches left by an earlier run of this
+                                // process (or a dropped stream): taken back
+                                // with the account's key.
+                                for m in matches {
+                                    if playing.insert(m.match_id.clone()) {
+                                        started += 1;
+                                        let grant = SeatGrant {
+                                            ws: format!("/ws?match={}", m.match_id),
+                                            match_id: m.match_id,
+                                            seat: m.seat,
+                                            token: String::new(),
+                                        };
+                                        self.spawn_match(grant, started, &done_tx);
+                                    }
+                                }
                                 welcomed = true;
                                 failures = 0;
                                 wait = Duration::from_millis(200);
@@ -169,7 +204,7 @@ where
                                 return Err(OnlineError::Refused { code, message });
                             }
                             StreamServerMessage::Challenge { challenge } => {
-                                let answer = if playing < self.options.max_matches {
+                                let answer = if playing.len() < self.options.max_matches {
                                     StreamClientMessage::Accept { challenge: challenge.id }
                                 } else {
                                     StreamClientMessage::Decline {
@@ -183,19 +218,13 @@ where
                                 }
                             }
                             StreamServerMessage::MatchStart { match_id, seat, token, ws: path, .. } => {
-                                playing += 1;
-                                started += 1;
-                                let grant = SeatGrant { match_id, seat, token: token.expose().to_string(), ws: path };
-                                let runner = self.runner.clone();
-                                let bot = (self.make_bot)(started);
-                                let tx = done_tx.clone();
-                                tokio::spawn(async move {
-                                    let done = match runner.play(&grant, bot).await {
-                                        Ok(_) => Done::Played,
-                                        Err(e) => Done::Failed(e),
-                                    };
-                                    let _ = tx.send(done);
-                                });
+                                // Already played here when the stream dropped.
+                                let fresh = playing.insert(match_id.clone());
+                                if fresh {
+                                    started += 1;
+                                    let grant = SeatGrant { match_id, seat, token: token.expose().to_string(), ws: path };
+                                    self.spawn_match(grant, started, &done_tx);
+                                }
                             }
                             StreamServerMessage::MatchFinish { rating: Some(r), .. } => {
                                 report.rating = Some(r);
@@ -204,9 +233,9 @@ where
                         }
                     }
                     Some(done) = done_rx.recv() => {
-                        playing = playing.saturating_sub(1);
+                        playing.remove(&done.match_id);
                         report.finished += 1;
-                        if let Done::Failed(e) = done {
+                        if let Some(e) = done.failed {
                             report.failed += 1;
                             eprintln!("a match's runner failed: {e}");
                         }

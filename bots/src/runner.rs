@@ -191,6 +191,9 @@ pub struct RunnerOptions {
     /// A connection silent this long is taken as dropped (the server pings
     /// every 15 s).
     pub silence: Duration,
+    /// The key of the account playing, sent in `hello` for a grant without
+    /// a seat token (a match taken back after the process restarted).
+    pub account_key: Option<String>,
 }
 
 impl Default for RunnerOptions {
@@ -203,6 +206,7 @@ impl Default for RunnerOptions {
             clock_wait: Duration::from_millis(500),
             think_without_clock: Duration::from_secs(2),
             silence: Duration::from_secs(40),
+            account_key: None,
         }
     }
 }
@@ -620,7 +624,10 @@ impl<B: Bot + 'static> Play<B> {
         let hello = ClientMessage::Hello {
             protocol: PROTOCOL_VERSION,
             name: self.options.name.clone(),
-            token: Some(self.token.clone()),
+            // A grant without a token (a match taken back after a restart)
+            // is played with the account's key.
+            token: (!self.token.expose().is_empty()).then(|| self.token.clone()),
+            key: self.options.account_key.clone().map(SeatToken::new),
         };
         if let Err(e) = self.send(ws, &hello).await {
             return Ok((SessionEnd::Dropped(e), false));

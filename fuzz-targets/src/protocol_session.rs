@@ -195,6 +195,7 @@ fn message(said: Said) -> ClientMessage {
             protocol: protocol::PROTOCOL_VERSION,
             name: "Furmanov".into(),
             token: None,
+            key: None,
         },
     }
 }

@@ -44,12 +44,17 @@ pub const MAX_CHAT_CHARS: usize = 500;
 pub enum ClientMessage {
     /// The first message of a connection: the protocol spoken, a name, and
     /// the seat token to play a seat (none: watch). The token travels here,
-    /// never in the URL, which proxies and browsers write down.
+    /// never in the URL, which proxies and browsers write down. Instead of
+    /// the token, `key` (an account's key) plays the seat that account
+    /// holds in the match: a bot process that restarted takes its matches
+    /// back with the key it signed in with.
     Hello {
         protocol: u32,
         name: String,
         #[serde(default, skip_serializing_if = "Option::is_none")]
         token: Option<SeatToken>,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        key: Option<SeatToken>,
     },
     /// Create a match with this configuration (missing fields take the
     /// defaults); the creator takes [`Seat::First`].
@@ -501,11 +506,13 @@ mod tests {
                 protocol: PROTOCOL_VERSION,
                 name: "Petka".into(),
                 token: None,
+                key: None,
             },
             ClientMessage::Hello {
                 protocol: PROTOCOL_VERSION,
                 name: "Anka".into(),
                 token: Some(SeatToken::new("540a0bf048fe73e1505aeb84de7f0fcd")),
+                key: None,
             },
             ClientMessage::CreateMatch {
                 config: Config::default(),

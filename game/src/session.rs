@@ -288,6 +288,13 @@ pub enum Input {
         /// The seat token presented.
         token: Option<SeatToken>,
     },
+    /// A connection the driver has proved to play `seat` another way
+    /// (the key of the account holding it) asks to be admitted to it.
+    ConnectSeat {
+        /// The connection, named by the driver.
+        conn: ConnId,
+        seat: Seat,
+    },
     /// A connection closed.
     Disconnect {
         /// The connection.
@@ -589,6 +596,7 @@ impl Session {
         }
         match input {
             Input::Connect { conn, token } => self.connect(conn, token, now),
+            Input::ConnectSeat { conn, seat } => self.admit(conn, Some(seat), now),
             Input::Disconnect { conn } => self.disconnect(conn, now),
             Input::Message { conn, msg } => {
                 if let Err(refusal) = self.message(conn, msg, now) {
@@ -717,19 +725,6 @@ impl Session {
     }
 
     fn connect(&mut self, conn: ConnId, token: Option<SeatToken>, now: Moment) {
-        if self.conns.contains_key(&conn) {
-            // The driver names each connection once.
-            return self.refuse(Request::Connect(conn), Refusal::internal());
-        }
-        if self.conns.len() >= self.limits.max_connections_per_match {
-            return self.refuse(
-                Request::Connect(conn),
-                Refusal::new(
-                    ErrorCode::ServerBusy,
-                    "this match has as many watchers as it can take",
-                ),
-            );
-        }
         let seat = match token {
             None => None,
             Some(t) => match self.seat_of_token(&t) {
@@ -745,6 +740,25 @@ impl Session {
                 }
             },
         };
+        self.admit(conn, seat, now);
+    }
+
+    /// Admits `conn` to `seat` (none: to watch), whose right to it is
+    /// settled.
+    fn admit(&mut self, conn: ConnId, seat: Option<Seat>, now: Moment) {
+        if self.conns.contains_key(&conn) {
+            // The driver names each connection once.
+            return self.refuse(Request::Connect(conn), Refusal::internal());
+        }
+        if self.conns.len() >= self.limits.max_connections_per_match {
+            return self.refuse(
+                Request::Connect(conn),
+                Refusal::new(
+                    ErrorCode::ServerBusy,
+                    "this match has as many watchers as it can take",
+                ),
+            );
+        }
         self.out.push(Effect::Admitted { conn, seat });
         let mut first = vec![self.state_for(seat)];
         first.extend(self.clock_message(now));

@@ -52,16 +52,26 @@ pub async fn signed_in(
         return Ok(None);
     }
     let key = bearer(req)?;
+    let account = account_of_key(hub, key.clone(), from_browser(req)).await?;
+    Ok(Some((key, account)))
+}
+
+/// The account `key` proves, from a request that came from a web page or
+/// not: a bot's key from a page is refused (`bot-key-in-browser`).
+pub(crate) async fn account_of_key(
+    hub: &Hub,
+    key: SeatToken,
+    browser: bool,
+) -> Result<Profile, Refusal> {
     let store = hub.store().clone();
-    let presented = key.clone();
-    let account = run_account(move || store.account_of_key(&presented)).await?;
-    if account.bot && from_browser(req) {
+    let account = run_account(move || store.account_of_key(&key)).await?;
+    if account.bot && browser {
         return Err(Refusal::new(
             ErrorCode::BotKeyInBrowser,
             "a bot's key is for its bot process, not for a web page",
         ));
     }
-    Ok(Some((key, account)))
+    Ok(account)
 }
 
 /// [`signed_in`], the header required.

@@ -14,7 +14,7 @@
 use crate::config::Limits;
 use crate::metrics::Metrics;
 use crate::refusal::Refusal;
-use crate::room::{Command, Connected, FinishedMatch, MatchListener, Room, RoomHost};
+use crate::room::{Claim, Command, Connected, FinishedMatch, MatchListener, Room, RoomHost};
 use crate::store::{Status, Store, StoreError, StoredMatch, StoredSeat};
 use crate::token::{self, SeatToken, TokenHash};
 use bots::Level;
@@ -556,8 +556,18 @@ impl Hub {
         id: &str,
         token: Option<SeatToken>,
     ) -> Result<(RoomHandle, Connected), Refusal> {
+        self.connect_as(id, token.map_or(Claim::Watch, Claim::Token))
+            .await
+    }
+
+    /// Admits a connection to `id` with what it claims.
+    pub async fn connect_as(
+        &self,
+        id: &str,
+        claim: Claim,
+    ) -> Result<(RoomHandle, Connected), Refusal> {
         self.ask(id, |reply| Command::Connect {
-            token: token.clone(),
+            claim: claim.clone(),
             reply,
         })
         .await

@@ -123,12 +123,24 @@ pub trait MatchListener: Send + Sync {
     fn finished(&self, m: FinishedMatch);
 }
 
+/// What a connecting WebSocket claims.
+#[derive(Clone, Debug)]
+pub enum Claim {
+    /// Nothing: it watches.
+    Watch,
+    /// The seat this token holds.
+    Token(SeatToken),
+    /// The seat this account holds (its key already checked).
+    Account(String),
+}
+
 /// What a room is asked to do.
 #[derive(Debug)]
 pub enum Command {
-    /// A WebSocket connects, with a seat token or as a spectator.
+    /// A WebSocket connects: with a seat token, as the account holding a
+    /// seat, or as a spectator.
     Connect {
-        token: Option<SeatToken>,
+        claim: Claim,
         reply: oneshot::Sender<Result<Connected, Refusal>>,
     },
     /// A connection closed.
@@ -344,9 +356,39 @@ impl<H: RoomHost> Room<H> {
 
     async fn handle(&mut self, cmd: Command) {
         match cmd {
-            Command::Connect { token, reply } => {
+            Command::Connect { claim, reply } => {
                 let conn = ConnId(self.host.next_conn_id());
-                let carried = self.feed(Input::Connect { conn, token }).await;
+                let input = match claim {
+                    Claim::Watch => Input::Connect { conn, token: None },
+                    Claim::Token(t) => Input::Connect {
+                        conn,
+                        token: Some(t),
+                    },
+                    Claim::Account(account) => {
+                        let seat = self.accounts.iter().position(|a| {
+                            a.as_deref()
+                                .is_some_and(|a| a.eq_ignore_ascii_case(&account))
+                        });
+                        match seat {
+                            Some(0) => Input::ConnectSeat {
+                                conn,
+                                seat: Seat::First,
+                            },
+                            Some(_) => Input::ConnectSeat {
+                                conn,
+                                seat: Seat::Second,
+                            },
+                            None => {
+                                let _ = reply.send(Err(Refusal::new(
+                                    ErrorCode::BadKey,
+                                    "this account holds no seat in this match",
+                                )));
+                                return;
+                            }
+                        }
+                    }
+                };
+                let carried = self.feed(input).await;
                 let answer = match (carried.admitted, carried.refused) {
                     (Some(c), _) => Ok(c),
                     (None, Some(r)) => Err(r),
@@ -772,7 +814,8 @@ mod tests {
     async fn connect(room: &mpsc::Sender<Command>, token: Option<&str>) -> Connected {
         let (reply, answer) = oneshot::channel();
         let token = token.map(SeatToken::new);
-        room.send(Command::Connect { token, reply }).await.unwrap();
+        let claim = token.map_or(Claim::Watch, Claim::Token);
+        room.send(Command::Connect { claim, reply }).await.unwrap();
         answer.await.unwrap().unwrap()
     }
 

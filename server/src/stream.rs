@@ -371,17 +371,9 @@ async fn hello(
         Ok(_) => return Err(no_hello()),
         Err(e) => return Err(Some(Refusal::new(e.code, e.message))),
     };
-    let store = hub.store().clone();
-    let account = crate::blocking::run_account(move || store.account_of_key(&key))
+    crate::auth::account_of_key(hub, key, browser)
         .await
-        .map_err(Some)?;
-    if account.bot && browser {
-        return Err(Some(Refusal::new(
-            ErrorCode::BotKeyInBrowser,
-            "a bot's key is for its bot process, not for a web page",
-        )));
-    }
-    Ok(account)
+        .map_err(Some)
 }
 
 /// The account's matches not over yet, for its welcome.

@@ -28,7 +28,7 @@
 use crate::hub::{AddressGuard, Hub, RoomHandle};
 use crate::ratelimit::TokenBucket;
 use crate::refusal::{HttpStatus, Refusal};
-use crate::room::Command;
+use crate::room::{Claim, Command};
 use actix_web::{web, HttpRequest, HttpResponse};
 use actix_ws::{AggregatedMessage, CloseCode, CloseReason, ProtocolError, Session};
 use game::protocol::{ClientMessage, ErrorCode, ServerMessage, PROTOCOL_VERSION};
@@ -182,10 +182,11 @@ pub async fn handler(
         Ok(a) => a,
         Err(r) => return Ok(http_refusal(&r)),
     };
+    let browser = crate::auth::from_browser(&req);
     let (response, session, stream) = actix_ws::handle(&req, body)?;
     let hub = hub.get_ref().clone();
     actix_web::rt::spawn(async move {
-        let stuck = run(hub.clone(), query, session, stream).await;
+        let stuck = run(hub.clone(), query, browser, session, stream).await;
         admitted.release(&hub, stuck).await;
     });
     Ok(response)
@@ -268,6 +269,7 @@ async fn send(session: &mut Session, limit: Duration, msg: &ServerMessage) -> bo
 async fn run(
     hub: Hub,
     query: WsQuery,
+    browser: bool,
     mut session: Session,
     stream: actix_ws::MessageStream,
 ) -> bool {
@@ -277,8 +279,10 @@ async fn run(
         .max_frame_size(limits.max_message_bytes)
         .aggregate_continuations()
         .max_continuation_size(limits.max_message_bytes);
-    let token = match hello(&mut stream, &mut session, wt).await {
-        Opening::Hello(token) => token,
+    let claim = match hello(&mut stream, &mut session, wt).await {
+        Opening::Hello(Some(token), _) => Ok(Claim::Token(token)),
+        Opening::Hello(None, Some(key)) => account_claim(&hub, key, browser).await,
+        Opening::Hello(None, None) => Ok(Claim::Watch),
         Opening::Stuck => return true,
         Opening::Refused(r, code) => {
             hub.metrics().refused();
@@ -292,7 +296,11 @@ async fn run(
             return !timely(wt, session.close(Some(reason))).await;
         }
     };
-    let (room, connected) = match hub.connect(&query.match_id, token).await {
+    let connected = match claim {
+        Ok(claim) => hub.connect_as(&query.match_id, claim).await,
+        Err(r) => Err(r),
+    };
+    let (room, connected) = match connected {
         Ok(c) => c,
         Err(r) => {
             hub.metrics().refused();
@@ -437,10 +445,17 @@ async fn run(
     !timely(wt, session.close(reason)).await
 }
 
+/// The seat the account that `key` proves holds (a bot's key from a web
+/// page is refused).
+async fn account_claim(hub: &Hub, key: SeatToken, browser: bool) -> Result<Claim, Refusal> {
+    let account = crate::auth::account_of_key(hub, key, browser).await?;
+    Ok(Claim::Account(account.name))
+}
+
 /// How a connection's opening went.
 enum Opening {
     /// It said hello in the protocol this server speaks, with this token.
-    Hello(Option<SeatToken>),
+    Hello(Option<SeatToken>, Option<SeatToken>),
     /// It must be refused with this, and closed with this code.
     Refused(Refusal, CloseCode),
     /// A write did not finish in time, or the client went away.
@@ -483,8 +498,11 @@ async fn hello(
             Some(Ok(AggregatedMessage::Text(text))) => {
                 return match ClientMessage::from_json(&text) {
                     Ok(ClientMessage::Hello {
-                        protocol, token, ..
-                    }) if protocol == PROTOCOL_VERSION => Opening::Hello(token),
+                        protocol,
+                        token,
+                        key,
+                        ..
+                    }) if protocol == PROTOCOL_VERSION => Opening::Hello(token, key),
                     Ok(ClientMessage::Hello { .. }) => Opening::Refused(
                         Refusal::new(
                             ErrorCode::UnsupportedProtocol,

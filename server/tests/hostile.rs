@@ -78,6 +78,7 @@ async fn a_client_that_stops_reading_is_dropped_and_its_socket_closed_by_the_ser
         protocol: 1,
         name: "Petka".into(),
         token: Some(game::token::SeatToken::new(token)),
+        key: None,
     };
     player.send(Message::Text(hello.to_json())).await.unwrap();
     let (mut says, mut hears) = player.split();

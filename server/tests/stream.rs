@@ -83,6 +83,15 @@ impl Stream {
     }
 }
 
+fn hello_with_key(key: &str) -> ClientMessage {
+    ClientMessage::Hello {
+        protocol: PROTOCOL_VERSION,
+        name: "by key".into(),
+        token: None,
+        key: Some(SeatToken::new(key)),
+    }
+}
+
 fn challenge_id(m: StreamServerMessage) -> String {
     match m {
         StreamServerMessage::Challenge { challenge } => challenge.id,
@@ -165,8 +174,30 @@ async fn a_challenge_is_accepted_once_played_with_the_streamed_tokens_and_rated(
 
     // The streamed tokens hold the seats; a resignation ends the match and
     // each stream hears of it with its new rating.
+    // Anka's seat is also hers with her account key instead of the token
+    // (a restarted process takes its matches back so); another account's
+    // key holds no seat here.
+    assert!(!a_token.is_empty());
+    let mut by_key = Client::connect_silent(&s.addr, &match_id).await.unwrap();
+    by_key.send(&hello_with_key(&anka)).await;
+    match by_key.next().await {
+        game::protocol::ServerMessage::Welcome { .. } => {}
+        other => panic!("{other:?}"),
+    }
+    let state = by_key.next_of("match-state").await;
+    assert!(
+        matches!(
+            state,
+            game::protocol::ServerMessage::MatchState { you: Some(_), .. }
+        ),
+        "{state:?}"
+    );
+    let stranger = account(&s, "Petka", false).await;
+    let mut wrong = Client::connect_silent(&s.addr, &match_id).await.unwrap();
+    wrong.send(&hello_with_key(&stranger)).await;
+    assert_eq!(wrong.next_error().await, "bad-key");
+
     let mut fm = Client::connect(&s.addr, &match_id, Some(&f_token)).await;
-    let _am = Client::connect(&s.addr, &match_id, Some(&a_token)).await;
     fm.send(&ClientMessage::Resign).await;
     for stream in [&mut f, &mut a] {
         match stream.next().await {

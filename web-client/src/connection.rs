@@ -114,6 +114,7 @@ impl Connection {
                     protocol: PROTOCOL_VERSION,
                     name: self.name.clone(),
                     token: self.token.clone(),
+                    key: None,
                 };
                 socket.send(&hello.to_json());
             }

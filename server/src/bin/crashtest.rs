@@ -582,6 +582,7 @@ mod player {
             protocol: PROTOCOL_VERSION,
             name: "crash".into(),
             token: Some(SeatToken::new(me.token.clone())),
+            key: None,
         };
         ws.send(Message::Text(hello.to_json())).await.ok()?;
         Some(ws)

@@ -201,6 +201,7 @@ async fn connect(addr: &str, id: &str, token: Option<&str>) -> Result<Ws, LoadEr
         protocol: PROTOCOL_VERSION,
         name: "loadgen".into(),
         token: token.map(SeatToken::new),
+        key: None,
     };
     ws.send(Message::Text(hello.to_json())).await?;
     Ok(ws)

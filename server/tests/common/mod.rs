@@ -214,6 +214,7 @@ impl Client {
             protocol: game::protocol::PROTOCOL_VERSION,
             name: "test".into(),
             token: token.map(game::token::SeatToken::new),
+            key: None,
         })
         .await;
         match c.try_next().await {
