@@ -4,7 +4,9 @@
 //! play each other to the end and agree with the stored record; a runner
 //! beats (or loses to) a built-in level; a runner survives the server
 //! being killed and started again mid-match; a runner whose shot is
-//! refused keeps the refusal in its report and plays on.
+//! refused keeps the refusal in its report and plays on; a bot account
+//! online on the event stream is paired on the ladder, plays its rated
+//! match to the end and is rated.
 
 use bots::runner::{CreateMatch, Opponent, RunReport, Runner, RunnerOptions};
 use bots::{by_name, Bot, Context, Decision};
@@ -269,4 +271,55 @@ fn a_tournament_against_a_running_server_plays_every_game_there_and_leaves_the_r
         let replay = Replay::new(g.record.clone()).unwrap();
         assert!(replay.game().is_over());
     }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn an_online_bot_is_paired_on_the_ladder_plays_to_the_end_and_is_rated() {
+    let scratch = tempfile::tempdir().unwrap();
+    let log = artifacts_dir()
+        .unwrap_or_else(|e| panic!("{e}"))
+        .join("bots-ladder.log");
+    let server = Server::start_with(
+        Path::new(env!("CARGO_BIN_EXE_e2e-server")),
+        &scratch.path().join("data"),
+        &log,
+        "127.0.0.1:0",
+        &[
+            "--bot-delay-ms",
+            "0",
+            "--bot-think-ms",
+            "50",
+            "--ladder-seconds",
+            "1",
+        ],
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let body = serde_json::json!({"name": "RandomBot", "bot": true});
+    let (status, made) = api::post_json(&server.addr, "/api/accounts", &body)
+        .await
+        .unwrap();
+    assert_eq!(status, 201, "{made}");
+    let key = made["key"].as_str().unwrap().to_string();
+    let options = bots::online::OnlineOptions {
+        ladder: true,
+        max_matches: 1,
+        stop_after: Some(1),
+    };
+    let online = bots::online::Online::new(
+        runner(&server, "RandomBot"),
+        &key,
+        |n| by_name("random", n).unwrap(),
+        options,
+    );
+    let report = tokio::time::timeout(MATCH_LIMIT, online.run())
+        .await
+        .unwrap_or_else(|_| panic!("no ladder match played within {MATCH_LIMIT:?}"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!((report.finished, report.failed), (1, 0), "{report:?}");
+    assert!(report.rating.is_some(), "{report:?}");
+    let (_, profile) = api::get_json(&server.addr, "/api/accounts/randombot")
+        .await
+        .unwrap();
+    assert_eq!(profile["games"], 1, "{profile}");
+    assert_eq!(profile["rating"].as_i64(), report.rating, "{profile}");
 }
