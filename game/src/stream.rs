@@ -14,7 +14,7 @@
 
 use crate::outcome::MatchResult;
 use crate::protocol::{read, ErrorCode, ProtocolError, Refusal};
-use crate::side::Seat;
+use crate::side::{Seat, Side};
 use crate::token::SeatToken;
 use serde::{Deserialize, Serialize};
 
@@ -38,6 +38,10 @@ pub enum StreamClientMessage {
         /// The turn clock, 1–3600 s (default: the server's).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         turn_seconds: Option<u64>,
+        /// The challenger's colour (default: drawn when it is accepted).
+        /// Under the pie rule Black may still swap after White's opening.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        color: Option<Side>,
     },
     /// Accept a challenge made to this account.
     Accept { challenge: String },
@@ -72,6 +76,9 @@ pub struct ChallengeInfo {
     /// `standard` or `casual`.
     pub rules: String,
     pub turn_seconds: u64,
+    /// The challenger's colour (`None`: drawn on acceptance).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub color: Option<Side>,
     /// Seconds until it expires unanswered.
     pub expires_in: u64,
 }
@@ -177,6 +184,7 @@ mod tests {
             rated: true,
             rules: None,
             turn_seconds: Some(30),
+            color: Some(Side::Black),
         };
         assert_eq!(StreamClientMessage::from_json(&m.to_json()).unwrap(), m);
         let bad = StreamClientMessage::from_json(r#"{"type":"ladder","join":true,"x":1}"#);

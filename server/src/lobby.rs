@@ -11,7 +11,7 @@
 
 use game::session::Moment;
 use game::stream::{ChallengeInfo, StreamClientMessage, StreamServerMessage};
-use game::{protocol::ErrorCode, protocol::Refusal, Preset};
+use game::{protocol::ErrorCode, protocol::Refusal, Preset, Side};
 use std::collections::{BTreeMap, HashMap};
 use std::time::Duration;
 
@@ -118,6 +118,15 @@ struct Online {
     seeking: Option<bool>,
 }
 
+/// A challenge as asked for.
+struct Asked {
+    to: String,
+    rated: bool,
+    rules: Option<String>,
+    turn_seconds: Option<u64>,
+    color: Option<Side>,
+}
+
 struct Open {
     info: ChallengeInfo,
     rules: Preset,
@@ -139,6 +148,8 @@ pub struct Lobby {
     next_ladder: Moment,
     /// Which of an odd number of ladder bots sits out (turns round).
     rounds: u64,
+    /// Draws the colours of challenges that leave them open.
+    rng: game::noise::SplitMix64,
     out: Vec<Effect>,
 }
 
@@ -153,7 +164,14 @@ fn refused(code: ErrorCode, message: impl Into<String>) -> Refusal {
 impl Lobby {
     /// An empty lobby; `computers` are the built-in levels on the ladder,
     /// with their current ratings.
-    pub fn new(limits: LobbyLimits, computers: Vec<(bots::Level, f64)>, now: Moment) -> Lobby {
+    /// `seed` draws open colours (the driver seeds it from the system's
+    /// randomness).
+    pub fn new(
+        limits: LobbyLimits,
+        computers: Vec<(bots::Level, f64)>,
+        now: Moment,
+        seed: u64,
+    ) -> Lobby {
         Lobby {
             next_ladder: now + limits.ladder_every,
             limits,
@@ -163,6 +181,7 @@ impl Lobby {
             computers,
             next_challenge: 1,
             rounds: 0,
+            rng: game::noise::SplitMix64::new(seed),
             out: Vec::new(),
         }
     }
@@ -283,12 +302,27 @@ impl Lobby {
                 rated,
                 rules,
                 turn_seconds,
-            } => self.challenge(&me, to, rated, rules, turn_seconds, now),
+                color,
+            } => {
+                let asked = Asked {
+                    to,
+                    rated,
+                    rules,
+                    turn_seconds,
+                    color,
+                };
+                self.challenge(&me, asked, now)
+            }
             StreamClientMessage::Accept { challenge } => {
                 let c = self.addressed_to(&me, &challenge)?;
                 self.challenges.remove(&challenge);
+                let white = match c.info.color {
+                    Some(side) => side == Side::White,
+                    None => self.rng.next_u64() & 1 == 0,
+                };
+                let (from, to) = (Player::Account(c.info.from), Player::Account(c.info.to));
                 self.start(
-                    [Player::Account(c.info.from), Player::Account(c.info.to)],
+                    if white { [from, to] } else { [to, from] },
                     c.info.rated,
                     c.rules,
                     c.turn_seconds,
@@ -340,15 +374,14 @@ impl Lobby {
         }
     }
 
-    fn challenge(
-        &mut self,
-        me: &Member,
-        to: String,
-        rated: bool,
-        rules: Option<String>,
-        turn_seconds: Option<u64>,
-        now: Moment,
-    ) -> Result<(), Refusal> {
+    fn challenge(&mut self, me: &Member, asked: Asked, now: Moment) -> Result<(), Refusal> {
+        let Asked {
+            to,
+            rated,
+            rules,
+            turn_seconds,
+            color,
+        } = asked;
         if key(&to) == key(&me.name) {
             return Err(refused(
                 ErrorCode::SameAccount,
@@ -404,6 +437,7 @@ impl Lobby {
                 rated,
                 rules: rules.as_str().to_string(),
                 turn_seconds: turn_seconds.unwrap_or(0),
+                color,
                 expires_in: 0,
             },
             rules,
@@ -601,6 +635,7 @@ mod tests {
             LobbyLimits::default(),
             vec![(bots::Level::Easy, 1500.0)],
             at(0),
+            7,
         )
     }
 
@@ -633,6 +668,7 @@ mod tests {
             rated: true,
             rules: None,
             turn_seconds: None,
+            color: None,
         }
     }
 
@@ -736,6 +772,7 @@ mod tests {
                     rated: true,
                     rules: Some("casual".into()),
                     turn_seconds: None,
+                    color: None,
                 },
                 ErrorCode::BadConfig,
             ),
@@ -745,6 +782,7 @@ mod tests {
                     rated: false,
                     rules: None,
                     turn_seconds: Some(0),
+                    color: None,
                 },
                 ErrorCode::BadConfig,
             ),
@@ -819,5 +857,30 @@ mod tests {
         l.handle(finished, at(21));
         let fx = l.handle(Input::Tick, at(30));
         assert_eq!(fx.len(), 1, "search and greedy again: {fx:?}");
+    }
+
+    #[test]
+    fn a_challenger_who_asks_for_black_takes_the_second_seat() {
+        let mut l = lobby();
+        let a = online(&mut l, 1, member("Anka", false, 1500.0));
+        let p = online(&mut l, 2, member("Petka", false, 1500.0));
+        let black = StreamClientMessage::Challenge {
+            to: "Petka".into(),
+            rated: true,
+            rules: None,
+            turn_seconds: None,
+            color: Some(Side::Black),
+        };
+        say(&mut l, a, black, 0);
+        let fx = say(
+            &mut l,
+            p,
+            StreamClientMessage::Accept {
+                challenge: "c1".into(),
+            },
+            1,
+        );
+        assert!(matches!(&fx[..], [Effect::Start { seats, .. }]
+            if seats == &[Player::Account("Petka".into()), Player::Account("Anka".into())]));
     }
 }

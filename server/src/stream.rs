@@ -84,7 +84,12 @@ impl Streams {
             .collect();
         let streams = Streams {
             inner: Arc::new(Inner {
-                lobby: Mutex::new(Lobby::new(limits, computers, Moment::ZERO)),
+                lobby: Mutex::new(Lobby::new(
+                    limits,
+                    computers,
+                    Moment::ZERO,
+                    crate::token::seed().unwrap_or(0x5EED),
+                )),
                 hub: hub.clone(),
                 epoch: Instant::now(),
                 streams: Mutex::new(HashMap::new()),
@@ -409,6 +414,7 @@ async fn resolved(hub: &Hub, msg: StreamClientMessage) -> Result<StreamClientMes
         rated,
         rules,
         turn_seconds,
+        color,
     } = msg
     else {
         return Ok(msg);
@@ -426,6 +432,7 @@ async fn resolved(hub: &Hub, msg: StreamClientMessage) -> Result<StreamClientMes
         rated,
         rules,
         turn_seconds,
+        color,
     })
 }
 

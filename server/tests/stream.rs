@@ -146,6 +146,7 @@ async fn a_challenge_is_accepted_once_played_with_the_streamed_tokens_and_rated(
         rated: true,
         rules: None,
         turn_seconds: Some(30),
+        color: None,
     };
     a.send(&to("nobody")).await;
     assert_eq!(a.error().await, ErrorCode::NoSuchAccount);
