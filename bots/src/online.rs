@@ -71,6 +71,18 @@ pub enum OnlineError {
     GaveUp(u32),
 }
 
+/// How long a process that played its last match waits for the stream to
+/// tell that match's end (and the new rating).
+const FINISH_GRACE: Duration = Duration::from_secs(5);
+
+/// Sleeps until `at`, or for ever without it.
+async fn sleep_until_some(at: Option<tokio::time::Instant>) {
+    match at {
+        Some(at) => tokio::time::sleep_until(at).await,
+        None => std::future::pending().await,
+    }
+}
+
 /// A bot account's process.
 pub struct Online<F> {
     runner: Runner,
@@ -135,6 +147,12 @@ where
         let (done_tx, mut done_rx) = mpsc::unbounded_channel::<Done>();
         // The matches being played by this process.
         let mut playing: HashSet<String> = HashSet::new();
+        // Matches played to the end here whose `match-finish` has not come.
+        let mut unannounced: HashSet<String> = HashSet::new();
+        // Matches whose `match-finish` came before their runner was done.
+        let mut announced: HashSet<String> = HashSet::new();
+        // When to stop, once `stop_after` matches are done.
+        let mut stop_by: Option<tokio::time::Instant> = None;
         let mut started = 0u64;
         let mut failures = 0u32;
         let mut wait = Duration::from_millis(200);
@@ -219,33 +237,52 @@ where
                             }
                             StreamServerMessage::MatchStart { match_id, seat, token, ws: path, .. } => {
                                 // Already played here when the stream dropped.
-                                let fresh = playing.insert(match_id.clone());
+                                // A match started as this process stops is not played.
+                                let fresh = stop_by.is_none() && playing.insert(match_id.clone());
                                 if fresh {
                                     started += 1;
                                     let grant = SeatGrant { match_id, seat, token: token.expose().to_string(), ws: path };
                                     self.spawn_match(grant, started, &done_tx);
                                 }
                             }
-                            StreamServerMessage::MatchFinish { rating: Some(r), .. } => {
-                                report.rating = Some(r);
+                            StreamServerMessage::MatchFinish { match_id, rating, .. } => {
+                                if rating.is_some() {
+                                    report.rating = rating;
+                                }
+                                if !unannounced.remove(&match_id) {
+                                    announced.insert(match_id);
+                                }
                             }
                             _ => {}
                         }
                     }
                     Some(done) = done_rx.recv() => {
                         playing.remove(&done.match_id);
+                        if !announced.remove(&done.match_id) {
+                            unannounced.insert(done.match_id);
+                        }
                         report.finished += 1;
                         if let Some(e) = done.failed {
                             report.failed += 1;
                             eprintln!("a match's runner failed: {e}");
                         }
-                        if self.options.stop_after.is_some_and(|n| report.finished >= n) {
+                        let enough = self.options.stop_after.is_some_and(|n| report.finished >= n);
+                        if enough && stop_by.is_none() {
+                            // Off the ladder at once, so it pairs us no more.
+                            stop_by = Some(tokio::time::Instant::now() + FINISH_GRACE);
                             let leave = StreamClientMessage::Ladder { join: false };
                             let _ = ws.send(Message::text(leave.to_json())).await;
-                            let _ = ws.close(None).await;
-                            return Ok(report);
                         }
                     }
+                    _ = sleep_until_some(stop_by) => stop_by = Some(tokio::time::Instant::now()),
+                }
+                // Done: once the stream has told the last matches' ends
+                // (with the new rating), or the grace has run out.
+                if stop_by
+                    .is_some_and(|at| unannounced.is_empty() || at <= tokio::time::Instant::now())
+                {
+                    let _ = ws.close(None).await;
+                    return Ok(report);
                 }
             }
             if !welcomed {
