@@ -88,6 +88,19 @@ impl NewSeat {
     }
 }
 
+/// `seconds` if it is a turn clock a match may have (1 to 3600 s), else
+/// `bad-config`.
+pub fn check_turn_seconds(seconds: u64) -> Result<u64, Refusal> {
+    if (1..=3600).contains(&seconds) {
+        Ok(seconds)
+    } else {
+        Err(Refusal::new(
+            ErrorCode::BadConfig,
+            "turn_seconds must be between 1 and 3600",
+        ))
+    }
+}
+
 /// A seat handed out.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SeatGrant {
@@ -178,13 +191,7 @@ impl Hub {
         rated: bool,
     ) -> Result<(String, [Option<SeatToken>; 2]), Refusal> {
         let slot = self.reserve()?;
-        let turn_seconds = turn_seconds.unwrap_or(self.inner.limits.turn.as_secs());
-        if !(1..=3600).contains(&turn_seconds) {
-            return Err(Refusal::new(
-                ErrorCode::BadConfig,
-                "turn_seconds must be between 1 and 3600",
-            ));
-        }
+        let turn_seconds = self.turn_seconds(turn_seconds)?;
         let mut tokens = [None, None];
         for (seat, token) in seats.iter_mut().zip(&mut tokens) {
             if seat.bot.is_none() {
@@ -303,16 +310,16 @@ impl Hub {
         handle
     }
 
+    /// A new match's turn clock: the one asked for, checked, or the
+    /// server's.
+    fn turn_seconds(&self, asked: Option<u64>) -> Result<u64, Refusal> {
+        check_turn_seconds(asked.unwrap_or(self.inner.limits.turn.as_secs()))
+    }
+
     /// Stores and starts a new match; the creator gets the first seat.
     pub async fn create(&self, req: NewMatch) -> Result<SeatGrant, Refusal> {
         let slot = self.reserve()?;
-        let turn_seconds = req.turn_seconds.unwrap_or(self.inner.limits.turn.as_secs());
-        if !(1..=3600).contains(&turn_seconds) {
-            return Err(Refusal::new(
-                ErrorCode::BadConfig,
-                "turn_seconds must be between 1 and 3600",
-            ));
-        }
+        let turn_seconds = self.turn_seconds(req.turn_seconds)?;
         let token = random(token::seat_token())?;
         if req.rated && req.account.is_none() {
             return Err(Refusal::new(
@@ -353,13 +360,7 @@ impl Hub {
         turn_seconds: Option<u64>,
     ) -> Result<String, Refusal> {
         let slot = self.reserve()?;
-        let turn_seconds = turn_seconds.unwrap_or(self.inner.limits.turn.as_secs());
-        if !(1..=3600).contains(&turn_seconds) {
-            return Err(Refusal::new(
-                ErrorCode::BadConfig,
-                "turn_seconds must be between 1 and 3600",
-            ));
-        }
+        let turn_seconds = self.turn_seconds(turn_seconds)?;
         let seat = |l: Level| NewSeat::computer(l, format!("bot ({l})"), false);
         self.start(
             slot,

@@ -409,12 +409,7 @@ impl Lobby {
             ));
         }
         if let Some(t) = turn_seconds {
-            if !(1..=3600).contains(&t) {
-                return Err(refused(
-                    ErrorCode::BadConfig,
-                    "turn_seconds must be between 1 and 3600",
-                ));
-            }
+            crate::hub::check_turn_seconds(t)?;
         }
         let made = self
             .challenges
