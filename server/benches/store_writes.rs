@@ -11,7 +11,7 @@ use game::golden::GoldenRecord;
 use game::session::Status;
 use game::Config;
 use server::config::SyncMode;
-use server::store::{AfterMove, Store, StoredMatch, StoredSeat};
+use server::store::{AfterMove, SqliteStore, Store, StoredMatch, StoredSeat};
 use std::time::Duration;
 
 const MATCHES: usize = 200;
@@ -40,7 +40,7 @@ fn main() {
         let mut per_move = Vec::new();
         for _ in 0..ROUNDS {
             let dir = tempfile::tempdir().expect("a scratch folder");
-            let store = Store::open(dir.path(), SyncMode::Full).expect("a store");
+            let store = SqliteStore::open(dir.path(), SyncMode::Full).expect("a store");
             let ids: Vec<String> = (0..MATCHES).map(|i| format!("m{i:015}")).collect();
             for id in &ids {
                 store

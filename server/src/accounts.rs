@@ -5,15 +5,15 @@
 //! presented key by its hash and compares in constant time
 //! ([`game::token`]), and a key can be revoked. Names are checked here
 //! (3 to 20 letters, digits, `_` and `-`) and unique without regard to
-//! case. The tables live in the match store's SQLite file, so a match's
-//! result and the ratings it moves can be written in one transaction.
+//! case. The tables live in the match store (either backend), so a
+//! match's result and the ratings it moves can be written in one
+//! transaction.
 
-use crate::store::{now, Store, StoreError};
+use crate::store::{Store, StoreError};
 use crate::token::{seat_token, RandomError, SeatToken, TokenHash};
 use game::protocol::ErrorCode;
 use game::protocol::Refusal;
 use game::rating::{Rating, RatingSystem};
-use rusqlite::{params, Connection, OptionalExtension};
 use serde::Serialize;
 
 /// Shortest account name, in characters.
@@ -27,36 +27,6 @@ pub const MAX_PASSWORD: usize = 128;
 
 /// Most accounts one leaderboard lists.
 pub const MAX_LEADERBOARD: usize = 100;
-
-const TABLES: &str = "
-CREATE TABLE IF NOT EXISTS accounts (
-    name TEXT PRIMARY KEY COLLATE NOCASE,
-    bot INTEGER NOT NULL,
-    created_at INTEGER NOT NULL,
-    rating REAL NOT NULL,
-    deviation REAL NOT NULL,
-    volatility REAL NOT NULL,
-    games INTEGER NOT NULL DEFAULT 0
-);
-CREATE INDEX IF NOT EXISTS accounts_by_rating ON accounts (bot, rating DESC);
-CREATE TABLE IF NOT EXISTS account_passwords (
-    account TEXT PRIMARY KEY COLLATE NOCASE REFERENCES accounts (name),
-    hash TEXT NOT NULL,
-    set_at INTEGER NOT NULL
-);
-CREATE TABLE IF NOT EXISTS account_keys (
-    hash TEXT PRIMARY KEY,
-    account TEXT NOT NULL REFERENCES accounts (name) COLLATE NOCASE,
-    created_at INTEGER NOT NULL,
-    revoked_at INTEGER
-);
-";
-
-/// Creates the account tables if the store has none yet.
-pub(crate) fn create_tables(conn: &Connection) -> Result<(), StoreError> {
-    conn.execute_batch(TABLES)?;
-    Ok(())
-}
 
 /// An account name that passed the rules.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -135,12 +105,6 @@ pub enum AccountError {
     Random(#[from] RandomError),
 }
 
-impl From<rusqlite::Error> for AccountError {
-    fn from(e: rusqlite::Error) -> AccountError {
-        AccountError::Store(e.into())
-    }
-}
-
 fn refused(code: ErrorCode, message: impl Into<String>) -> AccountError {
     AccountError::Refused(Refusal::new(code, message))
 }
@@ -152,30 +116,32 @@ fn bad_key() -> AccountError {
     )
 }
 
-const PROFILE_COLUMNS: &str = "name, bot, created_at, rating, deviation, volatility, games";
-
-fn profile(row: &rusqlite::Row<'_>) -> rusqlite::Result<(Profile, f64)> {
-    let deviation: f64 = row.get(4)?;
-    Ok((
+impl Profile {
+    /// A profile from an account row's columns.
+    pub(crate) fn from_row(
+        name: String,
+        bot: bool,
+        created_at: i64,
+        rating: f64,
+        deviation: f64,
+        games: i64,
+    ) -> Profile {
         Profile {
-            name: row.get(0)?,
-            bot: row.get(1)?,
-            created_at: row.get::<_, i64>(2)?.max(0) as u64,
-            rating: row.get::<_, f64>(3)?.round() as i64,
+            name,
+            bot,
+            created_at: created_at.max(0) as u64,
+            rating: rating.round() as i64,
             deviation: deviation.round() as i64,
-            provisional: false,
-            games: row.get::<_, i64>(6)?.max(0) as u64,
-        },
-        deviation,
-    ))
+            provisional: deviation > RatingSystem::default().provisional_above,
+            games: games.max(0) as u64,
+        }
+    }
 }
 
-fn finish((mut p, deviation): (Profile, f64)) -> Profile {
-    p.provisional = deviation > RatingSystem::default().provisional_above;
-    p
-}
-
-impl Store {
+/// The rules of accounts, on whichever store: keys are drawn here and
+/// only their hashes stored, passwords are hashed here (Argon2id) and
+/// checked here, and every refusal has its code.
+impl dyn Store {
     /// Creates an account and its first key (returned once: only its hash
     /// is kept). A name already taken, in any case, is refused.
     pub fn create_account(
@@ -185,71 +151,22 @@ impl Store {
     ) -> Result<(Profile, SeatToken), AccountError> {
         let key = seat_token()?;
         let start: Rating = RatingSystem::default().start;
-        let mut conn = self.lock()?;
-        let tx = conn.transaction()?;
-        let taken: bool = tx.query_row(
-            "SELECT count(*) FROM accounts WHERE name = ?1",
-            params![name.as_str()],
-            |r| r.get::<_, i64>(0).map(|n| n > 0),
-        )?;
-        if taken {
+        if !self.insert_account(name, bot, start, &key.hash())? {
             return Err(refused(
                 ErrorCode::NameTaken,
                 format!("the name {} is taken", name.as_str()),
             ));
         }
-        let t = now() as i64;
-        tx.execute(
-            "INSERT INTO accounts (name, bot, created_at, rating, deviation, volatility)
-             VALUES (?1, ?2, ?3, ?4, ?5, ?6)",
-            params![
-                name.as_str(),
-                bot,
-                t,
-                start.rating,
-                start.deviation,
-                start.volatility
-            ],
-        )?;
-        tx.execute(
-            "INSERT INTO account_keys (hash, account, created_at) VALUES (?1, ?2, ?3)",
-            params![key.hash().to_hex(), name.as_str(), t],
-        )?;
-        tx.commit()?;
-        drop(conn);
         let profile = self
             .account(name.as_str())?
             .ok_or_else(|| StoreError::Corrupt(format!("account {} vanished", name.as_str())))?;
         Ok((profile, key))
     }
 
-    /// The account named `name` (in any case), if there is one.
-    pub fn account(&self, name: &str) -> Result<Option<Profile>, StoreError> {
-        let conn = self.read()?;
-        let row = conn
-            .query_row(
-                &format!("SELECT {PROFILE_COLUMNS} FROM accounts WHERE name = ?1"),
-                params![name],
-                profile,
-            )
-            .optional()?;
-        Ok(row.map(finish))
-    }
-
     /// The account a key proves, if the key is one of its keys and not
     /// revoked.
     pub fn account_of_key(&self, key: &SeatToken) -> Result<Profile, AccountError> {
-        let hash = key.hash();
-        let conn = self.read()?;
-        let found: Option<(String, String)> = conn
-            .query_row(
-                "SELECT hash, account FROM account_keys WHERE hash = ?1 AND revoked_at IS NULL",
-                params![hash.to_hex()],
-                |r| Ok((r.get(0)?, r.get(1)?)),
-            )
-            .optional()?;
-        drop(conn);
-        let Some((stored, account)) = found else {
+        let Some((stored, account)) = self.key(&key.hash())? else {
             return Err(bad_key());
         };
         // Found by its hash; compared again in constant time, as every key.
@@ -266,11 +183,7 @@ impl Store {
     pub fn add_key(&self, key: &SeatToken) -> Result<(Profile, SeatToken), AccountError> {
         let account = self.account_of_key(key)?;
         let new = seat_token()?;
-        let conn = self.lock()?;
-        conn.execute(
-            "INSERT INTO account_keys (hash, account, created_at) VALUES (?1, ?2, ?3)",
-            params![new.hash().to_hex(), account.name, now() as i64],
-        )?;
+        self.insert_key(&account.name, &new.hash())?;
         Ok((account, new))
     }
 
@@ -298,12 +211,7 @@ impl Store {
             .hash_password(password.as_bytes(), &salt)
             .map_err(|e| StoreError::Corrupt(format!("hashing a password: {e}")))?
             .to_string();
-        let conn = self.lock()?;
-        conn.execute(
-            "INSERT INTO account_passwords (account, hash, set_at) VALUES (?1, ?2, ?3)
-             ON CONFLICT (account) DO UPDATE SET hash = ?2, set_at = ?3",
-            params![account.name, hash, now() as i64],
-        )?;
+        self.put_password(&account.name, &hash)?;
         Ok(())
     }
 
@@ -316,15 +224,7 @@ impl Store {
         password: &str,
     ) -> Result<(Profile, SeatToken), AccountError> {
         let wrong = || refused(ErrorCode::BadPassword, "wrong name or password");
-        let stored: Option<(String, String)> = self
-            .read()?
-            .query_row(
-                "SELECT account, hash FROM account_passwords WHERE account = ?1",
-                params![name],
-                |r| Ok((r.get(0)?, r.get(1)?)),
-            )
-            .optional()?;
-        let Some((account, hash)) = stored else {
+        let Some((account, hash)) = self.password(name)? else {
             return Err(wrong());
         };
         use argon2::password_hash::{PasswordHash, PasswordVerifier};
@@ -337,10 +237,7 @@ impl Store {
             return Err(wrong());
         }
         let key = seat_token()?;
-        self.lock()?.execute(
-            "INSERT INTO account_keys (hash, account, created_at) VALUES (?1, ?2, ?3)",
-            params![key.hash().to_hex(), account, now() as i64],
-        )?;
+        self.insert_key(&account, &key.hash())?;
         let profile = self
             .account(&account)?
             .ok_or_else(|| StoreError::Corrupt(format!("account {account} vanished")))?;
@@ -350,54 +247,17 @@ impl Store {
     /// Revokes `key`: from now on it proves nothing.
     pub fn revoke_key(&self, key: &SeatToken) -> Result<(), AccountError> {
         self.account_of_key(key)?;
-        let conn = self.lock()?;
-        let n = conn.execute(
-            "UPDATE account_keys SET revoked_at = ?2 WHERE hash = ?1 AND revoked_at IS NULL",
-            params![key.hash().to_hex(), now() as i64],
-        )?;
-        if n == 1 {
+        if self.revoke(&key.hash())? {
             Ok(())
         } else {
             Err(bad_key())
         }
-    }
-
-    /// The accounts of people (or of bots) by rating, highest first, those
-    /// whose rating is established before the provisional ones.
-    pub fn leaderboard(&self, bots: bool, limit: usize) -> Result<Vec<Profile>, StoreError> {
-        let conn = self.read()?;
-        let mut stmt = conn.prepare(&format!(
-            "SELECT {PROFILE_COLUMNS} FROM accounts WHERE bot = ?1
-             ORDER BY deviation > ?2, rating DESC, name LIMIT ?3"
-        ))?;
-        let rows = stmt
-            .query_map(
-                params![
-                    bots,
-                    RatingSystem::default().provisional_above,
-                    limit.min(MAX_LEADERBOARD) as i64
-                ],
-                profile,
-            )?
-            .collect::<Result<Vec<_>, _>>()?;
-        Ok(rows.into_iter().map(finish).collect())
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn name(s: &str) -> AccountName {
-        AccountName::parse(s).unwrap()
-    }
-
-    fn code(e: AccountError) -> ErrorCode {
-        match e {
-            AccountError::Refused(r) => r.code,
-            other => panic!("not a refusal: {other}"),
-        }
-    }
 
     #[test]
     fn names_are_3_to_20_plain_characters() {
@@ -416,110 +276,5 @@ mod tests {
             let err = AccountName::parse(bad).unwrap_err();
             assert_eq!(err.code, ErrorCode::BadName, "{bad:?}");
         }
-    }
-
-    #[test]
-    fn a_new_account_starts_provisional_at_1500_and_its_key_proves_it() {
-        let store = Store::in_memory().unwrap();
-        let (profile, key) = store.create_account(&name("Anka"), false).unwrap();
-        assert_eq!(
-            (profile.rating, profile.deviation, profile.provisional),
-            (1500, 500, true)
-        );
-        assert_eq!(store.account_of_key(&key).unwrap().name, "Anka");
-        assert_eq!(store.account("anka").unwrap().unwrap().name, "Anka");
-        assert!(store.account("Petka").unwrap().is_none());
-    }
-
-    #[test]
-    fn a_name_taken_in_any_case_is_refused_and_changes_nothing() {
-        let store = Store::in_memory().unwrap();
-        let (_, key) = store.create_account(&name("Anka"), false).unwrap();
-        let err = store.create_account(&name("ANKA"), true).unwrap_err();
-        assert_eq!(code(err), ErrorCode::NameTaken);
-        let anka = store.account_of_key(&key).unwrap();
-        assert!(!anka.bot);
-        assert!(store
-            .leaderboard(true, 10)
-            .unwrap()
-            .iter()
-            .all(|p| p.name.starts_with(crate::ratings::COMPUTER_PREFIX)));
-    }
-
-    #[test]
-    fn a_wrong_or_revoked_key_proves_nothing() {
-        let store = Store::in_memory().unwrap();
-        let (_, key) = store.create_account(&name("Furmanov"), true).unwrap();
-        let wrong = SeatToken::new("0".repeat(32));
-        assert_eq!(
-            code(store.account_of_key(&wrong).unwrap_err()),
-            ErrorCode::BadKey
-        );
-        let (_, second) = store.add_key(&key).unwrap();
-        store.revoke_key(&key).unwrap();
-        assert_eq!(
-            code(store.account_of_key(&key).unwrap_err()),
-            ErrorCode::BadKey
-        );
-        assert_eq!(code(store.revoke_key(&key).unwrap_err()), ErrorCode::BadKey);
-        assert_eq!(store.account_of_key(&second).unwrap().name, "Furmanov");
-    }
-
-    #[test]
-    fn the_leaderboard_lists_one_kind_established_ratings_first() {
-        let store = Store::in_memory().unwrap();
-        for (n, bot) in [("greedy", true), ("search", true), ("Anka", false)] {
-            store.create_account(&name(n), bot).unwrap();
-        }
-        {
-            let conn = store.lock().unwrap();
-            conn.execute(
-                "UPDATE accounts SET rating = 1620, deviation = 80 WHERE name = 'search'",
-                [],
-            )
-            .unwrap();
-            conn.execute(
-                "UPDATE accounts SET rating = 1700 WHERE name = 'greedy'",
-                [],
-            )
-            .unwrap();
-        }
-        let bots: Vec<(String, bool)> = store
-            .leaderboard(true, 10)
-            .unwrap()
-            .into_iter()
-            .filter(|p| !p.name.starts_with(crate::ratings::COMPUTER_PREFIX))
-            .map(|p| (p.name, p.provisional))
-            .collect();
-        assert_eq!(
-            bots,
-            [("search".to_string(), false), ("greedy".to_string(), true)]
-        );
-        assert_eq!(store.leaderboard(false, 10).unwrap().len(), 1);
-    }
-
-    #[test]
-    fn a_person_may_add_a_password_and_sign_in_with_it_for_a_new_key() {
-        let store = Store::in_memory().unwrap();
-        let (_, key) = store.create_account(&name("Anka"), false).unwrap();
-        let short = store.set_password(&key, "short").unwrap_err();
-        assert_eq!(code(short), ErrorCode::BadPassword);
-        store.set_password(&key, "machine-gun cart").unwrap();
-        let stored: String = store
-            .read()
-            .unwrap()
-            .query_row("SELECT hash FROM account_passwords", [], |r| r.get(0))
-            .unwrap();
-        assert!(stored.starts_with("$argon2id$") && !stored.contains("machine-gun"));
-        let (profile, new_key) = store.sign_in("anka", "machine-gun cart").unwrap();
-        assert_eq!(profile.name, "Anka");
-        assert_eq!(store.account_of_key(&new_key).unwrap().name, "Anka");
-        for (who, password) in [("Anka", "machine-gun car"), ("Petka", "machine-gun cart")] {
-            let e = store.sign_in(who, password).unwrap_err();
-            assert_eq!(code(e), ErrorCode::BadPassword, "{who}");
-        }
-        let (_, bot) = store.create_account(&name("Furmanov"), true).unwrap();
-        let e = store.set_password(&bot, "machine-gun cart").unwrap_err();
-        assert_eq!(code(e), ErrorCode::BadMessage);
     }
 }

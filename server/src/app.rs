@@ -8,7 +8,7 @@
 use crate::config::Config;
 use crate::hub::Hub;
 use crate::metrics::Metrics;
-use crate::store::{Store, StoreError};
+use crate::store::StoreError;
 use actix_web::{web, App, HttpServer};
 use std::sync::Arc;
 use std::time::Duration;
@@ -59,7 +59,7 @@ pub fn main(program: &str) -> std::process::ExitCode {
 /// Runs the server until SIGTERM or Ctrl-C.
 pub fn run(config: Config) -> Result<(), AppError> {
     init_logging(&config)?;
-    let store = Arc::new(Store::open(&config.data_dir, config.sync)?);
+    let store = crate::store::open(&config)?;
     let metrics = Arc::new(Metrics::default());
     let game_rt = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(config.game_threads as usize)
@@ -74,7 +74,11 @@ pub fn run(config: Config) -> Result<(), AppError> {
     );
     // Live matches first and all of them; open ones wait in the store.
     let resumed = game_rt.block_on(hub.resume_all())?;
-    info!(resumed, data_dir = %config.data_dir.display(), "store opened; live matches resumed");
+    info!(
+        resumed,
+        store = store.backend(),
+        "store opened; live matches resumed"
+    );
     game_rt.spawn(expire_open_matches(
         hub.clone(),
         Duration::from_secs(config.open_match_expiry_seconds),

@@ -161,7 +161,7 @@ fn passive(conn: &Connection) -> Result<bool, rusqlite::Error> {
 #[cfg(test)]
 mod tests {
     use crate::config::SyncMode;
-    use crate::store::{AfterMove, Status, Store, StoredMatch, StoredSeat};
+    use crate::store::{AfterMove, SqliteStore, Status, Store, StoredMatch, StoredSeat};
     use game::{Config, RecordedMove, Side};
     use std::time::{Duration, Instant};
 
@@ -169,7 +169,7 @@ mod tests {
     fn the_checkpointer_copies_the_log_into_the_database_file_without_the_writer() {
         let dir = tempfile::tempdir().unwrap();
         let db = dir.path().join("chapaev.sqlite3");
-        let store = Store::open(dir.path(), SyncMode::Normal).unwrap();
+        let store = SqliteStore::open(dir.path(), SyncMode::Normal).unwrap();
         store
             .create(&StoredMatch {
                 id: "m".into(),
@@ -208,7 +208,7 @@ mod tests {
             size()
         );
         drop(store);
-        let store = Store::open(dir.path(), SyncMode::Normal).unwrap();
+        let store = SqliteStore::open(dir.path(), SyncMode::Normal).unwrap();
         assert_eq!(store.moves("m").unwrap().len(), 400);
     }
 }

@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 /// Chapaev online match server: HTTP API, WebSocket play, built-in bots,
-/// turn clock and a crash-safe SQLite store.
+/// turn clock and a crash-safe store (SQLite, or PostgreSQL).
 #[derive(Parser, Debug, Clone)]
 #[command(name = "server", version, about, long_about = None)]
 pub struct Config {
@@ -17,9 +17,16 @@ pub struct Config {
     #[arg(long, env = "CHAPAEV_ADDR", default_value = "127.0.0.1:8080")]
     pub addr: String,
 
-    /// Folder of the SQLite store (`chapaev.sqlite3`), created if missing.
+    /// Folder of the SQLite store (`chapaev.sqlite3`), created if missing
+    /// (unused with `--database-url`).
     #[arg(long, env = "CHAPAEV_DATA_DIR", default_value = "./data")]
     pub data_dir: PathBuf,
+
+    /// Store everything in PostgreSQL instead of SQLite
+    /// (`postgres://user:password@host:port/database`); its schema is
+    /// created or migrated on start. Several server nodes may share one.
+    #[arg(long, env = "CHAPAEV_DATABASE_URL")]
+    pub database_url: Option<String>,
 
     /// Log filter in tracing's EnvFilter syntax, e.g. `info` or `server=debug,warn`.
     #[arg(long, env = "CHAPAEV_LOG", default_value = "info")]

@@ -15,6 +15,8 @@ use crate::config::Limits;
 use crate::metrics::Metrics;
 use crate::refusal::Refusal;
 use crate::room::{Claim, Command, Connected, FinishedMatch, MatchListener, Room, RoomHost};
+#[cfg(test)]
+use crate::store::SqliteStore;
 use crate::store::{Status, Store, StoreError, StoredMatch, StoredSeat};
 use crate::token::{self, SeatToken, TokenHash};
 use bots::Level;
@@ -111,7 +113,7 @@ pub struct SeatGrant {
 }
 
 struct Inner {
-    store: Arc<Store>,
+    store: Arc<dyn Store>,
     metrics: Arc<Metrics>,
     limits: Limits,
     rt: Handle,
@@ -151,7 +153,7 @@ fn store_failed(e: StoreError) -> Refusal {
 
 impl Hub {
     /// A hub whose rooms run on `rt`.
-    pub fn new(store: Arc<Store>, metrics: Arc<Metrics>, limits: Limits, rt: Handle) -> Hub {
+    pub fn new(store: Arc<dyn Store>, metrics: Arc<Metrics>, limits: Limits, rt: Handle) -> Hub {
         Hub {
             inner: Arc::new(Inner {
                 store,
@@ -170,7 +172,7 @@ impl Hub {
         }
     }
 
-    pub fn store(&self) -> &Arc<Store> {
+    pub fn store(&self) -> &Arc<dyn Store> {
         &self.inner.store
     }
 
@@ -611,7 +613,7 @@ impl Hub {
         let in_memory: std::collections::HashSet<String> = self.rooms().keys().cloned().collect();
         let store = self.inner.store.clone();
         let expired = tokio::task::spawn_blocking(move || {
-            store.expire_open(after.as_secs(), |id| in_memory.contains(id))
+            store.expire_open(after.as_secs(), &|id: &str| in_memory.contains(id))
         })
         .await
         .map_err(|e| StoreError::Corrupt(e.to_string()))??;
@@ -645,7 +647,7 @@ impl Hub {
 }
 
 impl RoomHost for Hub {
-    fn store(&self) -> &Arc<Store> {
+    fn store(&self) -> &Arc<dyn Store> {
         Hub::store(self)
     }
     fn finished(&self, m: FinishedMatch) {
@@ -747,7 +749,7 @@ mod tests {
             ..Limits::default()
         };
         Hub::new(
-            Arc::new(Store::in_memory().unwrap()),
+            Arc::new(SqliteStore::in_memory().unwrap()),
             Arc::new(Metrics::default()),
             limits,
             Handle::current(),
@@ -843,8 +845,8 @@ mod tests {
 
     #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
     async fn a_match_not_in_memory_is_loaded_from_the_store_with_its_moves() {
-        let store = Arc::new(Store::in_memory().unwrap());
-        let mk = |store: Arc<Store>| {
+        let store = Arc::new(SqliteStore::in_memory().unwrap());
+        let mk = |store: Arc<dyn Store>| {
             Hub::new(
                 store,
                 Arc::new(Metrics::default()),
@@ -1014,7 +1016,7 @@ mod tests {
         assert_eq!(outcome.shooter, Side::Black);
 
         let small = Hub::new(
-            Arc::new(Store::in_memory().unwrap()),
+            Arc::new(SqliteStore::in_memory().unwrap()),
             Arc::new(Metrics::default()),
             Limits {
                 max_matches: 1,

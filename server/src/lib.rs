@@ -15,7 +15,7 @@
 //! [`accounts`] (names, keys and ratings that last; their HTTP API is
 //! [`accounts_api`]),
 //! [`refusal`] (errors sent to clients, with their HTTP statuses),
-//! [`store`] (SQLite, with [`readers`], its read connections), [`metrics`] (Prometheus), [`origin`] (cross-site
+//! [`store`] (SQLite, with [`readers`], its read connections, or PostgreSQL; [`local_postgres`] starts a throwaway one for tests), [`metrics`] (Prometheus), [`origin`] (cross-site
 //! requests refused), [`ratelimit`]
 //! (per-connection token bucket), [`room`] (the task that drives one
 //! match's session and asks the computer levels of the [`bots`] crate for
@@ -36,6 +36,7 @@ pub mod config;
 pub mod http;
 pub mod hub;
 pub mod lobby;
+pub mod local_postgres;
 pub mod loopback;
 pub mod metrics;
 pub mod origin;

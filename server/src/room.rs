@@ -80,7 +80,7 @@ impl Inbox {
 /// when it stops. (The hub provides them; tests provide their own.)
 pub trait RoomHost: Clone + Send + Sync + 'static {
     /// The store.
-    fn store(&self) -> &Arc<Store>;
+    fn store(&self) -> &Arc<dyn Store>;
     /// The metrics.
     fn metrics(&self) -> &Arc<Metrics>;
     /// The limits.
@@ -770,7 +770,7 @@ async fn sleep_until(t: Option<Instant>) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::store::StoredSeat;
+    use crate::store::{SqliteStore, StoredSeat};
     use game::PieceId;
     use glam::DVec2;
     use std::sync::atomic::{AtomicU64, Ordering};
@@ -778,14 +778,14 @@ mod tests {
     /// A host with an in-memory store and no rematches.
     #[derive(Clone)]
     struct TestHost {
-        store: Arc<Store>,
+        store: Arc<dyn Store>,
         metrics: Arc<Metrics>,
         limits: Limits,
         next: Arc<AtomicU64>,
     }
 
     impl RoomHost for TestHost {
-        fn store(&self) -> &Arc<Store> {
+        fn store(&self) -> &Arc<dyn Store> {
             &self.store
         }
         fn metrics(&self) -> &Arc<Metrics> {
@@ -822,7 +822,7 @@ mod tests {
     #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
     async fn a_shot_and_the_next_turn_clock_reach_each_connection_as_one_item() {
         let host = TestHost {
-            store: Arc::new(Store::in_memory().unwrap()),
+            store: Arc::new(SqliteStore::in_memory().unwrap()),
             metrics: Arc::new(Metrics::default()),
             limits: Limits::default(),
             next: Arc::new(AtomicU64::new(1)),

@@ -55,6 +55,42 @@ fn a_small_crash_test_passes_kills_twice_and_leaves_no_server_behind() {
 }
 
 #[test]
+fn on_postgresql_a_small_crash_test_passes_and_every_acknowledged_shot_is_in_the_database() {
+    let Some(url) = server::local_postgres::shared_database("crashtest") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let data = dir.path().join("data");
+    let out = Command::new(env!("CARGO_BIN_EXE_crashtest"))
+        .args(["--matches", "6", "--kills", "2", "--play-seconds", "1"])
+        .args([
+            "--think-ms",
+            "50",
+            "--server-bin",
+            env!("CARGO_BIN_EXE_server"),
+        ])
+        .arg(format!("--server-arg=--database-url={url}"))
+        .arg("--data-dir")
+        .arg(&data)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stdout}\n{stderr}");
+    assert!(stdout.contains("VERDICT: PASS"), "{stdout}");
+    assert_eq!(stdout.matches("SIGKILL at").count(), 2, "{stdout}");
+    // Everything went to PostgreSQL: no SQLite file was made.
+    assert!(!data.join("chapaev.sqlite3").exists());
+    let mut db = postgres::Client::connect(&url, postgres::NoTls).unwrap();
+    let matches: i64 = db
+        .query_one("SELECT count(*) FROM matches WHERE status <> 'open'", &[])
+        .unwrap()
+        .get(0);
+    assert_eq!(matches, 6, "{stdout}");
+    assert!(processes_naming(&data).is_empty());
+}
+
+#[test]
 fn a_server_that_cannot_start_ends_the_run_with_failure() {
     let dir = tempfile::tempdir().unwrap();
     let out = Command::new(env!("CARGO_BIN_EXE_crashtest"))

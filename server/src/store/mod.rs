@@ -1,0 +1,389 @@
+//! The durable store, behind one interface ([`Store`]) with two
+//! implementations: [`sqlite`] (one embedded file, the default) and
+//! [`postgres`] (a PostgreSQL server, chosen with `--database-url`, which
+//! several server nodes can share).
+//!
+//! Both keep the same tables: a `matches` row holds each match's
+//! configuration, seed, physics version, seats (names, accounts, and the
+//! SHA-256 of each seat token: never the token itself), status and result;
+//! a `moves` row holds each accepted move as the JSON of its
+//! [`RecordedMove`]; then the accounts, their keys, passwords and rating
+//! history. Both make the same promise: every accepted move is written in
+//! one transaction with its match row (and, for the last move of a rated
+//! match, both ratings) before its outcome is broadcast, through a
+//! [`group_commit`] on the store's own writer thread; so the record rebuilt
+//! from the store is exactly what players saw, and a restarted server
+//! replays it through [`game::Replay`] under the match's own physics
+//! version.
+
+pub mod group_commit;
+pub mod postgres;
+pub mod sqlite;
+#[cfg(test)]
+mod tests;
+
+use crate::accounts::{AccountName, Profile};
+use crate::config::Config as ServerConfig;
+use crate::ratings::RatingPoint;
+use game::rating::Rating;
+use game::token::TokenHash;
+use game::{Config, MatchRecord, MatchResult, RecordedMove, RECORD_VERSION};
+use serde::{Deserialize, Serialize};
+use std::sync::Arc;
+use std::time::{SystemTime, UNIX_EPOCH};
+
+pub use group_commit::MoveWrite;
+pub use postgres::PostgresStore;
+pub use sqlite::SqliteStore;
+
+/// A store operation failed.
+#[derive(Debug, thiserror::Error)]
+pub enum StoreError {
+    #[error("sqlite: {0}")]
+    Sqlite(#[from] rusqlite::Error),
+    #[error("postgresql: {0}")]
+    Postgres(#[from] ::postgres::Error),
+    #[error("no PostgreSQL connection: {0}")]
+    Pool(#[from] r2d2::Error),
+    #[error("cannot create the data folder {path}: {source}")]
+    DataDir {
+        path: String,
+        source: std::io::Error,
+    },
+    #[error("stored JSON is unreadable: {0}")]
+    Json(#[from] serde_json::Error),
+    #[error("the store is inconsistent: {0}")]
+    Corrupt(String),
+    #[error("the store's lock was poisoned by a panic")]
+    Poisoned,
+    #[error("cannot start the store's {0} thread: {1}")]
+    Thread(&'static str, std::io::Error),
+    /// The group commit that carried this write failed as a whole.
+    #[error("the commit of a group of moves failed: {0}")]
+    GroupCommit(String),
+}
+
+/// Where a match stands, as listed (the session's status, stored as is).
+pub use game::session::Status;
+
+/// One seat as stored.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct StoredSeat {
+    pub name: Option<String>,
+    /// The hash of the seat token (`None`: empty seat, or a bot's seat).
+    pub token: Option<TokenHash>,
+    /// The account playing the seat, if its player signed in (the seat's
+    /// name is then the account's).
+    pub account: Option<String>,
+}
+
+/// A match row.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StoredMatch {
+    pub id: String,
+    pub created_at: u64,
+    pub config: Config,
+    pub seed: u64,
+    /// The physics version the match is played under (see
+    /// [`game::physics_version`]).
+    pub physics: u32,
+    pub status: Status,
+    /// The built-in bots: a level (`easy`, `medium`, `hard`) for a bot in
+    /// the second seat, or `FIRST/SECOND` for an exhibition where both
+    /// seats are bots ([`StoredMatch::bots`] reads it).
+    pub bot: Option<String>,
+    pub turn_seconds: u64,
+    pub seats: [StoredSeat; 2],
+    pub rematch_of: Option<String>,
+    /// Whether the result moves the two accounts' ratings.
+    pub rated: bool,
+}
+
+impl StoredMatch {
+    /// The `bot` column for bots in the seats: `None`, the second seat's
+    /// level, or `FIRST/SECOND` when both seats are bots.
+    pub fn bots_column(levels: [Option<bots::Level>; 2]) -> Option<String> {
+        match levels {
+            [None, None] => None,
+            [None, Some(l)] => Some(l.as_str().to_string()),
+            [Some(a), Some(b)] => Some(format!("{a}/{b}")),
+            // A bot only ever takes the first seat in an exhibition.
+            [Some(a), None] => Some(format!("{a}/")),
+        }
+    }
+
+    /// The level of each seat's built-in bot, read from the `bot` column.
+    pub fn bots(&self) -> [Option<bots::Level>; 2] {
+        match self.bot.as_deref() {
+            None => [None, None],
+            Some(text) => match text.split_once('/') {
+                Some((a, b)) => [bots::Level::parse(a), bots::Level::parse(b)],
+                None => [None, bots::Level::parse(text)],
+            },
+        }
+    }
+}
+
+/// What a listing shows of a match (no tokens).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Summary {
+    pub match_id: String,
+    pub status: Status,
+    pub created_at: u64,
+    pub updated_at: u64,
+    pub first: Option<String>,
+    pub second: Option<String>,
+    pub bot: Option<String>,
+    pub shots: u32,
+    pub turn_seconds: u64,
+    pub result: Option<MatchResult>,
+    /// The physics version the match is played under.
+    pub physics: u32,
+    /// Whether this server can play that version (a match it cannot play
+    /// is kept as stored, not resumed, until a server that can).
+    pub playable: bool,
+    /// Whether the result moves the players' ratings.
+    pub rated: bool,
+    /// The current rating of the account in the first seat (`None`: the
+    /// seat has no account).
+    pub first_rating: Option<SeatRating>,
+    /// The same for the second seat.
+    pub second_rating: Option<SeatRating>,
+}
+
+/// An account's rating as a listing shows it next to a seat.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SeatRating {
+    /// Rounded.
+    pub rating: i64,
+    /// Whether it is still provisional (too few rated games).
+    pub provisional: bool,
+}
+
+/// A seat's account's rating and deviation, as read, for a listing.
+pub(crate) fn seat_rating((rating, deviation): (Option<f64>, Option<f64>)) -> Option<SeatRating> {
+    let (rating, deviation) = (rating?, deviation?);
+    Some(SeatRating {
+        rating: rating.round() as i64,
+        provisional: deviation > game::rating::RatingSystem::default().provisional_above,
+    })
+}
+
+/// The row update that goes with a move.
+#[derive(Clone, Debug)]
+pub struct AfterMove<'a> {
+    pub status: Status,
+    pub shots: u32,
+    pub result: Option<&'a MatchResult>,
+    /// The seat that won, once the match is over and not drawn.
+    pub winner: Option<game::Seat>,
+}
+
+/// A stored physics version, checked to be one.
+pub(crate) fn physics_of(id: &str, stored: i64) -> Result<u32, StoreError> {
+    u32::try_from(stored)
+        .map_err(|_| StoreError::Corrupt(format!("match {id}: physics version {stored}")))
+}
+
+/// A stored status, checked to be one.
+pub(crate) fn status_of(id: &str, stored: &str) -> Result<Status, StoreError> {
+    Status::parse(stored).ok_or_else(|| StoreError::Corrupt(format!("match {id}: status {stored}")))
+}
+
+/// A stored token hash, checked to be one.
+pub(crate) fn token_of(id: &str, hex: Option<String>) -> Result<Option<TokenHash>, StoreError> {
+    hex.map(|h| TokenHash::from_hex(&h))
+        .transpose()
+        .map_err(|e| StoreError::Corrupt(format!("match {id}: {e}")))
+}
+
+/// A match's moves from their `(idx, body)` rows, ordered by index: each
+/// index present once, from 0 up.
+pub(crate) fn moves_in_order(
+    id: &str,
+    rows: Vec<(i64, String)>,
+) -> Result<Vec<RecordedMove>, StoreError> {
+    let mut moves = Vec::with_capacity(rows.len());
+    for (k, (idx, body)) in rows.into_iter().enumerate() {
+        if idx != k as i64 {
+            return Err(StoreError::Corrupt(format!(
+                "match {id}: move {k} is missing (found {idx})"
+            )));
+        }
+        moves.push(serde_json::from_str(&body)?);
+    }
+    Ok(moves)
+}
+
+/// Seconds since 1970, as stored in every `…_at` column.
+pub(crate) fn now() -> u64 {
+    SystemTime::now()
+        .duration_since(UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0)
+}
+
+/// What the server keeps: matches, their moves, accounts and ratings.
+///
+/// Every method blocks on the database: call it from a blocking thread
+/// (`tokio::task::spawn_blocking`), never from an async task, except
+/// [`Store::submit_move`], which only queues. Implementations are
+/// [`SqliteStore`] and [`PostgresStore`]; `server::store::tests` runs the
+/// same tests against both.
+pub trait Store: Send + Sync {
+    /// The backend's name, for logs and metrics (`sqlite`, `postgresql`).
+    fn backend(&self) -> &'static str;
+
+    // --- matches ---
+
+    /// Stores a new match (no moves yet).
+    fn create(&self, m: &StoredMatch) -> Result<(), StoreError>;
+
+    /// Fills the second seat (with the account playing it, if any); the
+    /// match becomes live. Fails if the seat is taken.
+    fn seat_second(
+        &self,
+        id: &str,
+        name: &str,
+        token: &TokenHash,
+        account: Option<&str>,
+    ) -> Result<(), StoreError>;
+
+    /// Queues move number `index` and the match row's update for the next
+    /// group commit (one transaction: both are stored, or neither; with the
+    /// ratings for the last move of a rated match); the returned
+    /// [`MoveWrite`] tells when it is stored. Never blocks on the database.
+    fn submit_move(
+        &self,
+        id: &str,
+        index: usize,
+        m: &RecordedMove,
+        after: &AfterMove<'_>,
+    ) -> Result<MoveWrite, StoreError>;
+
+    /// One match row.
+    fn get(&self, id: &str) -> Result<Option<StoredMatch>, StoreError>;
+
+    /// Ids of the live matches, the most recently played first (to resume
+    /// on start; open ones are loaded when someone comes for them).
+    fn live(&self) -> Result<Vec<String>, StoreError>;
+
+    /// Deletes the open matches (never joined, so without moves) untouched
+    /// for `older_than` seconds, except those `keep` names (in memory, so
+    /// still waited for); their ids. One transaction.
+    fn expire_open(
+        &self,
+        older_than: u64,
+        keep: &dyn Fn(&str) -> bool,
+    ) -> Result<Vec<String>, StoreError>;
+
+    /// The moves of a match, in order.
+    fn moves(&self, id: &str) -> Result<Vec<RecordedMove>, StoreError>;
+
+    /// Summaries, most recently played first, optionally of one status only.
+    fn list(&self, status: Option<Status>, limit: usize) -> Result<Vec<Summary>, StoreError>;
+
+    /// One match's summary.
+    fn summary(&self, id: &str) -> Result<Option<Summary>, StoreError>;
+
+    /// The matches `account` (in any case) played a seat of, most recent
+    /// first.
+    fn matches_of(&self, account: &str, limit: usize) -> Result<Vec<Summary>, StoreError>;
+
+    // --- accounts (the rules around them are in [`crate::accounts`]) ---
+
+    /// Inserts an account with its starting rating and its first key, in
+    /// one transaction; `false` (and nothing written) if the name is taken
+    /// in any case.
+    fn insert_account(
+        &self,
+        name: &AccountName,
+        bot: bool,
+        start: Rating,
+        key: &TokenHash,
+    ) -> Result<bool, StoreError>;
+
+    /// The account named `name` (in any case), if there is one.
+    fn account(&self, name: &str) -> Result<Option<Profile>, StoreError>;
+
+    /// The stored hash equal to `hash` of a key not revoked, and its
+    /// account's name.
+    fn key(&self, hash: &TokenHash) -> Result<Option<(String, String)>, StoreError>;
+
+    /// Adds a key (by its hash) to `account`.
+    fn insert_key(&self, account: &str, hash: &TokenHash) -> Result<(), StoreError>;
+
+    /// Revokes the key with `hash`; `false` if no such key was valid.
+    fn revoke(&self, hash: &TokenHash) -> Result<bool, StoreError>;
+
+    /// Sets or replaces `account`'s password hash (PHC string).
+    fn put_password(&self, account: &str, hash: &str) -> Result<(), StoreError>;
+
+    /// The account named `name` (in any case) and its password hash, if it
+    /// has a password.
+    fn password(&self, name: &str) -> Result<Option<(String, String)>, StoreError>;
+
+    /// The accounts of people (or of bots) by rating, highest first, those
+    /// whose rating is established before the provisional ones.
+    fn leaderboard(&self, bots: bool, limit: usize) -> Result<Vec<Profile>, StoreError>;
+
+    /// The rating of `account` after each of its rated matches, oldest
+    /// first (at most the last `limit`).
+    fn rating_history(&self, account: &str, limit: usize) -> Result<Vec<RatingPoint>, StoreError>;
+
+    // --- operations ---
+
+    /// The store's metrics as Prometheus text (group commits: count and
+    /// duration, and the moves they wrote).
+    fn render_metrics(&self, out: &mut String);
+
+    /// Makes sure everything written is where a fresh start reads it first
+    /// (on shutdown; SQLite copies its log into the database file).
+    fn checkpoint(&self) -> Result<(), StoreError> {
+        Ok(())
+    }
+
+    // --- provided ---
+
+    /// [`Store::submit_move`], then blocks until it is stored (not from an
+    /// async task).
+    fn append_move(
+        &self,
+        id: &str,
+        index: usize,
+        m: &RecordedMove,
+        after: &AfterMove<'_>,
+    ) -> Result<(), StoreError> {
+        self.submit_move(id, index, m, after)?.wait()
+    }
+
+    /// A match row and its record (config, seed, physics version, every
+    /// move).
+    fn load(&self, id: &str) -> Result<Option<(StoredMatch, MatchRecord)>, StoreError> {
+        let Some(m) = self.get(id)? else {
+            return Ok(None);
+        };
+        let moves = self.moves(id)?;
+        let record = MatchRecord {
+            version: RECORD_VERSION,
+            physics: m.physics,
+            config: m.config.clone(),
+            seed: m.seed,
+            moves,
+        };
+        Ok(Some((m, record)))
+    }
+}
+
+/// The store a server uses, shared by its tasks.
+pub type SharedStore = Arc<dyn Store>;
+
+/// Opens the store the configuration names: PostgreSQL at
+/// `--database-url`, or else SQLite in `--data-dir`. Either way its schema
+/// is brought up to date first.
+pub fn open(config: &ServerConfig) -> Result<SharedStore, StoreError> {
+    Ok(match &config.database_url {
+        Some(url) => Arc::new(PostgresStore::connect(url)?),
+        None => Arc::new(SqliteStore::open(&config.data_dir, config.sync)?),
+    })
+}

@@ -1,0 +1,695 @@
+//! The PostgreSQL store: the same tables and promises as [`super::sqlite`],
+//! on a PostgreSQL server that several server nodes can share (chosen with
+//! `--database-url postgres://…`).
+//!
+//! Reads and the few writes outside play take a connection from an `r2d2`
+//! pool; moves go through the [`GroupCommit`] writer thread on a connection
+//! of its own, one transaction per batch (PostgreSQL's commit is durable
+//! once it returns, with its default `synchronous_commit`). A connection
+//! that breaks (the database restarted) is replaced on the next use, and the
+//! moves of a batch that failed are refused, never acknowledged.
+//!
+//! The schema is created and migrated on start by numbered migrations,
+//! recorded in `schema_migrations` and applied under an advisory lock, so
+//! that nodes starting together migrate once.
+//!
+//! Account names are unique in any case through `name_key`, the lower-case
+//! name (names are ASCII), which the history and passwords refer to.
+
+use super::group_commit::{BatchWriter, GroupCommit, QueuedMove};
+use super::{
+    now, physics_of, seat_rating, status_of, token_of, AfterMove, MoveWrite, Status, Store,
+    StoreError, StoredMatch, StoredSeat, Summary,
+};
+use crate::accounts::{AccountName, Profile, MAX_LEADERBOARD};
+use crate::ratings::{RatingPoint, MAX_LISTED};
+use ::postgres::{Client, GenericClient, NoTls, Row, Statement};
+use game::rating::{Rating, RatingSystem, Score};
+use game::token::TokenHash;
+use game::RecordedMove;
+use r2d2_postgres::PostgresConnectionManager;
+use std::time::Duration;
+
+/// Connections in the read pool.
+const POOL: u32 = 8;
+/// How long a caller waits for a pooled connection (or a first connection).
+const CONNECT_TIMEOUT: Duration = Duration::from_secs(10);
+/// An arbitrary key for the advisory lock migrations run under.
+const MIGRATION_LOCK: i64 = 0x0063_6861_7061_6576;
+
+/// The migrations, in order: number `k + 1` is `MIGRATIONS[k]`. Never edit
+/// one that has shipped; add the next.
+const MIGRATIONS: &[&str] = &["
+CREATE TABLE matches (
+    id TEXT PRIMARY KEY,
+    created_at BIGINT NOT NULL,
+    updated_at BIGINT NOT NULL,
+    config TEXT NOT NULL,
+    seed BIGINT NOT NULL,
+    status TEXT NOT NULL,
+    bot TEXT,
+    turn_seconds BIGINT NOT NULL,
+    first_name TEXT,
+    first_token_hash TEXT,
+    second_name TEXT,
+    second_token_hash TEXT,
+    shots BIGINT NOT NULL DEFAULT 0,
+    result TEXT,
+    rematch_of TEXT,
+    physics BIGINT NOT NULL DEFAULT 1,
+    first_account TEXT,
+    second_account TEXT,
+    rated BOOLEAN NOT NULL DEFAULT FALSE
+);
+CREATE INDEX matches_by_status ON matches (status, updated_at);
+CREATE INDEX matches_by_first_account ON matches (lower(first_account), updated_at);
+CREATE INDEX matches_by_second_account ON matches (lower(second_account), updated_at);
+CREATE TABLE moves (
+    match_id TEXT NOT NULL REFERENCES matches (id),
+    idx BIGINT NOT NULL,
+    body TEXT NOT NULL,
+    PRIMARY KEY (match_id, idx)
+);
+CREATE TABLE accounts (
+    name_key TEXT PRIMARY KEY,
+    name TEXT NOT NULL UNIQUE,
+    bot BOOLEAN NOT NULL,
+    created_at BIGINT NOT NULL,
+    rating DOUBLE PRECISION NOT NULL,
+    deviation DOUBLE PRECISION NOT NULL,
+    volatility DOUBLE PRECISION NOT NULL,
+    games BIGINT NOT NULL DEFAULT 0
+);
+CREATE INDEX accounts_by_rating ON accounts (bot, rating DESC);
+CREATE TABLE account_passwords (
+    account_key TEXT PRIMARY KEY REFERENCES accounts (name_key),
+    hash TEXT NOT NULL,
+    set_at BIGINT NOT NULL
+);
+CREATE TABLE account_keys (
+    hash TEXT PRIMARY KEY,
+    account_key TEXT NOT NULL REFERENCES accounts (name_key),
+    created_at BIGINT NOT NULL,
+    revoked_at BIGINT
+);
+CREATE TABLE rating_history (
+    seq BIGSERIAL PRIMARY KEY,
+    account_key TEXT NOT NULL REFERENCES accounts (name_key),
+    match_id TEXT NOT NULL REFERENCES matches (id),
+    at BIGINT NOT NULL,
+    rating DOUBLE PRECISION NOT NULL,
+    deviation DOUBLE PRECISION NOT NULL,
+    volatility DOUBLE PRECISION NOT NULL,
+    UNIQUE (account_key, match_id)
+);
+CREATE INDEX rating_history_by_match ON rating_history (match_id);
+"];
+
+type Pool = r2d2::Pool<PostgresConnectionManager<NoTls>>;
+
+/// The PostgreSQL store (see the module's documentation).
+pub struct PostgresStore {
+    commit: GroupCommit,
+    pool: Pool,
+}
+
+/// The columns of a match row, in the order [`stored_match`] reads them.
+const MATCH_COLUMNS: &str = super::sqlite::MATCH_COLUMNS;
+
+/// A summary's columns (the same as SQLite's).
+const SUMMARY_COLUMNS: &str = super::sqlite::SUMMARY_COLUMNS;
+
+/// The tables a summary reads.
+const SUMMARY_FROM: &str = "matches m
+    LEFT JOIN accounts a ON a.name_key = lower(m.first_account)
+    LEFT JOIN accounts b ON b.name_key = lower(m.second_account)";
+
+/// An account's columns, in the order [`profile`] reads them.
+const PROFILE_COLUMNS: &str = "name, bot, created_at, rating, deviation, games";
+
+fn profile(r: &Row) -> Profile {
+    Profile::from_row(r.get(0), r.get(1), r.get(2), r.get(3), r.get(4), r.get(5))
+}
+
+fn stored_match(r: &Row) -> Result<StoredMatch, StoreError> {
+    let id: String = r.get(0);
+    let config: String = r.get(2);
+    Ok(StoredMatch {
+        created_at: r.get::<_, i64>(1) as u64,
+        config: serde_json::from_str(&config)?,
+        // Stored as the i64 with the same bits.
+        seed: r.get::<_, i64>(3) as u64,
+        status: status_of(&id, r.get(4))?,
+        bot: r.get(5),
+        turn_seconds: r.get::<_, i64>(6) as u64,
+        seats: [
+            StoredSeat {
+                name: r.get(7),
+                token: token_of(&id, r.get(8))?,
+                account: r.get(13),
+            },
+            StoredSeat {
+                name: r.get(9),
+                token: token_of(&id, r.get(10))?,
+                account: r.get(14),
+            },
+        ],
+        rematch_of: r.get(11),
+        physics: physics_of(&id, r.get(12))?,
+        rated: r.get(15),
+        id,
+    })
+}
+
+fn summary(r: &Row) -> Result<Summary, StoreError> {
+    let id: String = r.get(0);
+    let physics = physics_of(&id, r.get(10))?;
+    let result: Option<String> = r.get(9);
+    Ok(Summary {
+        physics,
+        playable: game::PhysicsVersion::from_number(physics).is_ok(),
+        status: status_of(&id, r.get(1))?,
+        created_at: r.get::<_, i64>(2) as u64,
+        updated_at: r.get::<_, i64>(3) as u64,
+        first: r.get(4),
+        second: r.get(5),
+        bot: r.get(6),
+        shots: r.get::<_, i64>(7) as u32,
+        turn_seconds: r.get::<_, i64>(8) as u64,
+        result: result.map(|r| serde_json::from_str(&r)).transpose()?,
+        rated: r.get(11),
+        first_rating: seat_rating((r.get(12), r.get(13))),
+        second_rating: seat_rating((r.get(14), r.get(15))),
+        match_id: id,
+    })
+}
+
+/// Applies the migrations `client`'s database lacks, each in its own
+/// transaction, under an advisory lock; then makes sure the computer
+/// levels' accounts exist.
+fn migrate(client: &mut Client) -> Result<(), StoreError> {
+    let mut tx = client.transaction()?;
+    tx.execute("SELECT pg_advisory_xact_lock($1)", &[&MIGRATION_LOCK])?;
+    tx.batch_execute(
+        "CREATE TABLE IF NOT EXISTS schema_migrations (
+             version BIGINT PRIMARY KEY,
+             applied_at BIGINT NOT NULL
+         )",
+    )?;
+    let done: i64 = tx
+        .query_one(
+            "SELECT coalesce(max(version), 0) FROM schema_migrations",
+            &[],
+        )?
+        .get(0);
+    for (k, sql) in MIGRATIONS.iter().enumerate() {
+        let version = k as i64 + 1;
+        if version <= done {
+            continue;
+        }
+        tx.batch_execute(sql)?;
+        tx.execute(
+            "INSERT INTO schema_migrations (version, applied_at) VALUES ($1, $2)",
+            &[&version, &(now() as i64)],
+        )?;
+        tracing::info!(version, "applied a PostgreSQL migration");
+    }
+    let start = RatingSystem::default().start;
+    for name in crate::ratings::computer_accounts() {
+        tx.execute(
+            "INSERT INTO accounts (name_key, name, bot, created_at, rating, deviation, volatility)
+             VALUES (lower($1), $1, TRUE, $2, $3, $4, $5) ON CONFLICT DO NOTHING",
+            &[
+                &name,
+                &(now() as i64),
+                &start.rating,
+                &start.deviation,
+                &start.volatility,
+            ],
+        )?;
+    }
+    tx.commit()?;
+    Ok(())
+}
+
+impl PostgresStore {
+    /// Connects to the database at `url` (`postgres://user:password@host:port/db`
+    /// or `host=… port=… user=… dbname=…`), migrates its schema and starts
+    /// the writer.
+    pub fn connect(url: &str) -> Result<PostgresStore, StoreError> {
+        let mut config: ::postgres::Config = url.parse()?;
+        config.connect_timeout(CONNECT_TIMEOUT);
+        if config.get_application_name().is_none() {
+            config.application_name("chapaev-server");
+        }
+        let mut client = config.connect(NoTls)?;
+        migrate(&mut client)?;
+        let pool = r2d2::Pool::builder()
+            .max_size(POOL)
+            .min_idle(Some(1))
+            .connection_timeout(CONNECT_TIMEOUT)
+            .build(PostgresConnectionManager::new(config.clone(), NoTls))?;
+        let commit = GroupCommit::start(Writer {
+            config,
+            conn: Some(WriterConn::prepare(client)?),
+        })?;
+        Ok(PostgresStore { commit, pool })
+    }
+
+    fn conn(&self) -> Result<r2d2::PooledConnection<PostgresConnectionManager<NoTls>>, StoreError> {
+        Ok(self.pool.get()?)
+    }
+
+    /// The summaries of the matches `condition` (on `m`, with `$1` bound to
+    /// `param`) selects, most recently played first.
+    fn summaries_where(
+        &self,
+        condition: &str,
+        param: Option<&str>,
+        limit: usize,
+    ) -> Result<Vec<Summary>, StoreError> {
+        let rows = self.conn()?.query(
+            &format!(
+                "SELECT {SUMMARY_COLUMNS} FROM {SUMMARY_FROM} WHERE {condition}
+                 ORDER BY m.updated_at DESC, m.id COLLATE \"C\" LIMIT $2"
+            ),
+            &[&param, &(limit as i64)],
+        )?;
+        rows.iter().map(summary).collect()
+    }
+}
+
+impl Store for PostgresStore {
+    fn backend(&self) -> &'static str {
+        "postgresql"
+    }
+
+    fn create(&self, m: &StoredMatch) -> Result<(), StoreError> {
+        let t = now() as i64;
+        self.conn()?.execute(
+            "INSERT INTO matches (id, created_at, updated_at, config, seed, status, bot, turn_seconds,
+                                  first_name, first_token_hash, second_name, second_token_hash, rematch_of,
+                                  physics, first_account, second_account, rated)
+             VALUES ($1, $2, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14, $15, $16)",
+            &[
+                &m.id,
+                &t,
+                &serde_json::to_string(&m.config)?,
+                &(m.seed as i64),
+                &m.status.as_str(),
+                &m.bot,
+                &(m.turn_seconds as i64),
+                &m.seats[0].name,
+                &m.seats[0].token.map(|h| h.to_hex()),
+                &m.seats[1].name,
+                &m.seats[1].token.map(|h| h.to_hex()),
+                &m.rematch_of,
+                &i64::from(m.physics),
+                &m.seats[0].account,
+                &m.seats[1].account,
+                &m.rated,
+            ],
+        )?;
+        Ok(())
+    }
+
+    fn seat_second(
+        &self,
+        id: &str,
+        name: &str,
+        token: &TokenHash,
+        account: Option<&str>,
+    ) -> Result<(), StoreError> {
+        let n = self.conn()?.execute(
+            "UPDATE matches SET second_name = $2, second_token_hash = $3, second_account = $5,
+                                status = 'live', updated_at = $4
+             WHERE id = $1 AND second_token_hash IS NULL AND bot IS NULL",
+            &[&id, &name, &token.to_hex(), &(now() as i64), &account],
+        )?;
+        if n != 1 {
+            return Err(StoreError::Corrupt(format!(
+                "match {id} has no empty second seat"
+            )));
+        }
+        Ok(())
+    }
+
+    fn submit_move(
+        &self,
+        id: &str,
+        index: usize,
+        m: &RecordedMove,
+        after: &AfterMove<'_>,
+    ) -> Result<MoveWrite, StoreError> {
+        self.commit.submit(id, index, m, after)
+    }
+
+    fn get(&self, id: &str) -> Result<Option<StoredMatch>, StoreError> {
+        let row = self.conn()?.query_opt(
+            &format!("SELECT {MATCH_COLUMNS} FROM matches WHERE id = $1"),
+            &[&id],
+        )?;
+        row.as_ref().map(stored_match).transpose()
+    }
+
+    fn live(&self) -> Result<Vec<String>, StoreError> {
+        let rows = self.conn()?.query(
+            "SELECT id FROM matches WHERE status = 'live' ORDER BY updated_at DESC, id COLLATE \"C\"",
+            &[],
+        )?;
+        Ok(rows.iter().map(|r| r.get(0)).collect())
+    }
+
+    fn expire_open(
+        &self,
+        older_than: u64,
+        keep: &dyn Fn(&str) -> bool,
+    ) -> Result<Vec<String>, StoreError> {
+        let cutoff = now().saturating_sub(older_than) as i64;
+        let mut conn = self.conn()?;
+        let mut tx = conn.transaction()?;
+        let stale = tx.query(
+            "SELECT id FROM matches WHERE status = 'open' AND updated_at < $1 FOR UPDATE",
+            &[&cutoff],
+        )?;
+        let expired: Vec<String> = stale
+            .iter()
+            .map(|r| r.get::<_, String>(0))
+            .filter(|id| !keep(id))
+            .collect();
+        if !expired.is_empty() {
+            tx.execute("DELETE FROM moves WHERE match_id = ANY($1)", &[&expired])?;
+            tx.execute(
+                "DELETE FROM matches WHERE id = ANY($1) AND status = 'open'",
+                &[&expired],
+            )?;
+        }
+        tx.commit()?;
+        Ok(expired)
+    }
+
+    fn moves(&self, id: &str) -> Result<Vec<RecordedMove>, StoreError> {
+        let rows = self.conn()?.query(
+            "SELECT idx, body FROM moves WHERE match_id = $1 ORDER BY idx",
+            &[&id],
+        )?;
+        super::moves_in_order(id, rows.iter().map(|r| (r.get(0), r.get(1))).collect())
+    }
+
+    fn list(&self, status: Option<Status>, limit: usize) -> Result<Vec<Summary>, StoreError> {
+        self.summaries_where(
+            "$1::TEXT IS NULL OR m.status = $1",
+            status.map(Status::as_str),
+            limit,
+        )
+    }
+
+    fn summary(&self, id: &str) -> Result<Option<Summary>, StoreError> {
+        let row = self.conn()?.query_opt(
+            &format!("SELECT {SUMMARY_COLUMNS} FROM {SUMMARY_FROM} WHERE m.id = $1"),
+            &[&id],
+        )?;
+        row.as_ref().map(summary).transpose()
+    }
+
+    fn matches_of(&self, account: &str, limit: usize) -> Result<Vec<Summary>, StoreError> {
+        self.summaries_where(
+            "lower(m.first_account) = lower($1) OR lower(m.second_account) = lower($1)",
+            Some(account),
+            limit.min(MAX_LISTED),
+        )
+    }
+
+    fn insert_account(
+        &self,
+        name: &AccountName,
+        bot: bool,
+        start: Rating,
+        key: &TokenHash,
+    ) -> Result<bool, StoreError> {
+        let mut conn = self.conn()?;
+        let mut tx = conn.transaction()?;
+        let t = now() as i64;
+        let n = tx.execute(
+            "INSERT INTO accounts (name_key, name, bot, created_at, rating, deviation, volatility)
+             VALUES (lower($1), $1, $2, $3, $4, $5, $6) ON CONFLICT DO NOTHING",
+            &[
+                &name.as_str(),
+                &bot,
+                &t,
+                &start.rating,
+                &start.deviation,
+                &start.volatility,
+            ],
+        )?;
+        if n != 1 {
+            return Ok(false);
+        }
+        tx.execute(
+            "INSERT INTO account_keys (hash, account_key, created_at) VALUES ($1, lower($2), $3)",
+            &[&key.to_hex(), &name.as_str(), &t],
+        )?;
+        tx.commit()?;
+        Ok(true)
+    }
+
+    fn account(&self, name: &str) -> Result<Option<Profile>, StoreError> {
+        let row = self.conn()?.query_opt(
+            &format!("SELECT {PROFILE_COLUMNS} FROM accounts WHERE name_key = lower($1)"),
+            &[&name],
+        )?;
+        Ok(row.as_ref().map(profile))
+    }
+
+    fn key(&self, hash: &TokenHash) -> Result<Option<(String, String)>, StoreError> {
+        let row = self.conn()?.query_opt(
+            "SELECT k.hash, a.name FROM account_keys k JOIN accounts a ON a.name_key = k.account_key
+             WHERE k.hash = $1 AND k.revoked_at IS NULL",
+            &[&hash.to_hex()],
+        )?;
+        Ok(row.map(|r| (r.get(0), r.get(1))))
+    }
+
+    fn insert_key(&self, account: &str, hash: &TokenHash) -> Result<(), StoreError> {
+        self.conn()?.execute(
+            "INSERT INTO account_keys (hash, account_key, created_at) VALUES ($1, lower($2), $3)",
+            &[&hash.to_hex(), &account, &(now() as i64)],
+        )?;
+        Ok(())
+    }
+
+    fn revoke(&self, hash: &TokenHash) -> Result<bool, StoreError> {
+        let n = self.conn()?.execute(
+            "UPDATE account_keys SET revoked_at = $2 WHERE hash = $1 AND revoked_at IS NULL",
+            &[&hash.to_hex(), &(now() as i64)],
+        )?;
+        Ok(n == 1)
+    }
+
+    fn put_password(&self, account: &str, hash: &str) -> Result<(), StoreError> {
+        self.conn()?.execute(
+            "INSERT INTO account_passwords (account_key, hash, set_at) VALUES (lower($1), $2, $3)
+             ON CONFLICT (account_key) DO UPDATE SET hash = $2, set_at = $3",
+            &[&account, &hash, &(now() as i64)],
+        )?;
+        Ok(())
+    }
+
+    fn password(&self, name: &str) -> Result<Option<(String, String)>, StoreError> {
+        let row = self.conn()?.query_opt(
+            "SELECT a.name, p.hash FROM account_passwords p
+             JOIN accounts a ON a.name_key = p.account_key WHERE p.account_key = lower($1)",
+            &[&name],
+        )?;
+        Ok(row.map(|r| (r.get(0), r.get(1))))
+    }
+
+    fn leaderboard(&self, bots: bool, limit: usize) -> Result<Vec<Profile>, StoreError> {
+        let rows = self.conn()?.query(
+            &format!(
+                "SELECT {PROFILE_COLUMNS} FROM accounts WHERE bot = $1
+                 ORDER BY deviation > $2, rating DESC, name_key COLLATE \"C\" LIMIT $3"
+            ),
+            &[
+                &bots,
+                &RatingSystem::default().provisional_above,
+                &(limit.min(MAX_LEADERBOARD) as i64),
+            ],
+        )?;
+        Ok(rows.iter().map(profile).collect())
+    }
+
+    fn rating_history(&self, account: &str, limit: usize) -> Result<Vec<RatingPoint>, StoreError> {
+        let rows = self.conn()?.query(
+            "SELECT match_id, at, rating, deviation FROM (
+                 SELECT match_id, at, rating, deviation, seq FROM rating_history
+                 WHERE account_key = lower($1) ORDER BY at DESC, seq DESC LIMIT $2
+             ) latest ORDER BY at, seq",
+            &[&account, &(limit.min(MAX_LISTED) as i64)],
+        )?;
+        Ok(rows
+            .iter()
+            .map(|r| RatingPoint::from_row(r.get(0), r.get(1), r.get(2), r.get(3)))
+            .collect())
+    }
+
+    fn render_metrics(&self, out: &mut String) {
+        self.commit.render_metrics(out);
+    }
+}
+
+/// The writer's connection and the two statements every move runs.
+struct WriterConn {
+    client: Client,
+    insert_move: Statement,
+    update_match: Statement,
+}
+
+impl WriterConn {
+    fn prepare(mut client: Client) -> Result<WriterConn, StoreError> {
+        let insert_move =
+            client.prepare("INSERT INTO moves (match_id, idx, body) VALUES ($1, $2, $3)")?;
+        let update_match = client.prepare(
+            "UPDATE matches SET status = $2, shots = $3, result = $4, updated_at = $5 WHERE id = $1",
+        )?;
+        Ok(WriterConn {
+            client,
+            insert_move,
+            update_match,
+        })
+    }
+}
+
+/// The group commit's backend: a connection of its own, made again after
+/// it breaks.
+struct Writer {
+    config: ::postgres::Config,
+    conn: Option<WriterConn>,
+}
+
+impl Writer {
+    /// The connection, connecting first if there is none or it broke.
+    fn conn(&mut self) -> Result<&mut WriterConn, StoreError> {
+        if self.conn.as_ref().is_some_and(|c| c.client.is_closed()) {
+            self.conn = None;
+        }
+        if self.conn.is_none() {
+            let client = self.config.connect(NoTls)?;
+            self.conn = Some(WriterConn::prepare(client)?);
+        }
+        self.conn
+            .as_mut()
+            .ok_or_else(|| StoreError::GroupCommit("no connection".into()))
+    }
+
+    fn try_write(
+        &mut self,
+        batch: &[QueuedMove],
+    ) -> Result<Vec<Result<(), StoreError>>, StoreError> {
+        let conn = self.conn()?;
+        let mut tx = conn.client.transaction()?;
+        let mut results = Vec::with_capacity(batch.len());
+        for m in batch {
+            results.push(write_one(&mut tx, &conn.insert_move, &conn.update_match, m));
+        }
+        tx.commit()?;
+        Ok(results)
+    }
+}
+
+impl BatchWriter for Writer {
+    fn write(&mut self, batch: &[QueuedMove]) -> Vec<Result<(), StoreError>> {
+        match self.try_write(batch) {
+            Ok(results) => results,
+            Err(e) => {
+                // The next batch starts from a fresh connection.
+                self.conn = None;
+                tracing::warn!(error = %e, moves = batch.len(), "a group commit failed");
+                batch
+                    .iter()
+                    .map(|_| Err(StoreError::GroupCommit(e.to_string())))
+                    .collect()
+            }
+        }
+    }
+}
+
+/// One move and its match row (and the ratings, for a rated match's last
+/// move), in a savepoint: undone alone if anything fails.
+fn write_one(
+    tx: &mut ::postgres::Transaction<'_>,
+    insert_move: &Statement,
+    update_match: &Statement,
+    m: &QueuedMove,
+) -> Result<(), StoreError> {
+    let mut sp = tx.savepoint("move")?;
+    sp.execute(insert_move, &[&m.id, &m.index, &m.body])?;
+    let n = sp.execute(
+        update_match,
+        &[&m.id, &m.status, &m.shots, &m.result, &(now() as i64)],
+    )?;
+    if n != 1 {
+        // Dropping the savepoint unfinished rolls it back.
+        return Err(StoreError::Corrupt(format!("no match {}", m.id)));
+    }
+    if let Some(score) = m.score {
+        rate_finished(&mut sp, &m.id, score)?;
+    }
+    sp.commit()?;
+    Ok(())
+}
+
+/// An account's rating as stored.
+fn rating_of(conn: &mut impl GenericClient, account: &str) -> Result<Rating, StoreError> {
+    let row = conn.query_one(
+        "SELECT rating, deviation, volatility FROM accounts WHERE name_key = lower($1)",
+        &[&account],
+    )?;
+    Rating::new(row.get(0), row.get(1), row.get(2))
+        .map_err(|e| StoreError::Corrupt(format!("account {account}: {e}")))
+}
+
+/// Rates match `id`, just finished with the first seat's `score`, in the
+/// caller's transaction ([`crate::ratings`] says when and how).
+fn rate_finished(conn: &mut impl GenericClient, id: &str, score: Score) -> Result<(), StoreError> {
+    let Some(row) = conn.query_opt(
+        "SELECT rated, first_account, second_account FROM matches WHERE id = $1",
+        &[&id],
+    )?
+    else {
+        return Ok(());
+    };
+    let (rated, first, second): (bool, Option<String>, Option<String>) =
+        (row.get(0), row.get(1), row.get(2));
+    let (true, Some(first), Some(second)) = (rated, first, second) else {
+        return Ok(());
+    };
+    let done: i64 = conn
+        .query_one(
+            "SELECT count(*) FROM rating_history WHERE match_id = $1",
+            &[&id],
+        )?
+        .get(0);
+    if done > 0 {
+        return Ok(());
+    }
+    let (a, b) = RatingSystem::default().after_match(
+        rating_of(conn, &first)?,
+        rating_of(conn, &second)?,
+        score,
+    );
+    let at = now() as i64;
+    for (account, r) in [(&first, a), (&second, b)] {
+        conn.execute(
+            "UPDATE accounts SET rating = $2, deviation = $3, volatility = $4, games = games + 1
+             WHERE name_key = lower($1)",
+            &[account, &r.rating, &r.deviation, &r.volatility],
+        )?;
+        conn.execute(
+            "INSERT INTO rating_history (account_key, match_id, at, rating, deviation, volatility)
+             VALUES (lower($1), $2, $3, $4, $5, $6)",
+            &[account, &id, &at, &r.rating, &r.deviation, &r.volatility],
+        )?;
+    }
+    Ok(())
+}

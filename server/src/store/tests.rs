@@ -1,0 +1,484 @@
+//! The store's promises, checked on both backends: every test here runs
+//! once on SQLite (in memory) and once on PostgreSQL (a fresh database on
+//! a local server, [`crate::local_postgres`]; skipped with a note where the
+//! machine has no PostgreSQL, unless `CHAPAEV_REQUIRE_POSTGRES` is set).
+//! What only SQLite has (its log file, migrations from older files, read
+//! connections) is tested in [`super::sqlite`].
+
+use super::*;
+use crate::accounts::{AccountError, AccountName};
+use crate::ratings::computer_account;
+use game::protocol::ErrorCode;
+use game::token::SeatToken;
+use game::{Game, MatchResult, PieceId, Seat, Shot, Side, WinReason};
+use glam::DVec2;
+
+/// A store under test, a way to run a plain SQL statement on it (the
+/// same text on both backends) to set up what the API cannot, and (where
+/// the database outlives the store) a way to open it again.
+pub(super) struct Backend {
+    store: Arc<dyn Store>,
+    raw: Box<dyn Fn(&str)>,
+    reopen: Option<Box<dyn Fn() -> Arc<dyn Store>>>,
+}
+
+fn sqlite() -> Option<Backend> {
+    let store = Arc::new(SqliteStore::in_memory().unwrap());
+    let conn = store.clone();
+    Some(Backend {
+        store,
+        raw: Box::new(move |sql| {
+            conn.lock().unwrap().execute_batch(sql).unwrap();
+        }),
+        // In memory: SQLite's reopening is tested on disk, in its module.
+        reopen: None,
+    })
+}
+
+fn postgres(test: &str) -> Option<Backend> {
+    let url = crate::local_postgres::shared_database(test)?;
+    let store = Arc::new(PostgresStore::connect(&url).unwrap());
+    let again = url.clone();
+    Some(Backend {
+        store,
+        raw: Box::new(move |sql| {
+            let mut c = ::postgres::Client::connect(&url, ::postgres::NoTls).unwrap();
+            c.batch_execute(sql).unwrap();
+        }),
+        reopen: Some(Box::new(move || {
+            Arc::new(PostgresStore::connect(&again).unwrap())
+        })),
+    })
+}
+
+/// Each named test, on each backend.
+macro_rules! on_both_backends {
+    ($($test:ident),* $(,)?) => {
+        mod on_sqlite {
+            $(#[test] fn $test() { super::$test(super::sqlite().unwrap()) })*
+        }
+        mod on_postgres {
+            $(#[test] fn $test() {
+                if let Some(b) = super::postgres(stringify!($test)) { super::$test(b) }
+            })*
+        }
+    };
+}
+
+on_both_backends!(
+    a_match_and_its_moves_come_back_as_a_replayable_record,
+    moves_written_at_once_from_many_threads_all_land_and_a_bad_one_fails_alone,
+    a_move_index_is_written_once_and_a_failed_move_changes_nothing,
+    the_second_seat_is_taken_once_and_listing_filters_by_status,
+    open_matches_left_alone_expire_and_live_ones_are_resumed_newest_first,
+    the_store_survives_reopening,
+    group_commits_are_counted_and_timed_in_the_metrics,
+    a_new_account_starts_provisional_at_1500_and_its_key_proves_it,
+    a_name_taken_in_any_case_is_refused_and_changes_nothing,
+    a_wrong_or_revoked_key_proves_nothing,
+    the_leaderboard_lists_one_kind_established_ratings_first,
+    a_person_may_add_a_password_and_sign_in_with_it_for_a_new_key,
+    the_last_move_of_a_rated_match_moves_both_ratings_once,
+    a_casual_match_or_a_seat_without_an_account_rates_nothing,
+    the_computer_levels_have_bot_accounts_nobody_can_register,
+);
+
+pub(super) fn stored(id: &str) -> StoredMatch {
+    StoredMatch {
+        id: id.into(),
+        created_at: 0,
+        config: Config::default(),
+        seed: u64::MAX - 1,
+        physics: game::PHYSICS_VERSION,
+        status: Status::Open,
+        bot: None,
+        turn_seconds: 60,
+        seats: [
+            StoredSeat {
+                name: Some("Petka".into()),
+                token: Some(TokenHash::of("t1")),
+                account: None,
+            },
+            StoredSeat::default(),
+        ],
+        rematch_of: None,
+        rated: false,
+    }
+}
+
+pub(super) const LIVE: AfterMove<'static> = AfterMove {
+    status: Status::Live,
+    shots: 0,
+    result: None,
+    winner: None,
+};
+
+fn a_match_and_its_moves_come_back_as_a_replayable_record(b: Backend) {
+    let store = b.store;
+    store.create(&stored("m1")).unwrap();
+    store
+        .seat_second("m1", "Anka", &TokenHash::of("t2"), None)
+        .unwrap();
+    let mut g = Game::new(Config::default(), u64::MAX - 1).unwrap();
+    let piece = PieceId::new(Side::White, 4).unwrap();
+    g.play(
+        Side::White,
+        Shot::new(piece, DVec2::new(0.0, 2.0), g.config()).unwrap(),
+    )
+    .unwrap();
+    let after = AfterMove { shots: 1, ..LIVE };
+    store
+        .append_move("m1", 0, &g.record().moves[0], &after)
+        .unwrap();
+    let (m, record) = store.load("m1").unwrap().unwrap();
+    assert_eq!(m.seed, u64::MAX - 1);
+    assert_eq!(m.status, Status::Live);
+    assert_eq!(m.seats[1].token, Some(TokenHash::of("t2")));
+    assert_eq!(&record, g.record());
+    let replay = game::Replay::new(record).unwrap();
+    assert_eq!(replay.game().view(), g.view());
+    assert_eq!(store.live().unwrap(), vec!["m1".to_string()]);
+}
+
+fn moves_written_at_once_from_many_threads_all_land_and_a_bad_one_fails_alone(b: Backend) {
+    let store = b.store;
+    let ids: Vec<String> = (0..6).map(|k| format!("m{k}")).collect();
+    for id in &ids {
+        store.create(&stored(id)).unwrap();
+    }
+    let threads: Vec<_> = ids
+        .iter()
+        .cloned()
+        .chain(["nope".to_string()])
+        .map(|id| {
+            let store = store.clone();
+            std::thread::spawn(move || {
+                (0..40)
+                    .map(|k| {
+                        let after = AfterMove {
+                            shots: k + 1,
+                            ..LIVE
+                        };
+                        let pass = RecordedMove::Pass { side: Side::White };
+                        store.append_move(&id, k as usize, &pass, &after).is_ok()
+                    })
+                    .collect::<Vec<bool>>()
+            })
+        })
+        .collect();
+    let results: Vec<Vec<bool>> = threads.into_iter().map(|t| t.join().unwrap()).collect();
+    for (id, ok) in ids.iter().zip(&results) {
+        assert!(ok.iter().all(|&b| b), "{id}: every move is acknowledged");
+        assert_eq!(
+            store.moves(id).unwrap().len(),
+            40,
+            "{id}: every move is stored"
+        );
+        assert_eq!(store.summary(id).unwrap().unwrap().shots, 40);
+    }
+    assert!(
+        results[6].iter().all(|&b| !b),
+        "moves of an unknown match fail"
+    );
+    assert!(store.moves("nope").unwrap().is_empty());
+}
+
+fn a_move_index_is_written_once_and_a_failed_move_changes_nothing(b: Backend) {
+    let store = b.store;
+    store.create(&stored("m1")).unwrap();
+    let resign = RecordedMove::Resign { side: Side::White };
+    store.append_move("m1", 0, &resign, &LIVE).unwrap();
+    assert!(store.append_move("m1", 0, &resign, &LIVE).is_err());
+    // An unknown match: the move insert fails on the foreign key, nothing is written.
+    assert!(store.append_move("nope", 0, &resign, &LIVE).is_err());
+    assert!(store.moves("nope").unwrap().is_empty());
+    assert_eq!(store.moves("m1").unwrap(), vec![resign]);
+}
+
+fn the_second_seat_is_taken_once_and_listing_filters_by_status(b: Backend) {
+    let store = b.store;
+    store.create(&stored("a")).unwrap();
+    store.create(&stored("b")).unwrap();
+    store
+        .seat_second("a", "x", &TokenHash::of("t"), None)
+        .unwrap();
+    assert!(store
+        .seat_second("a", "y", &TokenHash::of("u"), None)
+        .is_err());
+    let open = store.list(Some(Status::Open), 10).unwrap();
+    assert_eq!(open.len(), 1);
+    assert_eq!(open[0].match_id, "b");
+    assert_eq!(store.list(None, 10).unwrap().len(), 2);
+    assert_eq!(
+        store.summary("a").unwrap().unwrap().second.as_deref(),
+        Some("x")
+    );
+    assert!(store.summary("zz").unwrap().is_none());
+}
+
+fn open_matches_left_alone_expire_and_live_ones_are_resumed_newest_first(b: Backend) {
+    let store = b.store;
+    for id in ["old-open", "waited-for", "live-a", "live-b", "new-open"] {
+        store.create(&stored(id)).unwrap();
+    }
+    for id in ["live-a", "live-b"] {
+        store
+            .seat_second(id, "Anka", &TokenHash::of("t2"), None)
+            .unwrap();
+    }
+    for (id, at) in [
+        ("old-open", 0),
+        ("waited-for", 0),
+        ("live-a", 5),
+        ("live-b", 9),
+    ] {
+        (b.raw)(&format!(
+            "UPDATE matches SET updated_at = {at} WHERE id = '{id}'"
+        ));
+    }
+    let expired = store
+        .expire_open(3600, &|id: &str| id == "waited-for")
+        .unwrap();
+    assert_eq!(expired, ["old-open"]);
+    assert!(store.get("old-open").unwrap().is_none());
+    for kept in ["waited-for", "new-open", "live-a"] {
+        assert!(store.get(kept).unwrap().is_some(), "{kept}");
+    }
+    // Live matches, however old, never expire, and resume newest first.
+    assert_eq!(store.live().unwrap(), ["live-b", "live-a"]);
+}
+
+fn the_store_survives_reopening(b: Backend) {
+    b.store.create(&stored("m")).unwrap();
+    let (_, key) = b
+        .store
+        .create_account(&AccountName::parse("Anka").unwrap(), false)
+        .unwrap();
+    b.store
+        .append_move("m", 0, &RecordedMove::Pass { side: Side::White }, &LIVE)
+        .unwrap();
+    // A second store on the same database (as a restarted server, or
+    // another node) sees everything, and migrating again changes nothing.
+    let Some(reopen) = b.reopen else {
+        return;
+    };
+    let again = reopen();
+    assert_eq!(
+        again.get("m").unwrap().unwrap().seats[0].name.as_deref(),
+        Some("Petka")
+    );
+    assert_eq!(again.moves("m").unwrap().len(), 1);
+    assert_eq!(again.account_of_key(&key).unwrap().name, "Anka");
+}
+
+fn group_commits_are_counted_and_timed_in_the_metrics(b: Backend) {
+    let store = b.store;
+    store.create(&stored("m")).unwrap();
+    for k in 0..3 {
+        let pass = RecordedMove::Pass { side: Side::White };
+        store.append_move("m", k, &pass, &LIVE).unwrap();
+    }
+    let mut text = String::new();
+    store.render_metrics(&mut text);
+    assert!(
+        text.contains("chapaev_store_moves_committed_total 3\n"),
+        "{text}"
+    );
+    // Each append waited for its own commit.
+    assert!(
+        text.contains("chapaev_store_commit_seconds_count 3\n"),
+        "{text}"
+    );
+    assert!(text.contains("chapaev_store_commit_seconds_bucket{le=\"+Inf\"} 3\n"));
+}
+
+fn name(s: &str) -> AccountName {
+    AccountName::parse(s).unwrap()
+}
+
+fn code(e: AccountError) -> ErrorCode {
+    match e {
+        AccountError::Refused(r) => r.code,
+        other => panic!("not a refusal: {other}"),
+    }
+}
+
+fn a_new_account_starts_provisional_at_1500_and_its_key_proves_it(b: Backend) {
+    let store = b.store;
+    let (profile, key) = store.create_account(&name("Anka"), false).unwrap();
+    assert_eq!(
+        (profile.rating, profile.deviation, profile.provisional),
+        (1500, 500, true)
+    );
+    assert_eq!(store.account_of_key(&key).unwrap().name, "Anka");
+    assert_eq!(store.account("anka").unwrap().unwrap().name, "Anka");
+    assert!(store.account("Petka").unwrap().is_none());
+}
+
+fn a_name_taken_in_any_case_is_refused_and_changes_nothing(b: Backend) {
+    let store = b.store;
+    let (_, key) = store.create_account(&name("Anka"), false).unwrap();
+    let err = store.create_account(&name("ANKA"), true).unwrap_err();
+    assert_eq!(code(err), ErrorCode::NameTaken);
+    let anka = store.account_of_key(&key).unwrap();
+    assert!(!anka.bot);
+    assert!(store
+        .leaderboard(true, 10)
+        .unwrap()
+        .iter()
+        .all(|p| p.name.starts_with(crate::ratings::COMPUTER_PREFIX)));
+}
+
+fn a_wrong_or_revoked_key_proves_nothing(b: Backend) {
+    let store = b.store;
+    let (_, key) = store.create_account(&name("Furmanov"), true).unwrap();
+    let wrong = SeatToken::new("0".repeat(32));
+    assert_eq!(
+        code(store.account_of_key(&wrong).unwrap_err()),
+        ErrorCode::BadKey
+    );
+    let (_, second) = store.add_key(&key).unwrap();
+    store.revoke_key(&key).unwrap();
+    assert_eq!(
+        code(store.account_of_key(&key).unwrap_err()),
+        ErrorCode::BadKey
+    );
+    assert_eq!(code(store.revoke_key(&key).unwrap_err()), ErrorCode::BadKey);
+    assert_eq!(store.account_of_key(&second).unwrap().name, "Furmanov");
+}
+
+fn the_leaderboard_lists_one_kind_established_ratings_first(b: Backend) {
+    let store = b.store;
+    for (n, bot) in [("greedy", true), ("search", true), ("Anka", false)] {
+        store.create_account(&name(n), bot).unwrap();
+    }
+    (b.raw)("UPDATE accounts SET rating = 1620, deviation = 80 WHERE name = 'search'");
+    (b.raw)("UPDATE accounts SET rating = 1700 WHERE name = 'greedy'");
+    let bots: Vec<(String, bool)> = store
+        .leaderboard(true, 10)
+        .unwrap()
+        .into_iter()
+        .filter(|p| !p.name.starts_with(crate::ratings::COMPUTER_PREFIX))
+        .map(|p| (p.name, p.provisional))
+        .collect();
+    assert_eq!(
+        bots,
+        [("search".to_string(), false), ("greedy".to_string(), true)]
+    );
+    assert_eq!(store.leaderboard(false, 10).unwrap().len(), 1);
+}
+
+fn a_person_may_add_a_password_and_sign_in_with_it_for_a_new_key(b: Backend) {
+    let store = b.store;
+    let (_, key) = store.create_account(&name("Anka"), false).unwrap();
+    let short = store.set_password(&key, "short").unwrap_err();
+    assert_eq!(code(short), ErrorCode::BadPassword);
+    store.set_password(&key, "machine-gun cart").unwrap();
+    let (_, stored) = store.password("ANKA").unwrap().unwrap();
+    assert!(stored.starts_with("$argon2id$") && !stored.contains("machine-gun"));
+    let (profile, new_key) = store.sign_in("anka", "machine-gun cart").unwrap();
+    assert_eq!(profile.name, "Anka");
+    assert_eq!(store.account_of_key(&new_key).unwrap().name, "Anka");
+    for (who, password) in [("Anka", "machine-gun car"), ("Petka", "machine-gun cart")] {
+        let e = store.sign_in(who, password).unwrap_err();
+        assert_eq!(code(e), ErrorCode::BadPassword, "{who}");
+    }
+    let (_, bot) = store.create_account(&name("Furmanov"), true).unwrap();
+    let e = store.set_password(&bot, "machine-gun cart").unwrap_err();
+    assert_eq!(code(e), ErrorCode::BadMessage);
+}
+
+fn rated(id: &str, accounts: [&str; 2]) -> StoredMatch {
+    StoredMatch {
+        status: Status::Live,
+        seats: accounts.map(|a| StoredSeat {
+            name: Some(a.into()),
+            token: None,
+            account: Some(a.into()),
+        }),
+        rated: true,
+        ..stored(id)
+    }
+}
+
+fn resign_first(store: &dyn Store, id: &str, index: usize) -> Result<(), StoreError> {
+    let result = MatchResult::Won {
+        side: Side::Black,
+        reason: WinReason::Resignation,
+    };
+    store.append_move(
+        id,
+        index,
+        &RecordedMove::Resign { side: Side::White },
+        &AfterMove {
+            status: Status::Finished,
+            shots: 0,
+            result: Some(&result),
+            winner: Some(Seat::Second),
+        },
+    )
+}
+
+fn account(store: &dyn Store, name: &str) -> crate::accounts::Profile {
+    store.account(name).unwrap().unwrap()
+}
+
+fn the_last_move_of_a_rated_match_moves_both_ratings_once(b: Backend) {
+    let store = &*b.store;
+    for n in ["Anka", "Petka"] {
+        store.create_account(&name(n), false).unwrap();
+    }
+    store.create(&rated("m1", ["Anka", "Petka"])).unwrap();
+    resign_first(store, "m1", 0).unwrap();
+    let (anka, petka) = (account(store, "Anka"), account(store, "Petka"));
+    assert!(
+        anka.rating < 1500 && petka.rating > 1500,
+        "{anka:?} {petka:?}"
+    );
+    assert_eq!(anka.rating + petka.rating, 3000, "equals exchange points");
+    assert_eq!((anka.games, petka.games), (1, 1));
+    // The same last move again is refused (its index is taken) and
+    // rates nothing.
+    assert!(resign_first(store, "m1", 0).is_err());
+    assert_eq!(account(store, "Anka"), anka);
+    let history = store.rating_history("anka", 10).unwrap();
+    assert_eq!(history.len(), 1);
+    assert_eq!(
+        (history[0].match_id.as_str(), history[0].rating),
+        ("m1", anka.rating)
+    );
+    let played = store.matches_of("PETKA", 10).unwrap();
+    assert_eq!(played.len(), 1);
+    assert!(played[0].rated);
+    assert_eq!(played[0].second_rating.unwrap().rating, petka.rating);
+}
+
+fn a_casual_match_or_a_seat_without_an_account_rates_nothing(b: Backend) {
+    let store = &*b.store;
+    for n in ["Anka", "Petka"] {
+        store.create_account(&name(n), false).unwrap();
+    }
+    let mut casual = rated("m1", ["Anka", "Petka"]);
+    casual.rated = false;
+    store.create(&casual).unwrap();
+    resign_first(store, "m1", 0).unwrap();
+    let mut anonymous = rated("m2", ["Anka", "Petka"]);
+    anonymous.seats[1].account = None;
+    store.create(&anonymous).unwrap();
+    resign_first(store, "m2", 0).unwrap();
+    for n in ["Anka", "Petka"] {
+        let a = account(store, n);
+        assert_eq!((a.rating, a.games), (1500, 0), "{n}");
+    }
+    assert!(store.rating_history("Anka", 10).unwrap().is_empty());
+}
+
+fn the_computer_levels_have_bot_accounts_nobody_can_register(b: Backend) {
+    for level in bots::Level::ALL {
+        let a = account(&*b.store, &computer_account(level));
+        assert!(a.bot);
+        assert_eq!(a.rating, 1500);
+    }
+    let taken = AccountName::parse("Computer-Hard").unwrap_err();
+    assert_eq!(taken.code, ErrorCode::BadName);
+}
