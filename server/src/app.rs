@@ -21,6 +21,8 @@ pub enum AppError {
     Log(String, String),
     #[error(transparent)]
     Store(#[from] StoreError),
+    #[error("cannot join the cluster: {0}")]
+    Cluster(#[from] crate::cluster::ClusterError),
     #[error("cannot listen on {addr}: {source}")]
     Bind {
         addr: String,
@@ -72,7 +74,23 @@ pub fn run(config: Config) -> Result<(), AppError> {
         config.limits(),
         game_rt.handle().clone(),
     );
-    // Live matches first and all of them; open ones wait in the store.
+    if let (Some(node), Some(db), Some(redis)) = (
+        config.cluster_node(),
+        &config.database_url,
+        &config.redis_url,
+    ) {
+        let lease = Duration::from_secs(config.lease_seconds);
+        let cluster = crate::cluster::Cluster::connect(node, db, redis, lease, game_rt.handle())?;
+        hub.set_cluster(cluster.clone());
+        cluster.start(&hub, game_rt.handle());
+        info!(
+            node = cluster.node(),
+            lease_seconds = config.lease_seconds,
+            "joined the cluster"
+        );
+    }
+    // Live matches first and all of them (on a node of a cluster, those
+    // no other node plays); open ones wait in the store.
     let resumed = game_rt.block_on(hub.resume_all())?;
     info!(
         resumed,

@@ -28,6 +28,23 @@ pub struct Config {
     #[arg(long, env = "CHAPAEV_DATABASE_URL")]
     pub database_url: Option<String>,
 
+    /// Run as one node of a cluster (`redis://host:port`): nodes share the
+    /// PostgreSQL store (`--database-url`, required), each live match is
+    /// played on the node holding its lease, and Redis relays the messages
+    /// of clients connected to other nodes.
+    #[arg(long, env = "CHAPAEV_REDIS_URL", requires = "database_url")]
+    pub redis_url: Option<String>,
+
+    /// This node's name in the cluster (unique among live nodes; default:
+    /// the host's name and the process id).
+    #[arg(long, env = "CHAPAEV_NODE_ID", value_parser = parse_node_id)]
+    pub node_id: Option<String>,
+
+    /// Seconds a node's lease on a match lasts unrenewed: after a node
+    /// dies, its matches move to another node within about this long.
+    #[arg(long, env = "CHAPAEV_LEASE_SECONDS", default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..=600))]
+    pub lease_seconds: u64,
+
     /// Log filter in tracing's EnvFilter syntax, e.g. `info` or `server=debug,warn`.
     #[arg(long, env = "CHAPAEV_LOG", default_value = "info")]
     pub log: String,
@@ -203,7 +220,40 @@ pub struct Limits {
     pub write_timeout: Duration,
 }
 
+/// A node id: 1 to 64 letters, digits, `-`, `_` or `.`.
+fn parse_node_id(s: &str) -> Result<String, String> {
+    let ok = (1..=64).contains(&s.len())
+        && s.bytes()
+            .all(|b| b.is_ascii_alphanumeric() || b"-_.".contains(&b));
+    if ok {
+        Ok(s.to_string())
+    } else {
+        Err("a node id is 1 to 64 letters, digits, '-', '_' or '.'".into())
+    }
+}
+
 impl Config {
+    /// This node's id when it runs in a cluster (`--redis-url`); `None`
+    /// for a server on its own.
+    pub fn cluster_node(&self) -> Option<String> {
+        self.redis_url.as_ref()?;
+        Some(self.node_id.clone().unwrap_or_else(|| {
+            let host = std::fs::read_to_string("/proc/sys/kernel/hostname")
+                .map(|h| h.trim().to_string())
+                .unwrap_or_default();
+            let host: String = host
+                .chars()
+                .filter(|c| c.is_ascii_alphanumeric() || *c == '-')
+                .take(40)
+                .collect();
+            format!(
+                "{}-{}",
+                if host.is_empty() { "node" } else { &host },
+                std::process::id()
+            )
+        }))
+    }
+
     /// The limits part of the configuration.
     /// The lobby's settings.
     pub fn lobby_limits(&self) -> crate::lobby::LobbyLimits {

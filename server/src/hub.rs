@@ -11,6 +11,7 @@
 //! it writes anything, the room takes the slot over under the same lock,
 //! and a creation that fails gives its slot back ([`Slot`]).
 
+use crate::cluster::{Cluster, Lease};
 use crate::config::Limits;
 use crate::metrics::Metrics;
 use crate::refusal::Refusal;
@@ -33,6 +34,15 @@ use tokio::runtime::Handle;
 use tokio::sync::{mpsc, oneshot};
 use tracing::{error, info, warn};
 
+/// Whether a node of a cluster may relay to a match another node plays.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Reach {
+    /// Only a match this node plays (taking its lease if it is free).
+    Own,
+    /// Or a proxy to the node that plays it.
+    OwnOrRelay,
+}
+
 /// Commands queued for one room before senders wait.
 const ROOM_QUEUE: usize = 1024;
 
@@ -41,6 +51,9 @@ const ROOM_QUEUE: usize = 1024;
 pub struct RoomHandle {
     pub tx: mpsc::Sender<Command>,
     generation: u64,
+    /// A room of this node's (`false`: a proxy relaying to the node that
+    /// plays the match, [`crate::cluster`]).
+    owned: bool,
 }
 
 /// Who plays the second seat of a new match.
@@ -131,6 +144,8 @@ struct Inner {
     closing: AtomicBool,
     /// Told when a match ends (the account event streams).
     listener: std::sync::OnceLock<Arc<dyn MatchListener>>,
+    /// The cluster this node belongs to, if any.
+    cluster: std::sync::OnceLock<Arc<Cluster>>,
 }
 
 /// The registry of rooms (cheap to clone).
@@ -168,12 +183,23 @@ impl Hub {
                 next_generation: AtomicU64::new(1),
                 closing: AtomicBool::new(false),
                 listener: std::sync::OnceLock::new(),
+                cluster: std::sync::OnceLock::new(),
             }),
         }
     }
 
     pub fn store(&self) -> &Arc<dyn Store> {
         &self.inner.store
+    }
+
+    /// Makes this hub a node of `cluster` (once, before it serves): it
+    /// plays only the matches whose lease it holds and relays the others.
+    pub fn set_cluster(&self, cluster: Arc<Cluster>) {
+        let _ = self.inner.cluster.set(cluster);
+    }
+
+    fn cluster(&self) -> Option<&Arc<Cluster>> {
+        self.inner.cluster.get()
     }
 
     /// Sets who hears of matches ending (once; later calls are ignored).
@@ -233,8 +259,42 @@ impl Hub {
     /// Forgets a room that has stopped (unless a newer one took its id).
     pub fn remove(&self, id: &str, generation: u64) {
         let mut rooms = self.rooms();
-        if rooms.get(id).is_some_and(|h| h.generation == generation) {
-            rooms.remove(id);
+        if rooms.get(id).is_none_or(|h| h.generation != generation) {
+            return;
+        }
+        let removed = rooms.remove(id);
+        drop(rooms);
+        // A node of a cluster gives the lease up: another node may play
+        // the match now (after a shutdown), or nobody needs to (it ended).
+        if let (Some(cluster), Some(true)) = (self.cluster(), removed.map(|h| h.owned)) {
+            let (cluster, id) = (cluster.clone(), id.to_string());
+            if !self.inner.closing.load(Ordering::Relaxed) {
+                self.inner.rt.spawn_blocking(move || {
+                    if let Err(e) = cluster.release(&id) {
+                        warn!(match_id = %id, error = %e, "giving a lease up failed; it expires");
+                    }
+                });
+            }
+        }
+    }
+
+    /// The ids of the matches this node plays (not those it relays).
+    pub fn owned_matches(&self) -> Vec<String> {
+        self.rooms()
+            .iter()
+            .filter(|(_, h)| h.owned)
+            .map(|(id, _)| id.clone())
+            .collect()
+    }
+
+    /// Stops the room of `id` (its lease is lost): it finishes the command
+    /// in hand, and its connections end (their clients reconnect).
+    pub async fn stop_room(&self, id: &str) {
+        let handle = self.rooms().get(id).cloned();
+        if let Some(h) = handle {
+            let (done, _) = oneshot::channel();
+            let _ = h.tx.send(Command::Shutdown { done }).await;
+            self.remove(id, h.generation);
         }
     }
 
@@ -301,7 +361,11 @@ impl Hub {
         let generation = self.inner.next_generation.fetch_add(1, Ordering::Relaxed);
         let (tx, rx) = mpsc::channel(ROOM_QUEUE);
         let room = Room::new(stored, game, self.clone(), generation);
-        let handle = RoomHandle { tx, generation };
+        let handle = RoomHandle {
+            tx,
+            generation,
+            owned: true,
+        };
         {
             let mut rooms = self.rooms();
             rooms.insert(stored.id.clone(), handle.clone());
@@ -438,13 +502,23 @@ impl Hub {
         };
         let store = self.inner.store.clone();
         let row = stored.clone();
-        tokio::task::spawn_blocking(move || store.create(&row))
-            .await
-            .map_err(|e| {
-                error!(error = %e, "store task failed");
-                Refusal::internal()
-            })?
-            .map_err(store_failed)?;
+        let cluster = self.cluster().cloned();
+        tokio::task::spawn_blocking(move || {
+            store.create(&row)?;
+            // A node of a cluster holds the new match's lease from the start.
+            match cluster.map(|c| c.acquire(&row.id)).transpose()? {
+                None | Some(Lease::Ours) => Ok(()),
+                Some(Lease::Theirs(node)) => Err(StoreError::Corrupt(format!(
+                    "a new match's lease is held by node {node}"
+                ))),
+            }
+        })
+        .await
+        .map_err(|e| {
+            error!(error = %e, "store task failed");
+            Refusal::internal()
+        })?
+        .map_err(store_failed)?;
         self.spawn(&stored, game, slot);
         info!(match_id = %id, bot = ?stored.bot, "match created");
         Ok(id)
@@ -452,21 +526,59 @@ impl Hub {
 
     /// The room of match `id`, loading it from the store if needed.
     pub async fn room(&self, id: &str) -> Result<RoomHandle, Refusal> {
-        self.room_within(id, true).await
+        self.room_within(id, true, Reach::OwnOrRelay).await
     }
 
     /// [`Hub::room`]; `within_limit: false` loads past the limit on
-    /// matches in memory (a live match resuming after a restart).
-    async fn room_within(&self, id: &str, within_limit: bool) -> Result<RoomHandle, Refusal> {
-        if let Some(h) = self.rooms().get(id) {
+    /// matches in memory (a live match resuming after a restart); with
+    /// [`Reach::Own`], a node of a cluster refuses a match another node
+    /// plays instead of relaying to it.
+    async fn room_within(
+        &self,
+        id: &str,
+        within_limit: bool,
+        reach: Reach,
+    ) -> Result<RoomHandle, Refusal> {
+        let wanted = |h: &RoomHandle| h.owned || reach == Reach::OwnOrRelay;
+        if let Some(h) = self.rooms().get(id).filter(|h| wanted(h)) {
             return Ok(h.clone());
         }
         if !token::is_match_id(id) {
             return Err(no_such_match(id));
         }
         let _loading = self.inner.load_lock.lock().await;
-        if let Some(h) = self.rooms().get(id) {
-            return Ok(h.clone());
+        let present = self.rooms().get(id).cloned();
+        if let Some(h) = present {
+            if wanted(&h) {
+                return Ok(h);
+            }
+            // A proxy, but this node is to play the match: the proxy goes.
+            self.remove(id, h.generation);
+            let (done, _) = oneshot::channel();
+            let _ = h.tx.send(Command::Shutdown { done }).await;
+        }
+        if let Some(cluster) = self.cluster().cloned() {
+            let key = id.to_string();
+            let lease = tokio::task::spawn_blocking(move || cluster.acquire(&key))
+                .await
+                .map_err(|e| {
+                    error!(error = %e, "lease task failed");
+                    Refusal::internal()
+                })?
+                .map_err(|e| store_failed(e.into()))?;
+            match lease {
+                Lease::Ours => {}
+                Lease::Theirs(node) if node.is_empty() => return Err(no_such_match(id)),
+                Lease::Theirs(node) => {
+                    return match reach {
+                        Reach::Own => Err(Refusal::new(
+                            ErrorCode::ServerBusy,
+                            format!("match {id} is played on node {node}"),
+                        )),
+                        Reach::OwnOrRelay => Ok(self.spawn_proxy(id, node)),
+                    };
+                }
+            }
         }
         let slot = if within_limit {
             self.reserve()?
@@ -509,14 +621,43 @@ impl Hub {
         Ok(self.spawn(&stored, game, slot))
     }
 
+    /// Starts a proxy room relaying match `id` to `node`, which plays it.
+    fn spawn_proxy(&self, id: &str, node: String) -> RoomHandle {
+        let generation = self.inner.next_generation.fetch_add(1, Ordering::Relaxed);
+        let (tx, rx) = mpsc::channel(ROOM_QUEUE);
+        let handle = RoomHandle {
+            tx,
+            generation,
+            owned: false,
+        };
+        self.rooms().insert(id.to_string(), handle.clone());
+        if let Some(cluster) = self.cluster() {
+            let (hub, key) = (self.clone(), id.to_string());
+            let done = move || hub.remove(&key, generation);
+            cluster.proxy(id.to_string(), node, rx, done, &self.inner.rt);
+        }
+        handle
+    }
+
+    /// Makes sure this node plays match `id` if nobody else does (a node
+    /// of a cluster taking over a match whose node stopped): `true` if it
+    /// started playing it now.
+    pub async fn own(&self, id: &str) -> Result<bool, Refusal> {
+        if self.rooms().get(id).is_some_and(|h| h.owned) {
+            return Ok(false);
+        }
+        self.room_within(id, false, Reach::Own).await.map(|_| true)
+    }
+
     /// Asks the room of `id` something, once more if it stopped meanwhile.
     async fn ask<T>(
         &self,
         id: &str,
+        reach: Reach,
         make: impl Fn(oneshot::Sender<Result<T, Refusal>>) -> Command,
     ) -> Result<(RoomHandle, T), Refusal> {
         for _ in 0..3 {
-            let h = self.room(id).await?;
+            let h = self.room_within(id, true, reach).await?;
             let (tx, rx) = oneshot::channel();
             if h.tx.send(make(tx)).await.is_err() {
                 self.remove(id, h.generation);
@@ -538,19 +679,46 @@ impl Hub {
         account: Option<String>,
     ) -> Result<SeatGrant, Refusal> {
         let token = random(token::seat_token())?;
-        let (_, seat) = self
-            .ask(id, |reply| Command::Join {
-                name: name.clone(),
-                token: token.hash(),
-                account: account.clone(),
-                reply,
-            })
+        let seat = self
+            .join_with(id, name, token.hash(), account, Reach::OwnOrRelay)
             .await?;
         Ok(SeatGrant {
             match_id: id.to_string(),
             seat,
             token,
         })
+    }
+
+    /// Takes the empty second seat of `id`, which this node plays, for the
+    /// holder of the token with this hash (a join relayed from another
+    /// node of the cluster).
+    pub async fn join_owned(
+        &self,
+        id: &str,
+        name: String,
+        token: TokenHash,
+        account: Option<String>,
+    ) -> Result<Seat, Refusal> {
+        self.join_with(id, name, token, account, Reach::Own).await
+    }
+
+    async fn join_with(
+        &self,
+        id: &str,
+        name: String,
+        token: TokenHash,
+        account: Option<String>,
+        reach: Reach,
+    ) -> Result<Seat, Refusal> {
+        let (_, seat) = self
+            .ask(id, reach, |reply| Command::Join {
+                name: name.clone(),
+                token,
+                account: account.clone(),
+                reply,
+            })
+            .await?;
+        Ok(seat)
     }
 
     /// Admits a connection to `id` (with a seat token, or as a spectator).
@@ -569,7 +737,21 @@ impl Hub {
         id: &str,
         claim: Claim,
     ) -> Result<(RoomHandle, Connected), Refusal> {
-        self.ask(id, |reply| Command::Connect {
+        self.ask(id, Reach::OwnOrRelay, |reply| Command::Connect {
+            claim: claim.clone(),
+            reply,
+        })
+        .await
+    }
+
+    /// Admits a connection to `id`, which this node plays (a connection
+    /// relayed from another node of the cluster).
+    pub async fn connect_owned(
+        &self,
+        id: &str,
+        claim: Claim,
+    ) -> Result<(RoomHandle, Connected), Refusal> {
+        self.ask(id, Reach::Own, |reply| Command::Connect {
             claim: claim.clone(),
             reply,
         })
@@ -588,10 +770,12 @@ impl Hub {
         let mut resumed = 0;
         let mut unplayable = 0;
         for id in ids {
-            match self.room_within(&id, false).await {
+            match self.room_within(&id, false, Reach::Own).await {
                 Ok(_) => resumed += 1,
                 // Logged, with its version, where it was found.
                 Err(r) if r.code == ErrorCode::UnsupportedPhysics => unplayable += 1,
+                // Another node of the cluster plays it.
+                Err(r) if self.cluster().is_some() && r.code == ErrorCode::ServerBusy => {}
                 Err(r) => warn!(match_id = %id, refusal = %r, "could not resume a match"),
             }
         }
@@ -642,6 +826,14 @@ impl Hub {
         };
         if tokio::time::timeout(within, all).await.is_err() {
             warn!("some matches did not stop in time");
+        }
+        // Every accepted move is stored: the other nodes may take the
+        // matches over at once instead of after their leases expire.
+        if let Some(cluster) = self.cluster().cloned() {
+            let released = tokio::task::spawn_blocking(move || cluster.release_all()).await;
+            if !matches!(released, Ok(Ok(()))) {
+                warn!("giving the leases up failed; they expire");
+            }
         }
     }
 }

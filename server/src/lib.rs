@@ -15,14 +15,14 @@
 //! [`accounts`] (names, keys and ratings that last; their HTTP API is
 //! [`accounts_api`]),
 //! [`refusal`] (errors sent to clients, with their HTTP statuses),
-//! [`store`] (SQLite, with [`readers`], its read connections, or PostgreSQL; [`local_postgres`] starts a throwaway one for tests), [`metrics`] (Prometheus), [`origin`] (cross-site
+//! [`store`] (SQLite, with [`readers`], its read connections, or PostgreSQL; [`local_postgres`] and [`local_redis`] start throwaway servers for tests), [`metrics`] (Prometheus), [`origin`] (cross-site
 //! requests refused), [`ratelimit`]
 //! (per-connection token bucket), [`room`] (the task that drives one
 //! match's session and asks the computer levels of the [`bots`] crate for
 //! their moves), [`hub`] (the registry of
 //! rooms), [`http`] (the HTTP API), [`simulate`] (`POST /api/simulate`,
 //! limited per address), [`assets`] (the embedded web client at
-//! `/`), [`ws`] (the WebSocket sessions), [`app`] (startup and
+//! `/`), [`ws`] (the WebSocket sessions), [`cluster`] (several nodes on one PostgreSQL store, with Redis relaying live play), [`app`] (startup and
 //! shutdown) and [`loopback`] (the HTTP client of the server's own tools).
 
 pub mod accounts;
@@ -32,11 +32,13 @@ pub mod assets;
 pub mod auth;
 pub mod blocking;
 pub mod checkpointer;
+pub mod cluster;
 pub mod config;
 pub mod http;
 pub mod hub;
 pub mod lobby;
 pub mod local_postgres;
+pub mod local_redis;
 pub mod loopback;
 pub mod metrics;
 pub mod origin;

@@ -84,7 +84,7 @@ fn run_as() -> Result<Option<(u32, u32)>, LocalPostgresError> {
 
 /// A command that runs as `user` (if any) and gets SIGTERM when this
 /// process's thread that spawned it ends.
-fn command(program: PathBuf, user: Option<(u32, u32)>) -> Command {
+pub(crate) fn command(program: PathBuf, user: Option<(u32, u32)>) -> Command {
     use std::os::unix::process::CommandExt;
     let mut cmd = Command::new(program);
     // SAFETY: only async-signal-safe calls between fork and exec.
@@ -104,7 +104,7 @@ fn command(program: PathBuf, user: Option<(u32, u32)>) -> Command {
 }
 
 /// A port on loopback nobody listens on now.
-fn free_port() -> Result<u16, LocalPostgresError> {
+pub(crate) fn free_port() -> Result<u16, LocalPostgresError> {
     let l = std::net::TcpListener::bind("127.0.0.1:0")
         .map_err(|e| LocalPostgresError::Io("finding a free port", e))?;
     l.local_addr()

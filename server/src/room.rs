@@ -51,7 +51,7 @@ pub struct Inbox {
 }
 
 impl Inbox {
-    fn new(rx: mpsc::Receiver<Outbound>) -> Inbox {
+    pub(crate) fn new(rx: mpsc::Receiver<Outbound>) -> Inbox {
         Inbox { rx, batch: None }
     }
 

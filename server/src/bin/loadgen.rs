@@ -10,10 +10,21 @@
 //! the load generator itself could not run on time, and the machine's busy
 //! and hypervisor-stolen CPU shares (`/proc/stat`, Linux).
 //!
+//! Given several server nodes (`--addr` repeated, or a comma-separated
+//! list), it spreads the load over them: match k is created (and joined) on
+//! node k round-robin, its first player connects to that node, its second
+//! player to the next one, and its spectators round-robin from the node
+//! after the creating one, so that a match's messages cross between nodes.
+//! The server-side figures (connections, CPU, memory, histograms) are then
+//! the sums over the nodes.
+//!
 //! ```sh
 //! cargo run --release -p server -- --data-dir /tmp/chapaev-load \
 //!     --max-connections-per-address 100000 --create-per-sec 10000 --create-burst 10000 &
 //! cargo run --release -p server --bin loadgen -- --matches 50 --clients 400 --seconds 20
+//! # Over a local cluster of two nodes (scripts/cluster start):
+//! cargo run --release -p server --bin loadgen -- --addr 127.0.0.1:8080,127.0.0.1:8081 \
+//!     --matches 50 --clients 400 --seconds 20
 //! ```
 
 use clap::Parser;
@@ -32,9 +43,10 @@ use tokio_tungstenite::tungstenite::Message;
 #[derive(Parser, Debug)]
 #[command(name = "loadgen", version, about)]
 struct Args {
-    /// Server address, `host:port`.
-    #[arg(long, default_value = "127.0.0.1:8080")]
-    addr: String,
+    /// Server address, `host:port`. Several nodes of one cluster: repeat
+    /// the flag or separate them with commas; the load is spread over them.
+    #[arg(long, default_value = "127.0.0.1:8080", value_delimiter = ',')]
+    addr: Vec<String>,
     /// Matches played at once.
     #[arg(long, default_value_t = 20)]
     matches: usize,
@@ -80,19 +92,36 @@ async fn http(addr: &str, method: &str, path: &str, body: &str) -> Result<String
     Ok(text)
 }
 
-/// A latency histogram of the server's `/metrics` (`name` without the
-/// `_bucket` suffix): the bucket bounds (ms) holding the median and the 99th
-/// percentile, and the share of observations within 10 ms.
-fn server_side(metrics: &str, name: &str) -> Option<(f64, f64, f64)> {
+/// The cumulative buckets of a histogram in the text of `/metrics`: (upper
+/// bound in seconds, observations up to it).
+fn buckets(metrics: &str, name: &str) -> Vec<(f64, f64)> {
     let prefix = format!("{name}_bucket{{le=\"");
-    let buckets: Vec<(f64, f64)> = metrics
+    metrics
         .lines()
         .filter_map(|l| l.strip_prefix(prefix.as_str()))
         .filter_map(|l| {
             let (le, n) = l.split_once("\"} ")?;
             Some((le.parse().ok()?, n.trim().parse().ok()?))
         })
-        .collect();
+        .collect()
+}
+
+/// A latency histogram of the servers' `/metrics` (`name` without the
+/// `_bucket` suffix), summed over the nodes (one text each; they share the
+/// bucket bounds): the bucket bounds (ms) holding the median and the 99th
+/// percentile, and the share of observations within 10 ms.
+fn server_side<S: AsRef<str>>(metrics: &[S], name: &str) -> Option<(f64, f64, f64)> {
+    let mut buckets: Vec<(f64, f64)> = Vec::new();
+    for text in metrics {
+        let node = self::buckets(text.as_ref(), name);
+        if buckets.is_empty() {
+            buckets = node;
+        } else if node.len() == buckets.len() {
+            for (sum, (_, n)) in buckets.iter_mut().zip(node) {
+                sum.1 += n;
+            }
+        }
+    }
     let total = buckets.last()?.1;
     if total <= 0.0 {
         return None;
@@ -169,13 +198,28 @@ fn metric_value(metrics: &str, name: &str) -> Option<f64> {
         .and_then(|v| v.trim().parse().ok())
 }
 
-/// A single-valued metric of the server's `/metrics`, fetched now.
-async fn server_metric(addr: &str, name: &str) -> Option<f64> {
-    metric_value(&http(addr, "GET", "/metrics", "").await.ok()?, name)
+/// Every node's `/metrics`, fetched now (an empty text where one did not answer).
+async fn all_metrics(addrs: &[String]) -> Vec<String> {
+    let mut texts = Vec::new();
+    for addr in addrs {
+        texts.push(http(addr, "GET", "/metrics", "").await.unwrap_or_default());
+    }
+    texts
 }
 
-async fn resident_bytes(addr: &str) -> Option<u64> {
-    server_metric(addr, "process_resident_memory_bytes")
+/// A single-valued metric summed over the nodes' `/metrics` texts; none if
+/// a node does not report it.
+fn metric_sum(metrics: &[String], name: &str) -> Option<f64> {
+    metrics.iter().map(|m| metric_value(m, name)).sum()
+}
+
+/// The single-valued metric of every node, fetched now, summed.
+async fn server_metric(addrs: &[String], name: &str) -> Option<f64> {
+    metric_sum(&all_metrics(addrs).await, name)
+}
+
+async fn resident_bytes(addrs: &[String]) -> Option<u64> {
+    server_metric(addrs, "process_resident_memory_bytes")
         .await
         .map(|b| b as u64)
 }
@@ -367,18 +411,32 @@ fn spread(sorted: &[Duration]) -> String {
 }
 
 async fn run(args: Args) -> Result<(), LoadError> {
+    let addrs: Vec<String> = args
+        .addr
+        .iter()
+        .map(|a| a.trim().to_string())
+        .filter(|a| !a.is_empty())
+        .collect();
+    let addrs = &addrs;
+    let nodes = addrs.len();
+    if nodes == 0 {
+        return Err(LoadError::Http("no server address (--addr)".into()));
+    }
+    // Node `k` round-robin.
+    let node = |k: usize| addrs[k % nodes].as_str();
     let matches = args.matches.max(1);
     let clients = args.clients.max(2 * matches);
-    let rss_before = resident_bytes(&args.addr).await;
+    let rss_before = resident_bytes(addrs).await;
     let mut seats = Vec::new();
-    for _ in 0..matches {
+    for m in 0..matches {
+        // Match m lives on node m (created and joined there).
         let created: serde_json::Value = serde_json::from_str(
-            &http(&args.addr, "POST", "/api/matches", r#"{"name":"load"}"#).await?,
+            &http(node(m), "POST", "/api/matches", r#"{"name":"load"}"#).await?,
         )?;
         let id = created["match_id"].as_str().unwrap_or_default().to_string();
         let joined: serde_json::Value = serde_json::from_str(
             &http(
-                &args.addr,
+                node(m),
                 "POST",
                 &format!("/api/matches/{id}/join"),
                 r#"{"name":"load"}"#,
@@ -392,29 +450,49 @@ async fn run(args: Args) -> Result<(), LoadError> {
     let started = Instant::now();
     let mut players = Vec::new();
     let mut watchers = Vec::new();
-    for (id, a, b) in &seats {
-        players.push(connect(&args.addr, id, Some(a)).await?);
-        players.push(connect(&args.addr, id, Some(b)).await?);
+    for (m, (id, a, b)) in seats.iter().enumerate() {
+        // The first player on the creating node, the second on the next one.
+        players.push(connect(node(m), id, Some(a)).await?);
+        players.push(connect(node(m + 1), id, Some(b)).await?);
     }
     for k in 0..clients - 2 * matches {
-        watchers.push(connect(&args.addr, &seats[k % matches].0, None).await?);
+        // Spectator k watches match k % matches, as its (k / matches)-th
+        // spectator: round-robin over the nodes from the one after the
+        // creating node.
+        let m = k % matches;
+        watchers.push(connect(node(m + 1 + k / matches), &seats[m].0, None).await?);
     }
     let connect_time = started.elapsed();
-    // Let the server settle, then weigh it.
+    // Let the servers settle, then weigh them.
     tokio::time::sleep(Duration::from_millis(500)).await;
-    let rss_held = resident_bytes(&args.addr).await;
-    let metrics = http(&args.addr, "GET", "/metrics", "").await?;
-    let held = metrics
-        .lines()
-        .find_map(|l| l.strip_prefix("chapaev_connections "))
-        .unwrap_or("?")
-        .to_string();
+    let rss_held = resident_bytes(addrs).await;
+    let mut gauges = Vec::new();
+    for addr in addrs {
+        let metrics = http(addr, "GET", "/metrics", "").await?;
+        gauges.push(
+            metrics
+                .lines()
+                .find_map(|l| l.strip_prefix("chapaev_connections "))
+                .unwrap_or("?")
+                .trim()
+                .to_string(),
+        );
+    }
+    let held = match gauges
+        .iter()
+        .map(|g| g.parse::<u64>().ok())
+        .sum::<Option<u64>>()
+    {
+        Some(sum) if nodes > 1 => format!("{sum} ({}: server gauges)", gauges.join(" + ")),
+        Some(sum) => format!("{sum} (server gauge)"),
+        None => format!("{} (server gauges)", gauges.join(" + ")),
+    };
 
     let totals = Arc::new(Totals::default());
     let until = Instant::now() + Duration::from_secs(args.seconds);
     let stalls = tokio::spawn(own_stalls(until));
     let cpu_before = cpu_times();
-    let server_cpu_before = server_metric(&args.addr, "process_cpu_seconds_total").await;
+    let server_cpu_before = server_metric(addrs, "process_cpu_seconds_total").await;
     let own_cpu_before = server::metrics::cpu_seconds();
     let play_start = Instant::now();
     let think = Duration::from_millis(args.think_ms);
@@ -448,17 +526,23 @@ async fn run(args: Args) -> Result<(), LoadError> {
     let own_cpu = own_cpu_before
         .zip(server::metrics::cpu_seconds())
         .map(|(a, b)| b - a);
-    // One read of the server's metrics after the play: its CPU and histograms.
-    let metrics = http(&args.addr, "GET", "/metrics", "")
-        .await
-        .unwrap_or_default();
+    // One read of the servers' metrics after the play: their CPU and histograms.
+    let metrics = all_metrics(addrs).await;
     let server_cpu = server_cpu_before
-        .zip(metric_value(&metrics, "process_cpu_seconds_total"))
+        .zip(metric_sum(&metrics, "process_cpu_seconds_total"))
         .map(|(a, b)| b - a);
     let (stalled, longest) = stalls.await.unwrap_or_default();
     latencies.sort();
     pongs.sort();
     let shots = totals.shots.load(Ordering::Relaxed);
+    if nodes > 1 {
+        println!(
+            "nodes:                  {nodes} ({}); matches created round-robin, each one's players on two nodes, spectators spread",
+            addrs.join(", ")
+        );
+    } else {
+        println!("nodes:                  1 ({})", addrs[0]);
+    }
     println!("matches:                {matches}");
     println!(
         "clients:                {clients} ({} players, {} spectators), opened in {:.2} s",
@@ -466,7 +550,7 @@ async fn run(args: Args) -> Result<(), LoadError> {
         clients - 2 * matches,
         connect_time.as_secs_f64()
     );
-    println!("connections held:       {held} (server gauge)");
+    println!("connections held:       {held}");
     println!(
         "shots resolved:         {shots} in {elapsed:.1} s = {:.1} shots/s",
         shots as f64 / elapsed
@@ -506,7 +590,8 @@ async fn run(args: Args) -> Result<(), LoadError> {
     let per_shot = |secs: f64| secs * 1e6 / shots.max(1) as f64;
     if let (Some(server), Some(own)) = (server_cpu, own_cpu) {
         println!(
-            "CPU while playing:      server {server:.2} s ({:.0} us per shot), load generator {own:.2} s ({:.0} us per shot)",
+            "CPU while playing:      server{} {server:.2} s ({:.0} us per shot), load generator {own:.2} s ({:.0} us per shot)",
+            if nodes > 1 { format!("s ({nodes} nodes together)") } else { String::new() },
             per_shot(server),
             per_shot(own)
         );
@@ -526,9 +611,10 @@ async fn run(args: Args) -> Result<(), LoadError> {
     );
     match (rss_before, rss_held) {
         (Some(a), Some(b)) => println!(
-            "server memory:          {:.1} MiB before, {:.1} MiB with the clients connected: {:.1} KiB per connection (matches included)",
+            "server memory:          {:.1} MiB before, {:.1} MiB with the clients connected{}: {:.1} KiB per connection (matches included)",
             a as f64 / 1048576.0,
             b as f64 / 1048576.0,
+            if nodes > 1 { format!(" ({nodes} nodes together)") } else { String::new() },
             (b.saturating_sub(a)) as f64 / 1024.0 / clients as f64
         ),
         _ => println!("server memory:          not reported by /metrics"),
@@ -569,9 +655,31 @@ mod tests {
             m.shot_broadcast(Duration::from_micros(ms * 900));
         }
         let name = "chapaev_shot_to_broadcast_seconds";
-        let (p50, p99, within) = server_side(&m.render(), name).expect("histogram present");
+        let (p50, p99, within) = server_side(&[m.render()], name).expect("histogram present");
         assert_eq!((p50, p99), (2.5, 50.0));
         assert!((within - 90.0).abs() < 1e-9, "{within}");
-        assert!(server_side("no metrics here", name).is_none());
+        assert!(server_side(&["no metrics here"], name).is_none());
+    }
+
+    #[test]
+    fn several_nodes_histograms_and_gauges_are_summed() {
+        let (a, b) = (
+            server::metrics::Metrics::default(),
+            server::metrics::Metrics::default(),
+        );
+        for ms in [1, 1, 2, 2, 2] {
+            a.shot_broadcast(Duration::from_micros(ms * 900));
+        }
+        for ms in [3, 3, 4, 4, 30] {
+            b.shot_broadcast(Duration::from_micros(ms * 900));
+        }
+        let name = "chapaev_shot_to_broadcast_seconds";
+        let (p50, p99, within) =
+            server_side(&[a.render(), b.render()], name).expect("histograms present");
+        assert_eq!((p50, p99), (2.5, 50.0));
+        assert!((within - 90.0).abs() < 1e-9, "{within}");
+        let texts = ["x 2\ny 1".to_string(), "x 3.5".to_string()];
+        assert_eq!(metric_sum(&texts, "x"), Some(5.5));
+        assert_eq!(metric_sum(&texts, "y"), None);
     }
 }

@@ -58,6 +58,10 @@ pub enum StoreError {
     Poisoned,
     #[error("cannot start the store's {0} thread: {1}")]
     Thread(&'static str, std::io::Error),
+    /// A node of a cluster wrote a move of a match whose lease it does not
+    /// hold (any more): refused, nothing written.
+    #[error("node {node} does not hold the lease of match {match_id}")]
+    LeaseLost { match_id: String, node: String },
     /// The group commit that carried this write failed as a whole.
     #[error("the commit of a group of moves failed: {0}")]
     GroupCommit(String),
@@ -383,7 +387,10 @@ pub type SharedStore = Arc<dyn Store>;
 /// is brought up to date first.
 pub fn open(config: &ServerConfig) -> Result<SharedStore, StoreError> {
     Ok(match &config.database_url {
-        Some(url) => Arc::new(PostgresStore::connect(url)?),
+        Some(url) => Arc::new(PostgresStore::connect_as(
+            url,
+            config.cluster_node().as_deref(),
+        )?),
         None => Arc::new(SqliteStore::open(&config.data_dir, config.sync)?),
     })
 }

@@ -39,7 +39,8 @@ const MIGRATION_LOCK: i64 = 0x0063_6861_7061_6576;
 
 /// The migrations, in order: number `k + 1` is `MIGRATIONS[k]`. Never edit
 /// one that has shipped; add the next.
-const MIGRATIONS: &[&str] = &["
+const MIGRATIONS: &[&str] = &[
+    "
 CREATE TABLE matches (
     id TEXT PRIMARY KEY,
     created_at BIGINT NOT NULL,
@@ -103,7 +104,21 @@ CREATE TABLE rating_history (
     UNIQUE (account_key, match_id)
 );
 CREATE INDEX rating_history_by_match ON rating_history (match_id);
-"];
+",
+    "
+CREATE TABLE match_leases (
+    match_id TEXT PRIMARY KEY REFERENCES matches (id),
+    owner TEXT NOT NULL,
+    expires_at TIMESTAMPTZ NOT NULL
+);
+CREATE INDEX match_leases_by_owner ON match_leases (owner);
+CREATE TABLE cluster_nodes (
+    id TEXT PRIMARY KEY,
+    started_at TIMESTAMPTZ NOT NULL,
+    seen_at TIMESTAMPTZ NOT NULL
+);
+",
+];
 
 type Pool = r2d2::Pool<PostgresConnectionManager<NoTls>>;
 
@@ -112,6 +127,12 @@ pub struct PostgresStore {
     commit: GroupCommit,
     pool: Pool,
 }
+
+/// The condition a move's match row update adds on a node of a cluster:
+/// the node holds the match's lease, unexpired (`$6`: the node's id). A
+/// node that lost a lease can write nothing more to that match.
+const FENCE: &str = " AND EXISTS (SELECT 1 FROM match_leases l
+    WHERE l.match_id = $1 AND l.owner = $6 AND l.expires_at > now())";
 
 /// The columns of a match row, in the order [`stored_match`] reads them.
 const MATCH_COLUMNS: &str = super::sqlite::MATCH_COLUMNS;
@@ -237,6 +258,13 @@ impl PostgresStore {
     /// or `host=… port=… user=… dbname=…`), migrates its schema and starts
     /// the writer.
     pub fn connect(url: &str) -> Result<PostgresStore, StoreError> {
+        PostgresStore::connect_as(url, None)
+    }
+
+    /// [`PostgresStore::connect`] for a node of a cluster (`node`: its id):
+    /// each move is written only while the node holds the match's lease
+    /// (`match_leases`, which [`crate::cluster`] keeps).
+    pub fn connect_as(url: &str, node: Option<&str>) -> Result<PostgresStore, StoreError> {
         let mut config: ::postgres::Config = url.parse()?;
         config.connect_timeout(CONNECT_TIMEOUT);
         if config.get_application_name().is_none() {
@@ -249,9 +277,11 @@ impl PostgresStore {
             .min_idle(Some(1))
             .connection_timeout(CONNECT_TIMEOUT)
             .build(PostgresConnectionManager::new(config.clone(), NoTls))?;
+        let node = node.map(str::to_string);
         let commit = GroupCommit::start(Writer {
+            conn: Some(WriterConn::prepare(client, node.as_deref())?),
             config,
-            conn: Some(WriterConn::prepare(client)?),
+            node,
         })?;
         Ok(PostgresStore { commit, pool })
     }
@@ -546,12 +576,17 @@ struct WriterConn {
 }
 
 impl WriterConn {
-    fn prepare(mut client: Client) -> Result<WriterConn, StoreError> {
+    /// Prepares the statements on `client`; fenced by `node`'s leases if
+    /// it is a node of a cluster.
+    fn prepare(mut client: Client, node: Option<&str>) -> Result<WriterConn, StoreError> {
         let insert_move =
             client.prepare("INSERT INTO moves (match_id, idx, body) VALUES ($1, $2, $3)")?;
-        let update_match = client.prepare(
-            "UPDATE matches SET status = $2, shots = $3, result = $4, updated_at = $5 WHERE id = $1",
-        )?;
+        let update = "UPDATE matches SET status = $2, shots = $3, result = $4, updated_at = $5 \
+                      WHERE id = $1";
+        let update_match = match node {
+            None => client.prepare(update)?,
+            Some(_) => client.prepare(&format!("{update}{FENCE}"))?,
+        };
         Ok(WriterConn {
             client,
             insert_move,
@@ -565,6 +600,8 @@ impl WriterConn {
 struct Writer {
     config: ::postgres::Config,
     conn: Option<WriterConn>,
+    /// The node's id, on a node of a cluster (its moves are fenced).
+    node: Option<String>,
 }
 
 impl Writer {
@@ -575,7 +612,7 @@ impl Writer {
         }
         if self.conn.is_none() {
             let client = self.config.connect(NoTls)?;
-            self.conn = Some(WriterConn::prepare(client)?);
+            self.conn = Some(WriterConn::prepare(client, self.node.as_deref())?);
         }
         self.conn
             .as_mut()
@@ -586,11 +623,16 @@ impl Writer {
         &mut self,
         batch: &[QueuedMove],
     ) -> Result<Vec<Result<(), StoreError>>, StoreError> {
+        let node = self.node.clone();
         let conn = self.conn()?;
         let mut tx = conn.client.transaction()?;
         let mut results = Vec::with_capacity(batch.len());
         for m in batch {
-            results.push(write_one(&mut tx, &conn.insert_move, &conn.update_match, m));
+            let update = Update {
+                statement: &conn.update_match,
+                node: node.as_deref(),
+            };
+            results.push(write_one(&mut tx, &conn.insert_move, update, m));
         }
         tx.commit()?;
         Ok(results)
@@ -616,21 +658,40 @@ impl BatchWriter for Writer {
 
 /// One move and its match row (and the ratings, for a rated match's last
 /// move), in a savepoint: undone alone if anything fails.
+/// The match row's update, and the node whose lease fences it.
+struct Update<'a> {
+    statement: &'a Statement,
+    node: Option<&'a str>,
+}
+
 fn write_one(
     tx: &mut ::postgres::Transaction<'_>,
     insert_move: &Statement,
-    update_match: &Statement,
+    update: Update<'_>,
     m: &QueuedMove,
 ) -> Result<(), StoreError> {
     let mut sp = tx.savepoint("move")?;
     sp.execute(insert_move, &[&m.id, &m.index, &m.body])?;
-    let n = sp.execute(
-        update_match,
-        &[&m.id, &m.status, &m.shots, &m.result, &(now() as i64)],
-    )?;
+    let at = now() as i64;
+    let n = match update.node {
+        None => sp.execute(
+            update.statement,
+            &[&m.id, &m.status, &m.shots, &m.result, &at],
+        )?,
+        Some(node) => sp.execute(
+            update.statement,
+            &[&m.id, &m.status, &m.shots, &m.result, &at, &node],
+        )?,
+    };
     if n != 1 {
         // Dropping the savepoint unfinished rolls it back.
-        return Err(StoreError::Corrupt(format!("no match {}", m.id)));
+        return Err(match update.node {
+            Some(node) => StoreError::LeaseLost {
+                match_id: m.id.clone(),
+                node: node.to_string(),
+            },
+            None => StoreError::Corrupt(format!("no match {}", m.id)),
+        });
     }
     if let Some(score) = m.score {
         rate_finished(&mut sp, &m.id, score)?;

@@ -1,0 +1,110 @@
+//! A throwaway Redis server on loopback, for the tests of several server
+//! nodes: `redis-server` (from the machine's packages) on a free port,
+//! keeping nothing on disk. Like [`crate::local_postgres`] it stops when
+//! dropped, or when the process that started it ends.
+
+use crate::local_postgres::{command, free_port, LocalPostgresError};
+use std::path::PathBuf;
+use std::process::{Child, Stdio};
+use std::time::{Duration, Instant};
+
+/// Why no local Redis could be started.
+#[derive(Debug, thiserror::Error)]
+pub enum LocalRedisError {
+    #[error("redis-server was not found on PATH (install the redis-server package)")]
+    NotInstalled,
+    #[error(transparent)]
+    Port(#[from] LocalPostgresError),
+    #[error("starting redis-server: {0}")]
+    Io(std::io::Error),
+    #[error("redis-server did not answer within {0:?}")]
+    NotReady(Duration),
+}
+
+/// A Redis server this process started.
+pub struct LocalRedis {
+    child: Child,
+    port: u16,
+}
+
+fn redis_server() -> Option<PathBuf> {
+    let path = std::env::var_os("PATH")?;
+    std::env::split_paths(&path)
+        .map(|d| d.join("redis-server"))
+        .find(|p| p.exists())
+}
+
+impl LocalRedis {
+    /// Starts `redis-server` on a free loopback port; returns once it
+    /// answers.
+    pub fn start() -> Result<LocalRedis, LocalRedisError> {
+        let bin = redis_server().ok_or(LocalRedisError::NotInstalled)?;
+        let port = free_port()?;
+        let child = command(bin, None)
+            .args(["--port", &port.to_string(), "--bind", "127.0.0.1"])
+            .args(["--save", "", "--appendonly", "no", "--daemonize", "no"])
+            .stdin(Stdio::null())
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .map_err(LocalRedisError::Io)?;
+        let redis = LocalRedis { child, port };
+        let started = Instant::now();
+        let within = Duration::from_secs(20);
+        while started.elapsed() < within {
+            if std::net::TcpStream::connect(("127.0.0.1", port)).is_ok() {
+                return Ok(redis);
+            }
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        Err(LocalRedisError::NotReady(within))
+    }
+
+    /// Its URL.
+    pub fn url(&self) -> String {
+        format!("redis://127.0.0.1:{}", self.port)
+    }
+}
+
+impl Drop for LocalRedis {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// The process-wide local Redis the tests share, started on first use
+/// from a thread that lives as long as the process. `None`, with the
+/// reason printed, when this machine has no Redis; with
+/// `CHAPAEV_REQUIRE_REDIS` set that is a failure.
+pub fn shared() -> Option<&'static LocalRedis> {
+    static SHARED: std::sync::OnceLock<Result<LocalRedis, String>> = std::sync::OnceLock::new();
+    let started = SHARED.get_or_init(|| {
+        let (tx, rx) = std::sync::mpsc::channel();
+        let spawned = std::thread::Builder::new()
+            .name("local-redis".into())
+            .spawn(move || {
+                let _ = tx.send(LocalRedis::start().map_err(|e| e.to_string()));
+                // Parked for good: redis's parent-death signal is tied to
+                // this thread.
+                loop {
+                    std::thread::park();
+                }
+            });
+        match spawned {
+            Ok(_) => rx.recv().map_err(|e| e.to_string()).and_then(|r| r),
+            Err(e) => Err(e.to_string()),
+        }
+    });
+    match started {
+        Ok(r) => Some(r),
+        Err(e) => {
+            assert!(
+                std::env::var_os("CHAPAEV_REQUIRE_REDIS").is_none(),
+                "CHAPAEV_REQUIRE_REDIS is set and no local Redis started: {e}"
+            );
+            eprintln!("skipped on Redis: {e}");
+            None
+        }
+    }
+}

@@ -1,0 +1,199 @@
+//! Several server nodes on one PostgreSQL store with Redis between them
+//! (`--redis-url`), as real processes: a match created on one node is
+//! joined, played and watched from another, and every client sees the
+//! same messages in the same order; when the node playing a match is
+//! killed with SIGKILL, another node takes it over within the lease plus
+//! a second, the clients reconnect, the match finishes, and every
+//! acknowledged shot is in its record. Skipped (with a note) where the
+//! machine has no PostgreSQL or Redis, unless `CHAPAEV_REQUIRE_POSTGRES`
+//! / `CHAPAEV_REQUIRE_REDIS` say they must be there.
+
+mod common;
+
+use common::{shot, view, Client, Server};
+use game::protocol::{ClientMessage, ServerMessage};
+use std::time::{Duration, Instant};
+
+/// Seconds a lease lasts in these tests.
+const LEASE: u64 = 2;
+
+/// A node of a fresh cluster on `db`, named `node`.
+fn node(dir: &std::path::Path, db: &str, redis: &str, node: &str) -> Server {
+    let lease = LEASE.to_string();
+    Server::start(
+        dir,
+        &[
+            "--database-url",
+            db,
+            "--redis-url",
+            redis,
+            "--node-id",
+            node,
+            "--lease-seconds",
+            &lease,
+        ],
+    )
+}
+
+/// A fresh database and the shared Redis, or `None` (skipped). (They
+/// block: off the runtime's thread.)
+fn services(test: &str) -> Option<(String, String)> {
+    tokio::task::block_in_place(|| {
+        let db = server::local_postgres::shared_database(test)?;
+        let redis = server::local_redis::shared()?.url();
+        Some((db, redis))
+    })
+}
+
+/// Reads `client` until it has seen `n` `shot-played` messages.
+async fn until_shots(client: &mut Client, n: usize) {
+    for _ in 0..n {
+        client.next_of("shot-played").await;
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_match_created_on_one_node_is_joined_played_and_watched_from_another_in_the_same_order() {
+    let Some((db, redis)) = services("cluster_relay") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    // Node ids are unique on the Redis the tests share.
+    let a = node(dir.path(), &db, &redis, "relay-a");
+    let b = node(dir.path(), &db, &redis, "relay-b");
+    let (id, white_token) = a.create(r#"{"name":"Petka"}"#).await;
+    // The join reaches node A (which plays the match) through node B.
+    let black_token = b.join(&id).await;
+    let mut white = a.ws(&id, Some(&white_token)).await;
+    let mut black = b.ws(&id, Some(&black_token)).await;
+    let mut watcher_a = a.ws(&id, None).await;
+    let mut watcher_b = b.ws(&id, None).await;
+    let first = [
+        view(white.next().await),
+        view(black.next().await),
+        view(watcher_a.next().await),
+        view(watcher_b.next().await),
+    ];
+    assert!(first.iter().all(|v| *v == first[0]), "{first:?}");
+    // White knocks a piece off and shoots again, then passes the turn;
+    // Black (on node B) answers.
+    white.send(&shot(4, 0.0, 2.0)).await;
+    white.send(&shot(2, 0.0, 0.5)).await;
+    until_shots(&mut black, 2).await;
+    black.send(&shot(10, 0.0, -0.5)).await;
+    for c in [&mut white, &mut black, &mut watcher_a, &mut watcher_b] {
+        until_shots(
+            c,
+            3 - c
+                .received
+                .iter()
+                .filter(|m| m.contains("shot-played"))
+                .count(),
+        )
+        .await;
+    }
+    // The spectators, one on each node, saw the same messages in the same
+    // order: the same kinds, and the same texts but for the turn clock's
+    // remaining time, which each connection is told when it reads it.
+    let kinds = |c: &Client| -> Vec<String> {
+        c.received
+            .iter()
+            .map(|m| m.split('"').nth(3).unwrap_or_default().to_string())
+            .collect()
+    };
+    assert_eq!(kinds(&watcher_a), kinds(&watcher_b));
+    let texts = |c: &Client| -> Vec<String> {
+        c.received
+            .iter()
+            .filter(|m| !m.contains("\"clock\""))
+            .cloned()
+            .collect()
+    };
+    assert!(
+        texts(&watcher_a) == texts(&watcher_b),
+        "the watchers' messages differ"
+    );
+    let shots = |c: &Client| -> Vec<String> {
+        c.received
+            .iter()
+            .filter(|m| m.contains("\"shot-played\""))
+            .cloned()
+            .collect()
+    };
+    assert!(shots(&white) == shots(&watcher_b) && shots(&black) == shots(&watcher_a));
+    assert_eq!(shots(&white).len(), 3);
+    // Listings come from the shared store: both nodes list the match.
+    for n in [&a, &b] {
+        let (status, body) = n.http("GET", &format!("/api/matches/{id}"), "").await;
+        assert_eq!(status, 200, "{body}");
+        assert!(body.contains("\"shots\":3"), "{body}");
+    }
+}
+
+/// Connects to `id` on `server` until the match answers with its state
+/// (while it moves between nodes the node may refuse or close).
+async fn reconnect(server: &Server, id: &str, token: &str) -> (Client, game::MatchView) {
+    let deadline = Instant::now() + Duration::from_secs(30);
+    loop {
+        assert!(Instant::now() < deadline, "the match did not come back");
+        if let Ok(mut c) = Client::try_connect(&server.addr, id, Some(token)).await {
+            if let Some(ServerMessage::MatchState { view, .. }) = c.try_next().await {
+                return (c, view);
+            }
+        }
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn when_the_node_playing_a_match_is_killed_another_takes_it_over_and_no_acknowledged_shot_is_lost(
+) {
+    let Some((db, redis)) = services("cluster_takeover") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let mut a = node(dir.path(), &db, &redis, "takeover-a");
+    let b = node(dir.path(), &db, &redis, "takeover-b");
+    let (id, white_token, black_token) = a.two_player_match("").await;
+    let mut white = a.ws(&id, Some(&white_token)).await;
+    let mut black = b.ws(&id, Some(&black_token)).await;
+    view(white.next().await);
+    view(black.next().await);
+    white.send(&shot(4, 0.0, 2.0)).await;
+    white.send(&shot(2, 0.0, 0.5)).await;
+    until_shots(&mut black, 2).await;
+    black.send(&shot(10, 0.0, -0.5)).await;
+    // Three shots acknowledged (broadcast after they were stored).
+    until_shots(&mut white, 3).await;
+
+    a.kill();
+    let killed = Instant::now();
+    // Black's connection through node B ends once A's lease expires.
+    assert!(black.closes().await);
+    let (mut black, state) = reconnect(&b, &id, &black_token).await;
+    let took = killed.elapsed();
+    assert_eq!(state.shots, 3, "every acknowledged shot came back");
+    assert!(
+        took <= Duration::from_secs(LEASE) + Duration::from_millis(1500),
+        "taken over after {took:?} (lease {LEASE} s)"
+    );
+    println!("takeover after SIGKILL: {took:?} (lease {LEASE} s)");
+    let (mut white, again) = reconnect(&b, &id, &white_token).await;
+    assert_eq!(again, state);
+    // The match goes on on node B and finishes.
+    white.send(&shot(3, 0.0, 0.5)).await;
+    let ServerMessage::ShotPlayed { outcome, .. } = black.next_of("shot-played").await else {
+        unreachable!()
+    };
+    assert_eq!(outcome.number, 3);
+    black.send(&ClientMessage::Resign).await;
+    white.next_of("match-over").await;
+    let (status, record) = b
+        .http("GET", &format!("/api/matches/{id}/record"), "")
+        .await;
+    assert_eq!(status, 200, "{record}");
+    let record: game::MatchRecord = serde_json::from_str(&record).unwrap();
+    assert_eq!(record.moves.len(), 5, "four shots and the resignation");
+    let replay = game::Replay::new(record).unwrap();
+    assert_eq!(replay.game().view().shots, 4);
+}
