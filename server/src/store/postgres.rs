@@ -398,8 +398,13 @@ impl Store for PostgresStore {
         let cutoff = now().saturating_sub(older_than) as i64;
         let mut conn = self.conn()?;
         let mut tx = conn.transaction()?;
+        // On a cluster, an open match whose node holds its lease is still
+        // waited for there (that node's memory is not this one's).
         let stale = tx.query(
-            "SELECT id FROM matches WHERE status = 'open' AND updated_at < $1 FOR UPDATE",
+            "SELECT id FROM matches m WHERE status = 'open' AND updated_at < $1
+             AND NOT EXISTS (SELECT 1 FROM match_leases l
+                             WHERE l.match_id = m.id AND l.expires_at >= now())
+             FOR UPDATE",
             &[&cutoff],
         )?;
         let expired: Vec<String> = stale
@@ -409,6 +414,10 @@ impl Store for PostgresStore {
             .collect();
         if !expired.is_empty() {
             tx.execute("DELETE FROM moves WHERE match_id = ANY($1)", &[&expired])?;
+            tx.execute(
+                "DELETE FROM match_leases WHERE match_id = ANY($1)",
+                &[&expired],
+            )?;
             tx.execute(
                 "DELETE FROM matches WHERE id = ANY($1) AND status = 'open'",
                 &[&expired],
