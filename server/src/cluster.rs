@@ -100,6 +100,9 @@ pub struct Cluster {
     /// Connections this node's rooms serve for clients of other nodes
     /// (owner side), by (their node, their link).
     served: Mutex<HashMap<(String, u64), Served>>,
+    /// This node's proxy rooms: the node each relays to, and how to tell
+    /// it that the match moved.
+    proxies: Mutex<HashMap<String, ProxyEntry>>,
 }
 
 /// A relayed connection, as its client's node holds it.
@@ -115,6 +118,14 @@ struct LinkEnd {
 struct PendingConnect {
     end: LinkEnd,
     reply: oneshot::Sender<Result<Option<Seat>, Refusal>>,
+}
+
+/// A proxy room as [`check_owners`] sees it.
+struct ProxyEntry {
+    /// Which proxy (a match may get a new one after its old one ended).
+    number: u64,
+    owner: String,
+    moved: oneshot::Sender<()>,
 }
 
 /// A connection served for another node's client.
@@ -279,6 +290,7 @@ impl Cluster {
             pending_connects: Mutex::default(),
             pending_joins: Mutex::default(),
             served: Mutex::default(),
+            proxies: Mutex::default(),
         });
         cluster.heartbeat()?;
         Ok(cluster)
@@ -292,6 +304,12 @@ impl Cluster {
     /// How long a lease lasts unrenewed.
     pub fn lease(&self) -> Duration {
         self.lease
+    }
+
+    /// The connections this node relays to other nodes, and those it
+    /// serves for them.
+    pub fn connection_counts(&self) -> (usize, usize) {
+        (lock(&self.links).len(), lock(&self.served).len())
     }
 
     /// Runs `f` on a blocking thread with this cluster.
@@ -359,14 +377,17 @@ impl Cluster {
         })
     }
 
-    /// Whether `owner` still holds match `id`'s lease, unexpired.
-    /// (Blocking.)
-    fn holds(&self, id: &str, owner: &str) -> Result<bool, ClusterError> {
-        let row = self.db()?.query_opt(
-            "SELECT 1 FROM match_leases WHERE match_id = $1 AND owner = $2 AND expires_at >= now()",
-            &[&id, &owner],
+    /// Of the matches `ids`, those whose lease is unexpired, with their
+    /// owners. (Blocking.)
+    fn owners(&self, ids: &[String]) -> Result<HashMap<String, String>, ClusterError> {
+        if ids.is_empty() {
+            return Ok(HashMap::new());
+        }
+        let rows = self.db()?.query(
+            "SELECT match_id, owner FROM match_leases WHERE match_id = ANY($1) AND expires_at >= now()",
+            &[&ids],
         )?;
-        Ok(row.is_some())
+        Ok(rows.iter().map(|r| (r.get(0), r.get(1))).collect())
     }
 
     /// Gives up the lease of `id` (the match's room stopped). (Blocking.)
@@ -455,6 +476,7 @@ impl Cluster {
         rt.spawn(keep_leases(self.clone(), hub.clone()));
         rt.spawn(take_over(self.clone(), hub.clone()));
         rt.spawn(check_served(self.clone()));
+        rt.spawn(check_owners(self.clone()));
     }
 
     /// Starts a proxy room for match `id`, played on `owner`; its command
@@ -481,6 +503,14 @@ async fn proxy_room(
     done: impl FnOnce(),
 ) {
     debug!(match_id = %id, owner, "relaying a match played on another node");
+    let (moved_tx, mut has_moved) = oneshot::channel();
+    let number = cluster.next.fetch_add(1, Ordering::Relaxed);
+    let entry = ProxyEntry {
+        number,
+        owner: owner.clone(),
+        moved: moved_tx,
+    };
+    lock(&cluster.proxies).insert(id.clone(), entry);
     let mut mine: HashSet<u64> = HashSet::new();
     let mut check = tokio::time::interval(OWNER_CHECK);
     let mut idle_since = tokio::time::Instant::now();
@@ -561,16 +591,17 @@ async fn proxy_room(
                 } else if idle_since.elapsed() > PROXY_IDLE {
                     break;
                 }
-                let (c, i, o) = (cluster.clone(), id.clone(), owner.clone());
-                match cluster.blocking(move |_| c.holds(&i, &o)).await {
-                    Ok(true) => {}
-                    Ok(false) => {
-                        info!(match_id = %id, owner, "the match's node lost its lease; its relayed clients reconnect");
-                        break;
-                    }
-                    Err(e) => warn!(match_id = %id, error = %e, "checking a lease failed"),
-                }
             }
+            _ = &mut has_moved => {
+                info!(match_id = %id, owner, "the match's node lost its lease; its relayed clients reconnect");
+                break;
+            }
+        }
+    }
+    {
+        let mut proxies = lock(&cluster.proxies);
+        if proxies.get(&id).is_some_and(|p| p.number == number) {
+            proxies.remove(&id);
         }
     }
     // Dropping the links' senders ends their connections: the clients
@@ -816,6 +847,41 @@ async fn take_over(cluster: Arc<Cluster>, hub: Hub) {
                 }
                 Ok(false) => {}
                 Err(r) => debug!(match_id = %id, refusal = %r, "could not take over a match"),
+            }
+        }
+    }
+}
+
+/// Every second, one query for every proxy room's match: the proxies whose
+/// owner no longer holds the lease (expired, or moved) end.
+async fn check_owners(cluster: Arc<Cluster>) {
+    let mut tick = tokio::time::interval(OWNER_CHECK);
+    loop {
+        tick.tick().await;
+        let asked: HashMap<String, u64> = lock(&cluster.proxies)
+            .iter()
+            .map(|(id, p)| (id.clone(), p.number))
+            .collect();
+        let ids: Vec<String> = asked.keys().cloned().collect();
+        let owners = match cluster.blocking(move |c| c.owners(&ids)).await {
+            Ok(o) => o,
+            Err(e) => {
+                warn!(error = %e, "checking the relayed matches' leases failed");
+                continue;
+            }
+        };
+        let mut proxies = lock(&cluster.proxies);
+        let moved: Vec<String> = proxies
+            .iter()
+            // Only the proxies asked about (a newer one waits for the next
+            // round).
+            .filter(|(id, p)| asked.get(*id) == Some(&p.number))
+            .filter(|(id, p)| owners.get(*id) != Some(&p.owner))
+            .map(|(id, _)| id.clone())
+            .collect();
+        for id in moved {
+            if let Some(p) = proxies.remove(&id) {
+                let _ = p.moved.send(());
             }
         }
     }

@@ -186,6 +186,7 @@ async fn healthz(hub: web::Data<Hub>) -> HttpResponse {
 async fn metrics(hub: web::Data<Hub>) -> HttpResponse {
     let mut text = hub.metrics().render();
     hub.store().render_metrics(&mut text);
+    hub.render_cluster_metrics(&mut text);
     HttpResponse::Ok()
         .content_type("text/plain; version=0.0.4")
         .body(text)

@@ -278,6 +278,48 @@ impl Hub {
         }
     }
 
+    /// On a node of a cluster, its share as Prometheus text: matches it
+    /// plays and relays, and the connections it relays and serves.
+    pub fn render_cluster_metrics(&self, out: &mut String) {
+        let Some(cluster) = self.cluster() else {
+            return;
+        };
+        let (owned, relayed) = {
+            let rooms = self.rooms();
+            let owned = rooms.values().filter(|h| h.owned).count();
+            (owned, rooms.len() - owned)
+        };
+        let (links, served) = cluster.connection_counts();
+        use std::fmt::Write as _;
+        for (name, help, value) in [
+            (
+                "matches_owned",
+                "Matches this node plays (holds the lease of).",
+                owned,
+            ),
+            (
+                "matches_relayed",
+                "Matches played on other nodes that this node relays.",
+                relayed,
+            ),
+            (
+                "connections_relayed",
+                "This node's connections to matches played elsewhere.",
+                links,
+            ),
+            (
+                "connections_served",
+                "Connections of other nodes' clients to matches played here.",
+                served,
+            ),
+        ] {
+            let _ = writeln!(
+                out,
+                "# HELP chapaev_cluster_{name} {help}\n# TYPE chapaev_cluster_{name} gauge\nchapaev_cluster_{name} {value}"
+            );
+        }
+    }
+
     /// The ids of the matches this node plays (not those it relays).
     pub fn owned_matches(&self) -> Vec<String> {
         self.rooms()

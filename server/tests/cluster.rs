@@ -122,6 +122,27 @@ async fn a_match_created_on_one_node_is_joined_played_and_watched_from_another_i
     };
     assert!(shots(&white) == shots(&watcher_b) && shots(&black) == shots(&watcher_a));
     assert_eq!(shots(&white).len(), 3);
+    // Each node tells its share in its metrics: A plays the match and
+    // serves B's two connections; B relays them.
+    let gauge = |text: &str, name: &str| -> Option<u64> {
+        let line = text.lines().find(|l| l.starts_with(&format!("{name} ")))?;
+        line.split(' ').nth(1)?.parse().ok()
+    };
+    let (_, metrics_a) = a.http("GET", "/metrics", "").await;
+    let (_, metrics_b) = b.http("GET", "/metrics", "").await;
+    assert_eq!(gauge(&metrics_a, "chapaev_cluster_matches_owned"), Some(1));
+    assert_eq!(
+        gauge(&metrics_a, "chapaev_cluster_connections_served"),
+        Some(2)
+    );
+    assert_eq!(
+        gauge(&metrics_b, "chapaev_cluster_matches_relayed"),
+        Some(1)
+    );
+    assert_eq!(
+        gauge(&metrics_b, "chapaev_cluster_connections_relayed"),
+        Some(2)
+    );
     // Listings come from the shared store: both nodes list the match.
     for n in [&a, &b] {
         let (status, body) = n.http("GET", &format!("/api/matches/{id}"), "").await;
