@@ -22,12 +22,12 @@
 //! duplicate. Every client thus gets exactly the messages a client of the
 //! owner gets, in the same order.
 //!
-//! **Takeover.** Every node looks, every half lease, for live matches
-//! whose lease has expired (their node died) and takes them: it loads the
-//! match from PostgreSQL (every acknowledged move is there) and resumes it.
-//! Proxy rooms check their owner's lease every second; when it expired or
-//! moved they end, their clients reconnect, and reach the new owner. A
-//! node that stops cleanly gives its leases up at once.
+//! **Takeover.** Every node looks, every second, for live matches whose
+//! lease has expired (their node died) and takes them: it loads the match
+//! from PostgreSQL (every acknowledged move is there) and resumes it. Proxy
+//! rooms learn within a quarter of a second that their owner's lease
+//! expired or moved; they end, their clients reconnect and reach the new
+//! owner. A node that stops cleanly gives its leases up at once.
 //!
 //! Redis carries only live traffic (nothing in it needs to survive a Redis
 //! restart; connections relayed through a lost subscription reconnect),
@@ -54,8 +54,10 @@ use tracing::{debug, info, warn};
 
 /// How long a relayed request (connect, join) waits for the owner.
 const RELAY_TIMEOUT: Duration = Duration::from_secs(5);
-/// How often a proxy room checks its owner's lease.
-const OWNER_CHECK: Duration = Duration::from_secs(1);
+/// How often the proxy rooms' owners' leases are checked (one query for
+/// all of them): how late, at most, relayed clients learn that their
+/// match's node died.
+const OWNER_CHECK: Duration = Duration::from_millis(250);
 /// A proxy room with no connection for this long ends.
 const PROXY_IDLE: Duration = Duration::from_secs(60);
 /// Messages queued for one relayed connection before it counts as too
@@ -828,9 +830,11 @@ async fn keep_leases(cluster: Arc<Cluster>, hub: Hub) {
     }
 }
 
-/// Every half lease, takes the live matches whose node died.
+/// Every second (or half lease, if shorter), takes the live matches whose
+/// node died: within a lease and a second of its death, even with none of
+/// their clients back.
 async fn take_over(cluster: Arc<Cluster>, hub: Hub) {
-    let mut tick = tokio::time::interval(cluster.lease / 2);
+    let mut tick = tokio::time::interval((cluster.lease / 2).min(Duration::from_secs(1)));
     loop {
         tick.tick().await;
         let orphans = match cluster.blocking(|c| c.orphans()).await {
