@@ -228,6 +228,8 @@ enum Envelope {
         refusal: WireRefusal,
     },
     Deliver {
+        /// The node serving the connection.
+        from: String,
         link: u64,
         seq: u64,
         text: String,
@@ -722,28 +724,20 @@ async fn handle(cluster: &Arc<Cluster>, hub: &Hub, e: Envelope) {
             }
         }
         Envelope::Deliver {
+            from,
             link,
             seq,
             text,
             refused,
         } => {
-            let mut links = lock(&cluster.links);
-            let Some(end) = links.get_mut(&link) else {
-                return;
-            };
-            end.refused.store(refused, Ordering::Relaxed);
-            if seq < end.next {
-                return; // a duplicate
+            if !deliver(cluster, link, seq, text, refused) {
+                // A connection this node no longer has (it closed, or its
+                // connect was given up as late): the owner stops serving it.
+                let node = cluster.node.clone();
+                cluster
+                    .send(&from, &Envelope::Disconnect { from: node, link })
+                    .await;
             }
-            let item: Outbound = Arc::from(vec![ByteString::from(text)]);
-            if seq > end.next || end.tx.try_send(item).is_err() {
-                // A gap, or a client too slow: it reconnects and starts
-                // from the full state.
-                debug!(link, seq, expected = end.next, "a relayed connection ends");
-                links.remove(&link);
-                return;
-            }
-            end.next += 1;
         }
         Envelope::Closed { link } => {
             lock(&cluster.links).remove(&link);
@@ -754,6 +748,30 @@ async fn handle(cluster: &Arc<Cluster>, hub: &Hub, e: Envelope) {
             }
         }
     }
+}
+
+/// Hands message number `seq` to relayed connection `link`; `false` if
+/// this node has no such connection.
+fn deliver(cluster: &Cluster, link: u64, seq: u64, text: String, refused: u32) -> bool {
+    let mut links = lock(&cluster.links);
+    let Some(end) = links.get_mut(&link) else {
+        return false;
+    };
+    end.refused.store(refused, Ordering::Relaxed);
+    if seq < end.next {
+        return true; // a duplicate
+    }
+    let item: Outbound = Arc::from(vec![ByteString::from(text)]);
+    if seq > end.next || end.tx.try_send(item).is_err() {
+        // A gap, or a client too slow: its connection ends (and its
+        // session tells the owner); it reconnects and starts again from
+        // the full state.
+        debug!(link, seq, expected = end.next, "a relayed connection ends");
+        links.remove(&link);
+        return true;
+    }
+    end.next += 1;
+    true
 }
 
 /// Serves a connection to a match this node plays for a client of node
@@ -788,6 +806,7 @@ async fn serve(cluster: Arc<Cluster>, hub: Hub, from: String, link: u64, id: Str
     let mut seq = 0;
     while let Some(text) = rx.recv().await {
         let e = Envelope::Deliver {
+            from: cluster.node.clone(),
             link,
             seq,
             text: text.to_string(),

@@ -634,14 +634,29 @@ impl Writer {
     ) -> Result<Vec<Result<(), StoreError>>, StoreError> {
         let node = self.node.clone();
         let conn = self.conn()?;
+        let update = || Update {
+            statement: &conn.update_match,
+            node: node.as_deref(),
+        };
+        // First the whole batch without savepoints (two round trips a move
+        // fewer): moves almost never fail.
+        {
+            let mut tx = conn.client.transaction()?;
+            let all = batch
+                .iter()
+                .all(|m| write_move(&mut tx, &conn.insert_move, update(), m).is_ok());
+            if all {
+                tx.commit()?;
+                return Ok(batch.iter().map(|_| Ok(())).collect());
+            }
+            // Dropped unfinished: rolled back.
+        }
+        // A move failed: again, each in a savepoint of its own, so that it
+        // fails alone.
         let mut tx = conn.client.transaction()?;
         let mut results = Vec::with_capacity(batch.len());
         for m in batch {
-            let update = Update {
-                statement: &conn.update_match,
-                node: node.as_deref(),
-            };
-            results.push(write_one(&mut tx, &conn.insert_move, update, m));
+            results.push(write_one(&mut tx, &conn.insert_move, update(), m));
         }
         tx.commit()?;
         Ok(results)
@@ -665,14 +680,14 @@ impl BatchWriter for Writer {
     }
 }
 
-/// One move and its match row (and the ratings, for a rated match's last
-/// move), in a savepoint: undone alone if anything fails.
 /// The match row's update, and the node whose lease fences it.
 struct Update<'a> {
     statement: &'a Statement,
     node: Option<&'a str>,
 }
 
+/// One move in a savepoint of its own ([`write_move`]): undone alone if
+/// anything fails.
 fn write_one(
     tx: &mut ::postgres::Transaction<'_>,
     insert_move: &Statement,
@@ -680,6 +695,19 @@ fn write_one(
     m: &QueuedMove,
 ) -> Result<(), StoreError> {
     let mut sp = tx.savepoint("move")?;
+    write_move(&mut sp, insert_move, update, m)?;
+    sp.commit()?;
+    Ok(())
+}
+
+/// One move and its match row (and the ratings, for a rated match's last
+/// move), in the caller's transaction.
+fn write_move(
+    sp: &mut impl GenericClient,
+    insert_move: &Statement,
+    update: Update<'_>,
+    m: &QueuedMove,
+) -> Result<(), StoreError> {
     sp.execute(insert_move, &[&m.id, &m.index, &m.body])?;
     let at = now() as i64;
     let n = match update.node {
@@ -693,7 +721,6 @@ fn write_one(
         )?,
     };
     if n != 1 {
-        // Dropping the savepoint unfinished rolls it back.
         return Err(match update.node {
             Some(node) => StoreError::LeaseLost {
                 match_id: m.id.clone(),
@@ -703,9 +730,8 @@ fn write_one(
         });
     }
     if let Some(score) = m.score {
-        rate_finished(&mut sp, &m.id, score)?;
+        rate_finished(sp, &m.id, score)?;
     }
-    sp.commit()?;
     Ok(())
 }
 

@@ -44,6 +44,11 @@ pub struct SqliteStore {
 /// The size past which the writer empties the log file.
 pub const LOG_LIMIT: u64 = 64 << 20;
 
+/// How many times the writer tries to empty an overgrown log between two
+/// group commits (1 ms apart) while a checkpoint on the checkpointer's
+/// thread holds it busy.
+const TRUNCATE_TRIES: usize = 20;
+
 /// A store's write-ahead log file and the size it may reach.
 struct Log {
     path: std::path::PathBuf,
@@ -842,9 +847,22 @@ impl BatchWriter for Writer {
         if size <= log.limit {
             return;
         }
-        if let Ok(conn) = self.conn.lock() {
-            if let Err(e) = conn.query_row("PRAGMA wal_checkpoint(TRUNCATE)", [], |_| Ok(())) {
-                tracing::warn!(error = %e, size, "emptying the log failed; the next commit retries");
+        let Ok(conn) = self.conn.lock() else {
+            return;
+        };
+        // Busy while the checkpointer's own (passive) checkpoint runs: that
+        // one ends soon, so try again a few times rather than let the log
+        // grow until the next commit (it did, on a loaded machine).
+        for _ in 0..TRUNCATE_TRIES {
+            match conn.query_row("PRAGMA wal_checkpoint(TRUNCATE)", [], |r| {
+                r.get::<_, i64>(0)
+            }) {
+                Ok(0) => return,
+                Ok(_) => std::thread::sleep(std::time::Duration::from_millis(1)),
+                Err(e) => {
+                    tracing::warn!(error = %e, size, "emptying the log failed; the next commit retries");
+                    return;
+                }
             }
         }
     }
