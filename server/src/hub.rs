@@ -623,7 +623,17 @@ impl Hub {
             }
         }
         let slot = if within_limit {
-            self.reserve()?
+            match self.reserve() {
+                Ok(slot) => slot,
+                Err(full) => {
+                    // Too full to play it: the lease just taken goes back.
+                    if let Some(cluster) = self.cluster().cloned() {
+                        let key = id.to_string();
+                        self.inner.rt.spawn_blocking(move || cluster.release(&key));
+                    }
+                    return Err(full);
+                }
+            }
         } else {
             self.reserve_past_limit()
         };
