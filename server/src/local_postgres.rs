@@ -243,25 +243,8 @@ impl Drop for LocalPostgres {
 /// that is a failure.
 pub fn shared() -> Option<&'static LocalPostgres> {
     static SHARED: std::sync::OnceLock<Result<LocalPostgres, String>> = std::sync::OnceLock::new();
-    let started = SHARED.get_or_init(|| {
-        let (tx, rx) = std::sync::mpsc::channel();
-        let spawned = std::thread::Builder::new()
-            .name("local-postgres".into())
-            .spawn(move || {
-                let _ = tx.send(LocalPostgres::start());
-                // Parked for good: postgres's parent-death signal is tied
-                // to this thread.
-                loop {
-                    std::thread::park();
-                }
-            });
-        match spawned {
-            Ok(_) => rx
-                .recv()
-                .map_err(|e| e.to_string())
-                .and_then(|r| r.map_err(|e| e.to_string())),
-            Err(e) => Err(e.to_string()),
-        }
+    let started = start_for_process(&SHARED, "local-postgres", || {
+        LocalPostgres::start().map_err(|e| e.to_string())
     });
     match started {
         Ok(pg) => {
@@ -284,6 +267,31 @@ pub fn shared() -> Option<&'static LocalPostgres> {
             None
         }
     }
+}
+
+/// Starts a service once per process, from a thread parked for good (the
+/// service's parent-death signal is tied to the thread that started it),
+/// and keeps the outcome in `cell`.
+pub(crate) fn start_for_process<T: Send + Sync + 'static>(
+    cell: &'static std::sync::OnceLock<Result<T, String>>,
+    thread: &str,
+    start: fn() -> Result<T, String>,
+) -> &'static Result<T, String> {
+    cell.get_or_init(|| {
+        let (tx, rx) = std::sync::mpsc::channel();
+        let spawned = std::thread::Builder::new()
+            .name(thread.into())
+            .spawn(move || {
+                let _ = tx.send(start());
+                loop {
+                    std::thread::park();
+                }
+            });
+        match spawned {
+            Ok(_) => rx.recv().map_err(|e| e.to_string()).and_then(|r| r),
+            Err(e) => Err(e.to_string()),
+        }
+    })
 }
 
 /// The shared server's process id and folder, for [`stop_shared_at_exit`].

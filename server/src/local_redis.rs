@@ -79,22 +79,8 @@ impl Drop for LocalRedis {
 /// `CHAPAEV_REQUIRE_REDIS` set that is a failure.
 pub fn shared() -> Option<&'static LocalRedis> {
     static SHARED: std::sync::OnceLock<Result<LocalRedis, String>> = std::sync::OnceLock::new();
-    let started = SHARED.get_or_init(|| {
-        let (tx, rx) = std::sync::mpsc::channel();
-        let spawned = std::thread::Builder::new()
-            .name("local-redis".into())
-            .spawn(move || {
-                let _ = tx.send(LocalRedis::start().map_err(|e| e.to_string()));
-                // Parked for good: redis's parent-death signal is tied to
-                // this thread.
-                loop {
-                    std::thread::park();
-                }
-            });
-        match spawned {
-            Ok(_) => rx.recv().map_err(|e| e.to_string()).and_then(|r| r),
-            Err(e) => Err(e.to_string()),
-        }
+    let started = crate::local_postgres::start_for_process(&SHARED, "local-redis", || {
+        LocalRedis::start().map_err(|e| e.to_string())
     });
     match started {
         Ok(r) => Some(r),
