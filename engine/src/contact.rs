@@ -17,6 +17,7 @@
 
 use crate::obstacle::LineGeom;
 use crate::push;
+use crate::revision::Revision;
 use crate::roots::RootSolver;
 use crate::trajectory::Trajectory;
 use glam::DVec2;
@@ -94,7 +95,7 @@ impl<'a> Mover<'a> {
 /// The first time `>= now` at which the moving disc touches the fixed point
 /// `q` at centre distance `s`, approaching.
 #[inline]
-pub fn disc_point(m: &Mover, q: DVec2, s: f64) -> Option<f64> {
+pub fn disc_point(m: &Mover, q: DVec2, s: f64, rev: Revision) -> Option<f64> {
     let d = m.pos - q;
     let (w, scale) = well_scaled(m.w);
     let b = d.dot(w);
@@ -106,7 +107,7 @@ pub fn disc_point(m: &Mover, q: DVec2, s: f64) -> Option<f64> {
         // Touching now: a contact only if the approach is more than noise.
         return (b < -APPROACH * s * w.length()).then_some(m.now);
     }
-    let l = entry(w.length_squared(), b, c, d.perp_dot(w), s * s)?;
+    let l = entry(w.length_squared(), b, c, d.perp_dot(w), s * s, rev)?;
     m.time_at(l * scale)
 }
 
@@ -136,14 +137,17 @@ fn well_scaled(w: DVec2) -> (DVec2, f64) {
 ///
 /// The equation is `|d + w l|^2 = s^2` with `a = |w|^2`, `b = d . w`,
 /// `c = |d|^2 - s^2`; `cross = d x w` and `s2 = s^2`. From far away
-/// (`|d|` above about `1e7 s`) `b^2` and `a c` agree to rounding and their
-/// difference says nothing; there the discriminant is taken from
-/// Lagrange's identity instead, `b^2 - a c = a s^2 - cross^2`, free of
-/// that cancellation (only then, so nearby contacts keep their bits).
+/// (`|d|` above [`FAR`] times `s`) `b^2` and `a c` nearly cancel: their
+/// difference carries an error of a few units in the last place of `b^2`,
+/// which moves the root by about `eps (|d| / s)^2` of `s` (by 7e-10 of the
+/// time from `1.3e7 s`). There, and for near-grazes whose discriminant is
+/// lost in that rounding, the discriminant is taken from Lagrange's
+/// identity instead, `b^2 - a c = a s^2 - cross^2`, free of that
+/// cancellation (only there, so nearby contacts keep their bits).
 #[inline(always)]
-fn entry(a: f64, b: f64, c: f64, cross: f64, s2: f64) -> Option<f64> {
+fn entry(a: f64, b: f64, c: f64, cross: f64, s2: f64, rev: Revision) -> Option<f64> {
     let disc = b * b - a * c;
-    if disc <= GRAZE * b * b {
+    if disc <= GRAZE * b * b || (rev.at_least_r2() && c > FAR * FAR * s2) {
         let exact = a * s2 - cross * cross;
         if !(exact > GRAZE * a * s2) {
             return None;
@@ -161,6 +165,13 @@ fn entry(a: f64, b: f64, c: f64, cross: f64, s2: f64) -> Option<f64> {
 /// fraction of the distance travelled.
 const APPROACH: f64 = 1e-12;
 
+/// Distance, in contact distances, beyond which the discriminant of a
+/// contact is taken from Lagrange's identity (see [`entry`]): from there
+/// on the rounding of `b^2 - a c` would move the contact by more than
+/// 1e-12 of the contact distance. No two pieces on a board are that far
+/// apart.
+const FAR: f64 = 100.0;
+
 /// Discriminants below this fraction of `b^2` are rounding noise around a
 /// double root (a tangent pass). Skipping such a touch leaves at most a
 /// rounding-level overlap: the normal approach speed there is below
@@ -176,11 +187,11 @@ pub struct LineHit {
 
 /// The first time `>= now` at which the moving disc of radius `r` touches
 /// the solid line (its straight part or one of its ends), approaching.
-pub fn disc_line(m: &Mover, line: &LineGeom, r: f64) -> Option<LineHit> {
+pub fn disc_line(m: &Mover, line: &LineGeom, r: f64, rev: Revision) -> Option<LineHit> {
     let mut best = disc_line_body(m, line, r).map(|t| LineHit { t, end: None });
     for (k, end) in line.ends.iter().enumerate() {
         if let Some(q) = end {
-            if let Some(t) = disc_point(m, *q, r) {
+            if let Some(t) = disc_point(m, *q, r, rev) {
                 if best.is_none_or(|b| t < b.t) {
                     best = Some(LineHit {
                         t,
@@ -249,21 +260,29 @@ pub fn disc_disc(
     s: f64,
     now: f64,
     solver: &impl RootSolver,
+    rev: Revision,
 ) -> Option<f64> {
     match (mi, tj.is_moving_at(now)) {
         (None, false) => None,
-        (Some(m), false) => disc_point(m, tj.position(now), s),
-        (None, true) => disc_point(&Mover::new(tj, now)?, ti.position(now), s),
+        (Some(m), false) => disc_point(m, tj.position(now), s, rev),
+        (None, true) => disc_point(&Mover::new(tj, now)?, ti.position(now), s, rev),
         (Some(m), true) if ti.is_frictionless() && tj.is_frictionless() => {
-            linear_pair(m.pos, ti, tj, s, now)
+            linear_pair(m.pos, ti, tj, s, now, rev)
         }
-        (Some(m), true) => curved_pair(m.pos, ti, tj, s, now, solver),
+        (Some(m), true) => curved_pair(m.pos, ti, tj, s, now, solver, rev),
     }
 }
 
 /// Both move without friction: relative motion is linear, the contact
 /// equation quadratic.
-fn linear_pair(pi: DVec2, ti: &Trajectory, tj: &Trajectory, s: f64, now: f64) -> Option<f64> {
+fn linear_pair(
+    pi: DVec2,
+    ti: &Trajectory,
+    tj: &Trajectory,
+    s: f64,
+    now: f64,
+    rev: Revision,
+) -> Option<f64> {
     let dp = pi - tj.position(now);
     let (dv, scale) = well_scaled(ti.start_velocity() - tj.start_velocity());
     let b = dp.dot(dv);
@@ -275,7 +294,7 @@ fn linear_pair(pi: DVec2, ti: &Trajectory, tj: &Trajectory, s: f64, now: f64) ->
         let noise = APPROACH * s * scale * (ti.speed() + tj.speed());
         return (b < -noise).then_some(now);
     }
-    Some(now + entry(dv.length_squared(), b, c, dp.perp_dot(dv), s * s)? * scale)
+    Some(now + entry(dv.length_squared(), b, c, dp.perp_dot(dv), s * s, rev)? * scale)
 }
 
 /// At least one of two moving discs slows down: solve the quartic on the
@@ -287,6 +306,7 @@ fn curved_pair(
     s: f64,
     now: f64,
     solver: &impl RootSolver,
+    rev: Revision,
 ) -> Option<f64> {
     let pj = tj.position(now);
     let horizon = ti.stop_time().min(tj.stop_time()) - now;
@@ -314,6 +334,12 @@ fn curved_pair(
         // Approaching, or pressed together by their braking: an event now.
         return Some(now);
     }
+    if touching && rev.at_least_r2() && c1 < -min_slope && pressing(ti, tj, dp, s, now, -min_slope)
+    {
+        // Neither approaching nor parting, and pressed together obliquely:
+        // the approximated contact, now (see `push::pressing_kick`).
+        return Some(now);
+    }
     if touching {
         // f(t) = t g(t) with g the cubic below; f crosses downwards where g
         // does, with slope f'(r) = r g'(r).
@@ -333,6 +359,24 @@ fn curved_pair(
         }
     }
     None
+}
+
+/// Whether two touching moving discs (centres `dp` apart, contact
+/// distance `s`) are pressed together obliquely, so that the approximated
+/// contact would part them faster than `noise` (in units of `2 s` times a
+/// speed, as the slope of the squared gap).
+fn pressing(ti: &Trajectory, tj: &Trajectory, dp: DVec2, s: f64, now: f64, noise: f64) -> bool {
+    if !ti.is_moving_at(now) || !tj.is_moving_at(now) {
+        return false;
+    }
+    let (vi, vj) = (ti.velocity(now), tj.velocity(now));
+    let n = dp.normalize_or_zero();
+    let accelerations = [ti.acceleration(now), tj.acceleration(now)];
+    match push::pressing_kick([vi, vj], accelerations, n, s, now) {
+        Some(push::Press::Part(dw)) => 2.0 * s * ((vi - vj).dot(n).max(0.0) + dw) > noise,
+        Some(push::Press::Rest) => true,
+        None => false,
+    }
 }
 
 /// True if the remaining paths (segments, or rays without friction) of the
@@ -397,7 +441,13 @@ mod tests {
     #[test]
     fn frictionless_disc_meets_a_point_at_the_geometric_time() {
         let tr = mover((0.0, 0.0), (2.0, 0.0), 0.0);
-        let t = disc_point(&Mover::new(&tr, 0.0).unwrap(), DVec2::new(5.0, 0.0), 1.0).unwrap();
+        let t = disc_point(
+            &Mover::new(&tr, 0.0).unwrap(),
+            DVec2::new(5.0, 0.0),
+            1.0,
+            Revision::LATEST,
+        )
+        .unwrap();
         assert_eq!(t, 2.0);
     }
 
@@ -406,10 +456,21 @@ mod tests {
         // Stops after v^2/(2 alpha) = 1.0; the point is 1.5 away at contact distance 0.4.
         let tr = mover((0.0, 0.0), (2.0, 0.0), 2.0);
         assert_eq!(
-            disc_point(&Mover::new(&tr, 0.0).unwrap(), DVec2::new(1.5, 0.0), 0.4),
+            disc_point(
+                &Mover::new(&tr, 0.0).unwrap(),
+                DVec2::new(1.5, 0.0),
+                0.4,
+                Revision::LATEST
+            ),
             None
         );
-        let t = disc_point(&Mover::new(&tr, 0.0).unwrap(), DVec2::new(1.3, 0.0), 0.4).unwrap();
+        let t = disc_point(
+            &Mover::new(&tr, 0.0).unwrap(),
+            DVec2::new(1.3, 0.0),
+            0.4,
+            Revision::LATEST,
+        )
+        .unwrap();
         // Travels 0.9: 2t - t^2 = 0.9.
         let exact = 1.0 - (1.0f64 - 0.9).sqrt();
         assert!((t - exact).abs() < 1e-15, "{t} vs {exact}");
@@ -419,11 +480,26 @@ mod tests {
     fn a_creeping_disc_meets_a_point_at_the_geometric_time() {
         // Speeds whose squares underflow are rescaled, and scaled back.
         let tr = mover((0.0, 0.0), (1e-170, 0.0), 0.0);
-        let t = disc_point(&Mover::new(&tr, 0.0).unwrap(), DVec2::new(5.0, 0.0), 1.0).unwrap();
+        let t = disc_point(
+            &Mover::new(&tr, 0.0).unwrap(),
+            DVec2::new(5.0, 0.0),
+            1.0,
+            Revision::LATEST,
+        )
+        .unwrap();
         assert!((t - 4e170).abs() <= 4e170 * 1e-15, "{t}");
         let a = mover((0.0, 0.0), (1e-170, 0.0), 0.0);
         let b = mover((5.0, 0.0), (-1e-170, 0.0), 0.0);
-        let t = disc_disc(&a, Mover::new(&a, 0.0).as_ref(), &b, 1.0, 0.0, &Production).unwrap();
+        let t = disc_disc(
+            &a,
+            Mover::new(&a, 0.0).as_ref(),
+            &b,
+            1.0,
+            0.0,
+            &Production,
+            Revision::LATEST,
+        )
+        .unwrap();
         assert!((t - 2e170).abs() <= 2e170 * 1e-15, "{t}");
     }
 
@@ -432,16 +508,24 @@ mod tests {
         for dist in [1e6, 3e6, 1e7] {
             let tr = mover((-dist, 0.0), (3.0, 0.0), 0.0);
             let m = Mover::new(&tr, 0.0).unwrap();
-            let t = disc_point(&m, DVec2::ZERO, 0.02).unwrap();
+            let t = disc_point(&m, DVec2::ZERO, 0.02, Revision::LATEST).unwrap();
             assert!((t - (dist - 0.02) / 3.0).abs() <= 1e-15 * t, "{dist}: {t}");
             // Passing just wide of it still misses.
             let tr = mover((-dist, 0.0200001), (3.0, 0.0), 0.0);
             let m = Mover::new(&tr, 0.0).unwrap();
-            assert_eq!(disc_point(&m, DVec2::ZERO, 0.02), None);
+            assert_eq!(disc_point(&m, DVec2::ZERO, 0.02, Revision::LATEST), None);
         }
         let a = mover((-1e6, 0.0), (1.0, 0.0), 0.0);
         let b = mover((0.0, 0.0), (-1.0, 0.0), 0.0);
-        let t = disc_disc(&a, Mover::new(&a, 0.0).as_ref(), &b, 0.04, 0.0, &Production);
+        let t = disc_disc(
+            &a,
+            Mover::new(&a, 0.0).as_ref(),
+            &b,
+            0.04,
+            0.0,
+            &Production,
+            Revision::LATEST,
+        );
         assert_eq!(t, Some((1e6 - 0.04) / 2.0));
     }
 
@@ -449,7 +533,12 @@ mod tests {
     fn touching_and_separating_gives_no_contact() {
         let tr = mover((0.0, 0.0), (-1.0, 0.0), 0.0);
         assert_eq!(
-            disc_point(&Mover::new(&tr, 0.0).unwrap(), DVec2::new(1.0, 0.0), 1.0),
+            disc_point(
+                &Mover::new(&tr, 0.0).unwrap(),
+                DVec2::new(1.0, 0.0),
+                1.0,
+                Revision::LATEST
+            ),
             None
         );
     }
@@ -458,7 +547,12 @@ mod tests {
     fn touching_and_approaching_is_a_contact_now() {
         let tr = mover((0.0, 0.0), (1.0, 0.0), 0.5);
         assert_eq!(
-            disc_point(&Mover::new(&tr, 0.0).unwrap(), DVec2::new(1.0, 0.0), 1.0),
+            disc_point(
+                &Mover::new(&tr, 0.0).unwrap(),
+                DVec2::new(1.0, 0.0),
+                1.0,
+                Revision::LATEST
+            ),
             Some(0.0)
         );
     }
@@ -472,10 +566,13 @@ mod tests {
         ))
         .unwrap();
         let tr = mover((0.0, 0.0), (1.0, 0.0), 0.0);
-        let hit = disc_line(&Mover::new(&tr, 0.0).unwrap(), &seg, 0.5).unwrap();
+        let hit = disc_line(&Mover::new(&tr, 0.0).unwrap(), &seg, 0.5, Revision::LATEST).unwrap();
         assert_eq!(hit, LineHit { t: 1.5, end: None });
         let tr = mover((0.0, 3.0), (1.0, 0.0), 0.0);
-        assert_eq!(disc_line(&Mover::new(&tr, 0.0).unwrap(), &seg, 0.5), None);
+        assert_eq!(
+            disc_line(&Mover::new(&tr, 0.0).unwrap(), &seg, 0.5, Revision::LATEST),
+            None
+        );
     }
 
     #[test]
@@ -487,7 +584,7 @@ mod tests {
         ))
         .unwrap();
         let tr = mover((0.0, 1.3), (1.0, 0.0), 0.0);
-        let hit = disc_line(&Mover::new(&tr, 0.0).unwrap(), &seg, 0.5).unwrap();
+        let hit = disc_line(&Mover::new(&tr, 0.0).unwrap(), &seg, 0.5, Revision::LATEST).unwrap();
         assert_eq!(hit.end, Some(1));
         let expected = 2.0 - (0.25f64 - 0.09).sqrt();
         assert!((hit.t - expected).abs() < 1e-15);
@@ -497,7 +594,16 @@ mod tests {
     fn two_sliding_discs_meet_at_the_quartic_root() {
         let a = mover((0.0, 0.0), (2.0, 0.0), 1.0);
         let b = mover((1.5, 0.0), (-2.0, 0.0), 1.0);
-        let t = disc_disc(&a, Mover::new(&a, 0.0).as_ref(), &b, 0.5, 0.0, &Production).unwrap();
+        let t = disc_disc(
+            &a,
+            Mover::new(&a, 0.0).as_ref(),
+            &b,
+            0.5,
+            0.0,
+            &Production,
+            Revision::LATEST,
+        )
+        .unwrap();
         // 2(2t - t^2/2) = 1  =>  t^2 - 4t + 1 = 0
         let exact = 2.0 - 3.0f64.sqrt();
         assert!((t - exact).abs() < 1e-15, "{t} vs {exact}");
@@ -516,7 +622,15 @@ mod tests {
             0.0
         ));
         assert_eq!(
-            disc_disc(&a, Mover::new(&a, 0.0).as_ref(), &b, 1.0, 0.0, &Production),
+            disc_disc(
+                &a,
+                Mover::new(&a, 0.0).as_ref(),
+                &b,
+                1.0,
+                0.0,
+                &Production,
+                Revision::LATEST
+            ),
             None
         );
     }

@@ -36,6 +36,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod calendar;
+pub mod collapse;
 pub mod contact;
 pub mod event;
 pub mod grid;
@@ -45,6 +46,7 @@ pub mod model;
 pub mod obstacle;
 pub mod presets;
 pub mod push;
+pub mod revision;
 pub mod roots;
 pub mod scene;
 pub mod trajectory;
@@ -54,6 +56,7 @@ pub use event::{Event, EventKind};
 pub use id::{BodyId, LineId, PointId};
 pub use model::{Action, Model, ModelRecord, SceneDiff, Snapshot, TimedAction};
 pub use obstacle::{Line, LineKind, Point};
+pub use revision::Revision;
 pub use scene::{BodySpec, Scene, SceneError};
 pub use trajectory::Trajectory;
 pub use world::{End, EndReason, EventHandler, ExitResponse, Limits, World, WorldConfig};

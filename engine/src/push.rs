@@ -103,6 +103,80 @@ pub fn chatters(ti: &Trajectory, tj: &Trajectory, n: DVec2, now: f64) -> bool {
     w <= CAPTURE * (vi.length() + vj.length())
 }
 
+/// Largest gap, as a fraction of the contact distance, that the
+/// approximated oblique pressing contact (see [`pressing_kick`]) opens
+/// between two discs: the bound on its position error.
+pub const PRESS_GAP: f64 = 1e-6;
+
+/// Largest separation speed the approximated pressing contact gives a pair,
+/// as a fraction of the sum of their speeds: it never sets slow discs in
+/// motion (the kinetic energy it adds is at most `PRESS_SPEED^2` of
+/// theirs), and a pair bounces at most about `1 / (2 PRESS_SPEED)` times
+/// before it stops.
+pub const PRESS_SPEED: f64 = 0.05;
+
+/// Two discs pressed together obliquely: the separation speed to add to a
+/// hit between them, or `None` where the model is exact.
+///
+/// Touching discs whose braking presses them together (the second
+/// derivative of their gap, `g2 = (a_i - a_j) . n + |v_t|^2 / s`, is
+/// negative with the relative normal velocity zero) slide along each other
+/// and turn: a motion with no closed form. Along the line of centres it is
+/// exact ([`pushing`], [`pooled`]); elsewhere the engine approximates it
+/// by keeping the pair bouncing: every hit between them leaves them
+/// separating at no less than `w = sqrt(2 |g2| PRESS_GAP s)`, so they meet
+/// again `2 w / |g2|` later, each time exactly, and never overlap (`w` is
+/// at most [`PRESS_SPEED`] of their speeds). The gap
+/// between hits stays below `w^2 / (2 |g2|) <= PRESS_GAP s`, the contact
+/// force averaged over a bounce is the pressing force, and the kinetic
+/// energy added is at most `m w^2 / 2` of the pair's reduced mass `m` (once
+/// per pressing episode: the bounces themselves are elastic). `vi`, `vj`
+/// are the velocities after the hit, `ai`, `aj` the accelerations, `n` the
+/// unit normal from `j` to `i`, `s` the contact distance.
+pub fn pressing_kick(
+    [vi, vj]: [DVec2; 2],
+    [ai, aj]: [DVec2; 2],
+    n: DVec2,
+    s: f64,
+    now: f64,
+) -> Option<Press> {
+    let dv = vi - vj;
+    let w = dv.dot(n);
+    let vt = dv - n * w;
+    let g2 = (ai - aj).dot(n) + vt.length_squared() / s;
+    if !(g2 < 0.0) {
+        return None;
+    }
+    // Along the line of centres with one velocity: the exact pushing model.
+    let speed = vi.length().max(vj.length());
+    if vt.length() <= SAME * speed && vi.perp_dot(n).abs() <= SAME * speed {
+        return None;
+    }
+    let w_min = (2.0 * -g2 * PRESS_GAP * s)
+        .sqrt()
+        .min(PRESS_SPEED * (vi.length() + vj.length()));
+    if w >= w_min {
+        return None;
+    }
+    // So slow that the next bounce would fall within the rounding of the
+    // time: the pair comes to rest here (it would within that time anyway).
+    if crate::world::same_instant(now, now + 2.0 * w_min / -g2) {
+        return Some(Press::Rest);
+    }
+    Some(Press::Part(w_min - w.max(0.0)))
+}
+
+/// What the approximated pressing contact does to a pair (see
+/// [`pressing_kick`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Press {
+    /// Add this separation speed along the normal, momentum kept.
+    Part(f64),
+    /// Both come to rest: their next bounce would fall within the rounding
+    /// of the time (they move less than a rounding of their positions).
+    Rest,
+}
+
 /// One disc of a pushing chain: its velocity, mass and own braking.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Part {

@@ -15,6 +15,7 @@
 //! a disc whose centre leaves the board (a sensor line).
 
 use crate::calendar::Calendar;
+use crate::collapse;
 use crate::contact::{self, Mover};
 use crate::event::{Event, EventKind};
 use crate::grid::{Grid, Step};
@@ -22,6 +23,7 @@ use crate::id::{BodyId, LineId, PointId};
 use crate::impulse;
 use crate::obstacle::{Line, LineGeom, Point};
 use crate::push;
+use crate::revision::Revision;
 use crate::roots::Method;
 use crate::scene::{BodySpec, Scene, SceneError};
 use crate::trajectory::Trajectory;
@@ -97,6 +99,9 @@ pub struct WorldConfig {
     /// loop). Same results, for measuring what the calendar saves.
     #[serde(default)]
     pub recompute_all: bool,
+    /// Which revision of the computation runs (see [`Revision`]).
+    #[serde(default)]
+    pub revision: Revision,
 }
 
 /// When to stop a run.
@@ -140,6 +145,9 @@ pub const COLLAPSE_EVENTS: u64 = 2_000;
 /// See [`COLLAPSE_EVENTS`].
 pub const COLLAPSE_WINDOW: u64 = 64;
 
+/// Most discs one collapse is taken to its limit for (see `World::collapse`).
+pub const MAX_COLLAPSE: usize = 256;
+
 /// Past this time a run checks, before each event, that every moving body
 /// is still within [`MAX_COORDINATE`] (no scene reaches it otherwise:
 /// speeds stay below 1e150 and start positions too).
@@ -148,6 +156,25 @@ pub const FAR_FUTURE: f64 = 1e150;
 /// Largest coordinate a moving body may reach: its square (contact
 /// equations square distances) stays finite.
 pub const MAX_COORDINATE: f64 = 1e154;
+
+/// Relative error of a contact distance beyond which a hit puts the bodies
+/// back at exactly touching distance (see [`snap`]).
+pub const SNAP: f64 = 1e-11;
+
+/// How far to move apart two bodies (or a body from an obstacle) that hit
+/// at centre distance `dist` where they touch at `s`: nothing where the
+/// distance is right to within [`SNAP`] (every hit near the origin), else
+/// the error. Far from the origin a position carries the rounding of its
+/// coordinates (3e-10 m at 3e6 m), which a hit would otherwise keep as an
+/// overlap or a gap; moving the bodies by it is below that rounding.
+pub fn snap(s: f64, dist: f64) -> f64 {
+    let err = s - dist;
+    if err.abs() > SNAP * s && dist > 0.0 {
+        err
+    } else {
+        0.0
+    }
+}
 
 /// Whether `t` is the same instant as `t0` up to rounding: within about a
 /// thousand units in the last place of the later time.
@@ -200,6 +227,9 @@ pub struct Stats {
     pub stale: u64,
     /// Grid cell crossings.
     pub cell_crossings: u64,
+    /// Hits between discs pressed together obliquely, where the engine
+    /// approximates the contact (see [`push::pressing_kick`]): not exact.
+    pub pressed: u64,
 }
 
 impl Stats {
@@ -685,13 +715,24 @@ impl World {
     /// touching along one line, that limit is taken at once for the whole
     /// touching chain they belong to: the plastic impact of a chain
     /// ([`push::plastic`]), momentum kept. Their braking is pooled by the
-    /// pushing events that follow. Anything else is left alone (and ends
-    /// the run as `stuck` if it goes on).
+    /// pushing events that follow. From the second revision on, any other
+    /// collapse (discs off one line, obstacles) is taken to its limit the
+    /// same way, for every disc touching the ones involved: the plastic
+    /// impact of all their contacts at once ([`collapse::plastic`]).
+    /// Whatever is left ends the run as `stuck` if it goes on.
     fn collapse(&mut self, recent: &mut Vec<usize>, t: f64) {
         recent.sort_unstable();
         recent.dedup();
+        if !self.collapse_chain(recent, t) && self.config.revision.at_least_r2() {
+            self.collapse_cluster(recent, t);
+        }
+    }
+
+    /// The collapse of a chain of discs along one line (see `collapse`);
+    /// `false` if `recent` is not one.
+    fn collapse_chain(&mut self, recent: &[usize], t: f64) -> bool {
         if recent.len() < 2 || recent.last() == Some(&usize::MAX) {
-            return;
+            return false;
         }
         let p0 = self.slots[recent[0]].traj.position(t);
         let Some(far) = recent
@@ -699,11 +740,11 @@ impl World {
             .map(|&c| self.slots[c].traj.position(t) - p0)
             .max_by(|a, b| a.length_squared().total_cmp(&b.length_squared()))
         else {
-            return;
+            return false;
         };
         let u = far.normalize_or_zero();
         if u == DVec2::ZERO {
-            return;
+            return false;
         }
         let on_line = |w: &World, c: usize| {
             let s = &w.slots[c];
@@ -712,10 +753,10 @@ impl World {
                 && v.perp_dot(u).abs() <= push::SAME * v.length()
         };
         if !recent.iter().all(|&c| on_line(self, c)) {
-            return;
+            return false;
         }
         // The whole touching chain along the line.
-        let chain = self.touching_chain(recent.clone(), t, u, |w, _, c| on_line(w, c));
+        let chain = self.touching_chain(recent.to_vec(), t, u, |w, _, c| on_line(w, c));
         let parts = self.chain_parts(&chain, t);
         for (&c, v) in chain.iter().zip(push::plastic(&parts, u)) {
             let p = self.slots[c].traj.position(t);
@@ -723,6 +764,96 @@ impl World {
             self.slots[c].gen = self.slots[c].gen.wrapping_add(1);
         }
         for &c in &chain {
+            self.predict(c, true);
+        }
+        true
+    }
+
+    /// The plastic limit of a collapse among the discs of `recent` (slots;
+    /// `usize::MAX` for an obstacle) and every disc touching them, against
+    /// each other and the solid lines and points they touch.
+    fn collapse_cluster(&mut self, recent: &[usize], t: f64) {
+        let mut members: Vec<usize> = recent
+            .iter()
+            .copied()
+            .filter(|&c| c != usize::MAX)
+            .collect();
+        if members.is_empty() {
+            return;
+        }
+        let pos = |w: &World, c: usize| w.slots[c].traj.position(t);
+        let touching = |gap: f64, s: f64| gap <= s * (1.0 + push::TOUCHING);
+        // Grow to every disc touching a member.
+        let mut k = 0;
+        while k < members.len() && members.len() < MAX_COLLAPSE {
+            let (m, pm) = (members[k], pos(self, members[k]));
+            for c in 0..self.slots.len() {
+                let s = self.slots[m].radius + self.slots[c].radius;
+                if self.slots[c].alive
+                    && !members.contains(&c)
+                    && touching((pos(self, c) - pm).length(), s)
+                {
+                    members.push(c);
+                }
+            }
+            k += 1;
+        }
+        let mut contacts = Vec::new();
+        for (a, &ca) in members.iter().enumerate() {
+            let (pa, r) = (pos(self, ca), self.slots[ca].radius);
+            for (b, &cb) in members.iter().enumerate().skip(a + 1) {
+                let d = pa - pos(self, cb);
+                if touching(d.length(), r + self.slots[cb].radius) {
+                    let n = d.normalize_or_zero();
+                    contacts.push(collapse::Contact { a, b: Some(b), n });
+                }
+            }
+            for &line in &self.solid {
+                let g = &self.geoms[line as usize];
+                if !touching(g.distance(pa), r) {
+                    continue;
+                }
+                let n = if g.covers(pa) {
+                    g.n * g.signed_distance(pa).signum()
+                } else {
+                    let end = g
+                        .ends
+                        .iter()
+                        .flatten()
+                        .min_by(|x, y| (pa - **x).length().total_cmp(&(pa - **y).length()));
+                    end.map_or(DVec2::ZERO, |q| (pa - *q).normalize_or_zero())
+                };
+                contacts.push(collapse::Contact { a, b: None, n });
+            }
+            for q in &self.points {
+                if touching((pa - q.pos).length(), r) {
+                    let n = (pa - q.pos).normalize_or_zero();
+                    contacts.push(collapse::Contact { a, b: None, n });
+                }
+            }
+        }
+        contacts.retain(|c| c.n != DVec2::ZERO);
+        let vel: Vec<DVec2> = members
+            .iter()
+            .map(|&c| self.slots[c].traj.velocity(t))
+            .collect();
+        let inv: Vec<f64> = members
+            .iter()
+            .map(|&c| 1.0 / self.material[c].mass)
+            .collect();
+        let Some(after) = collapse::plastic(&vel, &inv, &contacts) else {
+            return;
+        };
+        let mut changed = Vec::new();
+        for (k, &c) in members.iter().enumerate() {
+            if after[k] != vel[k] {
+                let p = pos(self, c);
+                self.slots[c].traj = Trajectory::new(t, p, after[k], self.material[c].mu * self.g);
+                self.slots[c].gen = self.slots[c].gen.wrapping_add(1);
+                changed.push(c);
+            }
+        }
+        for c in changed {
             self.predict(c, true);
         }
     }
@@ -798,12 +929,17 @@ impl World {
             Next::Line(k, end) => {
                 let geom = &self.geoms[k as usize];
                 let p = self.slots[i].traj.position(t);
-                let n = match end {
-                    Some(e) => (p - geom.ends[e as usize].unwrap_or(p)).normalize_or_zero(),
-                    None if geom.signed_distance(p) >= 0.0 => geom.n,
-                    None => -geom.n,
+                let (n, dist) = match end {
+                    Some(e) => {
+                        let d = p - geom.ends[e as usize].unwrap_or(p);
+                        (d.normalize_or_zero(), d.length())
+                    }
+                    None => {
+                        let d = geom.signed_distance(p);
+                        (if d >= 0.0 { geom.n } else { -geom.n }, d.abs())
+                    }
                 };
-                self.bounce(i, t, n);
+                self.bounce(i, t, n, dist);
                 self.stats.body_line += 1;
                 EventKind::BodyLine {
                     body: self.ids[i],
@@ -813,8 +949,8 @@ impl World {
             }
             Next::Point(k) => {
                 let p = self.slots[i].traj.position(t);
-                let n = (p - self.points[k as usize].pos).normalize_or_zero();
-                self.bounce(i, t, n);
+                let d = p - self.points[k as usize].pos;
+                self.bounce(i, t, d.normalize_or_zero(), d.length());
                 self.stats.body_point += 1;
                 EventKind::BodyPoint {
                     body: self.ids[i],
@@ -896,9 +1032,15 @@ impl World {
 
     fn collide(&mut self, i: usize, j: usize, t: f64) {
         let (ti, tj) = (self.slots[i].traj, self.slots[j].traj);
-        let (pi, pj) = (ti.position(t), tj.position(t));
+        let (mut pi, mut pj) = (ti.position(t), tj.position(t));
         let (mi, mj) = (self.material[i], self.material[j]);
         let n = (pi - pj).normalize_or_zero();
+        let gap = snap(mi.radius + mj.radius, (pi - pj).length());
+        if gap != 0.0 && self.config.revision.at_least_r2() {
+            let (w_i, w_j) = impulse::weights(mi.mass, mj.mass);
+            pi += n * (gap * w_j);
+            pj -= n * (gap * w_i);
+        }
         let e = mi.restitution.min(mj.restitution);
         let (ui, uj) = (ti.velocity(t), tj.velocity(t));
         let (mut vi, mut vj) = impulse::body_body(ui, uj, mi.mass, mj.mass, e, n);
@@ -925,6 +1067,36 @@ impl World {
             }
             let (v, a) = push::together([vi, vj], [mi.mass, mj.mass], alpha);
             (new_i, new_j) = (Trajectory::new(t, pi, v, a), Trajectory::new(t, pj, v, a));
+        } else if let Some(press) =
+            (self.config.revision.at_least_r2() && new_i.is_moving_at(t) && new_j.is_moving_at(t))
+                .then(|| {
+                    push::pressing_kick(
+                        [vi, vj],
+                        [new_i.acceleration(t), new_j.acceleration(t)],
+                        n,
+                        mi.radius + mj.radius,
+                        t,
+                    )
+                })
+                .flatten()
+        {
+            // Pressed together obliquely: the approximated contact.
+            (new_i, new_j) = match press {
+                push::Press::Part(dw) => {
+                    let (w_i, w_j) = impulse::weights(mi.mass, mj.mass);
+                    vi += n * (dw * w_j);
+                    vj -= n * (dw * w_i);
+                    (
+                        Trajectory::new(t, pi, vi, alpha[0]),
+                        Trajectory::new(t, pj, vj, alpha[1]),
+                    )
+                }
+                push::Press::Rest => (
+                    Trajectory::at_rest(t, pi, alpha[0]),
+                    Trajectory::at_rest(t, pj, alpha[1]),
+                ),
+            };
+            self.stats.pressed += 1;
         }
         self.slots[i].traj = new_i;
         self.slots[j].traj = new_j;
@@ -1014,11 +1186,17 @@ impl World {
         true
     }
 
-    fn bounce(&mut self, i: usize, t: f64, n: DVec2) {
+    /// `i` hits an obstacle at `t`, along `n` (pointing from the obstacle to
+    /// the centre), its centre `dist` from it.
+    fn bounce(&mut self, i: usize, t: f64, n: DVec2, dist: f64) {
         let tr = self.slots[i].traj;
         let m = &self.material[i];
         let v = impulse::body_static(tr.velocity(t), m.restitution, n);
-        self.slots[i].traj = Trajectory::new(t, tr.position(t), v, m.mu * self.g);
+        let mut p = tr.position(t);
+        if self.config.revision.at_least_r2() {
+            p += n * snap(m.radius, dist);
+        }
+        self.slots[i].traj = Trajectory::new(t, p, v, m.mu * self.g);
         self.changed(i);
     }
 
@@ -1110,12 +1288,12 @@ impl World {
             }
         }
         for c in &self.corners {
-            if let Some(t) = contact::disc_point(m, c.pos, r) {
+            if let Some(t) = contact::disc_point(m, c.pos, r, self.config.revision) {
                 best.offer(t, Next::Line(c.line, Some(c.end)));
             }
         }
         for (k, p) in self.points.iter().enumerate() {
-            if let Some(t) = contact::disc_point(m, p.pos, r) {
+            if let Some(t) = contact::disc_point(m, p.pos, r, self.config.revision) {
                 best.offer(t, Next::Point(k as u32));
             }
         }
@@ -1165,7 +1343,15 @@ impl World {
             _ => {
                 let si = &self.slots[i];
                 let s = si.radius + sj.radius;
-                let t = contact::disc_disc(&si.traj, mover, &sj.traj, s, now, &self.config.solver);
+                let t = contact::disc_disc(
+                    &si.traj,
+                    mover,
+                    &sj.traj,
+                    s,
+                    now,
+                    &self.config.solver,
+                    self.config.revision,
+                );
                 if matches!(known, Some((k, None)) if k == j) {
                     *pair = Some(t);
                 }

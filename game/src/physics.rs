@@ -11,8 +11,8 @@ use crate::film::Film;
 use crate::piece::PieceId;
 use engine::world::{BodyState, End, World};
 use engine::{
-    BodyId, BodySpec, Event, EventHandler, ExitResponse, Limits, LineId, Model, Scene, Snapshot,
-    WorldConfig,
+    BodyId, BodySpec, Event, EventHandler, ExitResponse, Limits, LineId, Model, Revision, Scene,
+    Snapshot, WorldConfig,
 };
 use glam::DVec2;
 
@@ -93,6 +93,7 @@ fn computed(
     board: &Board,
     piece: PieceId,
     velocity: DVec2,
+    revision: Revision,
 ) -> Result<(Model<FallOff>, End), String> {
     // The board is the engine's own state from the previous shot: pieces
     // left touching may overlap by rounding, which is not bad input, so the
@@ -109,7 +110,7 @@ fn computed(
         points: scene.points,
         lines: scene.lines,
     };
-    let mut model = Model::from_snapshot(snapshot, FallOff::default(), WorldConfig::default())
+    let mut model = Model::from_snapshot(snapshot, FallOff::default(), world_config(revision))
         .map_err(|e| e.to_string())?;
     let end = model.compute(&Limits {
         max_events: config.max_events_per_shot,
@@ -129,14 +130,24 @@ fn board_at(model: &Model<FallOff>, end: &End) -> Result<Board, String> {
     Ok(Board::from_pieces(pieces))
 }
 
-/// Plays `piece` at `velocity` on `board` to the end of its chain.
+/// The engine's settings for a shot under the engine `revision`.
+fn world_config(revision: Revision) -> WorldConfig {
+    WorldConfig {
+        revision,
+        ..WorldConfig::default()
+    }
+}
+
+/// Plays `piece` at `velocity` on `board` to the end of its chain, under
+/// the engine `revision` (what a physics version names).
 pub fn resolve(
     config: &Config,
     board: &Board,
     piece: PieceId,
     velocity: DVec2,
+    revision: Revision,
 ) -> Result<Resolution, String> {
-    let (model, end) = computed(config, board, piece, velocity)?;
+    let (model, end) = computed(config, board, piece, velocity, revision)?;
     Ok(Resolution {
         events: model.events().to_vec(),
         knocked_off: model.rules().fallen.iter().map(|&(_, p)| p).collect(),
@@ -156,6 +167,7 @@ pub fn settle(
     board: &Board,
     piece: PieceId,
     velocity: DVec2,
+    revision: Revision,
 ) -> Result<Settled, String> {
     let scene = scene(config, board, piece, velocity);
     // As `Model::from_snapshot` checks: finite numbers, valid materials,
@@ -172,7 +184,7 @@ pub fn settle(
         bodies,
         scene.points,
         scene.lines,
-        WorldConfig::default(),
+        world_config(revision),
     );
     let mut rules = FallOff::default();
     let end = world.run(
@@ -224,6 +236,7 @@ mod tests {
             &board,
             w(3),
             DVec2::new(0.0, c.speed_for_distance(c.square)),
+            Revision::LATEST,
         )
         .unwrap();
         assert_eq!(r.end.reason, EndReason::Rest);
@@ -240,7 +253,14 @@ mod tests {
             id: w(0),
             pos: start,
         }]);
-        let r = resolve(&c, &board, w(0), DVec2::new(0.0, c.max_speed)).unwrap();
+        let r = resolve(
+            &c,
+            &board,
+            w(0),
+            DVec2::new(0.0, c.max_speed),
+            Revision::LATEST,
+        )
+        .unwrap();
         assert_eq!(r.knocked_off, vec![w(0)]);
         assert!(r.board.pieces().is_empty());
     }
@@ -254,7 +274,7 @@ mod tests {
             pos: start,
         }]);
         let v = 1.0;
-        let r = resolve(&c, &board, w(4), DVec2::new(0.0, v)).unwrap();
+        let r = resolve(&c, &board, w(4), DVec2::new(0.0, v), Revision::LATEST).unwrap();
         assert_eq!(r.knocked_off, vec![w(4)]);
         let exit = r
             .events
@@ -279,7 +299,7 @@ mod tests {
             id: w(0),
             pos: DVec2::new(c.piece_radius * 0.5, 0.1),
         }]);
-        let r = resolve(&c, &board, w(0), DVec2::new(0.0, 0.3)).unwrap();
+        let r = resolve(&c, &board, w(0), DVec2::new(0.0, 0.3), Revision::LATEST).unwrap();
         assert!(r.knocked_off.is_empty());
         assert_eq!(r.board.pieces().len(), 1);
     }
@@ -290,8 +310,8 @@ mod tests {
         let board = Board::setup(&c, crate::rows::Rows::new(2, 5).unwrap());
         for k in 0..40 {
             let v = DVec2::new(0.05 * (k as f64 - 20.0), 0.3 + 0.04 * k as f64);
-            let r = resolve(&c, &board, w((k % 8) as u8), v).unwrap();
-            let s = settle(&c, &board, w((k % 8) as u8), v).unwrap();
+            let r = resolve(&c, &board, w((k % 8) as u8), v, Revision::LATEST).unwrap();
+            let s = settle(&c, &board, w((k % 8) as u8), v, Revision::LATEST).unwrap();
             assert_eq!(s.knocked_off, r.knocked_off);
             assert_eq!(s.end, r.end);
             for (a, b) in s.board.pieces().iter().zip(r.board.pieces()) {
@@ -316,7 +336,7 @@ mod tests {
                 pos: square_centre(&c, 2, 7),
             },
         ]);
-        let r = resolve(&c, &board, w(2), DVec2::new(0.0, 1.5)).unwrap();
+        let r = resolve(&c, &board, w(2), DVec2::new(0.0, 1.5), Revision::LATEST).unwrap();
         assert_eq!(r.knocked_off, vec![b(2)]);
         assert!(r.board.contains(w(2)));
         assert!(r.events.iter().any(|e| e.kind.name() == "body-body"));
@@ -328,7 +348,7 @@ mod tests {
         let board = Board::setup(&c, crate::rows::Rows::initial());
         let scene = scene(&c, &board, w(4), DVec2::new(0.01, 2.0));
         let mut model =
-            Model::with_rules(scene, FallOff::default(), WorldConfig::default()).unwrap();
+            Model::with_rules(scene, FallOff::default(), world_config(Revision::LATEST)).unwrap();
         let end = model.compute(&Limits::default());
         let film = Film::of(&model, end.t);
         assert!(film.diffs.len() >= 3, "{}", film.diffs.len());

@@ -24,17 +24,24 @@ use crate::config::Config;
 use crate::noise;
 use crate::physics::{self, Resolution};
 use crate::piece::PieceId;
+use engine::Revision;
 use glam::DVec2;
 
 /// The number of the physics version this build plays new matches under.
-pub const PHYSICS_VERSION: u32 = 1;
+pub const PHYSICS_VERSION: u32 = 2;
 
 /// A physics version this build can play.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum PhysicsVersion {
     /// The event-driven engine with the fall-off edges and the SplitMix64
-    /// noise, as every match was played from the first record on.
+    /// noise, as every match was played from the first record on: the
+    /// engine's first revision ([`Revision::R1`]).
     V1,
+    /// As V1, on the engine's second revision ([`Revision::R2`]): pieces
+    /// pressed together obliquely no longer drift into each other, and a
+    /// chain of pieces collapsing against each other or the edge comes to
+    /// its limit at once.
+    V2,
 }
 
 /// A physics version this build cannot play: a record of it is refused
@@ -61,15 +68,24 @@ fn supported() -> String {
 
 impl PhysicsVersion {
     /// The version new matches are played under.
-    pub const CURRENT: PhysicsVersion = PhysicsVersion::V1;
+    pub const CURRENT: PhysicsVersion = PhysicsVersion::V2;
 
     /// Every version this build plays, oldest first.
-    pub const ALL: [PhysicsVersion; 1] = [PhysicsVersion::V1];
+    pub const ALL: [PhysicsVersion; 2] = [PhysicsVersion::V1, PhysicsVersion::V2];
 
     /// The version's number, as records and the store keep it.
     pub fn number(self) -> u32 {
         match self {
             PhysicsVersion::V1 => 1,
+            PhysicsVersion::V2 => 2,
+        }
+    }
+
+    /// The engine revision this version computes shots with.
+    pub const fn revision(self) -> Revision {
+        match self {
+            PhysicsVersion::V1 => Revision::R1,
+            PhysicsVersion::V2 => Revision::R2,
         }
     }
 
@@ -86,7 +102,7 @@ impl PhysicsVersion {
     /// execution noise, if it has any.
     pub fn played(self, config: &Config, seed: u64, shot: u32, aimed: DVec2) -> DVec2 {
         match self {
-            PhysicsVersion::V1 => match &config.variants.noise {
+            PhysicsVersion::V1 | PhysicsVersion::V2 => match &config.variants.noise {
                 Some(n) => noise::perturb(n, seed, shot, aimed, config.max_speed),
                 None => aimed,
             },
@@ -102,9 +118,7 @@ impl PhysicsVersion {
         piece: PieceId,
         velocity: DVec2,
     ) -> Result<Resolution, String> {
-        match self {
-            PhysicsVersion::V1 => physics::resolve(config, board, piece, velocity),
-        }
+        physics::resolve(config, board, piece, velocity, self.revision())
     }
 }
 
@@ -132,7 +146,7 @@ mod tests {
                 )),
                 "{err}"
             );
-            assert!(err.to_string().contains("plays versions 1)"), "{err}");
+            assert!(err.to_string().contains("plays versions 1, 2)"), "{err}");
         }
     }
 }

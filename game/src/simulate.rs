@@ -15,6 +15,7 @@ use crate::config::{Config, ConfigError};
 use crate::film::Film;
 use crate::noise::{NoiseDraw, SplitMix64};
 use crate::physics;
+use crate::physics_version::PhysicsVersion;
 use crate::piece::PieceId;
 use crate::rules::{judge, Verdict};
 use crate::shot::{Shot, ShotError};
@@ -22,6 +23,9 @@ use crate::side::Side;
 use engine::EndReason;
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
+
+/// The engine revision every simulation runs: the current physics version's.
+const CURRENT: engine::Revision = PhysicsVersion::CURRENT.revision();
 
 /// How far two pieces given in a request may overlap (m): what rounding
 /// leaves between pieces that came to rest touching, and no more.
@@ -72,10 +76,12 @@ pub fn play(
     }
     let shooter = piece.side();
     let (knocked_off, after, end, film) = if film {
-        let r = physics::resolve(config, board, piece, velocity).map_err(ShotError::Physics)?;
+        let r = physics::resolve(config, board, piece, velocity, CURRENT)
+            .map_err(ShotError::Physics)?;
         (r.knocked_off, r.board, r.end, Some(r.film))
     } else {
-        let s = physics::settle(config, board, piece, velocity).map_err(ShotError::Physics)?;
+        let s =
+            physics::settle(config, board, piece, velocity, CURRENT).map_err(ShotError::Physics)?;
         (s.knocked_off, s.board, s.end, None)
     };
     let verdict = judge(shooter, &knocked_off, &after);

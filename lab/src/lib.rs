@@ -19,6 +19,7 @@ pub mod hp;
 pub mod outcome;
 pub mod pipeline;
 pub mod plot;
+pub mod pressing;
 pub mod rapier_peer;
 pub mod reference;
 pub mod scaling_chart;

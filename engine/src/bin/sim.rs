@@ -38,6 +38,9 @@ struct Args {
 struct Output {
     events: Vec<Event>,
     collisions: u64,
+    /// Hits between discs pressed together obliquely, where the engine
+    /// approximates the contact (0: every number is exact to rounding).
+    pressed: u64,
     end: End,
     bodies: Vec<BodyOut>,
 }
@@ -96,6 +99,7 @@ fn run(args: &Args) -> Result<Output, String> {
     bodies.sort_by_key(|b| b.id);
     Ok(Output {
         collisions: world.stats().collisions(),
+        pressed: world.stats().pressed,
         events: events.0,
         end,
         bodies,
