@@ -230,6 +230,10 @@ pub struct Stats {
     /// Hits between discs pressed together obliquely, where the engine
     /// approximates the contact (see [`push::pressing_kick`]): not exact.
     pub pressed: u64,
+    /// Inelastic collapses taken to their limit at once (see
+    /// `World::collapse`): velocities of discs touching the ones of the
+    /// event changed with it, momentum going into any obstacle they touch.
+    pub collapses: u64,
 }
 
 impl Stats {
@@ -723,9 +727,9 @@ impl World {
     fn collapse(&mut self, recent: &mut Vec<usize>, t: f64) {
         recent.sort_unstable();
         recent.dedup();
-        if !self.collapse_chain(recent, t) && self.config.revision.at_least_r2() {
-            self.collapse_cluster(recent, t);
-        }
+        let taken = self.collapse_chain(recent, t)
+            || (self.config.revision.at_least_r2() && self.collapse_cluster(recent, t));
+        self.stats.collapses += taken as u64;
     }
 
     /// The collapse of a chain of discs along one line (see `collapse`);
@@ -772,14 +776,15 @@ impl World {
     /// The plastic limit of a collapse among the discs of `recent` (slots;
     /// `usize::MAX` for an obstacle) and every disc touching them, against
     /// each other and the solid lines and points they touch.
-    fn collapse_cluster(&mut self, recent: &[usize], t: f64) {
+    /// `true` if any velocity changed.
+    fn collapse_cluster(&mut self, recent: &[usize], t: f64) -> bool {
         let mut members: Vec<usize> = recent
             .iter()
             .copied()
             .filter(|&c| c != usize::MAX)
             .collect();
         if members.is_empty() {
-            return;
+            return false;
         }
         let pos = |w: &World, c: usize| w.slots[c].traj.position(t);
         let touching = |gap: f64, s: f64| gap <= s * (1.0 + push::TOUCHING);
@@ -842,7 +847,7 @@ impl World {
             .map(|&c| 1.0 / self.material[c].mass)
             .collect();
         let Some(after) = collapse::plastic(&vel, &inv, &contacts) else {
-            return;
+            return false;
         };
         let mut changed = Vec::new();
         for (k, &c) in members.iter().enumerate() {
@@ -853,9 +858,10 @@ impl World {
                 changed.push(c);
             }
         }
-        for c in changed {
+        for &c in &changed {
             self.predict(c, true);
         }
+        !changed.is_empty()
     }
 
     /// Whether every moving body is still within the range where squared
@@ -1035,8 +1041,12 @@ impl World {
         let (mut pi, mut pj) = (ti.position(t), tj.position(t));
         let (mi, mj) = (self.material[i], self.material[j]);
         let n = (pi - pj).normalize_or_zero();
-        let gap = snap(mi.radius + mj.radius, (pi - pj).length());
-        if gap != 0.0 && self.config.revision.at_least_r2() {
+        let s = mi.radius + mj.radius;
+        // The square first: only a distance off by nearly SNAP needs a root.
+        if self.config.revision.at_least_r2()
+            && ((pi - pj).length_squared() - s * s).abs() > 1.9 * SNAP * s * s
+        {
+            let gap = snap(s, (pi - pj).length());
             let (w_i, w_j) = impulse::weights(mi.mass, mj.mass);
             pi += n * (gap * w_j);
             pj -= n * (gap * w_i);
@@ -1067,18 +1077,22 @@ impl World {
             }
             let (v, a) = push::together([vi, vj], [mi.mass, mj.mass], alpha);
             (new_i, new_j) = (Trajectory::new(t, pi, v, a), Trajectory::new(t, pj, v, a));
-        } else if let Some(press) =
-            (self.config.revision.at_least_r2() && new_i.is_moving_at(t) && new_j.is_moving_at(t))
-                .then(|| {
-                    push::pressing_kick(
-                        [vi, vj],
-                        [new_i.acceleration(t), new_j.acceleration(t)],
-                        n,
-                        mi.radius + mj.radius,
-                        t,
-                    )
-                })
-                .flatten()
+        } else if let Some(press) = (self.config.revision.at_least_r2()
+            // Frictionless discs never press (their gap's second derivative
+            // is |v_t|^2 / s >= 0).
+            && (alpha[0] != 0.0 || alpha[1] != 0.0)
+            && new_i.is_moving_at(t)
+            && new_j.is_moving_at(t))
+        .then(|| {
+            push::pressing_kick(
+                [vi, vj],
+                [new_i.acceleration(t), new_j.acceleration(t)],
+                n,
+                s,
+                t,
+            )
+        })
+        .flatten()
         {
             // Pressed together obliquely: the approximated contact.
             (new_i, new_j) = match press {

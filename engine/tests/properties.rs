@@ -165,6 +165,8 @@ struct Checker {
     prev: HashMap<BodyId, BodyState>,
     events: u64,
     failure: Option<String>,
+    /// Collapses the world had taken at the last event.
+    collapses: u64,
 }
 
 impl Checker {
@@ -179,6 +181,7 @@ impl Checker {
             prev: world.bodies().map(|b| (b.id, b)).collect(),
             events: 0,
             failure: None,
+            collapses: 0,
         }
     }
 
@@ -416,7 +419,12 @@ fn obstacle_impulse(v: DVec2, u: DVec2, n: DVec2, e: f64, slack: f64) -> Result<
 impl EventHandler for Checker {
     fn on_event(&mut self, world: &World, event: &Event) {
         self.events += 1;
-        if self.failure.is_none() {
+        // A collapse taken to its limit with this event changed discs
+        // besides its own and gave momentum to obstacles: this event is
+        // not one impulse, and the checks start again from after it.
+        let collapsed = world.stats().collapses != self.collapses;
+        self.collapses = world.stats().collapses;
+        if self.failure.is_none() && !collapsed {
             if let Err(msg) = self.check(world, event) {
                 self.failure = Some(format!("event {} {event:?}: {msg}", self.events));
             }

@@ -1,0 +1,74 @@
+//! What the second revision costs where nothing was wrong: the break shot
+//! (standard and hard) and Galperin's billiard, run under both revisions
+//! interleaved in one process, timed in CPU time of this thread per run
+//! (medians; the machine's wall clock drifts and its CPU is shared).
+//! `cargo bench -p engine --bench revisions`.
+
+use cpu_time::ThreadTime;
+use engine::world::Counter;
+use engine::{BodyId, Limits, Revision, Scene, World, WorldConfig};
+use glam::DVec2;
+use std::hint::black_box;
+
+const BREAK_JSON: &str = include_str!("../examples/break.json");
+
+fn hard_break(mut scene: Scene) -> Scene {
+    if let Some(striker) = scene.bodies.iter_mut().find(|b| b.id == BodyId(4)) {
+        striker.vel = (DVec2::new(0.16, 0.30) - striker.pos).normalize() * 5.0;
+    }
+    scene
+}
+
+/// Runs `scene` to its end under `revision`: events and approximated hits.
+fn run(scene: &Scene, revision: Revision) -> (u64, u64) {
+    let config = WorldConfig {
+        revision,
+        ..WorldConfig::default()
+    };
+    let mut world = World::new(scene, config).expect("valid scene");
+    let mut counter = Counter::default();
+    world.run(&Limits::default(), &mut counter);
+    (counter.events, world.stats().pressed)
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn main() {
+    let break_shot = Scene::from_json(BREAK_JSON).expect("examples/break.json is valid");
+    let cases = [
+        ("break shot", break_shot.clone(), 2001),
+        ("hard break", hard_break(break_shot), 2001),
+        ("galperin n5", engine::presets::galperin(5), 21),
+    ];
+    println!("| scene | events r1 / r2 | pressed r2 | CPU per run r1 | r2 | r2 / r1 |");
+    println!("|---|---|---|---|---|---|");
+    for (name, scene, reps) in cases {
+        let (e1, _) = run(&scene, Revision::R1);
+        let (e2, pressed) = run(&scene, Revision::R2);
+        let mut t = [Vec::new(), Vec::new()];
+        for _ in 0..reps {
+            for (k, rev) in [Revision::R1, Revision::R2].into_iter().enumerate() {
+                let start = ThreadTime::now();
+                black_box(run(black_box(&scene), rev));
+                t[k].push(start.elapsed().as_secs_f64());
+            }
+        }
+        let (m1, m2) = (median(t[0].clone()), median(t[1].clone()));
+        let unit = |s: f64| {
+            if s < 1e-3 {
+                format!("{:.1} µs", s * 1e6)
+            } else {
+                format!("{:.2} ms", s * 1e3)
+            }
+        };
+        println!(
+            "| {name} | {e1} / {e2} | {pressed} | {} | {} | {:.3} |",
+            unit(m1),
+            unit(m2),
+            m2 / m1
+        );
+    }
+}
