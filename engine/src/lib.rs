@@ -27,9 +27,11 @@
 //! [`trajectory`] (closed-form motion), [`obstacle`] (points and lines),
 //! [`contact`] (when two things touch), [`impulse`] (what a contact does),
 //! [`push`] (touching discs that brake unequally and press together),
+//! [`collapse`] (the limit of endless hits at one instant),
 //! [`calendar`] and [`grid`] (which event is next, who is near whom),
 //! [`world`] (the event loop), [`model`] (the chain of scenes: queries at any
-//! time, actions, rewind, diffs), [`scene`] (the JSON scene format).
+//! time, actions, rewind, diffs), [`scene`] (the JSON scene format),
+//! [`revision`] (which rules a computation runs, so old records replay).
 //! The library does no I/O; the `sim` binary is a thin shell over it.
 
 // `!(x > 0.0)` is deliberate throughout: it is also true for NaN.

@@ -1077,23 +1077,7 @@ impl World {
             }
             let (v, a) = push::together([vi, vj], [mi.mass, mj.mass], alpha);
             (new_i, new_j) = (Trajectory::new(t, pi, v, a), Trajectory::new(t, pj, v, a));
-        } else if let Some(press) = (self.config.revision.at_least_r2()
-            // Frictionless discs never press (their gap's second derivative
-            // is |v_t|^2 / s >= 0).
-            && (alpha[0] != 0.0 || alpha[1] != 0.0)
-            && new_i.is_moving_at(t)
-            && new_j.is_moving_at(t))
-        .then(|| {
-            push::pressing_kick(
-                [vi, vj],
-                [new_i.acceleration(t), new_j.acceleration(t)],
-                n,
-                s,
-                t,
-            )
-        })
-        .flatten()
-        {
+        } else if let Some(press) = self.pressing(&new_i, &new_j, n, s, t) {
             // Pressed together obliquely: the approximated contact.
             (new_i, new_j) = match press {
                 push::Press::Part(dw) => {
@@ -1119,6 +1103,37 @@ impl World {
         // The pair (i, j) is solved once, for both.
         let pair = self.predict_with(i, true, Some((j, None)));
         self.predict_with(j, true, Some((i, pair)));
+    }
+
+    /// What the approximated pressing contact does to two discs just hit
+    /// along `n` (their outgoing trajectories `ti`, `tj`, contact distance
+    /// `s`), from the second revision on: `None` where the model is exact
+    /// (see [`push::pressing_kick`]).
+    fn pressing(
+        &self,
+        ti: &Trajectory,
+        tj: &Trajectory,
+        n: DVec2,
+        s: f64,
+        t: f64,
+    ) -> Option<push::Press> {
+        // Frictionless discs never press (their gap's second derivative is
+        // |v_t|^2 / s >= 0), and a disc at rest is not pressed by braking.
+        if !self.config.revision.at_least_r2()
+            || (ti.alpha() == 0.0 && tj.alpha() == 0.0)
+            || !ti.is_moving_at(t)
+            || !tj.is_moving_at(t)
+        {
+            return None;
+        }
+        // Both just began at `t`: their start velocities are the impulse's.
+        push::pressing_kick(
+            [ti.start_velocity(), tj.start_velocity()],
+            [ti.acceleration(t), tj.acceleration(t)],
+            n,
+            s,
+            t,
+        )
     }
 
     /// `chain` grown by every live disc that touches one of its members `m`
