@@ -438,16 +438,33 @@ mod tests {
         Trajectory::new(0.0, DVec2::new(p.0, p.1), DVec2::new(u.0, u.1), alpha)
     }
 
+    /// `disc_point` for `tr` from time 0, under the latest revision.
+    fn point_hit(tr: &Trajectory, q: DVec2, s: f64) -> Option<f64> {
+        disc_point(&Mover::new(tr, 0.0).unwrap(), q, s, Revision::LATEST)
+    }
+
+    /// `disc_line` for `tr` from time 0, under the latest revision.
+    fn line_hit(tr: &Trajectory, line: &LineGeom, r: f64) -> Option<LineHit> {
+        disc_line(&Mover::new(tr, 0.0).unwrap(), line, r, Revision::LATEST)
+    }
+
+    /// `disc_disc` for `a` and `b` from time 0, under the latest revision.
+    fn pair_hit(a: &Trajectory, b: &Trajectory, s: f64) -> Option<f64> {
+        disc_disc(
+            a,
+            Mover::new(a, 0.0).as_ref(),
+            b,
+            s,
+            0.0,
+            &Production,
+            Revision::LATEST,
+        )
+    }
+
     #[test]
     fn frictionless_disc_meets_a_point_at_the_geometric_time() {
         let tr = mover((0.0, 0.0), (2.0, 0.0), 0.0);
-        let t = disc_point(
-            &Mover::new(&tr, 0.0).unwrap(),
-            DVec2::new(5.0, 0.0),
-            1.0,
-            Revision::LATEST,
-        )
-        .unwrap();
+        let t = point_hit(&tr, DVec2::new(5.0, 0.0), 1.0).unwrap();
         assert_eq!(t, 2.0);
     }
 
@@ -455,22 +472,8 @@ mod tests {
     fn sliding_disc_stopping_short_of_a_point_never_touches_it() {
         // Stops after v^2/(2 alpha) = 1.0; the point is 1.5 away at contact distance 0.4.
         let tr = mover((0.0, 0.0), (2.0, 0.0), 2.0);
-        assert_eq!(
-            disc_point(
-                &Mover::new(&tr, 0.0).unwrap(),
-                DVec2::new(1.5, 0.0),
-                0.4,
-                Revision::LATEST
-            ),
-            None
-        );
-        let t = disc_point(
-            &Mover::new(&tr, 0.0).unwrap(),
-            DVec2::new(1.3, 0.0),
-            0.4,
-            Revision::LATEST,
-        )
-        .unwrap();
+        assert_eq!(point_hit(&tr, DVec2::new(1.5, 0.0), 0.4), None);
+        let t = point_hit(&tr, DVec2::new(1.3, 0.0), 0.4).unwrap();
         // Travels 0.9: 2t - t^2 = 0.9.
         let exact = 1.0 - (1.0f64 - 0.9).sqrt();
         assert!((t - exact).abs() < 1e-15, "{t} vs {exact}");
@@ -480,26 +483,11 @@ mod tests {
     fn a_creeping_disc_meets_a_point_at_the_geometric_time() {
         // Speeds whose squares underflow are rescaled, and scaled back.
         let tr = mover((0.0, 0.0), (1e-170, 0.0), 0.0);
-        let t = disc_point(
-            &Mover::new(&tr, 0.0).unwrap(),
-            DVec2::new(5.0, 0.0),
-            1.0,
-            Revision::LATEST,
-        )
-        .unwrap();
+        let t = point_hit(&tr, DVec2::new(5.0, 0.0), 1.0).unwrap();
         assert!((t - 4e170).abs() <= 4e170 * 1e-15, "{t}");
         let a = mover((0.0, 0.0), (1e-170, 0.0), 0.0);
         let b = mover((5.0, 0.0), (-1e-170, 0.0), 0.0);
-        let t = disc_disc(
-            &a,
-            Mover::new(&a, 0.0).as_ref(),
-            &b,
-            1.0,
-            0.0,
-            &Production,
-            Revision::LATEST,
-        )
-        .unwrap();
+        let t = pair_hit(&a, &b, 1.0).unwrap();
         assert!((t - 2e170).abs() <= 2e170 * 1e-15, "{t}");
     }
 
@@ -517,44 +505,20 @@ mod tests {
         }
         let a = mover((-1e6, 0.0), (1.0, 0.0), 0.0);
         let b = mover((0.0, 0.0), (-1.0, 0.0), 0.0);
-        let t = disc_disc(
-            &a,
-            Mover::new(&a, 0.0).as_ref(),
-            &b,
-            0.04,
-            0.0,
-            &Production,
-            Revision::LATEST,
-        );
+        let t = pair_hit(&a, &b, 0.04);
         assert_eq!(t, Some((1e6 - 0.04) / 2.0));
     }
 
     #[test]
     fn touching_and_separating_gives_no_contact() {
         let tr = mover((0.0, 0.0), (-1.0, 0.0), 0.0);
-        assert_eq!(
-            disc_point(
-                &Mover::new(&tr, 0.0).unwrap(),
-                DVec2::new(1.0, 0.0),
-                1.0,
-                Revision::LATEST
-            ),
-            None
-        );
+        assert_eq!(point_hit(&tr, DVec2::new(1.0, 0.0), 1.0), None);
     }
 
     #[test]
     fn touching_and_approaching_is_a_contact_now() {
         let tr = mover((0.0, 0.0), (1.0, 0.0), 0.5);
-        assert_eq!(
-            disc_point(
-                &Mover::new(&tr, 0.0).unwrap(),
-                DVec2::new(1.0, 0.0),
-                1.0,
-                Revision::LATEST
-            ),
-            Some(0.0)
-        );
+        assert_eq!(point_hit(&tr, DVec2::new(1.0, 0.0), 1.0), Some(0.0));
     }
 
     #[test]
@@ -566,13 +530,10 @@ mod tests {
         ))
         .unwrap();
         let tr = mover((0.0, 0.0), (1.0, 0.0), 0.0);
-        let hit = disc_line(&Mover::new(&tr, 0.0).unwrap(), &seg, 0.5, Revision::LATEST).unwrap();
+        let hit = line_hit(&tr, &seg, 0.5).unwrap();
         assert_eq!(hit, LineHit { t: 1.5, end: None });
         let tr = mover((0.0, 3.0), (1.0, 0.0), 0.0);
-        assert_eq!(
-            disc_line(&Mover::new(&tr, 0.0).unwrap(), &seg, 0.5, Revision::LATEST),
-            None
-        );
+        assert_eq!(line_hit(&tr, &seg, 0.5), None);
     }
 
     #[test]
@@ -584,7 +545,7 @@ mod tests {
         ))
         .unwrap();
         let tr = mover((0.0, 1.3), (1.0, 0.0), 0.0);
-        let hit = disc_line(&Mover::new(&tr, 0.0).unwrap(), &seg, 0.5, Revision::LATEST).unwrap();
+        let hit = line_hit(&tr, &seg, 0.5).unwrap();
         assert_eq!(hit.end, Some(1));
         let expected = 2.0 - (0.25f64 - 0.09).sqrt();
         assert!((hit.t - expected).abs() < 1e-15);
@@ -594,16 +555,7 @@ mod tests {
     fn two_sliding_discs_meet_at_the_quartic_root() {
         let a = mover((0.0, 0.0), (2.0, 0.0), 1.0);
         let b = mover((1.5, 0.0), (-2.0, 0.0), 1.0);
-        let t = disc_disc(
-            &a,
-            Mover::new(&a, 0.0).as_ref(),
-            &b,
-            0.5,
-            0.0,
-            &Production,
-            Revision::LATEST,
-        )
-        .unwrap();
+        let t = pair_hit(&a, &b, 0.5).unwrap();
         // 2(2t - t^2/2) = 1  =>  t^2 - 4t + 1 = 0
         let exact = 2.0 - 3.0f64.sqrt();
         assert!((t - exact).abs() < 1e-15, "{t} vs {exact}");
@@ -621,18 +573,7 @@ mod tests {
             1.0,
             0.0
         ));
-        assert_eq!(
-            disc_disc(
-                &a,
-                Mover::new(&a, 0.0).as_ref(),
-                &b,
-                1.0,
-                0.0,
-                &Production,
-                Revision::LATEST
-            ),
-            None
-        );
+        assert_eq!(pair_hit(&a, &b, 1.0), None);
     }
 
     #[test]

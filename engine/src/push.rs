@@ -148,13 +148,14 @@ pub fn pressing_kick(
         return None;
     }
     // Along the line of centres with one velocity: the exact pushing model.
-    let speed = vi.length().max(vj.length());
+    let (speed_i, speed_j) = (vi.length(), vj.length());
+    let speed = speed_i.max(speed_j);
     if vt.length() <= SAME * speed && vi.perp_dot(n).abs() <= SAME * speed {
         return None;
     }
     let w_min = (2.0 * -g2 * PRESS_GAP * s)
         .sqrt()
-        .min(PRESS_SPEED * (vi.length() + vj.length()));
+        .min(PRESS_SPEED * (speed_i + speed_j));
     if w >= w_min {
         return None;
     }

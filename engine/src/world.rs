@@ -1040,13 +1040,14 @@ impl World {
         let (ti, tj) = (self.slots[i].traj, self.slots[j].traj);
         let (mut pi, mut pj) = (ti.position(t), tj.position(t));
         let (mi, mj) = (self.material[i], self.material[j]);
-        let n = (pi - pj).normalize_or_zero();
+        let d = pi - pj;
+        let n = d.normalize_or_zero();
         let s = mi.radius + mj.radius;
         // The square first: only a distance off by nearly SNAP needs a root.
         if self.config.revision.at_least_r2()
-            && ((pi - pj).length_squared() - s * s).abs() > 1.9 * SNAP * s * s
+            && (d.length_squared() - s * s).abs() > 1.9 * SNAP * s * s
         {
-            let gap = snap(s, (pi - pj).length());
+            let gap = snap(s, d.length());
             let (w_i, w_j) = impulse::weights(mi.mass, mj.mass);
             pi += n * (gap * w_j);
             pj -= n * (gap * w_i);

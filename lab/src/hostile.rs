@@ -130,6 +130,21 @@ pub enum Failure {
 }
 
 impl Failure {
+    /// Every failure, in report order.
+    pub const ALL: [Failure; 11] = [
+        Failure::Refused,
+        Failure::NotFinite,
+        Failure::Overlap,
+        Failure::Tunnel,
+        Failure::Backwards,
+        Failure::Livelock,
+        Failure::Stuck,
+        Failure::MissedHit,
+        Failure::Count,
+        Failure::Slow,
+        Failure::Panic,
+    ];
+
     /// The failure's name in reports.
     pub fn name(self) -> &'static str {
         match self {

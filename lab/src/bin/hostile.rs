@@ -65,6 +65,18 @@ fn main() -> ExitCode {
     let mut table: BTreeMap<(Kind, Failure), u64> = BTreeMap::new();
     let mut slowest = (0.0f64, Kind::PushChain, 0u64);
     let mut worst = (0.0f64, Kind::PushChain, 0u64);
+    if let Some(bad) = args
+        .tolerate
+        .iter()
+        .find(|t| !Failure::ALL.iter().any(|f| f.name() == t.as_str()))
+    {
+        let names: Vec<&str> = Failure::ALL.iter().map(|f| f.name()).collect();
+        eprintln!(
+            "hostile: --tolerate {bad:?}: no such failure ({})",
+            names.join(", ")
+        );
+        return ExitCode::FAILURE;
+    }
     let jobs = args.jobs.max(1);
     let revision = if args.revision == "r1" {
         Revision::R1
@@ -90,7 +102,8 @@ fn main() -> ExitCode {
                 .collect();
             handles
                 .into_iter()
-                .flat_map(|h| h.join().unwrap_or_default())
+                // `run_caught` catches a scene's panic; any other is ours.
+                .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
                 .collect()
         });
         reports.sort_by_key(|(seed, _)| *seed);
