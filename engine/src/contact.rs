@@ -165,6 +165,14 @@ fn entry(a: f64, b: f64, c: f64, cross: f64, s2: f64, rev: Revision) -> Option<f
 /// fraction of the distance travelled.
 const APPROACH: f64 = 1e-12;
 
+/// From the third revision, a touching pair that approaches slower than
+/// [`APPROACH`] of its speeds still meets: when its centres have come this
+/// fraction of their distance closer (a hit that snaps them back to
+/// touching). Ignored, such an approach let two discs sliding side by side
+/// for hundreds of metres drift into each other by 1e-8 of their contact
+/// distance, and frictionless ones through each other in 1e12 s.
+const DRIFT: f64 = 1e-10;
+
 /// Distance, in contact distances, beyond which the discriminant of a
 /// contact is taken from Lagrange's identity (see [`entry`]): from there
 /// on the rounding of `b^2 - a c` would move the contact by more than
@@ -292,7 +300,24 @@ fn linear_pair(
     let c = dp.length_squared() - s * s;
     if c <= 0.0 {
         let noise = APPROACH * s * scale * (ti.speed() + tj.speed());
-        return (b < -noise).then_some(now);
+        if b < -noise {
+            return Some(now);
+        }
+        if !rev.at_least_r3() {
+            return None;
+        }
+        // Approaching below noise: meets once DRIFT closer (see DRIFT).
+        let d2 = dp.length_squared();
+        let target = d2 * (1.0 - DRIFT) * (1.0 - DRIFT);
+        let t = entry(
+            dv.length_squared(),
+            b,
+            d2 - target,
+            dp.perp_dot(dv),
+            target,
+            rev,
+        )?;
+        return Some(now + t * scale);
     }
     Some(now + entry(dv.length_squared(), b, c, dp.perp_dot(dv), s * s, rev)? * scale)
 }
@@ -334,7 +359,10 @@ fn curved_pair(
         // Approaching, or pressed together by their braking: an event now.
         return Some(now);
     }
-    if touching && rev.at_least_r2() && c1 < -min_slope && pressing(ti, tj, dp, s, now, -min_slope)
+    if touching
+        && rev.at_least_r2()
+        && c1 < -min_slope
+        && pressing(ti, tj, dp, s, now, -min_slope, rev)
     {
         // Neither approaching nor parting, and pressed together obliquely:
         // the approximated contact, now (see `push::pressing_kick`).
@@ -347,6 +375,16 @@ fn curved_pair(
         for &r in solver.roots_in(&g, 0.0, horizon).iter() {
             if r > 0.0 && r * (c2 + r * (2.0 * c3 + r * 3.0 * c4)) < min_slope {
                 return Some(now + r);
+            }
+        }
+        if rev.at_least_r3() && c1 < 0.0 {
+            // Approaching below noise: meets once DRIFT closer (see DRIFT).
+            let d2 = dp.length_squared();
+            let shifted = [d2 - d2 * (1.0 - DRIFT) * (1.0 - DRIFT), c1, c2, c3, c4];
+            for &r in solver.roots_in(&shifted, 0.0, horizon).iter() {
+                if c1 + r * (2.0 * c2 + r * (3.0 * c3 + r * 4.0 * c4)) < 0.0 {
+                    return Some(now + r);
+                }
             }
         }
         return None;
@@ -365,14 +403,22 @@ fn curved_pair(
 /// distance `s`) are pressed together obliquely, so that the approximated
 /// contact would part them faster than `noise` (in units of `2 s` times a
 /// speed, as the slope of the squared gap).
-fn pressing(ti: &Trajectory, tj: &Trajectory, dp: DVec2, s: f64, now: f64, noise: f64) -> bool {
+fn pressing(
+    ti: &Trajectory,
+    tj: &Trajectory,
+    dp: DVec2,
+    s: f64,
+    now: f64,
+    noise: f64,
+    rev: Revision,
+) -> bool {
     if !ti.is_moving_at(now) || !tj.is_moving_at(now) {
         return false;
     }
     let (vi, vj) = (ti.velocity(now), tj.velocity(now));
     let n = dp.normalize_or_zero();
     let accelerations = [ti.acceleration(now), tj.acceleration(now)];
-    match push::pressing_kick([vi, vj], accelerations, n, s, now) {
+    match push::pressing_kick([vi, vj], accelerations, n, s, now, rev) {
         Some(push::Press::Part(dw)) => 2.0 * s * ((vi - vj).dot(n).max(0.0) + dw) > noise,
         Some(push::Press::Rest) => true,
         None => false,

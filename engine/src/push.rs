@@ -29,6 +29,7 @@
 //! from re-joining pair after pair at one instant without end.
 
 use crate::impulse;
+use crate::revision::Revision;
 use crate::trajectory::Trajectory;
 use glam::DVec2;
 
@@ -139,7 +140,46 @@ pub fn pressing_kick(
     n: DVec2,
     s: f64,
     now: f64,
+    rev: Revision,
 ) -> Option<Press> {
+    let (w, w_min, g2) = pressing([vi, vj], [ai, aj], n, s)?;
+    if w >= w_min {
+        return None;
+    }
+    // From the third revision: a pair that would slide no further than the
+    // approximation's own gap before it stops comes to rest here. Below
+    // that, bounces capped at `PRESS_SPEED` of the speeds come ever faster
+    // (their number grows as the log of the speed) for nothing a position
+    // can show beyond the gap.
+    if rev.at_least_r3() {
+        let slide = |v: DVec2, a: DVec2| v.length_squared() / (2.0 * a.length());
+        if slide(vi, ai).max(slide(vj, aj)) <= PRESS_GAP * s {
+            return Some(Press::Rest);
+        }
+    }
+    // So slow that the next bounce would fall within the rounding of the
+    // time: the pair comes to rest here (it would within that time anyway).
+    if crate::world::same_instant(now, now + 2.0 * w_min / -g2) {
+        return Some(Press::Rest);
+    }
+    Some(Press::Part(w_min - w.max(0.0)))
+}
+
+/// The bounce speed of two touching discs pressed together obliquely (the
+/// `w` of [`pressing_kick`], whatever they do now), or `None` where they
+/// do not press or the model is exact.
+pub fn bounce_speed(v: [DVec2; 2], a: [DVec2; 2], n: DVec2, s: f64) -> Option<f64> {
+    pressing(v, a, n, s).map(|(_, w_min, _)| w_min)
+}
+
+/// The relative normal velocity, the bounce speed and the gap's second
+/// derivative of a pair pressed obliquely (see [`pressing_kick`]).
+fn pressing(
+    [vi, vj]: [DVec2; 2],
+    [ai, aj]: [DVec2; 2],
+    n: DVec2,
+    s: f64,
+) -> Option<(f64, f64, f64)> {
     let dv = vi - vj;
     let w = dv.dot(n);
     let vt = dv - n * w;
@@ -156,15 +196,7 @@ pub fn pressing_kick(
     let w_min = (2.0 * -g2 * PRESS_GAP * s)
         .sqrt()
         .min(PRESS_SPEED * (speed_i + speed_j));
-    if w >= w_min {
-        return None;
-    }
-    // So slow that the next bounce would fall within the rounding of the
-    // time: the pair comes to rest here (it would within that time anyway).
-    if crate::world::same_instant(now, now + 2.0 * w_min / -g2) {
-        return Some(Press::Rest);
-    }
-    Some(Press::Part(w_min - w.max(0.0)))
+    Some((w, w_min, g2))
 }
 
 /// What the approximated pressing contact does to a pair (see

@@ -148,6 +148,25 @@ pub const COLLAPSE_WINDOW: u64 = 64;
 /// Most discs one collapse is taken to its limit for (see `World::collapse`).
 pub const MAX_COLLAPSE: usize = 256;
 
+/// From the third revision, a run whose events, [`CRAWL_EVENTS`] after
+/// [`CRAWL_EVENTS`], move no disc by more than this fraction of the
+/// smallest radius — as many events as would end it [`EndReason::Stuck`]
+/// at one instant — is stuck too: discs rattling in a gap of rounding (a
+/// chain pinned between two walls) advance the time by 1e-16 s an event.
+pub const CRAWL: f64 = 1e-9;
+
+/// See [`CRAWL`].
+pub const CRAWL_EVENTS: u64 = 1_000;
+
+/// From the third revision, a disc whose slide after a hit is shorter than
+/// this fraction of its largest coordinate (the rounding of its position)
+/// is at rest (see `World::settled`).
+pub const SETTLE: f64 = f64::EPSILON;
+
+/// Sweeps a pressing kick over a cluster (see `World::press_cluster`) may
+/// take: it converges within tens where it has an answer at all.
+pub const PRESS_SWEEPS: usize = 200;
+
 /// Past this time a run checks, before each event, that every moving body
 /// is still within [`MAX_COORDINATE`] (no scene reaches it otherwise:
 /// speeds stay below 1e150 and start positions too).
@@ -180,6 +199,44 @@ pub fn snap(s: f64, dist: f64) -> f64 {
 /// thousand units in the last place of the later time.
 pub fn same_instant(t0: f64, t: f64) -> bool {
     t - t0 <= 2.5e-13 * t.abs().max(t0.abs())
+}
+
+/// Events that moved nothing (see [`CRAWL`]), counted block by block.
+struct Crawl {
+    /// When the current block began.
+    since: f64,
+    /// Events in the current block.
+    events: u64,
+    /// Events in the blocks before it, in a row, that moved nothing.
+    still: u64,
+}
+
+impl Crawl {
+    fn new(t: f64) -> Self {
+        Crawl {
+            since: t,
+            events: 0,
+            still: 0,
+        }
+    }
+
+    /// Counts an event at `t`; returns how many events in a row have moved
+    /// no disc by more than [`CRAWL`] of the smallest radius (known at the
+    /// end of each block of [`CRAWL_EVENTS`]).
+    fn note(&mut self, world: &World, t: f64) -> u64 {
+        self.events += 1;
+        if self.events == CRAWL_EVENTS {
+            let (speed, radius) = world.fastest_and_smallest(t);
+            if (t - self.since) * speed <= CRAWL * radius {
+                self.still += self.events;
+            } else {
+                self.still = 0;
+            }
+            self.since = t;
+            self.events = 0;
+        }
+        self.still
+    }
 }
 
 /// Why a run stopped.
@@ -610,6 +667,7 @@ impl World {
         let stuck_after = STUCK_EVENTS + STUCK_EVENTS_PER_BODY * self.slots.len() as u64;
         // Worked out only once events have shared an instant.
         let mut tick: Option<f64> = None;
+        let mut crawl = Crawl::new(self.last_event_t);
         loop {
             let Some((slot, t)) = self.calendar.peek() else {
                 return self.end_at_rest();
@@ -661,6 +719,10 @@ impl World {
                     instant = (t, 0);
                     recent.clear();
                 }
+                if self.config.revision.at_least_r3() && crawl.note(self, t) > stuck_after {
+                    handler.on_event(self, &event);
+                    return self.end_on(EndReason::Stuck);
+                }
                 events_left -= 1;
                 collisions_left -= event.kind.is_collision() as u64;
                 if self.config.recompute_all {
@@ -697,18 +759,23 @@ impl World {
     /// rounding of the time itself: while the fastest disc moves less than
     /// the rounding of a position at the scale of the smallest radius.
     fn instant_tick(&self) -> f64 {
-        let t = self.t;
+        let (speed, radius) = self.fastest_and_smallest(self.t);
+        if speed > 0.0 {
+            2.5e-13 * radius / speed
+        } else {
+            0.0
+        }
+    }
+
+    /// The speed of the fastest live disc at `t` and the smallest radius.
+    fn fastest_and_smallest(&self, t: f64) -> (f64, f64) {
         let mut speed: f64 = 0.0;
         let mut radius = f64::INFINITY;
         for s in self.slots.iter().filter(|s| s.alive) {
             speed = speed.max(s.traj.velocity(t).length());
             radius = radius.min(s.radius);
         }
-        if speed > 0.0 {
-            2.5e-13 * radius / speed
-        } else {
-            0.0
-        }
+        (speed, radius)
     }
 
     /// An inelastic collapse at one instant: discs of restitution below one
@@ -775,17 +842,192 @@ impl World {
 
     /// The plastic limit of a collapse among the discs of `recent` (slots;
     /// `usize::MAX` for an obstacle) and every disc touching them, against
-    /// each other and the solid lines and points they touch.
-    /// `true` if any velocity changed.
+    /// each other and the solid lines and points they touch; from the third
+    /// revision, followed by the kick of whatever pairs it leaves pressed
+    /// (see [`World::press_cluster`]). `true` if any velocity changed.
     fn collapse_cluster(&mut self, recent: &[usize], t: f64) -> bool {
-        let mut members: Vec<usize> = recent
+        let seed: Vec<usize> = recent
             .iter()
             .copied()
             .filter(|&c| c != usize::MAX)
             .collect();
-        if members.is_empty() {
+        if seed.is_empty() {
             return false;
         }
+        let (members, mut contacts) = self.touching_cluster(seed, t);
+        let vel: Vec<DVec2> = members
+            .iter()
+            .map(|&c| self.slots[c].traj.velocity(t))
+            .collect();
+        let inv: Vec<f64> = members
+            .iter()
+            .map(|&c| 1.0 / self.material[c].mass)
+            .collect();
+        let r3 = self.config.revision.at_least_r3();
+        let plastic = if r3 {
+            collapse::resolve(&vel, &inv, &contacts, collapse::MAX_SWEEPS)
+        } else {
+            collapse::plastic(&vel, &inv, &contacts)
+        };
+        let Some(mut after) = plastic else {
+            return false;
+        };
+        let alpha: Vec<f64> = members
+            .iter()
+            .map(|&c| self.slots[c].traj.alpha())
+            .collect();
+        if r3 && self.press_biases(&members, &mut contacts, &after, &alpha) {
+            if let Some(kicked) = collapse::resolve(&after, &inv, &contacts, PRESS_SWEEPS) {
+                after = kicked;
+                self.stats.pressed += 1;
+            }
+        }
+        let changed = self.set_velocities(&members, &vel, &after, t);
+        for &c in &changed {
+            self.predict(c, true);
+        }
+        !changed.is_empty()
+    }
+
+    /// From the third revision, the pressing kick of a hit between `i` and
+    /// `j` (their outgoing trajectories `ti`, `tj` already in place) taken
+    /// over every disc touching them, in a chain or a cluster, and the
+    /// lines and points they touch: one projection of all those contacts
+    /// in which every pressed pair parts at its bounce speed
+    /// ([`push::bounce_speed`]) and no other contact approaches. A kick
+    /// between the two alone would drive one into its next neighbour,
+    /// which would hit it back at the same instant, without end. `false`
+    /// (nothing done) where `i` and `j` touch nothing else, or the
+    /// projection has no answer (a pressed pair jammed between obstacles).
+    fn press_cluster(&mut self, i: usize, j: usize, braking: [f64; 2], t: f64) -> bool {
+        // The pair itself first (cheap): pressed, and parting slower than
+        // its bounce speed (or so slow that it comes to rest).
+        let (vi, vj) = (
+            self.slots[i].traj.velocity(t),
+            self.slots[j].traj.velocity(t),
+        );
+        let d = self.slots[i].traj.position(t) - self.slots[j].traj.position(t);
+        let n = d.normalize_or_zero();
+        let s = self.slots[i].radius + self.slots[j].radius;
+        let acc = [
+            -braking[0] * vi.normalize_or_zero(),
+            -braking[1] * vj.normalize_or_zero(),
+        ];
+        let dw = match push::pressing_kick([vi, vj], acc, n, s, t, self.config.revision) {
+            Some(push::Press::Part(dw)) => dw,
+            Some(push::Press::Rest) => {
+                // Its next bounce would fall within the rounding of `t`.
+                for c in [i, j] {
+                    let p = self.slots[c].traj.position(t);
+                    self.slots[c].traj = Trajectory::at_rest(t, p, self.material[c].mu * self.g);
+                    self.slots[c].gen = self.slots[c].gen.wrapping_add(1);
+                }
+                for c in [i, j] {
+                    self.predict(c, true);
+                }
+                return true;
+            }
+            None => return false,
+        };
+        let (members, mut contacts) = self.touching_cluster(vec![i, j], t);
+        if members.len() == 2 && contacts.len() == 1 {
+            return false;
+        }
+        let vel: Vec<DVec2> = members
+            .iter()
+            .map(|&c| self.slots[c].traj.velocity(t))
+            .collect();
+        // The kick between the two alone, where it drives neither into
+        // anything else it touches.
+        let (w_i, w_j) = impulse::weights(self.material[i].mass, self.material[j].mass);
+        let mut kicked = vel.clone();
+        kicked[0] += n * (dw * w_j);
+        kicked[1] -= n * (dw * w_i);
+        let noise = 1e-15 * (vi.length() + vj.length());
+        let blocked = contacts.iter().any(|c| {
+            let pair = c.a == 0 && c.b == Some(1);
+            let ours = c.a < 2 || c.b.is_some_and(|b| b < 2);
+            let rel = kicked[c.a] - c.b.map_or(DVec2::ZERO, |b| kicked[b]);
+            !pair && ours && rel.dot(c.n) < -noise
+        });
+        if !blocked {
+            let changed = self.set_velocities(&members[..2], &vel[..2], &kicked[..2], t);
+            for c in [i, j] {
+                if !changed.contains(&c) {
+                    self.slots[c].gen = self.slots[c].gen.wrapping_add(1);
+                }
+            }
+            for c in [i, j] {
+                self.predict(c, true);
+            }
+            return true;
+        }
+        let mut alpha: Vec<f64> = members
+            .iter()
+            .map(|&c| self.slots[c].traj.alpha())
+            .collect();
+        (alpha[0], alpha[1]) = (braking[0], braking[1]);
+        if !self.press_biases(&members, &mut contacts, &vel, &alpha) {
+            return false;
+        }
+        let inv: Vec<f64> = members
+            .iter()
+            .map(|&c| 1.0 / self.material[c].mass)
+            .collect();
+        let Some(after) = collapse::resolve(&vel, &inv, &contacts, PRESS_SWEEPS) else {
+            return false;
+        };
+        let mut changed = self.set_velocities(&members, &vel, &after, t);
+        for c in [i, j] {
+            if !changed.contains(&c) {
+                self.slots[c].gen = self.slots[c].gen.wrapping_add(1);
+                changed.push(c);
+            }
+        }
+        for &c in &changed {
+            self.predict(c, true);
+        }
+        true
+    }
+
+    /// Sets the bias of every contact between two discs of `members` that
+    /// press each other obliquely at velocities `vel`, each braked by its
+    /// `alpha` against its velocity, to their bounce speed; `true` if any
+    /// does.
+    fn press_biases(
+        &self,
+        members: &[usize],
+        contacts: &mut [collapse::Contact],
+        vel: &[DVec2],
+        alpha: &[f64],
+    ) -> bool {
+        let braking = |k: usize| -alpha[k] * vel[k].normalize_or_zero();
+        let mut any = false;
+        for c in contacts.iter_mut() {
+            let Some(b) = c.b else { continue };
+            let (a, b) = (c.a, b);
+            if vel[a] == DVec2::ZERO || vel[b] == DVec2::ZERO {
+                continue;
+            }
+            let s = self.slots[members[a]].radius + self.slots[members[b]].radius;
+            if let Some(w) = push::bounce_speed([vel[a], vel[b]], [braking(a), braking(b)], c.n, s)
+            {
+                c.bias = w;
+                any = true;
+            }
+        }
+        any
+    }
+
+    /// Every live disc touching `seed` (slots) or touching one that does
+    /// (at most [`MAX_COLLAPSE`]), at `t`, and their contacts with each
+    /// other and with the solid lines and points they touch (indices into
+    /// the members).
+    fn touching_cluster(
+        &self,
+        mut members: Vec<usize>,
+        t: f64,
+    ) -> (Vec<usize>, Vec<collapse::Contact>) {
         let pos = |w: &World, c: usize| w.slots[c].traj.position(t);
         let touching = |gap: f64, s: f64| gap <= s * (1.0 + push::TOUCHING);
         // Grow to every disc touching a member.
@@ -810,7 +1052,7 @@ impl World {
                 let d = pa - pos(self, cb);
                 if touching(d.length(), r + self.slots[cb].radius) {
                     let n = d.normalize_or_zero();
-                    contacts.push(collapse::Contact { a, b: Some(b), n });
+                    contacts.push(collapse::Contact::plastic(a, Some(b), n));
                 }
             }
             for &line in &self.solid {
@@ -828,40 +1070,58 @@ impl World {
                         .min_by(|x, y| (pa - **x).length().total_cmp(&(pa - **y).length()));
                     end.map_or(DVec2::ZERO, |q| (pa - *q).normalize_or_zero())
                 };
-                contacts.push(collapse::Contact { a, b: None, n });
+                contacts.push(collapse::Contact::plastic(a, None, n));
             }
             for q in &self.points {
                 if touching((pa - q.pos).length(), r) {
                     let n = (pa - q.pos).normalize_or_zero();
-                    contacts.push(collapse::Contact { a, b: None, n });
+                    contacts.push(collapse::Contact::plastic(a, None, n));
                 }
             }
         }
         contacts.retain(|c| c.n != DVec2::ZERO);
-        let vel: Vec<DVec2> = members
-            .iter()
-            .map(|&c| self.slots[c].traj.velocity(t))
-            .collect();
-        let inv: Vec<f64> = members
-            .iter()
-            .map(|&c| 1.0 / self.material[c].mass)
-            .collect();
-        let Some(after) = collapse::plastic(&vel, &inv, &contacts) else {
-            return false;
-        };
+        (members, contacts)
+    }
+
+    /// Gives each of `members` whose velocity `after` differs from `before`
+    /// its new trajectory from `t` (marking its predictions stale); returns
+    /// those slots.
+    fn set_velocities(
+        &mut self,
+        members: &[usize],
+        before: &[DVec2],
+        after: &[DVec2],
+        t: f64,
+    ) -> Vec<usize> {
         let mut changed = Vec::new();
         for (k, &c) in members.iter().enumerate() {
-            if after[k] != vel[k] {
-                let p = pos(self, c);
+            if after[k] != before[k] {
+                let p = self.slots[c].traj.position(t);
                 self.slots[c].traj = Trajectory::new(t, p, after[k], self.material[c].mu * self.g);
                 self.slots[c].gen = self.slots[c].gen.wrapping_add(1);
                 changed.push(c);
             }
         }
-        for &c in &changed {
-            self.predict(c, true);
+        changed
+    }
+
+    /// `tr`, begun at `t`, or from the third revision a disc at rest there
+    /// if what is left of its slide is shorter than the rounding of its
+    /// position ([`SETTLE`]): such a motion changes nothing a position can
+    /// show, yet a hit between two discs slower than 1e-13 m/s would repeat
+    /// at about one instant for ever. Used where nothing else can approach
+    /// the disc because of it: a hit on an obstacle, or a pair of which
+    /// both settle (one alone at rest would be hit again by the other).
+    fn settled(&self, tr: Trajectory, t: f64) -> Trajectory {
+        if !self.config.revision.at_least_r3() || tr.alpha() == 0.0 || !tr.is_moving_at(t) {
+            return tr;
         }
-        !changed.is_empty()
+        let p = tr.position(t);
+        if tr.stopping_distance() <= SETTLE * p.abs().max_element() {
+            Trajectory::at_rest(t, p, tr.alpha())
+        } else {
+            tr
+        }
     }
 
     /// Whether every moving body is still within the range where squared
@@ -1078,8 +1338,19 @@ impl World {
             }
             let (v, a) = push::together([vi, vj], [mi.mass, mj.mass], alpha);
             (new_i, new_j) = (Trajectory::new(t, pi, v, a), Trajectory::new(t, pj, v, a));
+        } else if self.config.revision.at_least_r3() && {
+            // Pressed together obliquely, with the braking each had (a disc
+            // of a pushed chain brakes with the chain), and touching others:
+            // the approximated contact over the whole touching cluster.
+            self.slots[i].traj = new_i;
+            self.slots[j].traj = new_j;
+            self.press_cluster(i, j, [ti.alpha(), tj.alpha()], t)
+        } {
+            self.stats.pressed += 1;
+            return;
         } else if let Some(press) = self.pressing(&new_i, &new_j, n, s, t) {
             // Pressed together obliquely: the approximated contact.
+
             (new_i, new_j) = match press {
                 push::Press::Part(dw) => {
                     let (w_i, w_j) = impulse::weights(mi.mass, mj.mass);
@@ -1096,6 +1367,12 @@ impl World {
                 ),
             };
             self.stats.pressed += 1;
+        }
+        // Both at rest if neither would move beyond the rounding of `t`
+        // (one alone at rest would be hit again by the other at once).
+        let (rest_i, rest_j) = (self.settled(new_i, t), self.settled(new_j, t));
+        if !rest_i.is_moving() && !rest_j.is_moving() {
+            (new_i, new_j) = (rest_i, rest_j);
         }
         self.slots[i].traj = new_i;
         self.slots[j].traj = new_j;
@@ -1134,6 +1411,7 @@ impl World {
             n,
             s,
             t,
+            self.config.revision,
         )
     }
 
@@ -1226,7 +1504,7 @@ impl World {
         if self.config.revision.at_least_r2() {
             p += n * snap(m.radius, dist);
         }
-        self.slots[i].traj = Trajectory::new(t, p, v, m.mu * self.g);
+        self.slots[i].traj = self.settled(Trajectory::new(t, p, v, m.mu * self.g), t);
         self.changed(i);
     }
 

@@ -28,7 +28,7 @@ use engine::Revision;
 use glam::DVec2;
 
 /// The number of the physics version this build plays new matches under.
-pub const PHYSICS_VERSION: u32 = 2;
+pub const PHYSICS_VERSION: u32 = 3;
 
 /// A physics version this build can play.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -42,6 +42,12 @@ pub enum PhysicsVersion {
     /// chain of pieces collapsing against each other or the edge comes to
     /// its limit at once.
     V2,
+    /// As V2, on the engine's third revision ([`Revision::R3`]): a piece
+    /// pressed against a row or cluster of pieces, or against the edge, is
+    /// kicked apart from all of them at once; pieces left sliding slower
+    /// than their positions can show stop; and a shot whose events no
+    /// longer move anything ends instead of running to the event cap.
+    V3,
 }
 
 /// A physics version this build cannot play: a record of it is refused
@@ -68,16 +74,18 @@ fn supported() -> String {
 
 impl PhysicsVersion {
     /// The version new matches are played under.
-    pub const CURRENT: PhysicsVersion = PhysicsVersion::V2;
+    pub const CURRENT: PhysicsVersion = PhysicsVersion::V3;
 
     /// Every version this build plays, oldest first.
-    pub const ALL: [PhysicsVersion; 2] = [PhysicsVersion::V1, PhysicsVersion::V2];
+    pub const ALL: [PhysicsVersion; 3] =
+        [PhysicsVersion::V1, PhysicsVersion::V2, PhysicsVersion::V3];
 
     /// The version's number, as records and the store keep it.
     pub fn number(self) -> u32 {
         match self {
             PhysicsVersion::V1 => 1,
             PhysicsVersion::V2 => 2,
+            PhysicsVersion::V3 => 3,
         }
     }
 
@@ -86,6 +94,7 @@ impl PhysicsVersion {
         match self {
             PhysicsVersion::V1 => Revision::R1,
             PhysicsVersion::V2 => Revision::R2,
+            PhysicsVersion::V3 => Revision::R3,
         }
     }
 
@@ -102,10 +111,12 @@ impl PhysicsVersion {
     /// execution noise, if it has any.
     pub fn played(self, config: &Config, seed: u64, shot: u32, aimed: DVec2) -> DVec2 {
         match self {
-            PhysicsVersion::V1 | PhysicsVersion::V2 => match &config.variants.noise {
-                Some(n) => noise::perturb(n, seed, shot, aimed, config.max_speed),
-                None => aimed,
-            },
+            PhysicsVersion::V1 | PhysicsVersion::V2 | PhysicsVersion::V3 => {
+                match &config.variants.noise {
+                    Some(n) => noise::perturb(n, seed, shot, aimed, config.max_speed),
+                    None => aimed,
+                }
+            }
         }
     }
 
@@ -146,7 +157,7 @@ mod tests {
                 )),
                 "{err}"
             );
-            assert!(err.to_string().contains("plays versions 1, 2)"), "{err}");
+            assert!(err.to_string().contains("plays versions 1, 2, 3)"), "{err}");
         }
     }
 }
