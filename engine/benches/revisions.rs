@@ -1,5 +1,5 @@
-//! What the second revision costs where nothing was wrong: the break shot
-//! (standard and hard) and Galperin's billiard, run under both revisions
+//! What the later revisions cost where nothing was wrong: the break shot
+//! (standard and hard) and Galperin's billiard, run under every revision
 //! interleaved in one process, timed in CPU time of this thread per run
 //! (medians; the machine's wall clock drifts and its CPU is shared).
 //! `cargo bench -p engine --bench revisions`.
@@ -36,6 +36,9 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
+/// The revisions compared, oldest first.
+const REVISIONS: [Revision; 3] = [Revision::R1, Revision::R2, Revision::R3];
+
 fn main() {
     let break_shot = Scene::from_json(BREAK_JSON).expect("examples/break.json is valid");
     let cases = [
@@ -43,32 +46,37 @@ fn main() {
         ("hard break", hard_break(break_shot), 2001),
         ("galperin n5", engine::presets::galperin(5), 21),
     ];
-    println!("| scene | events r1 / r2 | pressed r2 | CPU per run r1 | r2 | r2 / r1 |");
-    println!("|---|---|---|---|---|---|");
+    let unit = |s: f64| {
+        if s < 1e-3 {
+            format!("{:.1} µs", s * 1e6)
+        } else {
+            format!("{:.2} ms", s * 1e3)
+        }
+    };
+    println!("| scene | events r1 / r2 / r3 | pressed r3 | CPU per run r1 | r2 | r3 | r2 / r1 | r3 / r2 |");
+    println!("|---|---|---|---|---|---|---|---|");
     for (name, scene, reps) in cases {
-        let (e1, _) = run(&scene, Revision::R1);
-        let (e2, pressed) = run(&scene, Revision::R2);
-        let mut t = [Vec::new(), Vec::new()];
+        let outcomes = REVISIONS.map(|rev| run(&scene, rev));
+        let mut t = [Vec::new(), Vec::new(), Vec::new()];
         for _ in 0..reps {
-            for (k, rev) in [Revision::R1, Revision::R2].into_iter().enumerate() {
+            for (k, rev) in REVISIONS.into_iter().enumerate() {
                 let start = ThreadTime::now();
                 black_box(run(black_box(&scene), rev));
                 t[k].push(start.elapsed().as_secs_f64());
             }
         }
-        let (m1, m2) = (median(t[0].clone()), median(t[1].clone()));
-        let unit = |s: f64| {
-            if s < 1e-3 {
-                format!("{:.1} µs", s * 1e6)
-            } else {
-                format!("{:.2} ms", s * 1e3)
-            }
-        };
+        let m = t.map(median);
         println!(
-            "| {name} | {e1} / {e2} | {pressed} | {} | {} | {:.3} |",
-            unit(m1),
-            unit(m2),
-            m2 / m1
+            "| {name} | {} / {} / {} | {} | {} | {} | {} | {:.3} | {:.3} |",
+            outcomes[0].0,
+            outcomes[1].0,
+            outcomes[2].0,
+            outcomes[2].1,
+            unit(m[0]),
+            unit(m[1]),
+            unit(m[2]),
+            m[1] / m[0],
+            m[2] / m[1]
         );
     }
 }

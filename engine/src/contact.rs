@@ -165,12 +165,13 @@ fn entry(a: f64, b: f64, c: f64, cross: f64, s2: f64, rev: Revision) -> Option<f
 /// fraction of the distance travelled.
 const APPROACH: f64 = 1e-12;
 
-/// From the third revision, a touching pair that approaches slower than
-/// [`APPROACH`] of its speeds still meets: when its centres have come this
-/// fraction of their distance closer (a hit that snaps them back to
-/// touching). Ignored, such an approach let two discs sliding side by side
-/// for hundreds of metres drift into each other by 1e-8 of their contact
-/// distance, and frictionless ones through each other in 1e12 s.
+/// From the third revision, a touching pair (or a disc touching a line)
+/// that approaches slower than [`APPROACH`] of its speeds still meets: when
+/// it is this fraction of the contact distance inside it (a hit that snaps
+/// it back to touching). Ignored, such an approach let two discs sliding
+/// side by side for hundreds of metres drift into each other by 1e-8 of
+/// their contact distance, a disc bouncing along a wall drift into it by
+/// 4e-9 of its radius, and frictionless discs through each other in 1e12 s.
 const DRIFT: f64 = 1e-10;
 
 /// Distance, in contact distances, beyond which the discriminant of a
@@ -196,7 +197,7 @@ pub struct LineHit {
 /// The first time `>= now` at which the moving disc of radius `r` touches
 /// the solid line (its straight part or one of its ends), approaching.
 pub fn disc_line(m: &Mover, line: &LineGeom, r: f64, rev: Revision) -> Option<LineHit> {
-    let mut best = disc_line_body(m, line, r).map(|t| LineHit { t, end: None });
+    let mut best = disc_line_body(m, line, r, rev).map(|t| LineHit { t, end: None });
     for (k, end) in line.ends.iter().enumerate() {
         if let Some(q) = end {
             if let Some(t) = disc_point(m, *q, r, rev) {
@@ -215,7 +216,7 @@ pub fn disc_line(m: &Mover, line: &LineGeom, r: f64, rev: Revision) -> Option<Li
 /// The first time `>= now` at which the moving disc of radius `r` touches
 /// the straight part of the line (not its ends), approaching.
 #[inline]
-pub fn disc_line_body(m: &Mover, line: &LineGeom, r: f64) -> Option<f64> {
+pub fn disc_line_body(m: &Mover, line: &LineGeom, r: f64, rev: Revision) -> Option<f64> {
     let h = line.signed_distance(m.pos);
     let rate = line.n.dot(m.w);
     let side = if h > 0.0 || (h == 0.0 && rate < 0.0) {
@@ -227,13 +228,16 @@ pub fn disc_line_body(m: &Mover, line: &LineGeom, r: f64) -> Option<f64> {
         return None; // not approaching the line
     }
     let gap = side * h - r;
-    if gap <= 0.0 && side * rate > -APPROACH * m.w.length() {
-        return None; // touching, approaching by no more than rounding noise
-    }
-    let l = if gap <= 0.0 {
-        0.0
-    } else {
+    let l = if gap > 0.0 {
         gap / (-side * rate)
+    } else if side * rate <= -APPROACH * m.w.length() {
+        0.0
+    } else if rev.at_least_r3() {
+        // Touching, approaching below rounding noise: meets DRIFT inside
+        // the contact distance (see DRIFT).
+        (side * h - r * (1.0 - DRIFT)).max(0.0) / (-side * rate)
+    } else {
+        return None; // touching, approaching by no more than rounding noise
     };
     if line.is_bounded() && !line.covers(m.pos + m.w * l) {
         return None; // passes beyond the extent; the ends are checked as points
@@ -306,17 +310,14 @@ fn linear_pair(
         if !rev.at_least_r3() {
             return None;
         }
-        // Approaching below noise: meets once DRIFT closer (see DRIFT).
-        let d2 = dp.length_squared();
-        let target = d2 * (1.0 - DRIFT) * (1.0 - DRIFT);
-        let t = entry(
-            dv.length_squared(),
-            b,
-            d2 - target,
-            dp.perp_dot(dv),
-            target,
-            rev,
-        )?;
+        // Approaching below noise: meets DRIFT inside the contact distance
+        // (see DRIFT).
+        let target = (s * (1.0 - DRIFT)).powi(2);
+        let c = dp.length_squared() - target;
+        if c <= 0.0 {
+            return Some(now);
+        }
+        let t = entry(dv.length_squared(), b, c, dp.perp_dot(dv), target, rev)?;
         return Some(now + t * scale);
     }
     Some(now + entry(dv.length_squared(), b, c, dp.perp_dot(dv), s * s, rev)? * scale)
@@ -378,9 +379,13 @@ fn curved_pair(
             }
         }
         if rev.at_least_r3() && c1 < 0.0 {
-            // Approaching below noise: meets once DRIFT closer (see DRIFT).
-            let d2 = dp.length_squared();
-            let shifted = [d2 - d2 * (1.0 - DRIFT) * (1.0 - DRIFT), c1, c2, c3, c4];
+            // Approaching below noise: meets DRIFT inside the contact
+            // distance (see DRIFT).
+            let c = dp.length_squared() - (s * (1.0 - DRIFT)).powi(2);
+            if c <= 0.0 {
+                return Some(now);
+            }
+            let shifted = [c, c1, c2, c3, c4];
             for &r in solver.roots_in(&shifted, 0.0, horizon).iter() {
                 if c1 + r * (2.0 * c2 + r * (3.0 * c3 + r * 4.0 * c4)) < 0.0 {
                     return Some(now + r);

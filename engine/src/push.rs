@@ -88,8 +88,12 @@ pub const CAPTURE: f64 = 1e-6;
 /// `w^2 / (a (1 - e))`: at most `w / 2v`, below `CAPTURE / 2`, of the
 /// distance the pair slides in the meantime. Without this the last bounces fall below the
 /// approach threshold and the discs drift into each other.
+///
+/// From the third revision (`rev`), a chatter whose next bounce would come
+/// within the rounding of the time (late in a long run, where an instant
+/// spans microseconds) is taken to its end too, however fast it parts.
 #[inline]
-pub fn chatters(ti: &Trajectory, tj: &Trajectory, n: DVec2, now: f64) -> bool {
+pub fn chatters(ti: &Trajectory, tj: &Trajectory, n: DVec2, now: f64, rev: Revision) -> bool {
     // Cheapest test first: without pressing braking (frictionless pairs,
     // Galperin's billiard) nothing else is looked at.
     if ti.alpha() == 0.0 && tj.alpha() == 0.0 {
@@ -102,6 +106,7 @@ pub fn chatters(ti: &Trajectory, tj: &Trajectory, n: DVec2, now: f64) -> bool {
     let (vi, vj) = (ti.velocity(now), tj.velocity(now));
     let w = (vi - vj).dot(n);
     w <= CAPTURE * (vi.length() + vj.length())
+        || (rev.at_least_r3() && crate::world::same_instant(now, now + 2.0 * w / -a))
 }
 
 /// Largest gap, as a fraction of the contact distance, that the

@@ -43,20 +43,28 @@ pub enum Revision {
     ///   `World::press_cluster`); a pair of a pushed chain presses with the
     ///   chain's braking;
     /// - a pressed pair that would slide no further than the approximation's
-    ///   gap before it stops comes to rest at once;
+    ///   gap before it stops comes to rest at once, and whatever touches it
+    ///   and would run into it is stopped against it;
     /// - a collapse's plastic limit is solved exactly on the contacts that
     ///   push whenever projected Gauss–Seidel stalls (a light disc between
-    ///   heavy ones or walls), and is followed by the pressing kick where it
-    ///   leaves discs pressed;
-    /// - two discs whose slides after a hit are both shorter than the
-    ///   rounding of their positions are at rest ([`crate::world::SETTLE`]);
-    /// - a touching pair approaching slower than rounding noise meets once
-    ///   its centres have come 1e-10 of their distance closer, instead of
-    ///   drifting into each other for as long as they slide;
-    /// - a run whose events no longer move any disc by more than
-    ///   [`crate::world::CRAWL`] of a radius, event after event (discs
-    ///   rattling in a gap of rounding, a chain pinned between two walls),
-    ///   ends `stuck` instead of running to the event cap.
+    ///   heavy ones or walls), takes a chain that touches an obstacle with
+    ///   the obstacle, and is followed by the pressing kick where it leaves
+    ///   discs pressed;
+    /// - a chatter whose next bounce would fall within the rounding of the
+    ///   time ends at once (a plastic hit), as one slower than the capture
+    ///   speed does;
+    /// - discs whose slides after a hit are all shorter than the rounding
+    ///   of their positions are at rest ([`crate::world::SETTLE`]);
+    /// - a touching pair (or a disc touching a line) approaching slower
+    ///   than rounding noise meets 1e-10 of the contact distance inside it,
+    ///   and the hit puts it back at touching distance, instead of drifting
+    ///   in for as long as it slides;
+    /// - events that no longer move any disc by more than
+    ///   [`crate::world::CRAWL`] of a radius, block after block (a collapse
+    ///   whose hits are each a few units in the last place of the time
+    ///   apart, a chain pinned between two walls), are taken as a collapse
+    ///   to its limit, and a run that goes on so ends `stuck` instead of
+    ///   running to the event cap.
     #[default]
     R3,
 }

@@ -209,6 +209,9 @@ struct Crawl {
     events: u64,
     /// Events in the blocks before it, in a row, that moved nothing.
     still: u64,
+    /// Slots of the latest [`COLLAPSE_WINDOW`] events of the block
+    /// (`usize::MAX` for a hit on an obstacle), as `World::collapse` takes.
+    recent: Vec<usize>,
 }
 
 impl Crawl {
@@ -217,25 +220,47 @@ impl Crawl {
             since: t,
             events: 0,
             still: 0,
+            recent: Vec::new(),
         }
     }
 
-    /// Counts an event at `t`; returns how many events in a row have moved
-    /// no disc by more than [`CRAWL`] of the smallest radius (known at the
-    /// end of each block of [`CRAWL_EVENTS`]).
-    fn note(&mut self, world: &World, t: f64) -> u64 {
+    /// Counts `event`, at `t`. At the end of a block of [`CRAWL_EVENTS`]
+    /// in which no disc moved by more than [`CRAWL`] of the smallest radius,
+    /// returns the slots of its latest events: a collapse too slow in time
+    /// to share one instant (each hit a few units in the last place of the
+    /// time after the last), to be taken to its limit.
+    #[inline]
+    fn note(&mut self, world: &World, event: &Event, t: f64) -> Option<Vec<usize>> {
         self.events += 1;
-        if self.events == CRAWL_EVENTS {
-            let (speed, radius) = world.fastest_and_smallest(t);
-            if (t - self.since) * speed <= CRAWL * radius {
-                self.still += self.events;
-            } else {
-                self.still = 0;
-            }
-            self.since = t;
-            self.events = 0;
+        if self.events + COLLAPSE_WINDOW <= CRAWL_EVENTS {
+            return None;
         }
-        self.still
+        self.block_end(world, event, t)
+    }
+
+    /// The latest events of a block, and its end (see [`Crawl::note`]).
+    #[cold]
+    fn block_end(&mut self, world: &World, event: &Event, t: f64) -> Option<Vec<usize>> {
+        self.recent
+            .extend(event.kind.bodies().filter_map(|id| world.slot_of(id)));
+        if !matches!(event.kind, EventKind::BodyBody { .. }) {
+            self.recent.push(usize::MAX);
+        }
+        if self.events < CRAWL_EVENTS {
+            return None;
+        }
+        let (speed, radius) = world.fastest_and_smallest(t);
+        let still = (t - self.since) * speed <= CRAWL * radius;
+        self.since = t;
+        self.events = 0;
+        let recent = std::mem::take(&mut self.recent);
+        if still {
+            self.still += CRAWL_EVENTS;
+            Some(recent)
+        } else {
+            self.still = 0;
+            None
+        }
     }
 }
 
@@ -719,9 +744,14 @@ impl World {
                     instant = (t, 0);
                     recent.clear();
                 }
-                if self.config.revision.at_least_r3() && crawl.note(self, t) > stuck_after {
-                    handler.on_event(self, &event);
-                    return self.end_on(EndReason::Stuck);
+                if self.config.revision.at_least_r3() {
+                    if let Some(mut latest) = crawl.note(self, &event, t) {
+                        if crawl.still > stuck_after {
+                            handler.on_event(self, &event);
+                            return self.end_on(EndReason::Stuck);
+                        }
+                        self.collapse(&mut latest, t);
+                    }
                 }
                 events_left -= 1;
                 collisions_left -= event.kind.is_collision() as u64;
@@ -789,7 +819,8 @@ impl World {
     /// pushing events that follow. From the second revision on, any other
     /// collapse (discs off one line, obstacles) is taken to its limit the
     /// same way, for every disc touching the ones involved: the plastic
-    /// impact of all their contacts at once ([`collapse::plastic`]).
+    /// impact of all their contacts at once ([`collapse::plastic`]); from
+    /// the third, so is a chain that touches an obstacle.
     /// Whatever is left ends the run as `stuck` if it goes on.
     fn collapse(&mut self, recent: &mut Vec<usize>, t: f64) {
         recent.sort_unstable();
@@ -828,6 +859,16 @@ impl World {
         }
         // The whole touching chain along the line.
         let chain = self.touching_chain(recent.to_vec(), t, u, |w, _, c| on_line(w, c));
+        // From the third revision, a chain that touches an obstacle (or
+        // touches discs that do) collapses with it, as a cluster: pressed
+        // into a wall, its plastic limit without the wall would be undone
+        // by the next hit on it, again and again at one instant.
+        if self.config.revision.at_least_r3() {
+            let (_, contacts) = self.touching_cluster(chain.clone(), t);
+            if contacts.iter().any(|c| c.b.is_none()) {
+                return false;
+            }
+        }
         let parts = self.chain_parts(&chain, t);
         for (&c, v) in chain.iter().zip(push::plastic(&parts, u)) {
             let p = self.slots[c].traj.position(t);
@@ -899,44 +940,72 @@ impl World {
     /// which would hit it back at the same instant, without end. `false`
     /// (nothing done) where `i` and `j` touch nothing else, or the
     /// projection has no answer (a pressed pair jammed between obstacles).
-    fn press_cluster(&mut self, i: usize, j: usize, braking: [f64; 2], t: f64) -> bool {
+    fn press_cluster(
+        &mut self,
+        i: usize,
+        j: usize,
+        [ti, tj]: [Trajectory; 2],
+        n: DVec2,
+        braking: [f64; 2],
+        t: f64,
+    ) -> bool {
         // The pair itself first (cheap): pressed, and parting slower than
         // its bounce speed (or so slow that it comes to rest).
-        let (vi, vj) = (
-            self.slots[i].traj.velocity(t),
-            self.slots[j].traj.velocity(t),
-        );
-        let d = self.slots[i].traj.position(t) - self.slots[j].traj.position(t);
-        let n = d.normalize_or_zero();
+        let (vi, vj) = (ti.start_velocity(), tj.start_velocity());
         let s = self.slots[i].radius + self.slots[j].radius;
         let acc = [
             -braking[0] * vi.normalize_or_zero(),
             -braking[1] * vj.normalize_or_zero(),
         ];
-        let dw = match push::pressing_kick([vi, vj], acc, n, s, t, self.config.revision) {
-            Some(push::Press::Part(dw)) => dw,
-            Some(push::Press::Rest) => {
-                // Its next bounce would fall within the rounding of `t`.
-                for c in [i, j] {
-                    let p = self.slots[c].traj.position(t);
-                    self.slots[c].traj = Trajectory::at_rest(t, p, self.material[c].mu * self.g);
-                    self.slots[c].gen = self.slots[c].gen.wrapping_add(1);
-                }
-                for c in [i, j] {
-                    self.predict(c, true);
-                }
-                return true;
-            }
-            None => return false,
-        };
-        let (members, mut contacts) = self.touching_cluster(vec![i, j], t);
-        if members.len() == 2 && contacts.len() == 1 {
+        let Some(press) = push::pressing_kick([vi, vj], acc, n, s, t, self.config.revision) else {
             return false;
-        }
+        };
+        self.slots[i].traj = ti;
+        self.slots[j].traj = tj;
+        let (members, mut contacts) = self.touching_cluster(vec![i, j], t);
+        let alone = members.len() == 2 && contacts.len() == 1;
         let vel: Vec<DVec2> = members
             .iter()
             .map(|&c| self.slots[c].traj.velocity(t))
             .collect();
+        let inv: Vec<f64> = members
+            .iter()
+            .map(|&c| 1.0 / self.material[c].mass)
+            .collect();
+        let dw = match press {
+            push::Press::Part(_) if alone => return false,
+            push::Press::Part(dw) => dw,
+            push::Press::Rest => {
+                // So slow that it stops here: the pair comes to rest, and
+                // whatever touches it and would run into it (one pushing
+                // it, say) is stopped against it, as against a wall: the
+                // plastic limit with the pair held still.
+                let mut held = vel.clone();
+                let mut inv_held = inv.clone();
+                (held[0], held[1]) = (DVec2::ZERO, DVec2::ZERO);
+                (inv_held[0], inv_held[1]) = (0.0, 0.0);
+                contacts.retain(|c| c.a >= 2 || c.b.is_some_and(|b| b >= 2));
+                let after = if alone || contacts.is_empty() {
+                    held
+                } else {
+                    match collapse::resolve(&held, &inv_held, &contacts, PRESS_SWEEPS) {
+                        Some(after) => after,
+                        None => return false,
+                    }
+                };
+                let mut changed = self.set_velocities(&members, &vel, &after, t);
+                for c in [i, j] {
+                    if !changed.contains(&c) {
+                        self.slots[c].gen = self.slots[c].gen.wrapping_add(1);
+                        changed.push(c);
+                    }
+                }
+                for &c in &changed {
+                    self.predict(c, true);
+                }
+                return true;
+            }
+        };
         // The kick between the two alone, where it drives neither into
         // anything else it touches.
         let (w_i, w_j) = impulse::weights(self.material[i].mass, self.material[j].mass);
@@ -970,10 +1039,6 @@ impl World {
         if !self.press_biases(&members, &mut contacts, &vel, &alpha) {
             return false;
         }
-        let inv: Vec<f64> = members
-            .iter()
-            .map(|&c| 1.0 / self.material[c].mass)
-            .collect();
         let Some(after) = collapse::resolve(&vel, &inv, &contacts, PRESS_SWEEPS) else {
             return false;
         };
@@ -1085,7 +1150,9 @@ impl World {
 
     /// Gives each of `members` whose velocity `after` differs from `before`
     /// its new trajectory from `t` (marking its predictions stale); returns
-    /// those slots.
+    /// those slots. From the third revision, if every one of them that
+    /// moves would slide less than the rounding of its position (see
+    /// [`World::settled`]), they all rest instead.
     fn set_velocities(
         &mut self,
         members: &[usize],
@@ -1093,14 +1160,39 @@ impl World {
         after: &[DVec2],
         t: f64,
     ) -> Vec<usize> {
+        let new = |w: &World, k: usize, c: usize| {
+            let p = w.slots[c].traj.position(t);
+            Trajectory::new(t, p, after[k], w.material[c].mu * w.g)
+        };
+        // Every member as it would go on, changed or not.
+        let all_settle = self.config.revision.at_least_r3()
+            && members.iter().enumerate().all(|(k, &c)| {
+                let tr = if after[k] != before[k] {
+                    new(self, k, c)
+                } else {
+                    self.slots[c].traj
+                };
+                !tr.is_moving_at(t) || !self.settled(tr, t).is_moving()
+            });
         let mut changed = Vec::new();
         for (k, &c) in members.iter().enumerate() {
-            if after[k] != before[k] {
-                let p = self.slots[c].traj.position(t);
-                self.slots[c].traj = Trajectory::new(t, p, after[k], self.material[c].mu * self.g);
-                self.slots[c].gen = self.slots[c].gen.wrapping_add(1);
-                changed.push(c);
-            }
+            let tr = if all_settle {
+                if !self.slots[c].traj.is_moving_at(t) && after[k] == before[k] {
+                    continue;
+                }
+                Trajectory::at_rest(
+                    t,
+                    self.slots[c].traj.position(t),
+                    self.material[c].mu * self.g,
+                )
+            } else if after[k] != before[k] {
+                new(self, k, c)
+            } else {
+                continue;
+            };
+            self.slots[c].traj = tr;
+            self.slots[c].gen = self.slots[c].gen.wrapping_add(1);
+            changed.push(c);
         }
         changed
     }
@@ -1321,7 +1413,7 @@ impl World {
             Trajectory::new(t, pi, vi, alpha[0]),
             Trajectory::new(t, pj, vj, alpha[1]),
         );
-        if e > 0.0 && push::chatters(&new_i, &new_j, n, t) {
+        if e > 0.0 && push::chatters(&new_i, &new_j, n, t, self.config.revision) {
             // The pair would bounce ever faster into a pressing contact:
             // take the chatter's end, one plastic hit, now.
             (vi, vj) = impulse::body_body(ui, uj, mi.mass, mj.mass, 0.0, n);
@@ -1338,14 +1430,13 @@ impl World {
             }
             let (v, a) = push::together([vi, vj], [mi.mass, mj.mass], alpha);
             (new_i, new_j) = (Trajectory::new(t, pi, v, a), Trajectory::new(t, pj, v, a));
-        } else if self.config.revision.at_least_r3() && {
+        } else if self.config.revision.at_least_r3()
+            && (ti.alpha() > 0.0 || tj.alpha() > 0.0)
+            && self.press_cluster(i, j, [new_i, new_j], n, [ti.alpha(), tj.alpha()], t)
+        {
             // Pressed together obliquely, with the braking each had (a disc
             // of a pushed chain brakes with the chain), and touching others:
             // the approximated contact over the whole touching cluster.
-            self.slots[i].traj = new_i;
-            self.slots[j].traj = new_j;
-            self.press_cluster(i, j, [ti.alpha(), tj.alpha()], t)
-        } {
             self.stats.pressed += 1;
             return;
         } else if let Some(press) = self.pressing(&new_i, &new_j, n, s, t) {
@@ -1591,7 +1682,9 @@ impl World {
         };
         let r = self.slots[i].radius;
         for &k in &self.solid {
-            if let Some(t) = contact::disc_line_body(m, &self.geoms[k as usize], r) {
+            if let Some(t) =
+                contact::disc_line_body(m, &self.geoms[k as usize], r, self.config.revision)
+            {
                 best.offer(t, Next::Line(k, None));
             }
         }
