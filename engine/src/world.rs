@@ -993,16 +993,7 @@ impl World {
                         None => return false,
                     }
                 };
-                let mut changed = self.set_velocities(&members, &vel, &after, t);
-                for c in [i, j] {
-                    if !changed.contains(&c) {
-                        self.slots[c].gen = self.slots[c].gen.wrapping_add(1);
-                        changed.push(c);
-                    }
-                }
-                for &c in &changed {
-                    self.predict(c, true);
-                }
+                self.kick_cluster(&members, &vel, &after, [i, j], t);
                 return true;
             }
         };
@@ -1042,7 +1033,22 @@ impl World {
         let Some(after) = collapse::resolve(&vel, &inv, &contacts, PRESS_SWEEPS) else {
             return false;
         };
-        let mut changed = self.set_velocities(&members, &vel, &after, t);
+        self.kick_cluster(&members, &vel, &after, [i, j], t);
+        true
+    }
+
+    /// Gives `members` their velocities `after` a pressing kick or stop of
+    /// the pair `i`, `j` (whose trajectories were replaced by the hit
+    /// either way) and predicts every disc that changed.
+    fn kick_cluster(
+        &mut self,
+        members: &[usize],
+        before: &[DVec2],
+        after: &[DVec2],
+        [i, j]: [usize; 2],
+        t: f64,
+    ) {
+        let mut changed = self.set_velocities(members, before, after, t);
         for c in [i, j] {
             if !changed.contains(&c) {
                 self.slots[c].gen = self.slots[c].gen.wrapping_add(1);
@@ -1052,7 +1058,6 @@ impl World {
         for &c in &changed {
             self.predict(c, true);
         }
-        true
     }
 
     /// Sets the bias of every contact between two discs of `members` that
