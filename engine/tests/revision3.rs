@@ -1,10 +1,11 @@
 //! The engine's third revision on the hostile scenes that revision 2 got
 //! wrong (kept in `tests/hostile/`, each named by its generator kind and
-//! seed in `lab::hostile`). Each test runs the scene under both revisions:
-//! revision 2 must still fail as it did (records made under it replay bit
-//! for bit, and the test proves it exercises the fix), revision 3 must end
-//! as the model says, within the hostile generator's event cap and without
-//! overlap.
+//! seed in `lab::hostile`), and on two that revision 2 got right and a
+//! draft of revision 3 did not. Where revision 2 failed, the test runs the
+//! scene under both revisions: revision 2 must still fail as it did
+//! (records made under it replay bit for bit, and the test proves it
+//! exercises the fix); revision 3 must end as the model says, within the
+//! hostile generator's event cap and without overlap.
 
 use engine::{EndReason, Event, EventHandler, Limits, Revision, Scene, World, WorldConfig};
 
