@@ -53,17 +53,7 @@ pub const MAX_SWEEPS: usize = 10_000;
 /// its bias by that much). `None` if the impulses have not
 /// converged within [`MAX_SWEEPS`] (the caller keeps the velocities).
 pub fn plastic(vel: &[DVec2], inv_mass: &[f64], contacts: &[Contact]) -> Option<Vec<DVec2>> {
-    let mut solver = match Solver::new(vel, inv_mass, contacts) {
-        Ok(s) => s,
-        Err(known) => return Some(known),
-    };
-    for _ in 0..MAX_SWEEPS {
-        solver.sweep();
-        if !solver.violated() {
-            return Some(solver.finish());
-        }
-    }
-    None
+    project(vel, inv_mass, contacts, MAX_SWEEPS, false)
 }
 
 /// Sweeps of projected Gauss–Seidel between two tries of the exact
@@ -92,16 +82,25 @@ pub fn resolve(
     contacts: &[Contact],
     sweeps: usize,
 ) -> Option<Vec<DVec2>> {
+    project(vel, inv_mass, contacts, sweeps, true)
+}
+
+/// Up to `sweeps` sweeps of projected Gauss–Seidel, trying the exact
+/// solution every [`BLOCK`] of them if `exact` (see [`resolve`]).
+fn project(
+    vel: &[DVec2],
+    inv_mass: &[f64],
+    contacts: &[Contact],
+    sweeps: usize,
+    exact: bool,
+) -> Option<Vec<DVec2>> {
     let mut solver = match Solver::new(vel, inv_mass, contacts) {
         Ok(s) => s,
         Err(known) => return Some(known),
     };
     for k in 0..sweeps {
         solver.sweep();
-        if !solver.violated() {
-            return Some(solver.finish());
-        }
-        if k % BLOCK == BLOCK - 1 && solver.exact() {
+        if !solver.violated() || (exact && k % BLOCK == BLOCK - 1 && solver.exact()) {
             return Some(solver.finish());
         }
     }

@@ -241,11 +241,7 @@ impl Crawl {
     /// The latest events of a block, and its end (see [`Crawl::note`]).
     #[cold]
     fn block_end(&mut self, world: &World, event: &Event, t: f64) -> Option<Vec<usize>> {
-        self.recent
-            .extend(event.kind.bodies().filter_map(|id| world.slot_of(id)));
-        if !matches!(event.kind, EventKind::BodyBody { .. }) {
-            self.recent.push(usize::MAX);
-        }
+        world.remember(&mut self.recent, event);
         if self.events < CRAWL_EVENTS {
             return None;
         }
@@ -731,10 +727,7 @@ impl World {
                     }
                     let phase = instant.1 % COLLAPSE_EVENTS;
                     if phase + COLLAPSE_WINDOW >= COLLAPSE_EVENTS {
-                        recent.extend(event.kind.bodies().filter_map(|id| self.slot_of(id)));
-                        if !matches!(event.kind, EventKind::BodyBody { .. }) {
-                            recent.push(usize::MAX);
-                        }
+                        self.remember(&mut recent, &event);
                     }
                     if phase == 0 {
                         self.collapse(&mut recent, t);
@@ -775,6 +768,15 @@ impl World {
                 handler.on_event(self, &event);
                 return Some(event);
             }
+        }
+    }
+
+    /// Adds the slots of `event`'s bodies to `recent`, and `usize::MAX`
+    /// for a hit on an obstacle (what `World::collapse` takes).
+    fn remember(&self, recent: &mut Vec<usize>, event: &Event) {
+        recent.extend(event.kind.bodies().filter_map(|id| self.slot_of(id)));
+        if !matches!(event.kind, EventKind::BodyBody { .. }) {
+            recent.push(usize::MAX);
         }
     }
 
@@ -896,14 +898,7 @@ impl World {
             return false;
         }
         let (members, mut contacts) = self.touching_cluster(seed, t);
-        let vel: Vec<DVec2> = members
-            .iter()
-            .map(|&c| self.slots[c].traj.velocity(t))
-            .collect();
-        let inv: Vec<f64> = members
-            .iter()
-            .map(|&c| 1.0 / self.material[c].mass)
-            .collect();
+        let (vel, inv) = self.motion(&members, t);
         let r3 = self.config.revision.at_least_r3();
         let plastic = if r3 {
             collapse::resolve(&vel, &inv, &contacts, collapse::MAX_SWEEPS)
@@ -913,10 +908,7 @@ impl World {
         let Some(mut after) = plastic else {
             return false;
         };
-        let alpha: Vec<f64> = members
-            .iter()
-            .map(|&c| self.slots[c].traj.alpha())
-            .collect();
+        let alpha = self.braking(&members);
         if r3 && self.press_biases(&members, &mut contacts, &after, &alpha) {
             if let Some(kicked) = collapse::resolve(&after, &inv, &contacts, PRESS_SWEEPS) {
                 after = kicked;
@@ -964,14 +956,7 @@ impl World {
         self.slots[j].traj = tj;
         let (members, mut contacts) = self.touching_cluster(vec![i, j], t);
         let alone = members.len() == 2 && contacts.len() == 1;
-        let vel: Vec<DVec2> = members
-            .iter()
-            .map(|&c| self.slots[c].traj.velocity(t))
-            .collect();
-        let inv: Vec<f64> = members
-            .iter()
-            .map(|&c| 1.0 / self.material[c].mass)
-            .collect();
+        let (vel, inv) = self.motion(&members, t);
         let dw = match press {
             push::Press::Part(_) if alone => return false,
             push::Press::Part(dw) => dw,
@@ -1022,10 +1007,7 @@ impl World {
             }
             return true;
         }
-        let mut alpha: Vec<f64> = members
-            .iter()
-            .map(|&c| self.slots[c].traj.alpha())
-            .collect();
+        let mut alpha = self.braking(&members);
         (alpha[0], alpha[1]) = (braking[0], braking[1]);
         if !self.press_biases(&members, &mut contacts, &vel, &alpha) {
             return false;
@@ -1058,6 +1040,23 @@ impl World {
         for &c in &changed {
             self.predict(c, true);
         }
+    }
+
+    /// The velocities of `members` (slots) at `t` and their inverse masses.
+    fn motion(&self, members: &[usize], t: f64) -> (Vec<DVec2>, Vec<f64>) {
+        members
+            .iter()
+            .map(|&c| (self.slots[c].traj.velocity(t), 1.0 / self.material[c].mass))
+            .unzip()
+    }
+
+    /// The braking each of `members` (slots) has now: a disc of a pushed
+    /// chain brakes with the chain.
+    fn braking(&self, members: &[usize]) -> Vec<f64> {
+        members
+            .iter()
+            .map(|&c| self.slots[c].traj.alpha())
+            .collect()
     }
 
     /// Sets the bias of every contact between two discs of `members` that

@@ -9,6 +9,9 @@ use engine::{
 };
 use glam::DVec2;
 
+mod common;
+use common::Deepest;
+
 fn disc(id: u64, pos: DVec2, vel: DVec2, radius: f64, mu: f64, e: f64) -> BodySpec {
     BodySpec::new(id, pos, radius, 0.005, mu)
         .with_velocity(vel)
@@ -22,24 +25,6 @@ fn scene(bodies: Vec<BodySpec>, lines: Vec<Line>) -> Scene {
         bodies,
         points: Vec::new(),
         lines,
-    }
-}
-
-/// The deepest overlap between any two discs at any event, as a fraction
-/// of their contact distance.
-#[derive(Default)]
-struct Deepest(f64);
-
-impl EventHandler for Deepest {
-    fn on_event(&mut self, world: &World, event: &Event) {
-        let bodies: Vec<_> = world.bodies().collect();
-        for (k, a) in bodies.iter().enumerate() {
-            for b in &bodies[k + 1..] {
-                let s = a.material.radius + b.material.radius;
-                let d = (a.trajectory.position(event.t) - b.trajectory.position(event.t)).length();
-                self.0 = self.0.max((s - d) / s);
-            }
-        }
     }
 }
 

@@ -9,26 +9,11 @@
 
 use engine::{EndReason, Event, EventHandler, Limits, Revision, Scene, World, WorldConfig};
 
+mod common;
+use common::Deepest;
+
 /// The hostile generator's event cap (a run reaching it is a livelock).
 const CAP: u64 = 100_000;
-
-/// The deepest overlap between any two discs at any event, as a fraction
-/// of their contact distance.
-#[derive(Default)]
-struct Deepest(f64);
-
-impl EventHandler for Deepest {
-    fn on_event(&mut self, world: &World, event: &Event) {
-        let bodies: Vec<_> = world.bodies().collect();
-        for (k, a) in bodies.iter().enumerate() {
-            for b in &bodies[k + 1..] {
-                let s = a.material.radius + b.material.radius;
-                let d = (a.trajectory.position(event.t) - b.trajectory.position(event.t)).length();
-                self.0 = self.0.max((s - d) / s);
-            }
-        }
-    }
-}
 
 /// How a run of a scene ended.
 struct Outcome {
@@ -40,15 +25,25 @@ struct Outcome {
     moved: f64,
 }
 
-fn run(name: &str, revision: Revision) -> Outcome {
+/// The kept scene `name` (`tests/hostile/{name}.json`).
+fn scene(name: &str) -> Scene {
     let path = format!("{}/tests/hostile/{name}.json", env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(&path).expect("the scene file is in the repository");
-    let scene = Scene::from_json(&text).expect("a valid scene");
+    Scene::from_json(&text).expect("a valid scene")
+}
+
+/// `scene` ready to run under `revision`.
+fn world(scene: &Scene, revision: Revision) -> World {
     let config = WorldConfig {
         revision,
         ..WorldConfig::default()
     };
-    let mut world = World::new(&scene, config).expect("a valid scene");
+    World::new(scene, config).expect("a valid scene")
+}
+
+fn run(name: &str, revision: Revision) -> Outcome {
+    let scene = scene(name);
+    let mut world = world(&scene, revision);
     let mut deepest = Deepest::default();
     let limits = Limits {
         max_events: CAP,
@@ -191,17 +186,9 @@ fn a_disc_bouncing_along_a_wall_does_not_drift_into_it() {
     // Disc 8 bounces between floor and ceiling at 18 m/s with 1.7e-11 m/s
     // towards the left wall it touches: below the noise threshold, so
     // revision 2 let it sink 3.7e-9 of its radius into the wall.
-    let path = format!(
-        "{}/tests/hostile/mixed-26337.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let scene = Scene::from_json(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let scene = scene("mixed-26337");
     let depth = |revision| {
-        let config = WorldConfig {
-            revision,
-            ..WorldConfig::default()
-        };
-        let mut world = World::new(&scene, config).unwrap();
+        let mut world = world(&scene, revision);
         let mut walls = IntoWalls::default();
         let end = world.run(&Limits::default(), &mut walls);
         assert_eq!(end.reason, EndReason::Rest);
