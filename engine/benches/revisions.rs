@@ -37,7 +37,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 /// The revisions compared, oldest first.
-const REVISIONS: [Revision; 3] = [Revision::R1, Revision::R2, Revision::R3];
+const REVISIONS: [Revision; 4] = [Revision::R1, Revision::R2, Revision::R3, Revision::R4];
 
 fn main() {
     let break_shot = Scene::from_json(BREAK_JSON).expect("examples/break.json is valid");
@@ -53,11 +53,25 @@ fn main() {
             format!("{:.2} ms", s * 1e3)
         }
     };
-    println!("| scene | events r1 / r2 / r3 | pressed r3 | CPU per run r1 | r2 | r3 | r2 / r1 | r3 / r2 |");
-    println!("|---|---|---|---|---|---|---|---|");
+    let names: Vec<String> = (1..=REVISIONS.len()).map(|k| format!("r{k}")).collect();
+    let ratios: Vec<String> = (1..REVISIONS.len())
+        .map(|k| format!("{} / {}", names[k], names[k - 1]))
+        .collect();
+    println!(
+        "| scene | events {} | pressed {} | CPU per run {} | {} |",
+        names.join(" / "),
+        names[names.len() - 1],
+        names.join(" | "),
+        ratios.join(" | ")
+    );
+    println!(
+        "|---|---|---|{}{}",
+        "---|".repeat(names.len()),
+        "---|".repeat(ratios.len())
+    );
     for (name, scene, reps) in cases {
         let outcomes = REVISIONS.map(|rev| run(&scene, rev));
-        let mut t = [Vec::new(), Vec::new(), Vec::new()];
+        let mut t = REVISIONS.map(|_| Vec::new());
         for _ in 0..reps {
             for (k, rev) in REVISIONS.into_iter().enumerate() {
                 let start = ThreadTime::now();
@@ -66,17 +80,18 @@ fn main() {
             }
         }
         let m = t.map(median);
+        let events: Vec<String> = outcomes.iter().map(|o| o.0.to_string()).collect();
+        let times: Vec<String> = m.iter().map(|&s| unit(s)).collect();
+        let ratios: Vec<String> = m
+            .windows(2)
+            .map(|w| format!("{:.3}", w[1] / w[0]))
+            .collect();
         println!(
-            "| {name} | {} / {} / {} | {} | {} | {} | {} | {:.3} | {:.3} |",
-            outcomes[0].0,
-            outcomes[1].0,
-            outcomes[2].0,
-            outcomes[2].1,
-            unit(m[0]),
-            unit(m[1]),
-            unit(m[2]),
-            m[1] / m[0],
-            m[2] / m[1]
+            "| {name} | {} | {} | {} | {} |",
+            events.join(" / "),
+            outcomes[REVISIONS.len() - 1].1,
+            times.join(" | "),
+            ratios.join(" | ")
         );
     }
 }

@@ -167,6 +167,11 @@ pub const SETTLE: f64 = f64::EPSILON;
 /// take: it converges within tens where it has an answer at all.
 pub const PRESS_SWEEPS: usize = 200;
 
+/// From the fourth revision, rounds of a pressing kick's projection that
+/// may each bias the pairs the one before left pressed (see
+/// `World::press_closure`).
+pub const PRESS_ROUNDS: usize = 4;
+
 /// Past this time a run checks, before each event, that every moving body
 /// is still within [`MAX_COORDINATE`] (no scene reaches it otherwise:
 /// speeds stay below 1e150 and start positions too).
@@ -910,7 +915,8 @@ impl World {
         };
         let alpha = self.braking(&members);
         if r3 && self.press_biases(&members, &mut contacts, &after, &alpha) {
-            if let Some(kicked) = collapse::resolve(&after, &inv, &contacts, PRESS_SWEEPS) {
+            if let Some(kicked) = self.press_closure(&members, &mut contacts, &after, &inv, &alpha)
+            {
                 after = kicked;
                 self.stats.pressed += 1;
             }
@@ -965,11 +971,23 @@ impl World {
                 // whatever touches it and would run into it (one pushing
                 // it, say) is stopped against it, as against a wall: the
                 // plastic limit with the pair held still.
+                // From the fourth revision, so does every disc of the
+                // cluster that would slide no further than the gap.
+                let mut still = vec![false; members.len()];
+                (still[0], still[1]) = (true, true);
+                if self.config.revision.at_least_r4() {
+                    let alpha = self.braking(&members);
+                    for k in 2..members.len() {
+                        let slide = vel[k].length_squared() / (2.0 * alpha[k]);
+                        still[k] = alpha[k] > 0.0 && slide <= push::PRESS_GAP * s;
+                    }
+                }
                 let mut held = vel.clone();
                 let mut inv_held = inv.clone();
-                (held[0], held[1]) = (DVec2::ZERO, DVec2::ZERO);
-                (inv_held[0], inv_held[1]) = (0.0, 0.0);
-                contacts.retain(|c| c.a >= 2 || c.b.is_some_and(|b| b >= 2));
+                for k in (0..members.len()).filter(|&k| still[k]) {
+                    (held[k], inv_held[k]) = (DVec2::ZERO, 0.0);
+                }
+                contacts.retain(|c| !still[c.a] || c.b.is_some_and(|b| !still[b]));
                 let after = if alone || contacts.is_empty() {
                     held
                 } else {
@@ -1012,11 +1030,42 @@ impl World {
         if !self.press_biases(&members, &mut contacts, &vel, &alpha) {
             return false;
         }
-        let Some(after) = collapse::resolve(&vel, &inv, &contacts, PRESS_SWEEPS) else {
+        let Some(after) = self.press_closure(&members, &mut contacts, &vel, &inv, &alpha) else {
             return false;
         };
         self.kick_cluster(&members, &vel, &after, [i, j], t);
         true
+    }
+
+    /// The projection of a pressing kick over a cluster: `members` (slots)
+    /// from velocities `vel` (inverse masses `inv`, braking `alpha`), every
+    /// contact of `contacts` biased where its pair presses. From the fourth
+    /// revision, a pair that the projection itself leaves pressed (it did
+    /// not press at `vel`) gets its bounce speed too and the projection is
+    /// taken again, for at most [`PRESS_ROUNDS`] rounds: left out, it hit
+    /// again at once and its own kick left the first pair pressed, the two
+    /// trading the kick at one instant. `None` where a projection has no
+    /// answer.
+    fn press_closure(
+        &self,
+        members: &[usize],
+        contacts: &mut [collapse::Contact],
+        vel: &[DVec2],
+        inv: &[f64],
+        alpha: &[f64],
+    ) -> Option<Vec<DVec2>> {
+        let mut after = collapse::resolve(vel, inv, contacts, PRESS_SWEEPS)?;
+        if !self.config.revision.at_least_r4() {
+            return Some(after);
+        }
+        for _ in 0..PRESS_ROUNDS {
+            let unbiased = |c: &collapse::Contact| c.bias == 0.0;
+            if !self.press_biases_where(members, contacts, &after, alpha, unbiased) {
+                break;
+            }
+            after = collapse::resolve(vel, inv, contacts, PRESS_SWEEPS)?;
+        }
+        Some(after)
     }
 
     /// Gives `members` their velocities `after` a pressing kick or stop of
@@ -1070,9 +1119,21 @@ impl World {
         vel: &[DVec2],
         alpha: &[f64],
     ) -> bool {
+        self.press_biases_where(members, contacts, vel, alpha, |_| true)
+    }
+
+    /// [`World::press_biases`] on the contacts `which` selects.
+    fn press_biases_where(
+        &self,
+        members: &[usize],
+        contacts: &mut [collapse::Contact],
+        vel: &[DVec2],
+        alpha: &[f64],
+        which: impl Fn(&collapse::Contact) -> bool,
+    ) -> bool {
         let braking = |k: usize| -alpha[k] * vel[k].normalize_or_zero();
         let mut any = false;
-        for c in contacts.iter_mut() {
+        for c in contacts.iter_mut().filter(|c| which(c)) {
             let Some(b) = c.b else { continue };
             let (a, b) = (c.a, b);
             if vel[a] == DVec2::ZERO || vel[b] == DVec2::ZERO {

@@ -28,7 +28,7 @@ use engine::Revision;
 use glam::DVec2;
 
 /// The number of the physics version this build plays new matches under.
-pub const PHYSICS_VERSION: u32 = 3;
+pub const PHYSICS_VERSION: u32 = 4;
 
 /// A physics version this build can play.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -48,6 +48,11 @@ pub enum PhysicsVersion {
     /// than their positions can show stop; and a shot whose events no
     /// longer move anything ends instead of running to the event cap.
     V3,
+    /// As V3, on the engine's fourth revision ([`Revision::R4`]): pieces
+    /// pressed against each other in one cluster are kicked apart together
+    /// instead of in turn, and a pressed pair that stops stops the barely
+    /// moving pieces touching it too.
+    V4,
 }
 
 /// A physics version this build cannot play: a record of it is refused
@@ -74,11 +79,15 @@ fn supported() -> String {
 
 impl PhysicsVersion {
     /// The version new matches are played under.
-    pub const CURRENT: PhysicsVersion = PhysicsVersion::V3;
+    pub const CURRENT: PhysicsVersion = PhysicsVersion::V4;
 
     /// Every version this build plays, oldest first.
-    pub const ALL: [PhysicsVersion; 3] =
-        [PhysicsVersion::V1, PhysicsVersion::V2, PhysicsVersion::V3];
+    pub const ALL: [PhysicsVersion; 4] = [
+        PhysicsVersion::V1,
+        PhysicsVersion::V2,
+        PhysicsVersion::V3,
+        PhysicsVersion::V4,
+    ];
 
     /// The version's number, as records and the store keep it.
     pub fn number(self) -> u32 {
@@ -86,6 +95,7 @@ impl PhysicsVersion {
             PhysicsVersion::V1 => 1,
             PhysicsVersion::V2 => 2,
             PhysicsVersion::V3 => 3,
+            PhysicsVersion::V4 => 4,
         }
     }
 
@@ -95,6 +105,7 @@ impl PhysicsVersion {
             PhysicsVersion::V1 => Revision::R1,
             PhysicsVersion::V2 => Revision::R2,
             PhysicsVersion::V3 => Revision::R3,
+            PhysicsVersion::V4 => Revision::R4,
         }
     }
 
@@ -111,7 +122,7 @@ impl PhysicsVersion {
     /// execution noise, if it has any.
     pub fn played(self, config: &Config, seed: u64, shot: u32, aimed: DVec2) -> DVec2 {
         match self {
-            PhysicsVersion::V1 | PhysicsVersion::V2 | PhysicsVersion::V3 => {
+            PhysicsVersion::V1 | PhysicsVersion::V2 | PhysicsVersion::V3 | PhysicsVersion::V4 => {
                 match &config.variants.noise {
                     Some(n) => noise::perturb(n, seed, shot, aimed, config.max_speed),
                     None => aimed,
@@ -157,7 +168,10 @@ mod tests {
                 )),
                 "{err}"
             );
-            assert!(err.to_string().contains("plays versions 1, 2, 3)"), "{err}");
+            assert!(
+                err.to_string().contains("plays versions 1, 2, 3, 4)"),
+                "{err}"
+            );
         }
     }
 }

@@ -34,9 +34,10 @@ struct Args {
     #[arg(long, value_delimiter = ',')]
     tolerate: Vec<String>,
     /// The engine revision to run: `r1` (as before issue 15's fixes of
-    /// pressed contacts, far hits and collapses), `r2`, or `r3` (the latest).
-    #[arg(long, default_value = "r3", value_parser = parse_revision)]
-    revision: Revision,
+    /// pressed contacts, far hits and collapses), `r2`, `r3`, ...; the
+    /// latest (`engine::Revision::LATEST`) when not given.
+    #[arg(long, value_parser = parse_revision)]
+    revision: Option<Revision>,
     /// Threads running scenes.
     #[arg(long, default_value_t = 1)]
     jobs: u64,
@@ -45,7 +46,7 @@ struct Args {
 /// A revision by its name in records (`r1`, `r2`, ...).
 fn parse_revision(name: &str) -> Result<Revision, String> {
     serde_json::from_value(serde_json::Value::String(name.to_owned()))
-        .map_err(|_| format!("no engine revision named {name:?} (r1, r2, r3)"))
+        .map_err(|_| format!("no engine revision named {name:?} (r1, r2, ...)"))
 }
 
 fn main() -> ExitCode {
@@ -84,7 +85,7 @@ fn main() -> ExitCode {
         return ExitCode::FAILURE;
     }
     let jobs = args.jobs.max(1);
-    let revision = args.revision;
+    let revision = args.revision.unwrap_or(Revision::LATEST);
     for &kind in &kinds {
         let mut dumped = 0;
         // Each thread runs every `jobs`-th seed; reports are folded in seed
