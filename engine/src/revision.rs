@@ -73,9 +73,9 @@ pub enum Revision {
     ///   before it, two pressed pairs of one cluster hit again at once,
     ///   each in turn, trading the kick between them at one instant;
     /// - where a pressed pair comes to rest, so does every disc touching it
-    ///   (or touching one that does) that would slide no further than the
-    ///   approximation's gap: left moving, it pushed the pair off its rest
-    ///   at once, at the same instant, again and again.
+    ///   (or touching one that does) that still slides, but no further than
+    ///   the approximation's gap: left moving, it pushed the pair off its
+    ///   rest at once, at the same instant, again and again.
     #[default]
     R4,
 }

@@ -972,14 +972,15 @@ impl World {
                 // it, say) is stopped against it, as against a wall: the
                 // plastic limit with the pair held still.
                 // From the fourth revision, so does every disc of the
-                // cluster that would slide no further than the gap.
+                // cluster still sliding, but no further than the gap (one
+                // at rest already can still be pushed).
                 let mut still = vec![false; members.len()];
                 (still[0], still[1]) = (true, true);
                 if self.config.revision.at_least_r4() {
                     let alpha = self.braking(&members);
                     for k in 2..members.len() {
                         let slide = vel[k].length_squared() / (2.0 * alpha[k]);
-                        still[k] = alpha[k] > 0.0 && slide <= push::PRESS_GAP * s;
+                        still[k] = alpha[k] > 0.0 && slide > 0.0 && slide <= push::PRESS_GAP * s;
                     }
                 }
                 let mut held = vel.clone();
