@@ -56,7 +56,12 @@ fn main() -> ExitCode {
         .filter(|k| args.kind.as_deref().is_none_or(|n| n == k.name()))
         .collect();
     if kinds.is_empty() {
-        eprintln!("hostile: no kind named {:?}", args.kind);
+        let names: Vec<&str> = Kind::ALL.iter().map(|k| k.name()).collect();
+        eprintln!(
+            "hostile: --kind {:?}: no such kind ({})",
+            args.kind.as_deref().unwrap_or_default(),
+            names.join(", ")
+        );
         return ExitCode::FAILURE;
     }
     if let Some(dir) = &args.dump {
