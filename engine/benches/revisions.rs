@@ -36,9 +36,6 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-/// The revisions compared, oldest first.
-const REVISIONS: [Revision; 4] = [Revision::R1, Revision::R2, Revision::R3, Revision::R4];
-
 fn main() {
     let break_shot = Scene::from_json(BREAK_JSON).expect("examples/break.json is valid");
     let cases = [
@@ -53,8 +50,8 @@ fn main() {
             format!("{:.2} ms", s * 1e3)
         }
     };
-    let names: Vec<String> = (1..=REVISIONS.len()).map(|k| format!("r{k}")).collect();
-    let ratios: Vec<String> = (1..REVISIONS.len())
+    let names: Vec<String> = (1..=Revision::ALL.len()).map(|k| format!("r{k}")).collect();
+    let ratios: Vec<String> = (1..Revision::ALL.len())
         .map(|k| format!("{} / {}", names[k], names[k - 1]))
         .collect();
     println!(
@@ -70,10 +67,10 @@ fn main() {
         "---|".repeat(ratios.len())
     );
     for (name, scene, reps) in cases {
-        let outcomes = REVISIONS.map(|rev| run(&scene, rev));
-        let mut t = REVISIONS.map(|_| Vec::new());
+        let outcomes = Revision::ALL.map(|rev| run(&scene, rev));
+        let mut t = Revision::ALL.map(|_| Vec::new());
         for _ in 0..reps {
-            for (k, rev) in REVISIONS.into_iter().enumerate() {
+            for (k, rev) in Revision::ALL.into_iter().enumerate() {
                 let start = ThreadTime::now();
                 black_box(run(black_box(&scene), rev));
                 t[k].push(start.elapsed().as_secs_f64());
@@ -89,7 +86,7 @@ fn main() {
         println!(
             "| {name} | {} | {} | {} | {} |",
             events.join(" / "),
-            outcomes[REVISIONS.len() - 1].1,
+            outcomes[Revision::ALL.len() - 1].1,
             times.join(" | "),
             ratios.join(" | ")
         );

@@ -84,6 +84,9 @@ impl Revision {
     /// The revision new computations use.
     pub const LATEST: Revision = Revision::R4;
 
+    /// Every revision, oldest first.
+    pub const ALL: [Revision; 4] = [Revision::R1, Revision::R2, Revision::R3, Revision::R4];
+
     /// Whether this revision has the second revision's rules.
     pub fn at_least_r2(self) -> bool {
         self >= Revision::R2

@@ -67,37 +67,40 @@ fn run(name: &str, revision: Revision) -> Outcome {
     }
 }
 
-/// Every revision, oldest first.
-const REVISIONS: [Revision; 4] = [Revision::R1, Revision::R2, Revision::R3, Revision::R4];
-
 /// `since` and every revision after it end `after`, inside the cap and
 /// without overlap beyond 1e-9 of a contact distance. Returns the outcome
 /// under `since`.
 fn holds(since: Revision, name: &str, after: EndReason) -> Outcome {
-    let k = REVISIONS
+    let k = Revision::ALL
         .iter()
         .position(|&r| r == since)
         .expect("a revision");
-    let mut outcomes = REVISIONS[k..].iter().map(|&revision| {
-        let new = run(name, revision);
-        assert_eq!(new.reason, after, "{name} under {revision:?}");
-        assert!(new.events < CAP, "{name}: {} events", new.events);
-        assert!(new.overlap < 1e-9, "{name}: overlap {:e}", new.overlap);
-        new
-    });
-    let first = outcomes.next().expect("at least one revision");
-    outcomes.for_each(drop);
-    first
+    let outcomes: Vec<Outcome> = Revision::ALL[k..]
+        .iter()
+        .map(|&revision| {
+            let new = run(name, revision);
+            assert_eq!(new.reason, after, "{name} under {revision:?}");
+            assert!(new.events < CAP, "{name}: {} events", new.events);
+            assert!(new.overlap < 1e-9, "{name}: overlap {:e}", new.overlap);
+            new
+        })
+        .collect();
+    outcomes.into_iter().next().expect("at least one revision")
 }
 
 /// The revision before `since` ends `before`, and [`holds`].
 fn fixed_in(since: Revision, name: &str, before: EndReason, after: EndReason) -> Outcome {
-    let k = REVISIONS
+    let k = Revision::ALL
         .iter()
         .position(|&r| r == since)
         .expect("a revision");
-    let old = run(name, REVISIONS[k - 1]);
-    assert_eq!(old.reason, before, "{name} under {:?}", REVISIONS[k - 1]);
+    let old = run(name, Revision::ALL[k - 1]);
+    assert_eq!(
+        old.reason,
+        before,
+        "{name} under {:?}",
+        Revision::ALL[k - 1]
+    );
     holds(since, name, after)
 }
 
