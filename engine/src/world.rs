@@ -1060,8 +1060,7 @@ impl World {
             return Some(after);
         }
         for _ in 0..PRESS_ROUNDS {
-            let unbiased = |c: &collapse::Contact| c.bias == 0.0;
-            if !self.press_biases_where(members, contacts, &after, alpha, unbiased) {
+            if !self.press_biases(members, contacts, &after, alpha) {
                 break;
             }
             after = collapse::resolve(vel, inv, contacts, PRESS_SWEEPS)?;
@@ -1109,10 +1108,10 @@ impl World {
             .collect()
     }
 
-    /// Sets the bias of every contact between two discs of `members` that
-    /// press each other obliquely at velocities `vel`, each braked by its
-    /// `alpha` against its velocity, to their bounce speed; `true` if any
-    /// does.
+    /// Sets the bias of every contact not biased yet between two discs of
+    /// `members` that press each other obliquely at velocities `vel`, each
+    /// braked by its `alpha` against its velocity, to their bounce speed;
+    /// `true` if any does.
     fn press_biases(
         &self,
         members: &[usize],
@@ -1120,21 +1119,9 @@ impl World {
         vel: &[DVec2],
         alpha: &[f64],
     ) -> bool {
-        self.press_biases_where(members, contacts, vel, alpha, |_| true)
-    }
-
-    /// [`World::press_biases`] on the contacts `which` selects.
-    fn press_biases_where(
-        &self,
-        members: &[usize],
-        contacts: &mut [collapse::Contact],
-        vel: &[DVec2],
-        alpha: &[f64],
-        which: impl Fn(&collapse::Contact) -> bool,
-    ) -> bool {
         let braking = |k: usize| -alpha[k] * vel[k].normalize_or_zero();
         let mut any = false;
-        for c in contacts.iter_mut().filter(|c| which(c)) {
+        for c in contacts.iter_mut().filter(|c| c.bias == 0.0) {
             let Some(b) = c.b else { continue };
             let (a, b) = (c.a, b);
             if vel[a] == DVec2::ZERO || vel[b] == DVec2::ZERO {
