@@ -76,16 +76,26 @@ pub enum Revision {
     ///   (or touching one that does) that still slides, but no further than
     ///   the approximation's gap: left moving, it pushed the pair off its
     ///   rest at once, at the same instant, again and again.
-    #[default]
     R4,
+    /// The fifth, as the fourth but an instant at which one pair has been
+    /// hit [`crate::world::REPEAT_HITS`] times is taken as an inelastic
+    /// collapse to its limit at once, however few events it has had.
+    #[default]
+    R5,
 }
 
 impl Revision {
     /// The revision new computations use.
-    pub const LATEST: Revision = Revision::R4;
+    pub const LATEST: Revision = Revision::R5;
 
     /// Every revision, oldest first.
-    pub const ALL: [Revision; 4] = [Revision::R1, Revision::R2, Revision::R3, Revision::R4];
+    pub const ALL: [Revision; 5] = [
+        Revision::R1,
+        Revision::R2,
+        Revision::R3,
+        Revision::R4,
+        Revision::R5,
+    ];
 
     /// Whether this revision has the second revision's rules.
     pub fn at_least_r2(self) -> bool {
@@ -100,5 +110,10 @@ impl Revision {
     /// Whether this revision has the fourth revision's rules.
     pub fn at_least_r4(self) -> bool {
         self >= Revision::R4
+    }
+
+    /// Whether this revision has the fifth revision's rules.
+    pub fn at_least_r5(self) -> bool {
+        self >= Revision::R5
     }
 }

@@ -145,6 +145,23 @@ pub const COLLAPSE_EVENTS: u64 = 2_000;
 /// See [`COLLAPSE_EVENTS`].
 pub const COLLAPSE_WINDOW: u64 = 64;
 
+/// From the fifth revision, hits of one inelastic pair (two discs, or a
+/// disc and an obstacle) at one instant, every one of them gentle (see
+/// [`GENTLE`]), after which the instant is taken as an inelastic collapse
+/// of the discs pressed together (see `World::collapse_repeated`), and
+/// again after as many more. A cluster sliding with unequal braking presses
+/// its discs into each other again and again, microseconds apart; each
+/// time its hits ring through it hundreds of times at one instant, each
+/// slower than the last, until the approach threshold cuts them off.
+pub const REPEAT_HITS: u32 = 16;
+
+/// From the fifth revision, the fraction of the speed of the fastest disc
+/// they involve under which every approach at one instant must stay for
+/// [`REPEAT_HITS`] to take it as a collapse: discs pressed together while
+/// they slide, not an impact ringing through a cradle or a cluster (whose
+/// sequence of hits is the model's answer, however long).
+pub const GENTLE: f64 = 1e-2;
+
 /// Most discs one collapse is taken to its limit for (see `World::collapse`).
 pub const MAX_COLLAPSE: usize = 256;
 
@@ -262,6 +279,112 @@ impl Crawl {
             self.still = 0;
             None
         }
+    }
+}
+
+/// What two bodies hit: two discs (ids in order), or a disc and a line or
+/// a point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Pair {
+    Discs(BodyId, BodyId),
+    Line(BodyId, LineId),
+    Point(BodyId, PointId),
+}
+
+/// One pair's hits at the current instant (see [`Repeats`]).
+struct PairHits {
+    pair: Pair,
+    /// The pair's slots (the second `None` for an obstacle).
+    slots: (usize, Option<usize>),
+    hits: u32,
+}
+
+/// From the fifth revision, each inelastic pair's hits at the current
+/// instant (see [`REPEAT_HITS`]).
+#[derive(Default)]
+struct Repeats {
+    /// The instant's first event and the speed of its approach, counted
+    /// only once a second event shares the instant (most events have an
+    /// instant to themselves).
+    first: Option<(Event, f64)>,
+    hits: Vec<PairHits>,
+    /// The fastest approach of any hit at this instant.
+    fastest: f64,
+    /// The fastest speed of a disc after a hit at this instant.
+    moving: f64,
+}
+
+impl Repeats {
+    /// A new instant, begun by `event`, whose bodies approached at
+    /// `approach`.
+    fn start(&mut self, event: Event, approach: f64) {
+        self.first = Some((event, approach));
+        self.hits.clear();
+        self.fastest = 0.0;
+        self.moving = 0.0;
+    }
+
+    /// Counts `event`'s hit, one more at the instant (the world's state
+    /// right after it); `true` when its pair, an inelastic one, has now
+    /// been hit a multiple of [`REPEAT_HITS`] times at this instant, and
+    /// every hit so far was [`GENTLE`]. Elastic hits lose no energy: their
+    /// sequences are finite, however long (a light disc between heavy
+    /// ones), and are not counted.
+    fn note(&mut self, world: &World, event: &Event) -> bool {
+        if let Some((first, approach)) = self.first.take() {
+            self.count(world, &first, approach);
+        }
+        self.count(world, event, world.last_approach)
+    }
+
+    /// Counts one hit (see [`Repeats::note`]).
+    fn count(&mut self, world: &World, event: &Event, approach: f64) -> bool {
+        let (pair, a, b) = match event.kind {
+            EventKind::BodyBody { a, b } => (Pair::Discs(a.min(b), a.max(b)), a, Some(b)),
+            EventKind::BodyLine { body, line, .. } => (Pair::Line(body, line), body, None),
+            EventKind::BodyPoint { body, point } => (Pair::Point(body, point), body, None),
+            _ => return false,
+        };
+        let Some(sa) = world.slot_of(a) else {
+            return false;
+        };
+        let sb = match b.map(|b| world.slot_of(b)) {
+            Some(None) => return false,
+            Some(sb) => sb,
+            None => None,
+        };
+        let e = sb.map_or(1.0, |c| world.material[c].restitution);
+        if world.material[sa].restitution.min(e) >= 1.0 {
+            return false;
+        }
+        self.fastest = self.fastest.max(approach.abs());
+        let speed = |c: usize| world.slots[c].traj.velocity(world.last_event_t).length();
+        self.moving = self.moving.max(speed(sa)).max(sb.map_or(0.0, speed));
+        let hits = match self.hits.iter_mut().find(|h| h.pair == pair) {
+            Some(h) => {
+                h.hits += 1;
+                h.hits
+            }
+            None => {
+                self.hits.push(PairHits {
+                    pair,
+                    slots: (sa, sb),
+                    hits: 1,
+                });
+                1
+            }
+        };
+        hits % REPEAT_HITS == 0 && self.fastest <= GENTLE * self.moving
+    }
+
+    /// The pairs hit more than once at this instant (slots; `None` for an
+    /// obstacle).
+    fn repeated(&self) -> Vec<(usize, Option<usize>)> {
+        self.hits
+            .iter()
+            .filter(|h| h.hits > 1)
+            .map(|h| h.slots)
+            .collect()
     }
 }
 
@@ -460,6 +583,9 @@ pub struct World {
     sensors: Vec<u32>,
     grid: Option<Grid>,
     stats: Stats,
+    /// The speed at which the latest hit's bodies approached (see
+    /// [`Repeats`]).
+    last_approach: f64,
 }
 
 impl World {
@@ -562,6 +688,7 @@ impl World {
             sensors,
             grid: None,
             stats: Stats::default(),
+            last_approach: 0.0,
         };
         let use_grid = match config.broad_phase {
             BroadPhase::AllPairs => false,
@@ -694,6 +821,8 @@ impl World {
         // Worked out only once events have shared an instant.
         let mut tick: Option<f64> = None;
         let mut crawl = Crawl::new(self.last_event_t);
+        let r5 = self.config.revision.at_least_r5();
+        let mut repeats = Repeats::default();
         loop {
             let Some((slot, t)) = self.calendar.peek() else {
                 return self.end_at_rest();
@@ -738,9 +867,15 @@ impl World {
                         self.collapse(&mut recent, t);
                         recent.clear();
                     }
+                    if r5 && repeats.note(self, &event) {
+                        self.collapse_repeated(&repeats.repeated(), t);
+                    }
                 } else {
                     instant = (t, 0);
                     recent.clear();
+                    if r5 {
+                        repeats.start(event, self.last_approach);
+                    }
                 }
                 if self.config.revision.at_least_r3() {
                     if let Some(mut latest) = crawl.note(self, &event, t) {
@@ -837,6 +972,47 @@ impl World {
         self.stats.collapses += taken as u64;
     }
 
+    /// From the fifth revision, an instant at which one inelastic pair has
+    /// been hit [`REPEAT_HITS`] times: the limit of the collapse, taken as
+    /// the plastic projection of the contacts it involves: the `pairs` hit
+    /// more than once at this instant (slots; `None` for an obstacle), and
+    /// every plastic contact (restitution 0) touching them, through which
+    /// the limit of plastic hits spreads whatever their order. A contact
+    /// with restitution that was hit once (the last disc of a chain, sent
+    /// off by the collapse behind it) is left to the hits that follow.
+    fn collapse_repeated(&mut self, pairs: &[(usize, Option<usize>)], t: f64) {
+        let restitution = |w: &World, a: usize, b: Option<usize>| {
+            let e = w.material[a].restitution;
+            b.map_or(e, |b| e.min(w.material[b].restitution))
+        };
+        let involved = |w: &World, a: usize, b: Option<usize>| {
+            restitution(w, a, b) == 0.0
+                || pairs.contains(&(a, b))
+                || b.is_some_and(|b| pairs.contains(&(b, Some(a))))
+        };
+        let mut members: Vec<usize> = pairs
+            .iter()
+            .flat_map(|&(a, b)| [Some(a), b])
+            .flatten()
+            .collect();
+        members.sort_unstable();
+        members.dedup();
+        let mut k = 0;
+        while k < members.len() && members.len() < MAX_COLLAPSE {
+            let m = members[k];
+            for c in self.touching(m, t) {
+                if !members.contains(&c) && restitution(self, m, Some(c)) == 0.0 {
+                    members.push(c);
+                }
+            }
+            k += 1;
+        }
+        let mut contacts = self.contacts_among(&members, t);
+        contacts.retain(|c| involved(self, members[c.a], c.b.map(|b| members[b])));
+        let taken = self.collapse_contacts(&members, contacts, t);
+        self.stats.collapses += taken as u64;
+    }
+
     /// The collapse of a chain of discs along one line (see `collapse`);
     /// `false` if `recent` is not one.
     fn collapse_chain(&mut self, recent: &[usize], t: f64) -> bool {
@@ -902,8 +1078,20 @@ impl World {
         if seed.is_empty() {
             return false;
         }
-        let (members, mut contacts) = self.touching_cluster(seed, t);
-        let (vel, inv) = self.motion(&members, t);
+        let (members, contacts) = self.touching_cluster(seed, t);
+        self.collapse_contacts(&members, contacts, t)
+    }
+
+    /// The plastic limit of the `contacts` among `members` (slots), and
+    /// from the third revision the kick of whatever pairs it leaves
+    /// pressed (see `collapse_cluster`). `true` if any velocity changed.
+    fn collapse_contacts(
+        &mut self,
+        members: &[usize],
+        mut contacts: Vec<collapse::Contact>,
+        t: f64,
+    ) -> bool {
+        let (vel, inv) = self.motion(members, t);
         let r3 = self.config.revision.at_least_r3();
         let plastic = if r3 {
             collapse::resolve(&vel, &inv, &contacts, collapse::MAX_SWEEPS)
@@ -913,15 +1101,14 @@ impl World {
         let Some(mut after) = plastic else {
             return false;
         };
-        let alpha = self.braking(&members);
-        if r3 && self.press_biases(&members, &mut contacts, &after, &alpha) {
-            if let Some(kicked) = self.press_closure(&members, &mut contacts, &after, &inv, &alpha)
-            {
+        let alpha = self.braking(members);
+        if r3 && self.press_biases(members, &mut contacts, &after, &alpha) {
+            if let Some(kicked) = self.press_closure(members, &mut contacts, &after, &inv, &alpha) {
                 after = kicked;
                 self.stats.pressed += 1;
             }
         }
-        let changed = self.set_velocities(&members, &vel, &after, t);
+        let changed = self.set_velocities(members, &vel, &after, t);
         for &c in &changed {
             self.predict(c, true);
         }
@@ -1146,23 +1333,37 @@ impl World {
         mut members: Vec<usize>,
         t: f64,
     ) -> (Vec<usize>, Vec<collapse::Contact>) {
-        let pos = |w: &World, c: usize| w.slots[c].traj.position(t);
-        let touching = |gap: f64, s: f64| gap <= s * (1.0 + push::TOUCHING);
         // Grow to every disc touching a member.
         let mut k = 0;
         while k < members.len() && members.len() < MAX_COLLAPSE {
-            let (m, pm) = (members[k], pos(self, members[k]));
-            for c in 0..self.slots.len() {
-                let s = self.slots[m].radius + self.slots[c].radius;
-                if self.slots[c].alive
-                    && !members.contains(&c)
-                    && touching((pos(self, c) - pm).length(), s)
-                {
+            for c in self.touching(members[k], t) {
+                if !members.contains(&c) {
                     members.push(c);
                 }
             }
             k += 1;
         }
+        let contacts = self.contacts_among(&members, t);
+        (members, contacts)
+    }
+
+    /// The live discs other than `m` (slots) that touch it at `t`.
+    fn touching(&self, m: usize, t: f64) -> impl Iterator<Item = usize> + '_ {
+        let pm = self.slots[m].traj.position(t);
+        let rm = self.slots[m].radius;
+        (0..self.slots.len()).filter(move |&c| {
+            let s = &self.slots[c];
+            c != m
+                && s.alive
+                && (s.traj.position(t) - pm).length() <= (rm + s.radius) * (1.0 + push::TOUCHING)
+        })
+    }
+
+    /// Every contact among `members` (slots) at `t`, and of each with the
+    /// solid lines and points it touches, indexed into `members`.
+    fn contacts_among(&self, members: &[usize], t: f64) -> Vec<collapse::Contact> {
+        let pos = |w: &World, c: usize| w.slots[c].traj.position(t);
+        let touching = |gap: f64, s: f64| gap <= s * (1.0 + push::TOUCHING);
         let mut contacts = Vec::new();
         for (a, &ca) in members.iter().enumerate() {
             let (pa, r) = (pos(self, ca), self.slots[ca].radius);
@@ -1198,7 +1399,7 @@ impl World {
             }
         }
         contacts.retain(|c| c.n != DVec2::ZERO);
-        (members, contacts)
+        contacts
     }
 
     /// Gives each of `members` whose velocity `after` differs from `before`
@@ -1459,6 +1660,7 @@ impl World {
         }
         let e = mi.restitution.min(mj.restitution);
         let (ui, uj) = (ti.velocity(t), tj.velocity(t));
+        self.last_approach = (uj - ui).dot(n);
         let (mut vi, mut vj) = impulse::body_body(ui, uj, mi.mass, mj.mass, e, n);
         // Each gets its own friction back (a pushed pair shares one).
         let alpha = [mi.mu * self.g, mj.mu * self.g];
@@ -1643,6 +1845,7 @@ impl World {
     fn bounce(&mut self, i: usize, t: f64, n: DVec2, dist: f64) {
         let tr = self.slots[i].traj;
         let m = &self.material[i];
+        self.last_approach = -tr.velocity(t).dot(n);
         let v = impulse::body_static(tr.velocity(t), m.restitution, n);
         let mut p = tr.position(t);
         if self.config.revision.at_least_r2() {

@@ -28,7 +28,7 @@ use engine::Revision;
 use glam::DVec2;
 
 /// The number of the physics version this build plays new matches under.
-pub const PHYSICS_VERSION: u32 = 4;
+pub const PHYSICS_VERSION: u32 = 5;
 
 /// A physics version this build can play.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -53,6 +53,11 @@ pub enum PhysicsVersion {
     /// instead of in turn, and a pressed pair that stops stops the barely
     /// moving pieces touching it too.
     V4,
+    /// As V4, on the engine's fifth revision ([`Revision::R5`]): pieces
+    /// that slide pressed together and knock into each other again and
+    /// again at one moment move as one at once, instead of after hundreds
+    /// of ever gentler knocks.
+    V5,
 }
 
 /// A physics version this build cannot play: a record of it is refused
@@ -79,14 +84,15 @@ fn supported() -> String {
 
 impl PhysicsVersion {
     /// The version new matches are played under.
-    pub const CURRENT: PhysicsVersion = PhysicsVersion::V4;
+    pub const CURRENT: PhysicsVersion = PhysicsVersion::V5;
 
     /// Every version this build plays, oldest first.
-    pub const ALL: [PhysicsVersion; 4] = [
+    pub const ALL: [PhysicsVersion; 5] = [
         PhysicsVersion::V1,
         PhysicsVersion::V2,
         PhysicsVersion::V3,
         PhysicsVersion::V4,
+        PhysicsVersion::V5,
     ];
 
     /// The version's number, as records and the store keep it.
@@ -96,6 +102,7 @@ impl PhysicsVersion {
             PhysicsVersion::V2 => 2,
             PhysicsVersion::V3 => 3,
             PhysicsVersion::V4 => 4,
+            PhysicsVersion::V5 => 5,
         }
     }
 
@@ -106,6 +113,7 @@ impl PhysicsVersion {
             PhysicsVersion::V2 => Revision::R2,
             PhysicsVersion::V3 => Revision::R3,
             PhysicsVersion::V4 => Revision::R4,
+            PhysicsVersion::V5 => Revision::R5,
         }
     }
 
@@ -122,12 +130,14 @@ impl PhysicsVersion {
     /// execution noise, if it has any.
     pub fn played(self, config: &Config, seed: u64, shot: u32, aimed: DVec2) -> DVec2 {
         match self {
-            PhysicsVersion::V1 | PhysicsVersion::V2 | PhysicsVersion::V3 | PhysicsVersion::V4 => {
-                match &config.variants.noise {
-                    Some(n) => noise::perturb(n, seed, shot, aimed, config.max_speed),
-                    None => aimed,
-                }
-            }
+            PhysicsVersion::V1
+            | PhysicsVersion::V2
+            | PhysicsVersion::V3
+            | PhysicsVersion::V4
+            | PhysicsVersion::V5 => match &config.variants.noise {
+                Some(n) => noise::perturb(n, seed, shot, aimed, config.max_speed),
+                None => aimed,
+            },
         }
     }
 
@@ -169,7 +179,7 @@ mod tests {
                 "{err}"
             );
             assert!(
-                err.to_string().contains("plays versions 1, 2, 3, 4)"),
+                err.to_string().contains("plays versions 1, 2, 3, 4, 5)"),
                 "{err}"
             );
         }

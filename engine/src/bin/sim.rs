@@ -1,7 +1,7 @@
 //! `sim`: computes a scene file to its end and prints the events as JSON.
 //!
 //! A thin shell over the engine library: read the scene, run a [`World`],
-//! print `{events, collisions, end, bodies}`. Exit status 0 on success, 2 on
+//! print `{events, collisions, pressed, collapses, end, bodies}`. Exit status 0 on success, 2 on
 //! invalid input (the message, naming the object and field, on stderr).
 //! The contract is `docs/scene-format.md`.
 
@@ -41,6 +41,9 @@ struct Output {
     /// Hits between discs pressed together obliquely, where the engine
     /// approximates the contact (0: every number is exact to rounding).
     pressed: u64,
+    /// Inelastic collapses taken to their limit at once rather than hit by
+    /// hit (0: every hit was computed one by one).
+    collapses: u64,
     end: End,
     bodies: Vec<BodyOut>,
 }
@@ -100,6 +103,7 @@ fn run(args: &Args) -> Result<Output, String> {
     Ok(Output {
         collisions: world.stats().collisions(),
         pressed: world.stats().pressed,
+        collapses: world.stats().collapses,
         events: events.0,
         end,
         bodies,
