@@ -8,6 +8,8 @@
 //! [`solvers_chart`] (root solvers: time against error),
 //! [`timestep_chart`] (a priori against time-stepping), [`scaling_chart`]
 //! (events per second against the number of discs) and [`failures`].
+//! [`hostile`] generates the scenes an engine must survive, and
+//! [`revision_diff`] measures what a new engine revision changes on them.
 
 pub mod apriori;
 pub mod catalogue;
@@ -22,6 +24,7 @@ pub mod plot;
 pub mod pressing;
 pub mod rapier_peer;
 pub mod reference;
+pub mod revision_diff;
 pub mod scaling_chart;
 pub mod scenes;
 pub mod solvers_chart;
