@@ -77,9 +77,12 @@ pub enum Revision {
     ///   the approximation's gap: left moving, it pushed the pair off its
     ///   rest at once, at the same instant, again and again.
     R4,
-    /// The fifth, as the fourth but an instant at which one pair has been
-    /// hit [`crate::world::REPEAT_HITS`] times is taken as an inelastic
-    /// collapse to its limit at once, however few events it has had.
+    /// The fifth, as the fourth but an instant at which one inelastic pair
+    /// has been hit [`crate::world::REPEAT_HITS`] times, every hit at it
+    /// gentle ([`crate::world::GENTLE`]: discs pressed together as they
+    /// slide, not an impact), is taken as an inelastic collapse of the
+    /// pairs hit more than once to its limit at once, however few events
+    /// it has had (see `World::collapse_repeated`).
     #[default]
     R5,
 }
