@@ -58,7 +58,7 @@ pub use event::{Event, EventKind};
 pub use id::{BodyId, LineId, PointId};
 pub use model::{Action, Model, ModelRecord, SceneDiff, Snapshot, TimedAction};
 pub use obstacle::{Line, LineKind, Point};
-pub use revision::Revision;
+pub use revision::{Revision, UnknownRevision};
 pub use scene::{BodySpec, Scene, SceneError};
 pub use trajectory::Trajectory;
 pub use world::{End, EndReason, EventHandler, ExitResponse, Limits, World, WorldConfig};

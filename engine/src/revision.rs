@@ -120,3 +120,36 @@ impl Revision {
         self >= Revision::R5
     }
 }
+
+/// A revision name that names no revision.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("no engine revision named {0:?} (r1, r2, ...)")]
+pub struct UnknownRevision(pub String);
+
+impl std::str::FromStr for Revision {
+    type Err = UnknownRevision;
+
+    /// A revision by its name in records and on command lines (`r1`, `r2`,
+    /// ...).
+    fn from_str(name: &str) -> Result<Revision, UnknownRevision> {
+        serde_json::from_value(serde_json::Value::String(name.to_owned()))
+            .map_err(|_| UnknownRevision(name.to_owned()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_revision_parses_from_its_record_name_and_nothing_else() {
+        for (k, r) in Revision::ALL.into_iter().enumerate() {
+            assert_eq!(format!("r{}", k + 1).parse(), Ok(r));
+        }
+        let err = "r9".parse::<Revision>().unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "no engine revision named \"r9\" (r1, r2, ...)"
+        );
+    }
+}

@@ -316,7 +316,8 @@ struct Repeats {
 
 impl Repeats {
     /// A new instant, begun by `event`, whose bodies approached at
-    /// `approach`.
+    /// `approach`. It is counted when a second event joins the instant, with
+    /// the speeds of its discs as they are then.
     fn start(&mut self, event: Event, approach: f64) {
         self.first = Some((event, approach));
         self.hits.clear();
@@ -353,8 +354,7 @@ impl Repeats {
             Some(sb) => sb,
             None => None,
         };
-        let e = sb.map_or(1.0, |c| world.material[c].restitution);
-        if world.material[sa].restitution.min(e) >= 1.0 {
+        if world.restitution(sa, sb) >= 1.0 {
             return false;
         }
         self.fastest = self.fastest.max(approach.abs());
@@ -981,12 +981,8 @@ impl World {
     /// with restitution that was hit once (the last disc of a chain, sent
     /// off by the collapse behind it) is left to the hits that follow.
     fn collapse_repeated(&mut self, pairs: &[(usize, Option<usize>)], t: f64) {
-        let restitution = |w: &World, a: usize, b: Option<usize>| {
-            let e = w.material[a].restitution;
-            b.map_or(e, |b| e.min(w.material[b].restitution))
-        };
         let involved = |w: &World, a: usize, b: Option<usize>| {
-            restitution(w, a, b) == 0.0
+            w.restitution(a, b) == 0.0
                 || pairs.contains(&(a, b))
                 || b.is_some_and(|b| pairs.contains(&(b, Some(a))))
         };
@@ -1001,7 +997,7 @@ impl World {
         while k < members.len() && members.len() < MAX_COLLAPSE {
             let m = members[k];
             for c in self.touching(m, t) {
-                if !members.contains(&c) && restitution(self, m, Some(c)) == 0.0 {
+                if !members.contains(&c) && self.restitution(m, Some(c)) == 0.0 {
                     members.push(c);
                 }
             }
@@ -1345,6 +1341,13 @@ impl World {
         }
         let contacts = self.contacts_among(&members, t);
         (members, contacts)
+    }
+
+    /// The restitution of a hit between the discs in slots `a` and `b`
+    /// (the smaller of theirs), or of `a` on an obstacle (`b` = `None`).
+    fn restitution(&self, a: usize, b: Option<usize>) -> f64 {
+        let e = self.material[a].restitution;
+        b.map_or(e, |b| e.min(self.material[b].restitution))
     }
 
     /// The live discs other than `m` (slots) that touch it at `t`.

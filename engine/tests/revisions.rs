@@ -69,15 +69,19 @@ fn run(name: &str, revision: Revision) -> Outcome {
     }
 }
 
+/// Where `revision` stands in [`Revision::ALL`].
+fn index(revision: Revision) -> usize {
+    Revision::ALL
+        .iter()
+        .position(|&r| r == revision)
+        .expect("a revision")
+}
+
 /// `since` and every revision after it end `after`, inside the cap and
 /// without overlap beyond 1e-9 of a contact distance. Returns the outcome
 /// under `since`.
 fn holds(since: Revision, name: &str, after: EndReason) -> Outcome {
-    let k = Revision::ALL
-        .iter()
-        .position(|&r| r == since)
-        .expect("a revision");
-    let outcomes: Vec<Outcome> = Revision::ALL[k..]
+    let outcomes: Vec<Outcome> = Revision::ALL[index(since)..]
         .iter()
         .map(|&revision| {
             let new = run(name, revision);
@@ -92,17 +96,9 @@ fn holds(since: Revision, name: &str, after: EndReason) -> Outcome {
 
 /// The revision before `since` ends `before`, and [`holds`].
 fn fixed_in(since: Revision, name: &str, before: EndReason, after: EndReason) -> Outcome {
-    let k = Revision::ALL
-        .iter()
-        .position(|&r| r == since)
-        .expect("a revision");
-    let old = run(name, Revision::ALL[k - 1]);
-    assert_eq!(
-        old.reason,
-        before,
-        "{name} under {:?}",
-        Revision::ALL[k - 1]
-    );
+    let previous = Revision::ALL[index(since) - 1];
+    let old = run(name, previous);
+    assert_eq!(old.reason, before, "{name} under {previous:?}");
     holds(since, name, after)
 }
 
@@ -261,8 +257,9 @@ fn an_impact_ringing_through_a_cradle_keeps_its_every_hit() {
     // A striker into a row of discs of unequal masses, restitution 0.47
     // (945) and 0.65 behind a plastic striker (625): pairs are hit up to
     // 135 (945) and 30 (625) times at the first instant, but the approaches
-    // are those of an impact, not of discs pressed together as they slide. Revision 5
-    // must not take a collapse early: locking the pairs hit so far sent
+    // are those of an impact, not of discs pressed together as they slide.
+    // Revision 5 must not take a collapse early: locking the pairs hit so
+    // far sent
     // the last disc of 945 off at 0.41 m/s instead of 0.58, and slowed the
     // fourth disc of 625 by a third.
     for name in ["cradle-945", "cradle-625"] {

@@ -7,12 +7,9 @@
 //! the change is the farthest any disc comes to rest from where the other
 //! revision left it, in its own radii.
 
-use crate::hostile::{Hostile, Kind};
+use crate::hostile::{Hostile, Kind, MAX_EVENTS};
 use engine::{BodyId, EndReason, Limits, Revision, World, WorldConfig};
 use glam::DVec2;
-
-/// The event cap of a run (the hostile generator's).
-const CAP: u64 = 100_000;
 
 /// How a run of a scene ended.
 #[derive(Clone, Debug, PartialEq)]
@@ -34,7 +31,7 @@ pub fn ending(h: &Hostile, revision: Revision) -> Option<Ending> {
     let limits = Limits {
         until: h.until,
         max_collisions: u64::MAX,
-        max_events: CAP,
+        max_events: MAX_EVENTS,
     };
     let end = world.run(&limits, &mut ());
     let discs = world

@@ -1,8 +1,9 @@
 //! `sim`: computes a scene file to its end and prints the events as JSON.
 //!
 //! A thin shell over the engine library: read the scene, run a [`World`],
-//! print `{events, collisions, pressed, collapses, end, bodies}`. Exit status 0 on success, 2 on
-//! invalid input (the message, naming the object and field, on stderr).
+//! print `{events, collisions, pressed, collapses, end, bodies}`. Exit
+//! status 0 on success, 2 on invalid input (the message, naming the object
+//! and field, on stderr).
 //! The contract is `docs/scene-format.md`.
 
 use clap::Parser;

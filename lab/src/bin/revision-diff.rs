@@ -20,17 +20,11 @@ struct Args {
     #[arg(long, default_value_t = 0)]
     seed: u64,
     /// The revision compared against (`r1`, `r2`, ...).
-    #[arg(long, value_parser = parse_revision)]
+    #[arg(long)]
     old: Revision,
     /// The revision compared; the latest when not given.
-    #[arg(long, value_parser = parse_revision)]
+    #[arg(long)]
     new: Option<Revision>,
-}
-
-/// A revision by its name in records (`r1`, `r2`, ...).
-fn parse_revision(name: &str) -> Result<Revision, String> {
-    serde_json::from_value(serde_json::Value::String(name.to_owned()))
-        .map_err(|_| format!("no engine revision named {name:?} (r1, r2, ...)"))
 }
 
 fn main() -> ExitCode {
