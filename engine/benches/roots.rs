@@ -6,13 +6,21 @@
 //! A last group times `roots_in(c, 0, 10)` on the contact batch, the form
 //! the engine itself uses (every contact before a stop time).
 //!
+//! First of all, before criterion's groups, a table of the same
+//! `first_root` queries timed the way this machine allows a fair
+//! comparison: every solver in turn on one batch, round after round in one
+//! process, in CPU time of this thread (the hypervisor's steal and the wall
+//! clock's drift are not counted), with the median round per solver and
+//! its ratio to `production` (ours and the two peers only).
+//!
 //! Batches: `contact` (polynomials `|dp + dv t + da t^2/2|^2 - S^2` from a
 //! fixed pseudo-random stream, a quarter of them touching at `t = 0`),
 //! `hard` (published hard quartics and clustered/scaled cases) and `mixed`
 //! (both). Throughput is set to the batch size, so criterion's time per
 //! element is the time per query.
 
-use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
+use cpu_time::ThreadTime;
+use criterion::{black_box, criterion_group, Criterion, Throughput};
 use engine::roots::{Bisection, ClosedForm, Production, RootSolver};
 
 /// A small deterministic generator (SplitMix64), so the batch is fixed.
@@ -242,6 +250,81 @@ fn bench(c: &mut Criterion) {
     g.finish();
 }
 
+/// The solvers in the interleaved table: ours and the two peers.
+const PEERS: [&str; 3] = ["production", "kurbo", "roots_crate"];
+
+/// Rounds of the interleaved CPU-time table per batch.
+const ROUNDS: usize = 301;
+
+/// Passes over the batch per timed round (a round of the contact batch is
+/// then about a millisecond, far above the clock's resolution).
+const PASSES: usize = 40;
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// The interleaved CPU-time table (see the module doc).
+fn cpu_table(batches: &[(&str, &[[f64; 5]])]) {
+    let solvers: Vec<(&str, Query)> = solvers()
+        .into_iter()
+        .filter(|s| PEERS.contains(&s.0))
+        .collect();
+    let names: Vec<&str> = solvers.iter().map(|s| s.0).collect();
+    println!("first_root(c, 0, inf): CPU time per query, median of {ROUNDS} interleaved rounds");
+    println!(
+        "| batch | queries | {} | {} |",
+        names.join(" | "),
+        names[1..]
+            .iter()
+            .map(|n| format!("{n} / production"))
+            .collect::<Vec<_>>()
+            .join(" | ")
+    );
+    println!("|---|---:|{}", "---:|".repeat(2 * names.len() - 1));
+    for &(name, batch) in batches {
+        let mut t: Vec<Vec<f64>> = vec![Vec::with_capacity(ROUNDS); solvers.len()];
+        for _ in 0..ROUNDS {
+            for (k, (_, query)) in solvers.iter().enumerate() {
+                let start = ThreadTime::now();
+                let mut hits = 0usize;
+                for _ in 0..PASSES {
+                    for p in batch {
+                        hits += usize::from(query(black_box(p)).is_some());
+                    }
+                }
+                black_box(hits);
+                let per_query = start.elapsed().as_secs_f64() / (PASSES * batch.len()) as f64;
+                t[k].push(per_query);
+            }
+        }
+        let m: Vec<f64> = t.into_iter().map(median).collect();
+        println!(
+            "| {name} | {} | {} | {} |",
+            batch.len(),
+            m.iter()
+                .map(|s| format!("{:.1} ns", s * 1e9))
+                .collect::<Vec<_>>()
+                .join(" | "),
+            m[1..]
+                .iter()
+                .map(|s| format!("{:.2}", s / m[0]))
+                .collect::<Vec<_>>()
+                .join(" | ")
+        );
+    }
+}
+
+fn main() {
+    let contact = contact_batch(512);
+    let hard = hard_batch();
+    let mixed: Vec<[f64; 5]> = contact.iter().chain(hard.iter()).copied().collect();
+    cpu_table(&[("contact", &contact), ("hard", &hard), ("mixed", &mixed)]);
+    benches();
+    Criterion::default().configure_from_args().final_summary();
+}
+
 criterion_group! {
     name = benches;
     config = Criterion::default()
@@ -250,4 +333,3 @@ criterion_group! {
         .measurement_time(std::time::Duration::from_secs(2));
     targets = bench
 }
-criterion_main!(benches);
