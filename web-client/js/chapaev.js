@@ -32,6 +32,20 @@
         return staged.length;
     }
 
+    // ---- Waking the frame loop ---------------------------------------
+    // In the browser the app draws only while something changes
+    // (web-client/src/pace.rs) and miniquad's loop then waits for an
+    // event. Whatever the app would poll for next (a message, a reply,
+    // pasted text, a picked file, a prompt's answer, an edited address)
+    // wakes a frame at once; a heartbeat wakes one twice a second for
+    // clocks and polls.
+    let schedule_update = null;
+    function wake() {
+        if (schedule_update !== null && window.blocking_event_loop) schedule_update();
+    }
+    setInterval(wake, 500);
+    window.addEventListener("hashchange", wake);
+
     // ---- WebSockets --------------------------------------------------
     const sockets = new Map();
     let next_socket = 1;
@@ -43,12 +57,13 @@
         try {
             const ws = new WebSocket(str(ptr, len));
             ws.binaryType = "arraybuffer";
-            ws.onopen = () => { entry.state = 1; };
+            ws.onopen = () => { entry.state = 1; wake(); };
             ws.onmessage = (e) => {
                 entry.inbox.push(typeof e.data === "string" ? enc.encode(e.data) : new Uint8Array(e.data));
+                wake();
             };
-            ws.onerror = () => { entry.state = 2; };
-            ws.onclose = () => { entry.state = 2; };
+            ws.onerror = () => { entry.state = 2; wake(); };
+            ws.onclose = () => { entry.state = 2; wake(); };
             entry.ws = ws;
         } catch (e) {
             console.error(e);
@@ -104,10 +119,12 @@
             .then(async (r) => {
                 entry.body = new Uint8Array(await r.arrayBuffer());
                 entry.status = r.status;
+                wake();
             })
             .catch((e) => {
                 entry.body = enc.encode(String(e));
                 entry.status = -1;
+                wake();
             });
         return id;
     }
@@ -162,6 +179,7 @@
         input.accept = ".json,application/json";
         input.onchange = async () => {
             if (input.files.length > 0) picked = new Uint8Array(await input.files[0].arrayBuffer());
+            wake();
         };
         input.click();
     }
@@ -187,6 +205,7 @@
         const data = e.clipboardData || window.clipboardData;
         const text = data ? data.getData("text") : "";
         if (text) pasted = pasted === null ? text : pasted + text;
+        wake();
     }, true);
     function pasted_len() {
         if (pasted === null) return -1;
@@ -226,6 +245,7 @@
         setTimeout(() => {
             const answer = window.prompt(label, value);
             if (answer !== null) prompted = answer;
+            wake();
         }, 0);
     }
     function prompted_len() {
@@ -246,6 +266,7 @@
 
     function register_plugin(importObject) {
         const env = importObject.env;
+        schedule_update = env.sapp_schedule_update;
         env.chapaev_ws_open = ws_open;
         env.chapaev_ws_state = ws_state;
         env.chapaev_ws_send = ws_send;

@@ -15,6 +15,7 @@ mod draw;
 mod help;
 mod leaderboard;
 mod lobby;
+mod pace;
 mod platform;
 mod play;
 mod profile;
@@ -41,6 +42,10 @@ fn conf() -> Conf {
         window_height: 720,
         high_dpi: true,
         sample_count: 4,
+        platform: miniquad::conf::Platform {
+            blocking_event_loop: pace::BLOCKING,
+            ..Default::default()
+        },
         ..Default::default()
     }
 }
@@ -80,6 +85,7 @@ async fn main() {
     platform::set_hash(&route.hash());
     let mut ui = Ui::default();
     let mut ready = false;
+    let mut pace = pace::Pace::default();
     // Time spent in our own frame code (update and draw calls), averaged.
     let mut work_ms = 0.0f64;
     loop {
@@ -87,7 +93,7 @@ async fn main() {
         clear_background(ui::colors::BACKGROUND);
         scale::begin_frame();
         ui.begin(Input::read());
-        let dt = (get_frame_time() as f64).min(0.1);
+        let dt = pace.step(get_frame_time() as f64);
         let next = screen.frame(&mut ui, dt);
         ui.end();
         let mut state = screen.report();
@@ -99,12 +105,14 @@ async fn main() {
         state.insert("fps".into(), get_fps().into());
         state.insert("work_ms".into(), work_ms.into());
         platform::report(&serde_json::Value::Object(state).to_string());
+        let starting = !ready;
         if !ready {
             platform::set_ready();
             ready = true;
         }
         // Follow the address bar (back button, edited links) and the screen's wishes.
         let from_address = Route::parse(&platform::location());
+        let changed = next.is_some() || from_address != route;
         if let Some(r) = next {
             route = r;
             platform::set_hash(&route.hash());
@@ -114,6 +122,7 @@ async fn main() {
             screen = open(&route);
         }
         work_ms = 0.95 * work_ms + 0.05 * (get_time() - started) * 1000.0;
+        pace.end_frame(get_time(), starting || changed || screen.animating());
         next_frame().await
     }
 }

@@ -46,6 +46,9 @@ struct Drag {
     pointer: DVec2,
 }
 
+/// How long the "your turn" cue shows after the turn comes, in seconds.
+const TURN_CUE: f64 = 1.6;
+
 pub struct Play {
     api: Api,
     match_id: String,
@@ -411,14 +414,14 @@ impl Play {
             .iter()
             .map(|&(p, pos)| (p, vp.to_screen(pos), r))
             .collect();
-        if can_aim && self.now - self.turn_since < 1.6 {
+        if can_aim && self.now - self.turn_since < TURN_CUE {
             let msg = Rect::new(
                 area.x + area.w / 2.0 - 80.0,
                 area.y + area.h / 2.0 - 24.0,
                 160.0,
                 48.0,
             );
-            let k = (1.6 - (self.now - self.turn_since) as f32).min(1.0);
+            let k = ((TURN_CUE - (self.now - self.turn_since)) as f32).min(1.0);
             draw_rectangle(
                 msg.x,
                 msg.y,
@@ -1135,8 +1138,9 @@ impl Screen for Play {
         "play"
     }
 
+    /// A shot playing, or the "your turn" cue pulsing.
     fn animating(&self) -> bool {
-        self.playing.is_some()
+        self.playing.is_some() || self.now - self.turn_since < TURN_CUE
     }
 
     fn report(&self) -> serde_json::Map<String, serde_json::Value> {
