@@ -94,3 +94,21 @@ impl Pace {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_frame_after_a_wait_gets_the_whole_gap_and_one_while_moving_is_capped() {
+        let moving = Pace::default();
+        assert_eq!(moving.step(0.016), 0.016);
+        assert_eq!(moving.step(3.0), MAX_STEP);
+        let waited = Pace {
+            waited: true,
+            ..Pace::default()
+        };
+        assert_eq!(waited.step(0.5), 0.5);
+        assert_eq!(waited.step(42.0), 42.0);
+    }
+}
