@@ -20,7 +20,7 @@
 //! element is the time per query.
 
 use cpu_time::ThreadTime;
-use criterion::{black_box, criterion_group, Criterion, Throughput};
+use criterion::{black_box, Criterion, Throughput};
 use engine::roots::{Bisection, ClosedForm, Production, RootSolver};
 
 /// A small deterministic generator (SplitMix64), so the batch is fixed.
@@ -218,28 +218,32 @@ fn range_solvers() -> Vec<(&'static str, RangeQuery)> {
     ]
 }
 
-fn bench(c: &mut Criterion) {
+/// The batches by name: `contact`, `hard` and `mixed` (both).
+fn batches() -> [(&'static str, Vec<[f64; 5]>); 3] {
     let contact = contact_batch(512);
     let hard = hard_batch();
     let mixed: Vec<[f64; 5]> = contact.iter().chain(hard.iter()).copied().collect();
-    for (name, batch) in [("contact", &contact), ("hard", &hard), ("mixed", &mixed)] {
+    [("contact", contact), ("hard", hard), ("mixed", mixed)]
+}
+
+/// One pass of `query` over `batch`: how many queries find a root.
+fn hits(query: Query, batch: &[[f64; 5]]) -> usize {
+    batch
+        .iter()
+        .filter(|&p| query(black_box(p)).is_some())
+        .count()
+}
+
+fn bench(c: &mut Criterion, batches: &[(&str, Vec<[f64; 5]>)]) {
+    for (name, batch) in batches {
         let mut g = c.benchmark_group(format!("first_root/{name}"));
         g.throughput(Throughput::Elements(batch.len() as u64));
         for (solver, query) in solvers() {
-            g.bench_function(solver, |b| {
-                b.iter(|| {
-                    let mut hits = 0usize;
-                    for p in batch.iter() {
-                        if query(black_box(p)).is_some() {
-                            hits += 1;
-                        }
-                    }
-                    hits
-                })
-            });
+            g.bench_function(solver, |b| b.iter(|| hits(query, batch)));
         }
         g.finish();
     }
+    let contact = &batches[0].1;
     let mut g = c.benchmark_group("roots_in_0_10/contact");
     g.throughput(Throughput::Elements(contact.len() as u64));
     for (solver, query) in range_solvers() {
@@ -266,7 +270,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 /// The interleaved CPU-time table (see the module doc).
-fn cpu_table(batches: &[(&str, &[[f64; 5]])]) {
+fn cpu_table(batches: &[(&str, Vec<[f64; 5]>)]) {
     let solvers: Vec<(&str, Query)> = solvers()
         .into_iter()
         .filter(|s| PEERS.contains(&s.0))
@@ -283,18 +287,14 @@ fn cpu_table(batches: &[(&str, &[[f64; 5]])]) {
             .join(" | ")
     );
     println!("|---|---:|{}", "---:|".repeat(2 * names.len() - 1));
-    for &(name, batch) in batches {
+    for (name, batch) in batches {
         let mut t: Vec<Vec<f64>> = vec![Vec::with_capacity(ROUNDS); solvers.len()];
         for _ in 0..ROUNDS {
             for (k, (_, query)) in solvers.iter().enumerate() {
                 let start = ThreadTime::now();
-                let mut hits = 0usize;
                 for _ in 0..PASSES {
-                    for p in batch {
-                        hits += usize::from(query(black_box(p)).is_some());
-                    }
+                    black_box(hits(*query, batch));
                 }
-                black_box(hits);
                 let per_query = start.elapsed().as_secs_f64() / (PASSES * batch.len()) as f64;
                 t[k].push(per_query);
             }
@@ -317,19 +317,13 @@ fn cpu_table(batches: &[(&str, &[[f64; 5]])]) {
 }
 
 fn main() {
-    let contact = contact_batch(512);
-    let hard = hard_batch();
-    let mixed: Vec<[f64; 5]> = contact.iter().chain(hard.iter()).copied().collect();
-    cpu_table(&[("contact", &contact), ("hard", &hard), ("mixed", &mixed)]);
-    benches();
-    Criterion::default().configure_from_args().final_summary();
-}
-
-criterion_group! {
-    name = benches;
-    config = Criterion::default()
+    let batches = batches();
+    cpu_table(&batches);
+    let mut c = Criterion::default()
         .sample_size(30)
         .warm_up_time(std::time::Duration::from_millis(500))
-        .measurement_time(std::time::Duration::from_secs(2));
-    targets = bench
+        .measurement_time(std::time::Duration::from_secs(2))
+        .configure_from_args();
+    bench(&mut c, &batches);
+    c.final_summary();
 }

@@ -106,7 +106,7 @@ async fn main() {
         state.insert("work_ms".into(), work_ms.into());
         platform::report(&serde_json::Value::Object(state).to_string());
         let starting = !ready;
-        if !ready {
+        if starting {
             platform::set_ready();
             ready = true;
         }
