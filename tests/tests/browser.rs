@@ -553,7 +553,7 @@ async fn play(client: &Client, server: &Server, artifacts: &Path) -> Result<()> 
     .await?;
     let (x, y) = centre(&lobby["buttons"]["vs-computer-easy"])?;
     eprintln!("e2e: clicking vs-computer-easy at ({x:.0}, {y:.0})");
-    browser::click(client, x, y).await?;
+    click(client, x, y).await?;
 
     // 4. The match is on, connected, and it is our turn.
     let play = state_until(
@@ -676,7 +676,7 @@ async fn play(client: &Client, server: &Server, artifacts: &Path) -> Result<()> 
     );
     // Scrub: clicking the middle of the timeline jumps there.
     let (x, y) = centre(&replay["buttons"]["timeline"])?;
-    browser::click(client, x, y).await?;
+    click(client, x, y).await?;
     let total = replay["total"].as_f64().unwrap_or(0.0);
     state_until(
         client,
@@ -737,7 +737,22 @@ async fn click_button(client: &Client, name: &str) -> Result<()> {
     .await?;
     let (x, y) = centre(&state["buttons"][name])?;
     eprintln!("e2e: clicking {name} at ({x:.0}, {y:.0})");
-    browser::click(client, x, y).await
+    click(client, x, y).await
+}
+
+/// Clicks at (`x`, `y`) and waits for a frame drawn after the click, so
+/// the next step reads a page that has seen it. (The page draws only while
+/// something changes: without this wait, a second click could reach it in
+/// the same frame as the first.)
+async fn click(client: &Client, x: f64, y: f64) -> Result<()> {
+    browser::click(client, x, y).await?;
+    let seen = client.execute(STATE, vec![]).await?;
+    let after = seen["frame"].as_u64().unwrap_or(0);
+    state_until(client, "a frame after the click", 10, |s| {
+        s["frame"].as_u64().is_some_and(|f| f > after)
+    })
+    .await?;
+    Ok(())
 }
 
 /// The centre of a `[x, y, w, h]` rectangle.

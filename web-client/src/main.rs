@@ -35,17 +35,23 @@ use route::Route;
 use screen::Screen;
 use ui::{Input, Ui};
 
-fn conf() -> Conf {
-    Conf {
-        window_title: "Chapaev online".to_owned(),
-        window_width: 1024,
-        window_height: 720,
-        high_dpi: true,
-        sample_count: 4,
-        platform: miniquad::conf::Platform {
-            blocking_event_loop: pace::BLOCKING,
+fn conf() -> macroquad::conf::Conf {
+    macroquad::conf::Conf {
+        miniquad_conf: Conf {
+            window_title: "Chapaev online".to_owned(),
+            window_width: 1024,
+            window_height: 720,
+            high_dpi: true,
+            sample_count: 4,
+            platform: miniquad::conf::Platform {
+                blocking_event_loop: pace::BLOCKING,
+                ..Default::default()
+            },
             ..Default::default()
         },
+        // In the browser's waiting loop, every input wakes a frame at once
+        // (macroquad's own triggers; the rest are in `js/chapaev.js`).
+        update_on: Some(pace::wake_on_input()),
         ..Default::default()
     }
 }
@@ -88,7 +94,10 @@ async fn main() {
     let mut pace = pace::Pace::default();
     // Time spent in our own frame code (update and draw calls), averaged.
     let mut work_ms = 0.0f64;
+    // Frames drawn so far: the end-to-end test waits for one after its input.
+    let mut frames: u64 = 0;
     loop {
+        frames += 1;
         let started = get_time();
         clear_background(ui::colors::BACKGROUND);
         scale::begin_frame();
@@ -104,6 +113,7 @@ async fn main() {
             .or_insert_with(|| screen.animating().into());
         state.insert("fps".into(), get_fps().into());
         state.insert("work_ms".into(), work_ms.into());
+        state.insert("frame".into(), frames.into());
         platform::report(&serde_json::Value::Object(state).to_string());
         let starting = !ready;
         if starting {

@@ -24,6 +24,21 @@ const LINGER: f64 = 0.75;
 /// `js/chapaev.js` wakes it (on the desktop nothing would).
 pub const BLOCKING: bool = cfg!(target_arch = "wasm32");
 
+/// The inputs that wake the waiting loop: all of them. A key's release and
+/// a typed character need no trigger of their own, as their key went down
+/// first and the frames after it linger.
+pub fn wake_on_input() -> macroquad::conf::UpdateTrigger {
+    macroquad::conf::UpdateTrigger {
+        key_down: true,
+        mouse_down: true,
+        mouse_up: true,
+        mouse_motion: true,
+        mouse_wheel: true,
+        specific_key: None,
+        touch: true,
+    }
+}
+
 /// What the player is doing with the input devices, to tell a frame with
 /// input from one without.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
