@@ -1163,7 +1163,9 @@ impl World {
                     let alpha = self.braking(&members);
                     for k in 2..members.len() {
                         let slide = vel[k].length_squared() / (2.0 * alpha[k]);
-                        still[k] = alpha[k] > 0.0 && slide > 0.0 && slide <= push::PRESS_GAP * s;
+                        still[k] = alpha[k] > 0.0
+                            && slide > 0.0
+                            && slide <= push::press_gap(self.config.revision) * s;
                     }
                 }
                 let mut held = vel.clone();
@@ -1311,8 +1313,8 @@ impl World {
                 continue;
             }
             let s = self.slots[members[a]].radius + self.slots[members[b]].radius;
-            if let Some(w) = push::bounce_speed([vel[a], vel[b]], [braking(a), braking(b)], c.n, s)
-            {
+            let (v, acc) = ([vel[a], vel[b]], [braking(a), braking(b)]);
+            if let Some(w) = push::bounce_speed(v, acc, c.n, s, self.config.revision) {
                 c.bias = w;
                 any = true;
             }

@@ -241,6 +241,23 @@ fn a_cluster_pressed_together_as_it_slides_collapses_at_once() {
     assert!(out.events < 60_000, "{} events", out.events);
 }
 
+#[test]
+fn a_disc_pressed_for_seconds_between_a_heavy_one_and_a_wall_rests_within_the_cap() {
+    // A 2.4 g disc is wedged between an 8.4 kg one sliding past on almost
+    // frictionless ice, a small disc and the right wall, pressed at an
+    // angle for seconds: each bounce of the approximated contact a
+    // microsecond or less apart. Revision 5's gap of 1e-6 of the contact
+    // distance needed 141,258 events; revision 6's 1e-4 needs a tenth.
+    let out = fixed_in(
+        Revision::R6,
+        "mixed-45285",
+        EndReason::MaxEvents,
+        EndReason::Rest,
+    );
+    assert!(out.pressed > 0);
+    assert!(out.events < 25_000, "{} events", out.events);
+}
+
 /// Every event of a run, bit for bit.
 #[derive(Default)]
 struct Stream(Vec<(u64, String)>);
@@ -274,6 +291,7 @@ fn an_impact_ringing_through_a_cradle_keeps_its_every_hit() {
         let old = stream(Revision::R4);
         assert!(old.len() > 60, "{name}: {} events", old.len());
         assert_eq!(old, stream(Revision::R5), "{name}");
+        assert_eq!(old, stream(Revision::R6), "{name}");
     }
 }
 

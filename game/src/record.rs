@@ -140,7 +140,7 @@ mod tests {
             reason: ForfeitReason::Abandoned,
         });
         let json = r.to_json();
-        assert!(json.contains(r#""version":3,"physics":5,"#), "{json}");
+        assert!(json.contains(r#""version":3,"physics":6,"#), "{json}");
         assert!(json.contains(r#"{"move":"pass","side":"white"}"#), "{json}");
         assert!(json.contains(r#""move":"pie""#), "{json}");
         assert_eq!(MatchRecord::from_json(&json).unwrap(), r);
