@@ -227,25 +227,31 @@ mod tests {
         worst
     }
 
+    /// Each revision's bound on the error, of the distance slid: revision
+    /// 5 keeps pressed pairs within 1e-6 of their contact distance,
+    /// revision 6 within 1e-4: ten times fewer hits, for about ten times
+    /// the error.
+    const BOUNDS: [(Revision, f64); 2] = [(Revision::R5, 2e-4), (Revision::R6, 1e-3)];
+
+    /// Every `step`-th pair under each revision of [`BOUNDS`], within its
+    /// bound.
+    fn within_bounds(step: usize) {
+        for (revision, bound) in BOUNDS {
+            let worst = table(pairs().into_iter().step_by(step), revision);
+            assert!(worst < bound, "{revision:?}: {worst:e}");
+        }
+    }
+
     /// Every third pair (all thirty: the ignored test below, as
     /// `cargo test -p lab --release pressing -- --ignored --nocapture`).
-    /// Revision 5 keeps pressed pairs within 1e-6 of their contact
-    /// distance, revision 6 within 1e-4: ten times fewer hits, for about
-    /// ten times the error.
     #[test]
     fn the_approximated_pressing_contact_stays_within_its_bound_of_the_slide() {
-        let worst = table(pairs().into_iter().step_by(3), Revision::R5);
-        assert!(worst < 2e-4, "{worst:e}");
-        let worst = table(pairs().into_iter().step_by(3), Revision::R6);
-        assert!(worst < 1e-3, "{worst:e}");
+        within_bounds(3);
     }
 
     #[test]
     #[ignore = "sixty integrations: about a minute"]
     fn every_pressed_pair_stays_within_its_bound_of_the_slide() {
-        let worst = table(pairs().into_iter(), Revision::R5);
-        assert!(worst < 2e-4, "{worst:e}");
-        let worst = table(pairs().into_iter(), Revision::R6);
-        assert!(worst < 1e-3, "{worst:e}");
+        within_bounds(1);
     }
 }
