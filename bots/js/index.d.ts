@@ -201,6 +201,29 @@ export default function init(
 /** One shot simulated: exactly the server's `POST /api/simulate`. Throws a `ChapaevError`. */
 export function simulate(request: SimulateRequest): Simulation;
 
+/** What `verify` checked of a finished match. */
+export interface Verification {
+  /** The noise scheme: `"chacha20"`. */
+  scheme: "chacha20";
+  /** SHA-256 of the revealed secret, lowercase hex: the commitment it opened. */
+  commitment: string;
+  /** Shots whose noise and outcome were checked. */
+  shots: number;
+  /** Each shot's draw, in order. */
+  draws: NoiseDraw[];
+}
+
+/**
+ * Checks a finished match's record (its JSON text from
+ * `GET /api/matches/ID/record`, or that text parsed): the revealed secret
+ * opens the commitment, every shot's `played` velocity is its `aimed` one
+ * under the secret's draw, and the match replays to every recorded outcome.
+ * Throws an `Error` whose `code` is `commitment-mismatch`, `noise-mismatch`,
+ * `replay-diverged`, `secret-not-revealed`, `uncommitted`, `bad-record` or
+ * `unsupported-physics`.
+ */
+export function verify(record: string | object): Verification;
+
 /**
  * The answer of `Simulator.playMany`: 56 numbers per shot (shot `k` at
  * `56 * k`), at these offsets:

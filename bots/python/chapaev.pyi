@@ -123,6 +123,22 @@ class SimulateError(ValueError):
 def simulate(request: SimulateRequest) -> Simulation:
     """Validates and simulates one shot, exactly as the server would."""
 
+class Verification(TypedDict):
+    """What `verify` checked of a finished match."""
+
+    scheme: str
+    commitment: str
+    shots: int
+    draws: List[NoiseDraw]
+
+def verify(record: Union[str, Dict[str, Any]]) -> Verification:
+    """Checks a finished match's record (JSON text or parsed): the revealed
+    secret opens the commitment, every shot's `played` velocity is its
+    `aimed` one under the secret's draw, and the match replays to every
+    outcome. Raises `SimulateError` with `code` `commitment-mismatch`,
+    `noise-mismatch`, `replay-diverged`, `secret-not-revealed`,
+    `uncommitted`, `bad-record` or `unsupported-physics`."""
+
 @final
 class Simulator:
     """One position, checked and converted once, to score many shots on."""

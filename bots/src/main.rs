@@ -1,5 +1,6 @@
-//! The `bots` command: tournaments between the scripted bots, and a bot
-//! playing a match on a real server (`play`).
+//! The `bots` command: tournaments between the scripted bots, a bot
+//! playing a match on a real server (`play`, `online`), and checking a
+//! finished match's noise against its commitment (`verify`).
 
 use bots::runner::{CreateMatch, Opponent, Runner, RunnerOptions};
 use bots::stats::Sprt;
@@ -31,6 +32,21 @@ enum Command {
     /// twin of the JavaScript and Python bindings' throughput benchmarks
     /// (the same requests for the same seed).
     Throughput(ThroughputArgs),
+    /// Check finished matches' records: the revealed noise secret opens
+    /// the commitment published before the first shot, every shot was
+    /// played with the secret's draw, and the match replays exactly.
+    Verify(VerifyArgs),
+}
+
+#[derive(Parser, Debug)]
+struct VerifyArgs {
+    /// Record files (JSON, as `GET /api/matches/ID/record` serves them);
+    /// `-` reads one from standard input.
+    #[arg(required = true)]
+    records: Vec<PathBuf>,
+    /// Print each verdict as one JSON line instead of text.
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(Parser, Debug)]
@@ -187,6 +203,7 @@ fn main() -> ExitCode {
         Command::Play(args) => play_command(args),
         Command::Online(args) => online_command(args),
         Command::Throughput(args) => throughput_command(args),
+        Command::Verify(args) => verify_command(args),
     };
     match done {
         Ok(()) => ExitCode::SUCCESS,
@@ -200,6 +217,58 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// A record that failed `bots verify`.
+#[derive(Debug, thiserror::Error)]
+#[error("{failed} of {total} records did not verify")]
+struct NotVerified {
+    failed: usize,
+    total: usize,
+}
+
+fn verify_command(args: VerifyArgs) -> Result<(), Box<dyn std::error::Error>> {
+    use std::io::Read;
+    let mut failed = 0;
+    for path in &args.records {
+        let text = if path.as_os_str() == "-" {
+            let mut text = String::new();
+            std::io::stdin().read_to_string(&mut text)?;
+            text
+        } else {
+            std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?
+        };
+        let checked = game::verify_json(&text);
+        failed += usize::from(checked.is_err());
+        let name = path.display();
+        match (&checked, args.json) {
+            (Ok(v), true) => println!(
+                "{}",
+                serde_json::json!({"record": name.to_string(), "verified": true,
+                    "scheme": v.scheme, "commitment": v.commitment.to_hex(), "shots": v.shots})
+            ),
+            (Err(e), true) => println!(
+                "{}",
+                serde_json::json!({"record": name.to_string(), "verified": false,
+                    "code": e.code(), "error": e.to_string()})
+            ),
+            (Ok(v), false) => println!(
+                "{name}: verified: the secret opens commitment {}, and all {} shots were played with its {:?} draws and replay exactly",
+                v.commitment,
+                v.shots,
+                v.scheme
+            ),
+            (Err(e), false) => println!("{name}: NOT VERIFIED ({}): {e}", e.code()),
+        }
+    }
+    if failed > 0 {
+        return Err(NotVerified {
+            failed,
+            total: args.records.len(),
+        }
+        .into());
+    }
+    Ok(())
 }
 
 fn throughput_command(args: ThroughputArgs) -> Result<(), Box<dyn std::error::Error>> {

@@ -119,7 +119,7 @@ mod tests {
             let shot = Shot::new(piece, v, &view.config).unwrap();
             // The draw the server will make: known here only because the
             // test holds the seed.
-            let draw = NoiseDraw::for_shot(game.seed(), game.shots());
+            let draw = game.noise_key().draw(game.shots());
             let sim = Simulator::new(&view).play_noisy(side, &shot, draw).unwrap();
             let real = game.play(side, shot).unwrap();
             assert_eq!(sim.knocked_off, real.outcome.knocked_off);

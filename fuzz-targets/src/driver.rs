@@ -19,7 +19,7 @@
 //!   ([`game::replay`]) to the session's very match.
 
 use game::protocol::{ErrorCode, Refusal, ServerMessage};
-use game::record::{MatchRecord, RecordedMove, RECORD_VERSION};
+use game::record::{MatchRecord, RecordedMove};
 use game::session::{
     BotDecision, ConnId, Effect, Input, Moment, Request, Session, SessionLimits, To,
 };
@@ -388,13 +388,9 @@ impl Driver {
     fn store_failed(&mut self, index: usize, reload: bool) {
         self.stored.truncate(index);
         let game = self.session.game();
-        let record = MatchRecord {
-            version: RECORD_VERSION,
-            physics: game.physics().number(),
-            config: game.config().clone(),
-            seed: game.seed(),
-            moves: self.stored.clone(),
-        };
+        // What the store keeps: the secret, and the moves written.
+        let mut record = game.private_record();
+        record.moves = self.stored.clone();
         let reloaded = match Replay::new(record) {
             Ok(replay) => replay.game().clone(),
             Err(e) => panic!("the stored moves do not replay: {e}"),
@@ -436,7 +432,12 @@ impl Driver {
             Ok(record),
             "the record reads back from its JSON"
         );
-        let replay = match Replay::new(record.clone()) {
+        assert_eq!(
+            record.noise.as_ref().is_some_and(|n| n.secret.is_some()),
+            game.is_over(),
+            "the secret is revealed exactly when the match is over"
+        );
+        let replay = match Replay::new(game.private_record()) {
             Ok(replay) => replay,
             Err(e) => panic!("the session's record does not replay: {e}"),
         };

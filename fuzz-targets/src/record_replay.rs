@@ -14,7 +14,7 @@
 
 use game::config::Config;
 use game::record::RecordedMove;
-use game::{Game, MatchRecord, Replay, Shot, Side};
+use game::{Game, MatchRecord, NoiseKey, Replay, Shot, Side};
 
 /// Most shots played afresh from one record (each may take up to the
 /// config's event cap).
@@ -50,7 +50,8 @@ fn play_again(record: &MatchRecord) {
     if record.config.max_events_per_shot > Config::default().max_events_per_shot {
         return;
     }
-    let Ok(mut game) = Game::new(record.config.clone(), record.seed) else {
+    let key = record.key().unwrap_or(NoiseKey::SplitMix64(0));
+    let Ok(mut game) = Game::new(record.config.clone(), key) else {
         return;
     };
     let mut shots = 0;
@@ -79,7 +80,7 @@ fn play_again(record: &MatchRecord) {
             }
         }
     }
-    let json = game.record().to_json();
+    let json = game.private_record().to_json();
     match Replay::from_json(&json) {
         Ok(replay) => {
             assert_eq!(

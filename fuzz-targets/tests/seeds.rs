@@ -478,7 +478,7 @@ fn record_seeds() -> BTreeMap<String, Vec<u8>> {
         seeds.insert(format!("{name}.json"), text.into_bytes());
     };
     let (_, casual) = real_match(Config::default(), 11, 30);
-    put("casual-match", casual.record().to_json());
+    put("casual-match", casual.private_record().to_json());
     let (_, mut standard) = real_match(Config::standard(), 12, 6);
     if let Some(side) = standard.to_shoot() {
         standard.pass(side).expect("a pass");
@@ -501,20 +501,28 @@ fn record_seeds() -> BTreeMap<String, Vec<u8>> {
     put("quick-match", quick.record().to_json());
 
     let mut v1: serde_json::Value = serde_json::from_str(
-        &MatchRecord::new(Config::default(), 1, game::PhysicsVersion::CURRENT).to_json(),
+        &MatchRecord::new(
+            Config::default(),
+            &game::NoiseKey::SplitMix64(1),
+            game::PhysicsVersion::CURRENT,
+        )
+        .to_json(),
     )
     .expect("json");
     v1["version"] = 1.into();
     v1["moves"] = serde_json::json!([{"move": "resign", "side": "black"}]);
     put("version-1-resigned", v1.to_string());
 
-    let mut diverged = casual.record().clone();
+    let mut diverged = casual.private_record();
     if let Some(RecordedMove::Shot(first)) = diverged.moves.first_mut() {
         first.played.x = f64::from_bits(first.played.x.to_bits() ^ 1);
     }
     put("diverged", diverged.to_json());
-    let mut illegal = MatchRecord::new(Config::default(), 0, game::PhysicsVersion::CURRENT);
+    let key = game::NoiseKey::from(0);
+    let mut illegal = MatchRecord::new(Config::default(), &key, game::PhysicsVersion::CURRENT);
     illegal.moves.push(RecordedMove::Pie { swap: true });
+    put("sealed-not-revealed", illegal.to_json());
+    illegal.reveal(&key);
     put("illegal-pie", illegal.to_json());
     put(
         "unplayable-config",

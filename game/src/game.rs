@@ -10,12 +10,14 @@
 use crate::board::Board;
 use crate::config::{Config, ConfigError};
 use crate::film::Film;
+use crate::noise::NoiseKey;
 use crate::outcome::{ForfeitReason, MatchResult, Next, RoundEnd, ShotOutcome, WinReason};
 use crate::physics_version::PhysicsVersion;
 use crate::piece::{PieceId, PIECES_PER_SIDE};
 use crate::record::{MatchRecord, RecordedMove};
 use crate::rows::{Advance, Rows};
 use crate::rules::{judge, RoundResult, Verdict};
+use crate::secret::NoiseCommitment;
 use crate::shot::{check_velocity, Shot, ShotError};
 use crate::side::{Seat, Side};
 use serde::{Deserialize, Serialize};
@@ -71,11 +73,18 @@ pub struct Played {
     pub after: Board,
 }
 
-/// What anyone watching the match may know (no seed: knowing it would let
-/// a player predict the execution noise).
+/// What anyone watching the match may know (never the noise's secret:
+/// knowing it would let a player predict the execution noise; only the
+/// commitment to it).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct MatchView {
     pub config: Config,
+    /// The SHA-256 of the match's noise secret (lowercase hex), fixed
+    /// before the first shot; the record reveals the secret when the match
+    /// is over, so anyone can check both. Absent only for a match played
+    /// again from a record of format 1–3 (a plain seed, no secret).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub noise_commitment: Option<NoiseCommitment>,
     pub phase: Phase,
     /// The side to shoot (after the pie decision, if one is pending).
     pub turn: Side,
@@ -162,7 +171,7 @@ impl MatchView {
 #[derive(Clone, Debug)]
 pub struct Game {
     config: Config,
-    seed: u64,
+    noise: NoiseKey,
     physics: PhysicsVersion,
     rows: Rows,
     board: Board,
@@ -177,27 +186,30 @@ pub struct Game {
 
 impl Game {
     /// A new match: round 1, White on the first row, Black on the last,
-    /// White to shoot. `seed` drives the execution noise (if enabled) and is
-    /// kept in the record. It is played under the current physics
-    /// ([`PhysicsVersion::CURRENT`]).
-    pub fn new(config: Config, seed: u64) -> Result<Game, ConfigError> {
-        Game::with_physics(config, seed, PhysicsVersion::CURRENT)
+    /// White to shoot. `key` drives the execution noise (if enabled): a
+    /// server's random [`crate::NoiseSecret`], or a number for a
+    /// reproducible local game (see [`NoiseKey`]'s `From<u64>`). The record
+    /// commits to the key's secret and reveals it when the match is over.
+    /// It is played under the current physics ([`PhysicsVersion::CURRENT`]).
+    pub fn new(config: Config, key: impl Into<NoiseKey>) -> Result<Game, ConfigError> {
+        Game::with_physics(config, key, PhysicsVersion::CURRENT)
     }
 
     /// A new match played under `physics`: how a recorded match is played
     /// again, under the physics it was recorded with.
     pub fn with_physics(
         config: Config,
-        seed: u64,
+        key: impl Into<NoiseKey>,
         physics: PhysicsVersion,
     ) -> Result<Game, ConfigError> {
         config.validate()?;
+        let noise = key.into();
         let rows = Rows::initial();
         Ok(Game {
             board: Board::setup(&config, rows),
-            record: MatchRecord::new(config.clone(), seed, physics),
+            record: MatchRecord::new(config.clone(), &noise, physics),
             config,
-            seed,
+            noise,
             physics,
             rows,
             round: 1,
@@ -212,8 +224,14 @@ impl Game {
     pub fn config(&self) -> &Config {
         &self.config
     }
-    pub fn seed(&self) -> u64 {
-        self.seed
+    /// What the match's noise is drawn from (the server's secret: never
+    /// show it before the match is over).
+    pub fn noise_key(&self) -> &NoiseKey {
+        &self.noise
+    }
+    /// The public commitment to the noise's secret.
+    pub fn noise_commitment(&self) -> Option<NoiseCommitment> {
+        self.record.commitment()
     }
     /// The physics the match is played under.
     pub fn physics(&self) -> PhysicsVersion {
@@ -236,9 +254,19 @@ impl Game {
     pub fn shots(&self) -> u32 {
         self.shots
     }
-    /// The record of every move so far.
+    /// The record of every move so far: the public one, which commits to
+    /// the noise's secret and reveals it only once the match is over.
     pub fn record(&self) -> &MatchRecord {
         &self.record
+    }
+    /// The record with the noise's secret revealed even while the match is
+    /// on: what a server's own store keeps to resume the match from. Never
+    /// publish it before the match is over ([`Game::record`] is the public
+    /// one).
+    pub fn private_record(&self) -> MatchRecord {
+        let mut record = self.record.clone();
+        record.reveal(&self.noise);
+        record
     }
     /// Whether the pie rule swapped the seats.
     pub fn swapped(&self) -> bool {
@@ -276,6 +304,7 @@ impl Game {
     pub fn view(&self) -> MatchView {
         MatchView {
             config: self.config.clone(),
+            noise_commitment: self.noise_commitment(),
             phase: self.phase,
             turn: self.turn,
             swapped: self.swapped,
@@ -317,7 +346,7 @@ impl Game {
         let aimed = shot.velocity();
         let played = self
             .physics
-            .played(&self.config, self.seed, self.shots, aimed);
+            .played(&self.config, &self.noise, self.shots, aimed);
         let res = self
             .physics
             .resolve(&self.config, &self.board, shot.piece(), played)
@@ -358,7 +387,7 @@ impl Game {
             round_end,
             next,
         };
-        self.record.moves.push(RecordedMove::Shot(outcome.clone()));
+        self.log(RecordedMove::Shot(outcome.clone()));
         Ok(Played {
             outcome,
             film: res.film,
@@ -436,7 +465,7 @@ impl Game {
         }
         self.swapped ^= swap;
         self.phase = Phase::Shooting;
-        self.record.moves.push(RecordedMove::Pie { swap });
+        self.log(RecordedMove::Pie { swap });
         Ok(())
     }
 
@@ -460,7 +489,7 @@ impl Game {
             reason,
         };
         self.phase = Phase::Over { result };
-        self.record.moves.push(recorded);
+        self.log(recorded);
         Ok(result)
     }
 
@@ -475,7 +504,7 @@ impl Game {
             return Err(GameError::NotYourTurn(side));
         }
         self.turn = side.opponent();
-        self.record.moves.push(RecordedMove::Pass { side });
+        self.log(RecordedMove::Pass { side });
         Ok(())
     }
 
@@ -487,6 +516,15 @@ impl Game {
             reason.win_reason(),
             RecordedMove::Forfeit { side, reason },
         )
+    }
+
+    /// Appends an accepted move to the record, revealing the noise's
+    /// secret there once the match is over.
+    fn log(&mut self, accepted: RecordedMove) {
+        self.record.moves.push(accepted);
+        if self.is_over() {
+            self.record.reveal(&self.noise);
+        }
     }
 
     /// Sets up a position by hand (tests of particular situations).
@@ -597,7 +635,7 @@ mod tests {
             g.record().moves.last(),
             Some(&RecordedMove::Pass { side: Side::White })
         );
-        let replayed = crate::Replay::new(g.record().clone()).unwrap();
+        let replayed = crate::Replay::new(g.private_record()).unwrap();
         assert_eq!(replayed.game().view(), g.view());
     }
 

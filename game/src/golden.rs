@@ -19,7 +19,7 @@ use crate::config::ConfigError;
 use crate::game::{Game, GameError, MatchView, Phase};
 use crate::outcome::ShotOutcome;
 use crate::physics_version::{PhysicsVersion, UnsupportedPhysics, PHYSICS_VERSION};
-use crate::record::{MatchRecord, RecordedMove};
+use crate::record::{MatchRecord, RecordError, RecordedMove};
 use crate::rows::Rows;
 use crate::shot::{Shot, ShotError};
 use crate::side::Side;
@@ -108,6 +108,8 @@ pub enum GoldenError {
     Format { found: u32 },
     #[error(transparent)]
     Physics(#[from] UnsupportedPhysics),
+    #[error("the record's noise: {0}")]
+    Noise(#[from] RecordError),
     #[error("the record's config is unplayable: {0}")]
     Config(#[from] ConfigError),
     #[error("move {index}: the recorded shot is refused now: {source}")]
@@ -178,7 +180,7 @@ fn play_again(
     mut each: impl FnMut(usize, Replayed) -> Result<(), GoldenError>,
 ) -> Result<Game, GoldenError> {
     let physics = PhysicsVersion::from_number(record.physics)?;
-    let mut game = Game::with_physics(record.config.clone(), record.seed, physics)?;
+    let mut game = Game::with_physics(record.config.clone(), record.key()?, physics)?;
     for (index, m) in record.moves.iter().enumerate() {
         let illegal = |source| GoldenError::IllegalMove { index, source };
         match m {

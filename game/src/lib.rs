@@ -34,7 +34,9 @@
 //! seats), [`piece`] (piece identity), [`board`] (geometry and the pieces
 //! between shots), [`rows`] (rows and how they move between rounds),
 //! [`shot`] (a valid flick and why shots are refused), [`noise`]
-//! (deterministic execution noise), [`physics`] (a shot resolved by the
+//! (deterministic execution noise), [`secret`] (the match's noise secret
+//! and its public commitment), [`verify`] (checking a finished match's
+//! noise against its commitment), [`physics`] (a shot resolved by the
 //! engine, with the fall-off rule), [`physics_version`] (which physics
 //! decides a shot: the version every record carries), [`film`] (a shot's
 //! motion at any time), [`rules`] (the turn rule), [`outcome`] (what
@@ -67,6 +69,7 @@ pub mod record;
 pub mod replay;
 pub mod rows;
 pub mod rules;
+pub mod secret;
 pub mod session;
 pub mod shot;
 pub mod side;
@@ -75,18 +78,22 @@ pub mod stream;
 #[cfg(test)]
 mod testing;
 pub mod token;
+pub mod verify;
 
 pub use board::{Board, Piece};
 pub use config::{Config, ConfigError, NoiseConfig, Preset, Variants};
 pub use film::Film;
 pub use game::{Game, GameError, MatchView, Phase, Played};
+pub use noise::{NoiseKey, NoiseScheme};
 pub use outcome::{ForfeitReason, MatchResult, Next, RoundEnd, ShotOutcome, WinReason};
 pub use physics_version::{PhysicsVersion, UnsupportedPhysics, PHYSICS_VERSION};
 pub use piece::PieceId;
-pub use record::{MatchRecord, RecordError, RecordedMove, RECORD_VERSION};
+pub use record::{MatchRecord, RecordError, RecordedMove, SealedNoise, RECORD_VERSION};
 pub use replay::{Replay, ReplayError};
 pub use rows::Rows;
 pub use rules::RoundResult;
+pub use secret::{NoiseCommitment, NoiseSecret};
 pub use shot::{Shot, ShotError};
 pub use side::{Seat, Side};
 pub use simulate::{SimulateError, SimulateRequest, Simulation};
+pub use verify::{verify, verify_json, Verification, VerifyError};

@@ -2,16 +2,36 @@
 //!
 //! As in computational pool tournaments, a shot is played not exactly as
 //! aimed: its direction is turned by a Gaussian angle and its speed scaled
-//! by a Gaussian factor. The draws come from the match's recorded seed and
+//! by a Gaussian factor. The draws come from the match's [`NoiseKey`] and
 //! the shot's number, so a replay reproduces them. Everything here uses only
-//! `+ - * /`, `sqrt` and bit manipulation — all exactly specified by IEEE
-//! 754 and so identical natively and in wasm — never the platform's `sin`,
-//! `cos` or `ln`, whose last bits differ between libms. The generator is
-//! SplitMix64, the Gaussians come from Box–Muller with our own polynomial
-//! `ln` and `sin_cos` (accurate to a few ulps, deterministic always).
+//! `+ - * /`, `sqrt` and integer operations — all exactly specified, and so
+//! identical natively and in wasm — never the platform's `sin`, `cos` or
+//! `ln`, whose last bits differ between libms.
+//!
+//! Two schemes ([`NoiseScheme`]) turn a key into draws:
+//! - **`chacha20`**, every match of record format 4 on: the key is the
+//!   match's 256-bit [`NoiseSecret`]. Shot `n`'s draw takes the first 16
+//!   bytes of the ChaCha20 keystream (20 rounds, key = the secret's 32
+//!   bytes, 64-bit nonce = `n` little-endian, 64-bit block counter from 0,
+//!   as in Bernstein's original ChaCha and `rand_chacha`) as two
+//!   little-endian `u64`s. Without the secret nothing about one shot's
+//!   draw tells anything about another's: ChaCha20 is a cipher.
+//! - **`splitmix64`**, records of formats 1–3 only: SplitMix64 from a
+//!   64-bit seed. Its output can be inverted, so one public shot gave the
+//!   seed away; it is kept so that old records replay bit for bit.
+//!
+//! Either way the two `u64`s `a, b` become two standard normal numbers by
+//! Box–Muller with our own polynomial `ln` and `sin_cos` (accurate to a few
+//! ulps, deterministic always): `u1 = 1 - (a >> 11) / 2^53`, `u2 = (b >>
+//! 11) / 2^53`, `r = sqrt(-2 ln u1)`, angle draw `r cos(2 pi u2)`, speed draw
+//! `r sin(2 pi u2)`.
 
 use crate::config::NoiseConfig;
+use crate::secret::NoiseSecret;
 use glam::DVec2;
+use rand_chacha::rand_core::{RngCore, SeedableRng};
+use rand_chacha::ChaCha20Rng;
+use serde::{Deserialize, Serialize};
 use std::f64::consts::{FRAC_PI_2, LN_2, SQRT_2, TAU};
 
 /// SplitMix64: a tiny, fast, well-mixed 64-bit generator.
@@ -47,11 +67,92 @@ impl SplitMix64 {
 
     /// Two independent standard normal draws (Box–Muller).
     pub fn gaussian_pair(&mut self) -> (f64, f64) {
-        let u1 = 1.0 - self.next_f64(); // (0, 1]: ln is finite
-        let u2 = self.next_f64();
-        let r = (-2.0 * ln(u1)).sqrt();
-        let (s, c) = sin_cos(TAU * u2);
-        (r * c, r * s)
+        let a = self.next_u64();
+        let b = self.next_u64();
+        gaussian_pair(a, b)
+    }
+}
+
+/// Uniform in `[0, 1)` from the top 53 bits of `bits`.
+fn unit(bits: u64) -> f64 {
+    (bits >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+}
+
+/// Two standard normal numbers from two uniform `u64`s (Box–Muller).
+fn gaussian_pair(a: u64, b: u64) -> (f64, f64) {
+    let u1 = 1.0 - unit(a); // (0, 1]: ln is finite
+    let u2 = unit(b);
+    let r = (-2.0 * ln(u1)).sqrt();
+    let (s, c) = sin_cos(TAU * u2);
+    (r * c, r * s)
+}
+
+/// How a match's key becomes its draws (recorded with the match).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum NoiseScheme {
+    /// SplitMix64 from a 64-bit seed: records of formats 1–3.
+    Splitmix64,
+    /// ChaCha20 keyed by a 256-bit secret, the shot's number as the nonce.
+    Chacha20,
+}
+
+/// What a match's execution noise is drawn from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum NoiseKey {
+    /// The inverted-at-will seed of records of formats 1–3 (replays only).
+    SplitMix64(u64),
+    /// A secret, committed to before the first shot and revealed after the
+    /// last.
+    ChaCha20(NoiseSecret),
+}
+
+impl NoiseKey {
+    /// The scheme this key draws with.
+    pub fn scheme(&self) -> NoiseScheme {
+        match self {
+            NoiseKey::SplitMix64(_) => NoiseScheme::Splitmix64,
+            NoiseKey::ChaCha20(_) => NoiseScheme::Chacha20,
+        }
+    }
+
+    /// The two uniform `u64`s of shot number `shot`.
+    pub fn words(&self, shot: u32) -> (u64, u64) {
+        match self {
+            NoiseKey::SplitMix64(seed) => {
+                let mut rng = SplitMix64::for_shot(*seed, shot);
+                let a = rng.next_u64();
+                (a, rng.next_u64())
+            }
+            NoiseKey::ChaCha20(secret) => {
+                let mut rng = ChaCha20Rng::from_seed(*secret.bytes());
+                rng.set_stream(u64::from(shot));
+                let a = rng.next_u64();
+                (a, rng.next_u64())
+            }
+        }
+    }
+
+    /// The draw of shot number `shot`.
+    pub fn draw(&self, shot: u32) -> NoiseDraw {
+        let (a, b) = self.words(shot);
+        let (angle, speed) = gaussian_pair(a, b);
+        NoiseDraw { angle, speed }
+    }
+}
+
+/// A bare number keys a reproducible local game: the secret derived from
+/// it ([`NoiseSecret::from_seed`]), drawn with ChaCha20. Anyone who knows
+/// the number knows the noise, so a server never keys a match this way.
+impl From<u64> for NoiseKey {
+    fn from(seed: u64) -> NoiseKey {
+        NoiseKey::ChaCha20(NoiseSecret::from_seed(seed))
+    }
+}
+
+impl From<NoiseSecret> for NoiseKey {
+    fn from(secret: NoiseSecret) -> NoiseKey {
+        NoiseKey::ChaCha20(secret)
     }
 }
 
@@ -119,7 +220,7 @@ pub fn rotate(v: DVec2, angle: f64) -> DVec2 {
 
 /// One draw of execution noise: two standard normal numbers, one turning
 /// the direction and one scaling the speed. The server draws it from the
-/// match's seed and the shot's number ([`NoiseDraw::for_shot`]); a bot that
+/// match's key and the shot's number ([`NoiseKey::draw`]); a bot that
 /// wants to know how robust a candidate is draws its own from its own
 /// generator ([`NoiseDraw::sample`]) and applies it with the very same
 /// arithmetic ([`NoiseDraw::apply`]).
@@ -148,11 +249,6 @@ impl NoiseDraw {
         speed: 0.0,
     };
 
-    /// The draw of the match with seed `seed` for its shot number `shot`.
-    pub fn for_shot(seed: u64, shot: u32) -> NoiseDraw {
-        NoiseDraw::sample(&mut SplitMix64::for_shot(seed, shot))
-    }
-
     /// A draw from any generator.
     pub fn sample(rng: &mut SplitMix64) -> NoiseDraw {
         let (angle, speed) = rng.gaussian_pair();
@@ -176,8 +272,14 @@ impl NoiseDraw {
 /// The velocity actually played when `aimed` is shot as the match's shot
 /// number `shot`: turned by `N(0, angle_sigma)` radians, its speed scaled by
 /// `1 + N(0, speed_sigma)` and kept within `[0, max_speed]`.
-pub fn perturb(noise: &NoiseConfig, seed: u64, shot: u32, aimed: DVec2, max_speed: f64) -> DVec2 {
-    NoiseDraw::for_shot(seed, shot).apply(noise, aimed, max_speed)
+pub fn perturb(
+    noise: &NoiseConfig,
+    key: &NoiseKey,
+    shot: u32,
+    aimed: DVec2,
+    max_speed: f64,
+) -> DVec2 {
+    key.draw(shot).apply(noise, aimed, max_speed)
 }
 
 #[cfg(test)]
@@ -239,23 +341,74 @@ mod tests {
             speed_sigma: 0.05,
         };
         let v = DVec2::new(1.0, 0.5);
-        let a = perturb(&n, 42, 3, v, 2.0);
-        assert_eq!(a.x.to_bits(), perturb(&n, 42, 3, v, 2.0).x.to_bits());
-        assert_ne!(a, perturb(&n, 42, 4, v, 2.0));
-        assert_ne!(a, perturb(&n, 43, 3, v, 2.0));
+        let (k42, k43) = (NoiseKey::from(42), NoiseKey::from(43));
+        let a = perturb(&n, &k42, 3, v, 2.0);
+        assert_eq!(a.x.to_bits(), perturb(&n, &k42, 3, v, 2.0).x.to_bits());
+        assert_ne!(a, perturb(&n, &k42, 4, v, 2.0));
+        assert_ne!(a, perturb(&n, &k43, 3, v, 2.0));
         assert_ne!(a, v);
     }
 
     #[test]
-    fn noise_is_pinned_to_exact_bits_on_every_platform() {
+    fn legacy_noise_is_pinned_to_exact_bits_on_every_platform() {
         // The same bits were obtained natively (x86_64) and in wasm32.
         let n = NoiseConfig {
             angle_sigma: 0.05,
             speed_sigma: 0.1,
         };
-        let v = perturb(&n, 77, 12, DVec2::new(0.3, -1.1), 2.0);
+        let v = perturb(
+            &n,
+            &NoiseKey::SplitMix64(77),
+            12,
+            DVec2::new(0.3, -1.1),
+            2.0,
+        );
         assert_eq!(v.x.to_bits(), 0x3fcb_2991_1e59_207b);
         assert_eq!(v.y.to_bits(), 0xbfee_c0ab_cf47_1862);
+    }
+
+    #[test]
+    fn chacha_words_are_the_published_keystream_with_the_shot_as_nonce() {
+        // Bernstein's ChaCha20 with a zero key: the keystream of nonce 0
+        // starts 76 b8 e0 ad a0 f1 3d 90 40 5d 6a e5 53 86 bd 28, and of
+        // nonce 01 00 00 00 00 00 00 00 (1, little-endian) ef 3f df d6 c6
+        // 15 78 fb f5 cf 35 bd 3d d3 3b 80 (draft-agl-tls-chacha20poly1305,
+        // section 7). Each is read as two little-endian u64s.
+        let key = NoiseKey::ChaCha20(NoiseSecret::from_bytes([0; 32]));
+        assert_eq!(key.words(0), (0x903d_f1a0_ade0_b876, 0x28bd_8653_e56a_5d40));
+        assert_eq!(key.words(1), (0xfb78_15c6_d6df_3fef, 0x803b_d33d_bd35_cff5));
+    }
+
+    #[test]
+    fn chacha_noise_is_pinned_to_exact_bits_on_every_platform() {
+        let n = NoiseConfig {
+            angle_sigma: 0.05,
+            speed_sigma: 0.1,
+        };
+        let key = NoiseKey::ChaCha20(NoiseSecret::from_bytes([7; 32]));
+        let v = perturb(&n, &key, 12, DVec2::new(0.3, -1.1), 2.0);
+        // The same bits natively and in wasm32 (tests/: the JS package).
+        assert_eq!(v.x.to_bits(), 0x3fd3_a752_a502_f25e);
+        assert_eq!(v.y.to_bits(), 0xbff2_1cdd_b381_1a42);
+    }
+
+    #[test]
+    fn chacha_draws_are_standard_normal_and_uncorrelated_between_shots() {
+        let key = NoiseKey::from(3);
+        let n = 50_000u32;
+        let (mut sum, mut sq, mut cross) = (0.0, 0.0, 0.0);
+        let mut prev = key.draw(0);
+        for shot in 1..=n {
+            let d = key.draw(shot);
+            sum += d.angle + d.speed;
+            sq += d.angle * d.angle + d.speed * d.speed;
+            cross += d.angle * prev.angle;
+            prev = d;
+        }
+        let count = 2.0 * n as f64;
+        assert!((sum / count).abs() < 0.015, "mean {}", sum / count);
+        assert!((sq / count - 1.0).abs() < 0.02, "variance {}", sq / count);
+        assert!((cross / n as f64).abs() < 0.02, "lag-1 correlation");
     }
 
     #[test]
@@ -265,7 +418,7 @@ mod tests {
             speed_sigma: 0.0,
         };
         let v = DVec2::new(-0.3, 1.25);
-        assert_eq!(perturb(&n, 9, 0, v, 2.0), v);
+        assert_eq!(perturb(&n, &NoiseKey::from(9), 0, v, 2.0), v);
     }
 
     #[test]
@@ -275,7 +428,7 @@ mod tests {
             speed_sigma: 0.5,
         };
         for shot in 0..1000 {
-            let v = perturb(&n, 5, shot, DVec2::new(0.0, 2.0), 2.0);
+            let v = perturb(&n, &NoiseKey::from(5), shot, DVec2::new(0.0, 2.0), 2.0);
             assert!(v.length() <= 2.0 * (1.0 + 1e-15));
         }
         let r = rotate(DVec2::new(3.0, 4.0), 1.0);

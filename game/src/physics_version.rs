@@ -21,7 +21,7 @@
 
 use crate::board::Board;
 use crate::config::Config;
-use crate::noise;
+use crate::noise::{self, NoiseKey};
 use crate::physics::{self, Resolution};
 use crate::piece::PieceId;
 use engine::Revision;
@@ -134,9 +134,11 @@ impl PhysicsVersion {
     }
 
     /// The velocity actually played when `aimed` is shot as shot number
-    /// `shot` of a match of `config` with seed `seed`: with the match's
-    /// execution noise, if it has any.
-    pub fn played(self, config: &Config, seed: u64, shot: u32, aimed: DVec2) -> DVec2 {
+    /// `shot` of a match of `config` whose noise is keyed by `key`: with
+    /// the match's execution noise, if it has any. (The key's scheme is the
+    /// record format's business, not the physics version's: every version
+    /// draws with whichever key the match has.)
+    pub fn played(self, config: &Config, key: &NoiseKey, shot: u32, aimed: DVec2) -> DVec2 {
         match self {
             PhysicsVersion::V1
             | PhysicsVersion::V2
@@ -144,7 +146,7 @@ impl PhysicsVersion {
             | PhysicsVersion::V4
             | PhysicsVersion::V5
             | PhysicsVersion::V6 => match &config.variants.noise {
-                Some(n) => noise::perturb(n, seed, shot, aimed, config.max_speed),
+                Some(n) => noise::perturb(n, key, shot, aimed, config.max_speed),
                 None => aimed,
             },
         }

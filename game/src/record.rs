@@ -1,21 +1,33 @@
-//! The match record: the configuration, the seed, the physics version, and
-//! every move in order with what it did — enough to replay the match bit
-//! for bit. It is JSON with a `version` field (the record's format); a
-//! record of an unknown format is refused with a clear error rather than
-//! misread. A record of a physics version this build cannot play is still
-//! read (it is data), but [`crate::Replay`] refuses to replay it.
+//! The match record: the configuration, the noise's key, the physics
+//! version, and every move in order with what it did — enough to replay
+//! the match bit for bit. It is JSON with a `version` field (the record's
+//! format); a record of an unknown format is refused with a clear error
+//! rather than misread. A record of a physics version this build cannot
+//! play is still read (it is data), but [`crate::Replay`] refuses to replay
+//! it.
+//!
+//! From format 4 on the noise is sealed ([`SealedNoise`]): the record names
+//! the scheme and the commitment to the match's secret, and reveals the
+//! secret itself once the match is over. Formats 1–3 carried a plain
+//! 64-bit `seed` instead (the `splitmix64` scheme), and still replay.
 
 use crate::config::Config;
+use crate::noise::{NoiseKey, NoiseScheme};
 use crate::outcome::{ForfeitReason, ShotOutcome};
 use crate::physics_version::PhysicsVersion;
+use crate::secret::{NoiseCommitment, NoiseSecret};
 use crate::side::Side;
 use serde::{Deserialize, Serialize};
 
-/// The record format this crate writes. Version 3 added the `physics`
-/// field; versions 1 (without passes and forfeits) and 2 are still read,
-/// as records of physics version 1 (the only physics they were played
-/// under).
-pub const RECORD_VERSION: u32 = 3;
+/// The record format this crate writes. Version 4 sealed the noise (a
+/// committed ChaCha20 secret instead of a seed); version 3 added the
+/// `physics` field; versions 1 (without passes and forfeits) and 2 are
+/// still read, as records of physics version 1 (the only physics they were
+/// played under).
+pub const RECORD_VERSION: u32 = 4;
+
+/// The last record format that keys its noise with a plain `seed`.
+const LAST_VERSION_WITH_SEED: u64 = 3;
 
 /// The first record format that carries the `physics` field.
 const FIRST_VERSION_WITH_PHYSICS: u64 = 3;
@@ -45,6 +57,19 @@ pub enum RecordedMove {
     Forfeit { side: Side, reason: ForfeitReason },
 }
 
+/// A match's noise as a record of format 4 or later keeps it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SealedNoise {
+    /// How the secret becomes draws (`chacha20`).
+    pub scheme: NoiseScheme,
+    /// The SHA-256 of the secret, published before the first shot.
+    pub commitment: NoiseCommitment,
+    /// The secret, revealed once the match is over (absent before).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub secret: Option<NoiseSecret>,
+}
+
 /// A whole match.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct MatchRecord {
@@ -57,8 +82,13 @@ pub struct MatchRecord {
     #[serde(default = "physics_of_old_records")]
     pub physics: u32,
     pub config: Config,
-    /// The seed of the execution noise.
-    pub seed: u64,
+    /// Formats 1–3: the seed of the `splitmix64` noise (absent from format
+    /// 4 on).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seed: Option<u64>,
+    /// Format 4 on: the sealed noise.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub noise: Option<SealedNoise>,
     pub moves: Vec<RecordedMove>,
 }
 
@@ -77,17 +107,85 @@ pub enum RecordError {
     },
     #[error("a version {version} record must say its \"physics\" version")]
     MissingPhysics { version: u64 },
+    #[error("a version {version} record must carry its noise {field:?}")]
+    MissingNoise { version: u64, field: &'static str },
+    #[error("a version {version} record keys its noise with {found:?}, not {expected:?}")]
+    WrongNoiseScheme {
+        version: u64,
+        found: NoiseScheme,
+        expected: NoiseScheme,
+    },
+    #[error("the record does not reveal its noise secret (the match is not over)")]
+    SecretNotRevealed,
+    #[error("the revealed noise secret does not hash to the commitment {commitment}")]
+    CommitmentMismatch { commitment: NoiseCommitment },
 }
 
 impl MatchRecord {
-    /// An empty record of a match about to start under `physics`.
-    pub fn new(config: Config, seed: u64, physics: PhysicsVersion) -> Self {
+    /// An empty record of a match about to start under `physics` with its
+    /// noise keyed by `key`: of format 4 with the secret sealed (committed
+    /// to, not revealed), or of format 3 with a plain seed for a
+    /// `splitmix64` key (a match of an old record played again).
+    pub fn new(config: Config, key: &NoiseKey, physics: PhysicsVersion) -> Self {
+        let (version, seed, noise) = match key {
+            NoiseKey::SplitMix64(seed) => (LAST_VERSION_WITH_SEED as u32, Some(*seed), None),
+            NoiseKey::ChaCha20(secret) => (
+                RECORD_VERSION,
+                None,
+                Some(SealedNoise {
+                    scheme: NoiseScheme::Chacha20,
+                    commitment: secret.commitment(),
+                    secret: None,
+                }),
+            ),
+        };
         MatchRecord {
-            version: RECORD_VERSION,
+            version,
             physics: physics.number(),
             config,
             seed,
+            noise,
             moves: Vec::new(),
+        }
+    }
+
+    /// The commitment to the noise secret (records of format 4 on).
+    pub fn commitment(&self) -> Option<NoiseCommitment> {
+        self.noise.as_ref().map(|n| n.commitment)
+    }
+
+    /// The key the match's noise was drawn with: the seed of a record of
+    /// format 1–3, or the revealed secret of a later one — which must hash
+    /// to the record's commitment.
+    pub fn key(&self) -> Result<NoiseKey, RecordError> {
+        match (&self.noise, self.seed) {
+            (Some(sealed), _) => {
+                let secret = sealed.secret.ok_or(RecordError::SecretNotRevealed)?;
+                if !sealed.commitment.opens_to(&secret) {
+                    return Err(RecordError::CommitmentMismatch {
+                        commitment: sealed.commitment,
+                    });
+                }
+                Ok(NoiseKey::ChaCha20(secret))
+            }
+            (None, Some(seed)) => Ok(NoiseKey::SplitMix64(seed)),
+            (None, None) => Err(RecordError::MissingNoise {
+                version: self.version.into(),
+                field: if u64::from(self.version) <= LAST_VERSION_WITH_SEED {
+                    "seed"
+                } else {
+                    "noise"
+                },
+            }),
+        }
+    }
+
+    /// Reveals `key`'s secret in the record (a game does it once the match
+    /// is over; a server's store, to resume a match it keeps privately).
+    /// Nothing changes for a `splitmix64` key, whose seed is always there.
+    pub fn reveal(&mut self, key: &NoiseKey) {
+        if let (Some(sealed), NoiseKey::ChaCha20(secret)) = (&mut self.noise, key) {
+            sealed.secret = Some(*secret);
         }
     }
 
@@ -122,7 +220,34 @@ impl MatchRecord {
             return Err(RecordError::MissingPhysics { version });
         }
         // Parse from the text, not the `Value`, so numbers keep their exact bits.
-        serde_json::from_str(text).map_err(|e| RecordError::Json(e.to_string()))
+        let record: MatchRecord =
+            serde_json::from_str(text).map_err(|e| RecordError::Json(e.to_string()))?;
+        let missing = |field| RecordError::MissingNoise { version, field };
+        if version <= LAST_VERSION_WITH_SEED {
+            if record.seed.is_none() {
+                return Err(missing("seed"));
+            }
+            if record.noise.is_some() {
+                return Err(RecordError::Json(format!(
+                    "a version {version} record keys its noise with \"seed\", not \"noise\""
+                )));
+            }
+        } else {
+            let sealed = record.noise.as_ref().ok_or(missing("noise"))?;
+            if sealed.scheme != NoiseScheme::Chacha20 {
+                return Err(RecordError::WrongNoiseScheme {
+                    version,
+                    found: sealed.scheme,
+                    expected: NoiseScheme::Chacha20,
+                });
+            }
+            if record.seed.is_some() {
+                return Err(RecordError::Json(format!(
+                    "a version {version} record keys its noise with \"noise\", not \"seed\""
+                )));
+            }
+        }
+        Ok(record)
     }
 }
 
@@ -132,7 +257,8 @@ mod tests {
 
     #[test]
     fn a_record_round_trips_through_json() {
-        let mut r = MatchRecord::new(Config::default(), u64::MAX - 3, PhysicsVersion::CURRENT);
+        let key = NoiseKey::from(u64::MAX - 3);
+        let mut r = MatchRecord::new(Config::default(), &key, PhysicsVersion::CURRENT);
         r.moves.push(RecordedMove::Pie { swap: true });
         r.moves.push(RecordedMove::Pass { side: Side::White });
         r.moves.push(RecordedMove::Forfeit {
@@ -140,29 +266,96 @@ mod tests {
             reason: ForfeitReason::Abandoned,
         });
         let json = r.to_json();
-        assert!(json.contains(r#""version":3,"physics":6,"#), "{json}");
+        assert!(json.contains(r#""version":4,"physics":6,"#), "{json}");
         assert!(json.contains(r#"{"move":"pass","side":"white"}"#), "{json}");
         assert!(json.contains(r#""move":"pie""#), "{json}");
+        assert!(!json.contains("seed"), "{json}");
         assert_eq!(MatchRecord::from_json(&json).unwrap(), r);
+        r.reveal(&key);
+        assert_eq!(MatchRecord::from_json(&r.to_json()).unwrap(), r);
+    }
+
+    #[test]
+    fn a_sealed_record_commits_before_it_reveals_and_the_key_must_open_the_commitment() {
+        let key = NoiseKey::from(9);
+        let NoiseKey::ChaCha20(secret) = key else {
+            unreachable!("a number keys ChaCha20")
+        };
+        let mut r = MatchRecord::new(Config::default(), &key, PhysicsVersion::CURRENT);
+        let json = r.to_json();
+        let commitment = secret.commitment().to_hex();
+        assert!(
+            json.contains(&format!(
+                r#""noise":{{"scheme":"chacha20","commitment":"{commitment}"}}"#
+            )),
+            "{json}"
+        );
+        assert!(!json.contains(&secret.to_hex()));
+        assert_eq!(r.key(), Err(RecordError::SecretNotRevealed));
+        r.reveal(&key);
+        assert!(r
+            .to_json()
+            .contains(&format!(r#""secret":"{}""#, secret.to_hex())));
+        assert_eq!(r.key(), Ok(key));
+        // Another secret in place of the revealed one does not open it.
+        r.noise.as_mut().unwrap().secret = Some(NoiseSecret::from_seed(10));
+        let err = r.key().unwrap_err();
+        assert!(matches!(err, RecordError::CommitmentMismatch { .. }));
+        assert!(err.to_string().contains(&commitment), "{err}");
+    }
+
+    #[test]
+    fn a_version_4_record_must_seal_its_noise_with_chacha20_and_not_carry_a_seed() {
+        let json = r#"{"version":4,"physics":6,"config":{},"seed":5,"moves":[]}"#;
+        assert_eq!(
+            MatchRecord::from_json(json),
+            Err(RecordError::MissingNoise {
+                version: 4,
+                field: "noise"
+            })
+        );
+        let c = NoiseSecret::from_seed(1).commitment().to_hex();
+        let json = format!(
+            r#"{{"version":4,"physics":6,"config":{{}},"noise":{{"scheme":"splitmix64","commitment":"{c}"}},"moves":[]}}"#
+        );
+        assert!(matches!(
+            MatchRecord::from_json(&json),
+            Err(RecordError::WrongNoiseScheme { .. })
+        ));
+        let json = format!(
+            r#"{{"version":4,"physics":6,"config":{{}},"seed":1,"noise":{{"scheme":"chacha20","commitment":"{c}"}},"moves":[]}}"#
+        );
+        assert!(matches!(
+            MatchRecord::from_json(&json),
+            Err(RecordError::Json(_))
+        ));
+        let json = r#"{"version":3,"physics":6,"config":{},"moves":[]}"#;
+        assert_eq!(
+            MatchRecord::from_json(json),
+            Err(RecordError::MissingNoise {
+                version: 3,
+                field: "seed"
+            })
+        );
     }
 
     #[test]
     fn an_unknown_version_is_refused_with_a_clear_error() {
         let mut v: serde_json::Value = serde_json::from_str(
-            &MatchRecord::new(Config::default(), 1, PhysicsVersion::CURRENT).to_json(),
+            &MatchRecord::new(Config::default(), &1.into(), PhysicsVersion::CURRENT).to_json(),
         )
         .unwrap();
-        v["version"] = serde_json::json!(4);
+        v["version"] = serde_json::json!(5);
         let err = MatchRecord::from_json(&v.to_string()).unwrap_err();
         assert_eq!(
             err,
             RecordError::UnsupportedVersion {
-                found: "4".into(),
+                found: "5".into(),
                 oldest: 1,
-                supported: 3
+                supported: 4
             }
         );
-        assert!(err.to_string().contains("version 4 is not supported"));
+        assert!(err.to_string().contains("version 5 is not supported"));
         v["version"] = serde_json::json!("one");
         assert!(matches!(
             MatchRecord::from_json(&v.to_string()),
@@ -173,7 +366,12 @@ mod tests {
     #[test]
     fn a_version_1_record_is_still_read_as_physics_1() {
         let mut v: serde_json::Value = serde_json::from_str(
-            &MatchRecord::new(Config::default(), 1, PhysicsVersion::CURRENT).to_json(),
+            &MatchRecord::new(
+                Config::default(),
+                &NoiseKey::SplitMix64(1),
+                PhysicsVersion::CURRENT,
+            )
+            .to_json(),
         )
         .unwrap();
         v["version"] = serde_json::json!(1);
@@ -189,7 +387,8 @@ mod tests {
     fn a_version_2_record_without_physics_reads_as_physics_1() {
         let json = r#"{"version":2,"config":{},"seed":5,"moves":[{"move":"pass","side":"white"}]}"#;
         let r = MatchRecord::from_json(json).unwrap();
-        assert_eq!((r.version, r.physics, r.seed), (2, 1, 5));
+        assert_eq!((r.version, r.physics, r.seed), (2, 1, Some(5)));
+        assert_eq!(r.key(), Ok(NoiseKey::SplitMix64(5)));
         assert_eq!(r.moves, vec![RecordedMove::Pass { side: Side::White }]);
     }
 

@@ -277,7 +277,7 @@ mod tests {
         let mut config = Config::standard();
         config.variants.pie_rule = false;
         let mut game = Game::new(config.clone(), 3).unwrap();
-        let draw = NoiseDraw::for_shot(game.seed(), 0);
+        let draw = game.noise_key().draw(0);
         let req = SimulateRequest {
             config,
             board: game.board().pieces().to_vec(),

@@ -114,7 +114,7 @@ fn measure(backend: &Backend, moves: &[RecordedMove], group: usize) -> [f64; ROU
                     id: id.clone(),
                     created_at: 0,
                     config: Config::default(),
-                    seed: 7,
+                    noise: game::NoiseKey::from(7),
                     physics: 1,
                     status: Status::Live,
                     bot: None,

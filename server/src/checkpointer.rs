@@ -175,7 +175,7 @@ mod tests {
                 id: "m".into(),
                 created_at: 0,
                 config: Config::default(),
-                seed: 1,
+                noise: game::NoiseKey::from(1),
                 physics: game::PHYSICS_VERSION,
                 status: Status::Live,
                 bot: None,

@@ -23,7 +23,7 @@ use crate::token::{self, SeatToken, TokenHash};
 use bots::Level;
 use game::protocol::ErrorCode;
 use game::session::SeatSpec;
-use game::{Config, Game, Replay, ReplayError, Seat};
+use game::{Config, Game, NoiseKey, Replay, ReplayError, Seat};
 use std::collections::HashMap;
 use std::future::Future;
 use std::net::IpAddr;
@@ -519,8 +519,8 @@ impl Hub {
         seats: [NewSeat; 2],
         rated: bool,
     ) -> Result<String, Refusal> {
-        let seed = random(token::seed())?;
-        let game = Game::new(config.clone(), seed)
+        let noise = NoiseKey::ChaCha20(random(token::noise_secret())?);
+        let game = Game::new(config.clone(), noise)
             .map_err(|e| Refusal::new(ErrorCode::BadConfig, e.to_string()))?;
         let id = random(token::match_id())?;
         let bot = StoredMatch::bots_column([seats[0].bot, seats[1].bot]);
@@ -529,7 +529,7 @@ impl Hub {
             id: id.clone(),
             created_at: 0,
             config,
-            seed,
+            noise,
             physics: game.physics().number(),
             status: if both { Status::Live } else { Status::Open },
             bot,

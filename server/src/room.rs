@@ -836,7 +836,7 @@ mod tests {
             id: "m1".into(),
             created_at: 0,
             config: Config::default(),
-            seed: 7,
+            noise: game::NoiseKey::from(7),
             physics: game::PHYSICS_VERSION,
             status: Status::Live,
             bot: None,
@@ -846,7 +846,7 @@ mod tests {
             rated: false,
         };
         host.store.create(&stored).unwrap();
-        let game = Game::new(stored.config.clone(), stored.seed).unwrap();
+        let game = Game::new(stored.config.clone(), stored.noise).unwrap();
         let (tx, rx) = mpsc::channel(16);
         tokio::spawn(Room::new(&stored, game, host.clone(), 1).run(rx));
         let white = connect(&tx, Some("tok-a")).await;

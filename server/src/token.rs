@@ -1,6 +1,7 @@
 //! Secrets and identifiers from the operating system's random source: seat
 //! tokens (128 bits, hex; the server keeps only their hashes, see
-//! [`game::token`]), match ids (64 bits, hex) and match seeds.
+//! [`game::token`]), match ids (64 bits, hex) and the noise secrets of
+//! matches (256 bits, see [`game::secret`]).
 
 /// The OS random source failed.
 #[derive(Debug, thiserror::Error)]
@@ -27,12 +28,20 @@ pub fn match_id() -> Result<String, RandomError> {
     Ok(hex(&random_bytes::<8>()?))
 }
 
-/// A match seed for the execution noise.
+/// A match's noise secret: 256 random bits, committed to before the first
+/// shot and revealed when the match is over.
+pub fn noise_secret() -> Result<NoiseSecret, RandomError> {
+    Ok(NoiseSecret::from_bytes(random_bytes::<32>()?))
+}
+
+/// 64 random bits, to seed a generator of the server's own (a computer
+/// level's hand, the lobby's colour draws): never the match's noise.
 pub fn seed() -> Result<u64, RandomError> {
     Ok(u64::from_le_bytes(random_bytes::<8>()?))
 }
 
 pub use game::token::{SeatToken, TokenHash};
+use game::NoiseSecret;
 
 /// Whether `s` looks like a match id (so junk never reaches the store).
 pub fn is_match_id(s: &str) -> bool {

@@ -590,6 +590,35 @@ impl FilmPlayer {
     }
 }
 
+/// Checks a finished match's record (its JSON text, as
+/// `GET /api/matches/ID/record` serves it, or that text parsed): the
+/// revealed noise secret opens the commitment published before the first
+/// shot, every shot's `played` velocity is its `aimed` one under the draw
+/// the secret gives it, and the match replays to every recorded outcome.
+/// Returns `{scheme, commitment, shots, draws}`; throws an `Error` whose
+/// `code` says what failed (`commitment-mismatch`, `noise-mismatch`,
+/// `replay-diverged`, `secret-not-revealed`, `uncommitted`, `bad-record`,
+/// `unsupported-physics`).
+#[wasm_bindgen]
+pub fn verify(record: JsValue) -> Result<JsValue, JsValue> {
+    let checked = match record.as_string() {
+        Some(text) => game::verify_json(&text),
+        None => game::verify(&from_js::<game::MatchRecord>(record, "record")?),
+    };
+    match checked {
+        Ok(v) => to_js(&v),
+        Err(e) => {
+            let err = js_sys::Error::new(&e.to_string());
+            let _ = js_sys::Reflect::set(
+                &err,
+                &JsValue::from_str("code"),
+                &JsValue::from_str(e.code()),
+            );
+            Err(err.into())
+        }
+    }
+}
+
 /// SplitMix64, the generator of the game's noise: draws bit for bit as
 /// the Rust `NoiseDraw::sample`.
 #[wasm_bindgen]

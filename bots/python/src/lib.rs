@@ -516,6 +516,30 @@ fn random_requests(py: Python<'_>, seed: u64, n: usize) -> PyResult<Vec<Bound<'_
         .collect()
 }
 
+/// Checks a finished match's record (its JSON text, as
+/// `GET /api/matches/ID/record` serves it, or that text parsed into a
+/// dict): the revealed noise secret opens the commitment published before
+/// the first shot, every shot's `played` velocity is its `aimed` one under
+/// the draw the secret gives it, and the match replays to every recorded
+/// outcome. Returns `{scheme, commitment, shots, draws}`; raises
+/// `SimulateError` whose `code` says what failed (`commitment-mismatch`,
+/// `noise-mismatch`, `replay-diverged`, `secret-not-revealed`,
+/// `uncommitted`, `bad-record`, `unsupported-physics`).
+#[pyfunction]
+fn verify<'py>(py: Python<'py>, record: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+    let checked = match record.extract::<String>() {
+        Ok(text) => py.detach(|| game::verify_json(&text)),
+        Err(_) => {
+            let record: game::MatchRecord = from_py(record, "record")?;
+            py.detach(|| game::verify(&record))
+        }
+    };
+    match checked {
+        Ok(v) => to_py(py, &v),
+        Err(e) => Err(refusal(py, e.code(), e.to_string())),
+    }
+}
+
 #[pymodule]
 fn chapaev(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SimulateError", m.py().get_type::<SimulateError>())?;
@@ -533,5 +557,6 @@ fn chapaev(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene_at, m)?)?;
     m.add_function(wrap_pyfunction!(apply_noise, m)?)?;
     m.add_function(wrap_pyfunction!(random_requests, m)?)?;
+    m.add_function(wrap_pyfunction!(verify, m)?)?;
     Ok(())
 }

@@ -27,7 +27,7 @@ use crate::config::Config as ServerConfig;
 use crate::ratings::RatingPoint;
 use game::rating::Rating;
 use game::token::TokenHash;
-use game::{Config, MatchRecord, MatchResult, RecordedMove, RECORD_VERSION};
+use game::{Config, MatchRecord, MatchResult, NoiseKey, NoiseSecret, PhysicsVersion, RecordedMove};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use std::time::{SystemTime, UNIX_EPOCH};
@@ -87,7 +87,10 @@ pub struct StoredMatch {
     pub id: String,
     pub created_at: u64,
     pub config: Config,
-    pub seed: u64,
+    /// What the match's noise is drawn from: its secret (kept here, and
+    /// revealed to players only in the record of the finished match), or
+    /// the plain seed of a match begun before secrets.
+    pub noise: NoiseKey,
     /// The physics version the match is played under (see
     /// [`game::physics_version`]).
     pub physics: u32,
@@ -153,6 +156,11 @@ pub struct Summary {
     pub first_rating: Option<SeatRating>,
     /// The same for the second seat.
     pub second_rating: Option<SeatRating>,
+    /// The SHA-256 of the match's noise secret (lowercase hex), published
+    /// from its creation; the record reveals the secret once it is over.
+    /// Absent for a match begun before secrets (keyed by a plain seed).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub noise_commitment: Option<game::NoiseCommitment>,
 }
 
 /// An account's rating as a listing shows it next to a seat.
@@ -187,6 +195,41 @@ pub struct AfterMove<'a> {
 pub(crate) fn physics_of(id: &str, stored: i64) -> Result<u32, StoreError> {
     u32::try_from(stored)
         .map_err(|_| StoreError::Corrupt(format!("match {id}: physics version {stored}")))
+}
+
+/// The `seed` and `noise_secret` columns of a match's noise key: a secret
+/// as 64 hex digits (the seed column then 0), or a seed of a match begun
+/// before secrets (stored as the i64 with the same bits; no secret).
+pub(crate) fn noise_columns(key: &NoiseKey) -> (i64, Option<String>) {
+    match key {
+        NoiseKey::SplitMix64(seed) => (*seed as i64, None),
+        NoiseKey::ChaCha20(secret) => (0, Some(secret.to_hex())),
+    }
+}
+
+/// A match's noise key from its `seed` and `noise_secret` columns.
+pub(crate) fn noise_of(
+    id: &str,
+    seed: i64,
+    secret: Option<String>,
+) -> Result<NoiseKey, StoreError> {
+    match secret {
+        None => Ok(NoiseKey::SplitMix64(seed as u64)),
+        Some(hex) => NoiseSecret::from_hex(&hex)
+            .map(NoiseKey::ChaCha20)
+            .map_err(|e| StoreError::Corrupt(format!("match {id}: noise secret: {e}"))),
+    }
+}
+
+/// The public commitment of a match with this `noise_secret` column.
+pub(crate) fn commitment_of(
+    id: &str,
+    secret: Option<String>,
+) -> Result<Option<game::NoiseCommitment>, StoreError> {
+    Ok(match noise_of(id, 0, secret)? {
+        NoiseKey::ChaCha20(secret) => Some(secret.commitment()),
+        NoiseKey::SplitMix64(_) => None,
+    })
 }
 
 /// A stored status, checked to be one.
@@ -361,20 +404,17 @@ pub trait Store: Send + Sync {
         self.submit_move(id, index, m, after)?.wait()
     }
 
-    /// A match row and its record (config, seed, physics version, every
-    /// move).
+    /// A match row and its record (config, noise, physics version, every
+    /// move), with the noise's secret revealed: what resumes the match, or,
+    /// once it is over, what its players may see.
     fn load(&self, id: &str) -> Result<Option<(StoredMatch, MatchRecord)>, StoreError> {
         let Some(m) = self.get(id)? else {
             return Ok(None);
         };
-        let moves = self.moves(id)?;
-        let record = MatchRecord {
-            version: RECORD_VERSION,
-            physics: m.physics,
-            config: m.config.clone(),
-            seed: m.seed,
-            moves,
-        };
+        let mut record = MatchRecord::new(m.config.clone(), &m.noise, PhysicsVersion::CURRENT);
+        record.physics = m.physics;
+        record.reveal(&m.noise);
+        record.moves = self.moves(id)?;
         Ok(Some((m, record)))
     }
 }

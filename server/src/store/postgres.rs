@@ -118,6 +118,8 @@ CREATE TABLE cluster_nodes (
     seen_at TIMESTAMPTZ NOT NULL
 );
 ",
+    // A match's noise secret (NULL: a match keyed by its seed, from before).
+    "ALTER TABLE matches ADD COLUMN noise_secret TEXT;",
 ];
 
 type Pool = r2d2::Pool<PostgresConnectionManager<NoTls>>;
@@ -158,8 +160,7 @@ fn stored_match(r: &Row) -> Result<StoredMatch, StoreError> {
     Ok(StoredMatch {
         created_at: r.get::<_, i64>(1) as u64,
         config: serde_json::from_str(&config)?,
-        // Stored as the i64 with the same bits.
-        seed: r.get::<_, i64>(3) as u64,
+        noise: super::noise_of(&id, r.get(3), r.get(16))?,
         status: status_of(&id, r.get(4))?,
         bot: r.get(5),
         turn_seconds: r.get::<_, i64>(6) as u64,
@@ -187,6 +188,7 @@ fn summary(r: &Row) -> Result<Summary, StoreError> {
     let physics = physics_of(&id, r.get(10))?;
     let result: Option<String> = r.get(9);
     Ok(Summary {
+        noise_commitment: super::commitment_of(&id, r.get(16))?,
         physics,
         playable: game::PhysicsVersion::from_number(physics).is_ok(),
         status: status_of(&id, r.get(1))?,
@@ -315,17 +317,18 @@ impl Store for PostgresStore {
     }
 
     fn create(&self, m: &StoredMatch) -> Result<(), StoreError> {
+        let (seed, secret) = super::noise_columns(&m.noise);
         let t = now() as i64;
         self.conn()?.execute(
             "INSERT INTO matches (id, created_at, updated_at, config, seed, status, bot, turn_seconds,
                                   first_name, first_token_hash, second_name, second_token_hash, rematch_of,
-                                  physics, first_account, second_account, rated)
-             VALUES ($1, $2, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14, $15, $16)",
+                                  physics, first_account, second_account, rated, noise_secret)
+             VALUES ($1, $2, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14, $15, $16, $17)",
             &[
                 &m.id,
                 &t,
                 &serde_json::to_string(&m.config)?,
-                &(m.seed as i64),
+                &seed,
                 &m.status.as_str(),
                 &m.bot,
                 &(m.turn_seconds as i64),
@@ -338,6 +341,7 @@ impl Store for PostgresStore {
                 &m.seats[0].account,
                 &m.seats[1].account,
                 &m.rated,
+                &secret,
             ],
         )?;
         Ok(())

@@ -178,7 +178,9 @@ fn add_physics_column(conn: &Connection) -> Result<(), StoreError> {
 fn add_account_columns(conn: &Connection) -> Result<(), StoreError> {
     add_column(conn, "first_account", "TEXT")?;
     add_column(conn, "second_account", "TEXT")?;
-    add_column(conn, "rated", "INTEGER NOT NULL DEFAULT 0")
+    add_column(conn, "rated", "INTEGER NOT NULL DEFAULT 0")?;
+    // A match's noise secret (NULL: a match keyed by its seed, from before).
+    add_column(conn, "noise_secret", "TEXT")
 }
 
 /// Adds `column` to the `matches` table unless it has it.
@@ -319,6 +321,7 @@ impl SqliteStore {
                 id: row.get(0)?,
                 created_at: row.get::<_, i64>(1)?,
                 seed: row.get::<_, i64>(3)?,
+                noise_secret: row.get(16)?,
                 status: row.get(4)?,
                 bot: row.get(5)?,
                 turn_seconds: row.get::<_, i64>(6)?,
@@ -359,13 +362,13 @@ impl SqliteStore {
 /// reads them.
 pub(crate) const MATCH_COLUMNS: &str = "id, created_at, config, seed, status, bot, turn_seconds,
     first_name, first_token_hash, second_name, second_token_hash, rematch_of, physics,
-    first_account, second_account, rated";
+    first_account, second_account, rated, noise_secret";
 
 /// A summary's columns, read from `matches` joined to the seats' accounts
 /// (`a` and `b`).
 pub(crate) const SUMMARY_COLUMNS: &str = "m.id, m.status, m.created_at, m.updated_at, m.first_name,
     m.second_name, m.bot, m.shots, m.turn_seconds, m.result, m.physics, m.rated,
-    a.rating, a.deviation, b.rating, b.deviation";
+    a.rating, a.deviation, b.rating, b.deviation, m.noise_secret";
 
 /// The tables a summary reads.
 const SUMMARY_FROM: &str = "matches m
@@ -392,18 +395,19 @@ impl Store for SqliteStore {
     }
 
     fn create(&self, m: &StoredMatch) -> Result<(), StoreError> {
+        let (seed, secret) = super::noise_columns(&m.noise);
         let conn = self.lock()?;
         let t = now();
         conn.execute(
             "INSERT INTO matches (id, created_at, updated_at, config, seed, status, bot, turn_seconds,
                                   first_name, first_token_hash, second_name, second_token_hash, rematch_of,
-                                  physics, first_account, second_account, rated)
-             VALUES (?1, ?2, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16)",
+                                  physics, first_account, second_account, rated, noise_secret)
+             VALUES (?1, ?2, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17)",
             params![
                 m.id,
                 t as i64,
                 serde_json::to_string(&m.config)?,
-                m.seed as i64,
+                seed,
                 m.status.as_str(),
                 m.bot,
                 m.turn_seconds as i64,
@@ -416,6 +420,7 @@ impl Store for SqliteStore {
                 m.seats[0].account,
                 m.seats[1].account,
                 m.rated,
+                secret,
             ],
         )?;
         self.log_grew();
@@ -710,6 +715,7 @@ struct SummaryRaw {
     rated: bool,
     /// Each seat's account's rating and deviation.
     ratings: [(Option<f64>, Option<f64>); 2],
+    noise_secret: Option<String>,
 }
 
 impl SummaryRaw {
@@ -728,12 +734,15 @@ impl SummaryRaw {
             physics: r.get(10)?,
             rated: r.get(11)?,
             ratings: [(r.get(12)?, r.get(13)?), (r.get(14)?, r.get(15)?)],
+            noise_secret: r.get(16)?,
         })
     }
 
     fn finish(self) -> Result<Summary, StoreError> {
         let physics = physics_of(&self.id, self.physics)?;
+        let noise_commitment = super::commitment_of(&self.id, self.noise_secret)?;
         Ok(Summary {
+            noise_commitment,
             physics,
             playable: game::PhysicsVersion::from_number(physics).is_ok(),
             status: status_of(&self.id, &self.status)?,
@@ -757,6 +766,7 @@ struct StoredMatchRaw {
     id: String,
     created_at: i64,
     seed: i64,
+    noise_secret: Option<String>,
     status: String,
     bot: Option<String>,
     turn_seconds: i64,
@@ -781,8 +791,7 @@ impl StoredMatchRaw {
             physics: physics_of(&self.id, self.physics)?,
             config: serde_json::from_str(config)?,
             created_at: self.created_at as u64,
-            // Stored as the i64 with the same bits.
-            seed: self.seed as u64,
+            noise: super::noise_of(&self.id, self.seed, self.noise_secret)?,
             status: status_of(&self.id, &self.status)?,
             bot: self.bot,
             turn_seconds: self.turn_seconds as u64,

@@ -67,6 +67,7 @@ macro_rules! on_both_backends {
 
 on_both_backends!(
     a_match_and_its_moves_come_back_as_a_replayable_record,
+    a_match_begun_before_secrets_comes_back_keyed_by_its_seed,
     moves_written_at_once_from_many_threads_all_land_and_a_bad_one_fails_alone,
     a_move_index_is_written_once_and_a_failed_move_changes_nothing,
     the_second_seat_is_taken_once_and_listing_filters_by_status,
@@ -88,7 +89,7 @@ pub(super) fn stored(id: &str) -> StoredMatch {
         id: id.into(),
         created_at: 0,
         config: Config::default(),
-        seed: u64::MAX - 1,
+        noise: NoiseKey::from(u64::MAX - 1),
         physics: game::PHYSICS_VERSION,
         status: Status::Open,
         bot: None,
@@ -131,13 +132,28 @@ fn a_match_and_its_moves_come_back_as_a_replayable_record(b: Backend) {
         .append_move("m1", 0, &g.record().moves[0], &after)
         .unwrap();
     let (m, record) = store.load("m1").unwrap().unwrap();
-    assert_eq!(m.seed, u64::MAX - 1);
+    assert_eq!(m.noise, NoiseKey::from(u64::MAX - 1));
     assert_eq!(m.status, Status::Live);
     assert_eq!(m.seats[1].token, Some(TokenHash::of("t2")));
-    assert_eq!(&record, g.record());
+    // The store keeps the secret, to resume the match from: the record it
+    // gives back reveals it (the server publishes it only once over).
+    assert_eq!(record, g.private_record());
+    assert!(g.record().noise.as_ref().unwrap().secret.is_none());
     let replay = game::Replay::new(record).unwrap();
     assert_eq!(replay.game().view(), g.view());
     assert_eq!(store.live().unwrap(), vec!["m1".to_string()]);
+}
+
+fn a_match_begun_before_secrets_comes_back_keyed_by_its_seed(b: Backend) {
+    let store = b.store;
+    let mut old = stored("m0");
+    old.noise = NoiseKey::SplitMix64(u64::MAX - 5);
+    store.create(&old).unwrap();
+    let (m, record) = store.load("m0").unwrap().unwrap();
+    assert_eq!(m.noise, NoiseKey::SplitMix64(u64::MAX - 5));
+    assert_eq!(record.seed, Some(u64::MAX - 5));
+    assert_eq!(record.noise, None);
+    assert_eq!(record.key(), Ok(NoiseKey::SplitMix64(u64::MAX - 5)));
 }
 
 fn moves_written_at_once_from_many_threads_all_land_and_a_bad_one_fails_alone(b: Backend) {
