@@ -199,7 +199,10 @@ pub fn play_match(
     let game = session.game();
     Ok(MatchReport {
         result: game.result(),
-        record: game.record().clone(),
+        // With its noise secret even when the arena stopped the match
+        // unfinished: a local match keyed by a public seed hides nothing,
+        // and its record must replay.
+        record: game.private_record(),
         shots: game.shots(),
         swapped: game.swapped(),
         refusals: seats.refusals,

@@ -253,7 +253,7 @@ fn verify_command(args: VerifyArgs) -> Result<(), Box<dyn std::error::Error>> {
                     "code": e.code(), "error": e.to_string()})
             ),
             (Ok(v), false) => println!(
-                "{name}: verified: the secret opens commitment {}, and all {} shots were played with its {:?} draws and replay exactly",
+                "{name}: verified: the secret opens commitment {}, and all {} shots were played with its {} draws and replay exactly",
                 v.commitment,
                 v.shots,
                 v.scheme

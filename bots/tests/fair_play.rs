@@ -1,6 +1,7 @@
-//! Fair play: a bot decides from the public view alone, so the match's seed
-//! (which fixes the execution noise of every shot) can make no difference
-//! to what it chooses.
+//! Fair play: a bot decides from the public view alone, so the match's
+//! noise secret (which fixes the execution noise of every shot) can make no
+//! difference to what it chooses. The view carries only the commitment to
+//! the secret, never the secret.
 
 use bots::{by_name, Bot, Context, Decision};
 use game::{Config, Game, Phase, Side};
@@ -42,23 +43,35 @@ fn decide(name: &str, view: &game::MatchView) -> Decision {
 }
 
 #[test]
-fn a_bot_cannot_see_the_seed() {
-    // Matches that differ only in their seed (and so in the noise every
-    // shot will get) hand a bot views equal field for field: the seed is in
-    // no view. A bot that could see it would pick the shot whose noisy
-    // outcome it knew to be best, differently per seed; ours choose alike.
-    let first = Game::new(Config::standard(), 1).unwrap().view();
+fn a_bot_cannot_see_the_secret() {
+    // Matches that differ only in their secret (and so in the noise every
+    // shot will get) hand a bot views equal field for field but for the
+    // commitment: the secret is in no view. A bot that could see it would
+    // pick the shot whose noisy outcome it knew to be best, differently per
+    // secret; ours choose alike.
+    let game = Game::new(Config::standard(), 1).unwrap();
+    let first = game.view();
     let json = serde_json::to_string(&first).unwrap();
-    assert!(!json.contains("seed"), "{json}");
+    let game::NoiseKey::ChaCha20(secret) = game.noise_key() else {
+        unreachable!("a new match is keyed by a secret")
+    };
+    assert!(
+        !json.contains(&secret.to_hex()) && !json.contains("seed"),
+        "{json}"
+    );
+    assert!(json.contains(&secret.commitment().to_hex()), "{json}");
     for name in ["random", "greedy", "search", "easy", "medium", "hard"] {
         let reference = decide(name, &first);
         for seed in [2, 77, 1 << 40, u64::MAX] {
             let view = Game::new(Config::standard(), seed).unwrap().view();
-            assert_eq!(view, first);
+            assert_ne!(view.noise_commitment, first.noise_commitment);
+            let mut bare = view.clone();
+            bare.noise_commitment = first.noise_commitment;
+            assert_eq!(bare, first);
             assert_eq!(
                 decide(name, &view),
                 reference,
-                "{name} under match seed {seed}"
+                "{name} under the secret of seed {seed}"
             );
         }
     }

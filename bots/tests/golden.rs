@@ -149,6 +149,17 @@ fn scenarios() -> Vec<Scenario> {
     });
     vec![
         Scenario {
+            name: "standard-sealed-noise-greedy-vs-greedy",
+            rules: "standard (noise, pie rule), record format 4: ChaCha20 noise from a committed secret",
+            config: standard(),
+            seed: 0x5EED_0C4A,
+            players: "greedy vs greedy",
+            first: by_name("greedy", 31).unwrap(),
+            second: by_name("greedy", 32).unwrap(),
+            max_shots: 60,
+            abandon: Some(Side::Black),
+        },
+        Scenario {
             name: "standard-hard-vs-medium",
             rules: "standard (noise, pie rule)",
             config: standard(),

@@ -97,6 +97,22 @@ pub enum NoiseScheme {
     Chacha20,
 }
 
+impl NoiseScheme {
+    /// The scheme's name, as records write it.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            NoiseScheme::Splitmix64 => "splitmix64",
+            NoiseScheme::Chacha20 => "chacha20",
+        }
+    }
+}
+
+impl std::fmt::Display for NoiseScheme {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
 /// What a match's execution noise is drawn from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum NoiseKey {
