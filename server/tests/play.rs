@@ -99,9 +99,12 @@ async fn chat_resignation_and_rematch_between_two_players() {
     let mut white = server.ws(&id, Some(&a)).await;
     let mut black = server.ws(&id, Some(&b)).await;
     let mut watcher = server.ws(&id, None).await;
+    let mut commitments = Vec::new();
     for c in [&mut white, &mut black, &mut watcher] {
-        view(c.next().await);
+        commitments.push(view(c.next().await).noise_commitment);
     }
+    // Everyone is shown the same commitment before the first shot.
+    assert!(commitments[0].is_some() && commitments.iter().all(|c| *c == commitments[0]));
     black
         .send(&ClientMessage::Chat {
             text: "Vasily Ivanovich!".into(),
@@ -135,6 +138,9 @@ async fn chat_resignation_and_rematch_between_two_players() {
         }
     );
     assert_eq!(record.moves.len(), 1);
+    // The record reveals the secret of that commitment.
+    let verified = game::verify(&record).unwrap();
+    assert_eq!(Some(verified.commitment), commitments[0]);
     white.send(&shot(4, 0.0, 2.0)).await;
     assert_eq!(white.next_error().await, "match-over");
 
@@ -150,10 +156,13 @@ async fn chat_resignation_and_rematch_between_two_players() {
     assert_ne!(match_id, id);
     // Same tokens, seats exchanged: the old Black now opens as White.
     let mut new_white = server.ws(&match_id, Some(&b)).await;
-    let ServerMessage::MatchState { you, .. } = new_white.next().await else {
+    let ServerMessage::MatchState { you, view, .. } = new_white.next().await else {
         panic!()
     };
     assert_eq!(you, Some(Seat::First));
+    // A rematch draws a secret of its own.
+    assert!(view.noise_commitment.is_some());
+    assert_ne!(view.noise_commitment, commitments[0]);
     new_white.send(&shot(4, 0.0, 2.0)).await;
     new_white.next_of("shot-played").await;
 }

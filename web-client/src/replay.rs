@@ -1,7 +1,9 @@
 //! The replay viewer: a finished match's record, replayed bit for bit by
 //! the game crate, shown on one timeline that can be scrubbed, played
 //! forwards or backwards at -2x to 4x, and jumped shot by shot. Every
-//! moment is computed from the exact films, so scrubbing is instant.
+//! moment is computed from the exact films, so scrubbing is instant. The
+//! heading says whether the match's noise verifies against the commitment
+//! published before its first shot ([`game::verify`]).
 
 use crate::api::{Api, Pending};
 use crate::clip::{Clip, Frame};
@@ -21,6 +23,17 @@ struct Loaded {
     replay: GameReplay,
     clips: Vec<Clip>,
     timeline: Timeline,
+    /// What [`game::verify`] said of the record, in words.
+    fairness: String,
+}
+
+/// [`game::verify`]'s verdict on a record, in a few words for the heading.
+fn fairness(record: &game::MatchRecord) -> String {
+    match game::verify(record) {
+        Ok(v) => format!("noise verified ({} shots)", v.shots),
+        Err(game::VerifyError::Uncommitted { .. }) => "no noise commitment (an old record)".into(),
+        Err(e) => format!("noise NOT verified: {}", e.code()),
+    }
 }
 
 enum State {
@@ -63,6 +76,7 @@ impl Replay {
             .collect();
         let timeline = Timeline::new(clips.iter().map(Clip::duration));
         Ok(Loaded {
+            fairness: fairness(replay.record()),
             replay,
             clips,
             timeline,
@@ -194,7 +208,11 @@ impl Screen for Replay {
         draw_rectangle(0.0, 0.0, w, head_h, colors::BACKGROUND);
         let text_w = lobby.x - 20.0;
         ui::text(
-            &ui::fit(&format!("Replay of {}", self.match_id), 19.0, text_w),
+            &ui::fit(
+                &format!("Replay of {} · {}", self.match_id, l.fairness),
+                19.0,
+                text_w,
+            ),
             12.0,
             8.0,
             19.0,

@@ -952,7 +952,7 @@ fn rate_finished(conn: &Connection, id: &str, score: Score) -> Result<(), StoreE
 mod tests {
     use super::*;
     use crate::store::tests::{stored, LIVE};
-    use game::{Side, RECORD_VERSION};
+    use game::Side;
     use std::time::Instant;
 
     #[test]
@@ -1081,7 +1081,9 @@ mod tests {
         let store = SqliteStore::open(dir.path(), SyncMode::Full).unwrap();
         let (m, record) = store.load("old").unwrap().unwrap();
         assert_eq!((m.physics, record.physics), (1, 1));
-        assert_eq!(record.version, RECORD_VERSION);
+        // It was begun before noise secrets: it keeps its seed (format 3).
+        assert_eq!(m.noise, game::NoiseKey::SplitMix64(5));
+        assert_eq!((record.version, record.seed), (3, Some(5)));
         let summary = store.summary("old").unwrap().unwrap();
         assert_eq!((summary.physics, summary.playable), (1, true));
         store
