@@ -396,7 +396,7 @@ impl Driver {
             Err(e) => panic!("the stored moves do not replay: {e}"),
         };
         let effects = self.feed(Input::StoreFailed {
-            reloaded: reload.then_some(reloaded),
+            reloaded: reload.then(|| Box::new(reloaded)),
         });
         if !reload {
             assert!(matches!(effects[..], [Effect::Close]), "{effects:?}");

@@ -403,7 +403,8 @@ mod tests {
         };
         let key = NoiseKey::ChaCha20(NoiseSecret::from_bytes([7; 32]));
         let v = perturb(&n, &key, 12, DVec2::new(0.3, -1.1), 2.0);
-        // The same bits natively and in wasm32 (tests/: the JS package).
+        // wasm32 draws the same bits: the JS package's `verify` gives
+        // native's draws bit for bit (tests/tests/verify_everywhere.rs).
         assert_eq!(v.x.to_bits(), 0x3fd3_a752_a502_f25e);
         assert_eq!(v.y.to_bits(), 0xbff2_1cdd_b381_1a42);
     }

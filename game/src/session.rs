@@ -340,7 +340,7 @@ pub enum Input {
     /// closes).
     StoreFailed {
         /// The match as stored.
-        reloaded: Option<Game>,
+        reloaded: Option<Box<Game>>,
     },
     /// An [`Effect::StoreJoin`] failed: the second seat stays empty.
     JoinFailed,
@@ -627,7 +627,7 @@ impl Session {
             }
             Input::StoreFailed { reloaded } => match reloaded {
                 Some(game) => {
-                    self.game = game;
+                    self.game = *game;
                     self.restate(now);
                 }
                 None => {
@@ -1690,7 +1690,7 @@ mod tests {
         assert!(matches!(e[0], Effect::Store { index: 0, .. }));
         let e = s.handle(
             Input::StoreFailed {
-                reloaded: Some(before),
+                reloaded: Some(Box::new(before)),
             },
             at(150),
         );

@@ -546,7 +546,9 @@ impl<H: RoomHost> Room<H> {
                             if reloaded.is_none() {
                                 error!(match_id = %self.id, "cannot reload the match; closing it");
                             }
-                            let input = Input::StoreFailed { reloaded };
+                            let input = Input::StoreFailed {
+                                reloaded: reloaded.map(Box::new),
+                            };
                             queue = self.session.handle(input, self.now()).into();
                         }
                     }
