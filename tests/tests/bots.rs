@@ -77,11 +77,15 @@ async fn two_runners_play_each_other_to_the_end_and_agree_with_the_stored_record
     let second = b.join(&first.match_id, Some("random")).await.unwrap();
     assert_eq!(second.match_id, first.match_id);
     // Before the first shot the listing publishes the noise commitment.
-    let (status, summary) = api::get_json(&server.addr, &format!("/api/matches/{}", first.match_id))
-        .await
-        .unwrap_or_else(|e| panic!("{e}"));
+    let (status, summary) =
+        api::get_json(&server.addr, &format!("/api/matches/{}", first.match_id))
+            .await
+            .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(status, 200, "{summary}");
-    let committed = summary["noise_commitment"].as_str().unwrap_or_default().to_string();
+    let committed = summary["noise_commitment"]
+        .as_str()
+        .unwrap_or_default()
+        .to_string();
     assert_eq!(committed.len(), 64, "{summary}");
     let ((ra, _), (rb, _)) = tokio::join!(
         play(&a, &first, by_name("greedy", 1).unwrap()),
