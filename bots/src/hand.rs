@@ -349,7 +349,10 @@ mod tests {
                 softer += 1;
             }
         }
-        assert!(harder > 100 && softer > 100, "{harder} harder, {softer} softer");
+        assert!(
+            harder > 100 && softer > 100,
+            "{harder} harder, {softer} softer"
+        );
         assert!(clamped > 0, "a wild flick is clamped at the maximum");
     }
 
@@ -363,7 +366,10 @@ mod tests {
         // Many shots of one match pull the same way on average.
         let mean_turn = |hand: &mut Hand| {
             (0..300)
-                .map(|_| shot.velocity().angle_to(hand.play(&c, &b, &shot).velocity()))
+                .map(|_| {
+                    shot.velocity()
+                        .angle_to(hand.play(&c, &b, &shot).velocity())
+                })
                 .sum::<f64>()
                 / 300.0
         };

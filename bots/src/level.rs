@@ -134,7 +134,7 @@ impl Level {
             },
             Level::Adaptive => {
                 let s = AdaptiveSettings::default();
-                s.hand_at(s.start)
+                s.hand_at(s.even_with(s.prior.0))
             }
         }
     }
@@ -242,6 +242,67 @@ mod tests {
         assert!(played.speed() <= view.config.max_speed);
     }
 
+    /// Two white pieces against four black: a short shot at a piece one
+    /// square ahead, or a long cut across the board.
+    fn set_position() -> game::MatchView {
+        use game::board::{square_centre, Piece};
+        use game::{Board, PieceId};
+        let mut view = Game::new(Config::default(), 1).unwrap().view();
+        let c = view.config.clone();
+        let p = |side, k, file, rank| Piece {
+            id: PieceId::new(side, k).unwrap(),
+            pos: square_centre(&c, file, rank),
+        };
+        view.board = Board::from_pieces([
+            p(Side::White, 0, 1, 1),
+            p(Side::White, 1, 6, 0),
+            p(Side::Black, 0, 1, 2),
+            p(Side::Black, 1, 6, 4),
+            p(Side::Black, 2, 6, 7),
+            p(Side::Black, 3, 3, 6),
+        ]);
+        view
+    }
+
+    #[test]
+    fn a_shaky_hand_prefers_a_short_shot_where_a_steady_one_goes_long() {
+        let view = set_position();
+        let ctx = Context::new(&view, Side::White, Duration::from_secs(30));
+        // The same candidates for both: only the hand differs.
+        let plan = Level::Medium.plan().unwrap();
+        let chosen = |model: HandModel| {
+            let mut planner = Planner::new(model, plan.clone(), 5);
+            let (shot, _) = planner.ranked(&ctx, Side::White)[0];
+            crate::hand::Aim::of(&view.config, &view.board, &shot)
+        };
+        let steady = chosen(HandModel::PERFECT);
+        let shaky = chosen(Level::Easy.hand());
+        assert!(steady.distance > 3.0 * view.config.square, "{steady:?}");
+        assert!(shaky.distance < view.config.square, "{shaky:?}");
+    }
+
+    #[test]
+    fn the_same_seed_gives_the_same_choices_and_another_seed_another_hand() {
+        let view = Game::new(Config::default(), 3).unwrap().view();
+        let ctx = Context::new(&view, Side::White, Duration::from_secs(30));
+        for level in Level::ALL {
+            let a = level.bot(7).decide(&ctx);
+            assert_eq!(a, level.bot(7).decide(&ctx), "{level}");
+            assert_ne!(a, level.bot(8).decide(&ctx), "{level}");
+        }
+    }
+
+    #[test]
+    fn the_levels_hands_steady_from_easy_to_hard_and_each_can_overhit_full_power() {
+        let [easy, medium, hard] = [Level::Easy, Level::Medium, Level::Hard].map(Level::hand);
+        assert!(easy.angle_sigma > medium.angle_sigma && medium.angle_sigma > hard.angle_sigma);
+        assert!(easy.speed_sigma > medium.speed_sigma && medium.speed_sigma > hard.speed_sigma);
+        for h in [easy, medium, hard] {
+            // Full power is below the maximum, and a three-sigma overhit reaches it.
+            assert!(h.full_power < 1.0 && h.full_power * (1.0 + 3.0 * h.speed_sigma) > 1.0);
+        }
+    }
+
     #[test]
     fn every_named_bot_exists_and_unknown_names_do_not() {
         for name in BOT_NAMES {
@@ -249,5 +310,9 @@ mod tests {
         }
         assert!(by_name("grandmaster", 1).is_none());
         assert_eq!(Level::parse("hard"), Some(Level::Hard));
+        assert_eq!(Level::parse("adaptive"), Some(Level::Adaptive));
+        for level in Level::ALL {
+            assert_eq!(Level::parse(level.as_str()), Some(level));
+        }
     }
 }

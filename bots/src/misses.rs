@@ -182,6 +182,9 @@ pub fn collect(
     Ok(Some(throws))
 }
 
+/// One row of the summary table: a report's figure as text.
+type Cell<'a> = dyn Fn(&MissReport) -> String + 'a;
+
 /// The reports as the tables a person reads.
 pub fn table(reports: &[MissReport]) -> String {
     let mut out = String::new();
@@ -204,7 +207,11 @@ pub fn table(reports: &[MissReport]) -> String {
         };
         let _ = write!(out, "{label:<22}");
         for r in reports {
-            let _ = write!(out, " {:>8.1}%", pct(r.sideways_bins[k], r.aimed_at_a_piece));
+            let _ = write!(
+                out,
+                " {:>8.1}%",
+                pct(r.sideways_bins[k], r.aimed_at_a_piece)
+            );
         }
         out.push('\n');
         if let Some(e) = edge {
@@ -212,7 +219,7 @@ pub fn table(reports: &[MissReport]) -> String {
         }
     }
     let deg = |x: Option<f64>| x.map_or("-".to_string(), |r| format!("{:.2}°", r.to_degrees()));
-    let rows: [(&str, &dyn Fn(&MissReport) -> String); 10] = [
+    let rows: [(&str, &Cell); 10] = [
         ("throws", &|r| r.throws.to_string()),
         ("target missed", &|r| {
             format!("{:.1}%", pct(r.target_missed, r.aimed_at_a_piece))

@@ -117,7 +117,10 @@ impl Search {
             None => Vec::new(),
         };
         let hand = self.settings.hand;
-        let aims: Vec<Aim> = kept.iter().map(|&i| Aim::of(config, board, &all[i])).collect();
+        let aims: Vec<Aim> = kept
+            .iter()
+            .map(|&i| Aim::of(config, board, &all[i]))
+            .collect();
         let budget = self.settings.budget.min(ctx.time_left());
         let w = self.settings.reply_weight;
         let mut totals = vec![0.0; kept.len()];

@@ -50,7 +50,7 @@ fn a_bot_cannot_see_the_seed() {
     let first = Game::new(Config::standard(), 1).unwrap().view();
     let json = serde_json::to_string(&first).unwrap();
     assert!(!json.contains("seed"), "{json}");
-    for name in ["random", "greedy", "search", "easy", "medium", "hard"] {
+    for name in bots::BOT_NAMES {
         let reference = decide(name, &first);
         for seed in [2, 77, 1 << 40, u64::MAX] {
             let view = Game::new(Config::standard(), seed).unwrap().view();
