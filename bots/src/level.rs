@@ -1,15 +1,26 @@
-//! The computer levels people play against — `easy`, `medium`, `hard` —
-//! and the [`Imprecise`] hand they share: a bot that aims perfectly makes
-//! Chapaev a game of who shoots first, so each level misses like a person
-//! does, by turning its own chosen shot by a Gaussian angle and scaling
-//! its speed by a Gaussian factor drawn from its own generator (never from
-//! the match). Each level's imprecision is public ([`Level::hand`]), shown
-//! in the lobby, and comes on top of the match's own execution noise, if
-//! any.
+//! The computer levels people play against — `easy`, `medium`, `hard` and
+//! `adaptive` — and the older [`Imprecise`] hand. Each fixed level is a
+//! chooser that knows its own hand ([`Planner`] for easy and medium, the
+//! two-ply [`Search`] for hard, each planning under draws of its own
+//! hand's error) played through a person-like [`crate::hand::Hand`]
+//! ([`Handed`]): a pull that persists through a match, more error on long
+//! shots and thin cuts, and a full power below the maximum that can come
+//! out harder. The adaptive level ([`Adaptive`]) tunes its hand during a
+//! match to keep the person's chances even. All their randomness comes
+//! from the seed they are made with, never from the match. Each level's
+//! hand is public ([`Level::hand`]).
+//!
+//! [`Imprecise`] is the earlier model, kept as a plain stand-in for a
+//! person: the chosen shot turned and scaled by one i.i.d. Gaussian draw,
+//! with the same spread whatever the shot.
 
+use crate::adaptive::{Adaptive, AdaptiveSettings};
 use crate::bot::{Bot, Context, Decision};
 use crate::candidates::Spread;
 use crate::greedy::Greedy;
+use crate::hand::HandModel;
+use crate::handed::Handed;
+use crate::planner::{PlanSettings, Planner};
 use crate::random::RandomBot;
 use crate::search::{Search, SearchSettings};
 use game::noise::{NoiseDraw, SplitMix64};
@@ -60,17 +71,20 @@ impl<B: Bot> Bot for Imprecise<B> {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Level {
-    /// Straight shots at the enemies only, with a shaky hand.
+    /// Straight shots at the enemies only, chosen for a shaky hand.
     Easy,
-    /// Greedy over straight, cut and carom shots, with a fair hand.
+    /// Straight, cut and carom shots, chosen for a fair hand.
     Medium,
-    /// The two-ply search under noise, with a steady hand.
+    /// The two-ply search, planned for a steady hand.
     Hard,
+    /// A hand that steadies while it trails and shakes while it leads, so
+    /// that the person wins about half the time.
+    Adaptive,
 }
 
 impl Level {
-    /// Every level, weakest first.
-    pub const ALL: [Level; 3] = [Level::Easy, Level::Medium, Level::Hard];
+    /// Every level: the fixed ones weakest first, then the adaptive one.
+    pub const ALL: [Level; 4] = [Level::Easy, Level::Medium, Level::Hard, Level::Adaptive];
 
     /// The level's wire name.
     pub fn as_str(self) -> &'static str {
@@ -78,6 +92,7 @@ impl Level {
             Level::Easy => "easy",
             Level::Medium => "medium",
             Level::Hard => "hard",
+            Level::Adaptive => "adaptive",
         }
     }
 
@@ -86,43 +101,91 @@ impl Level {
         Level::ALL.into_iter().find(|l| l.as_str() == name)
     }
 
-    /// How imprecise the level's own hand is.
-    pub fn hand(self) -> NoiseConfig {
+    /// How the level's hand misses (for `adaptive`: the hand it starts a
+    /// match with, which then changes).
+    pub fn hand(self) -> HandModel {
         match self {
-            Level::Easy => NoiseConfig {
-                angle_sigma: 0.10,
-                speed_sigma: 0.20,
+            Level::Easy => HandModel {
+                angle_sigma: 0.05,
+                speed_sigma: 0.12,
+                distance_growth: 1.5,
+                cut_growth: 1.0,
+                bias_angle: 0.025,
+                bias_speed: 0.06,
+                full_power: 0.8,
             },
-            Level::Medium => NoiseConfig {
-                angle_sigma: 0.03,
-                speed_sigma: 0.08,
+            Level::Medium => HandModel {
+                angle_sigma: 0.02,
+                speed_sigma: 0.06,
+                distance_growth: 1.0,
+                cut_growth: 0.8,
+                bias_angle: 0.01,
+                bias_speed: 0.03,
+                full_power: 0.88,
             },
-            Level::Hard => NoiseConfig {
-                angle_sigma: 0.015,
-                speed_sigma: 0.04,
+            Level::Hard => HandModel {
+                angle_sigma: 0.008,
+                speed_sigma: 0.03,
+                distance_growth: 0.5,
+                cut_growth: 0.5,
+                bias_angle: 0.004,
+                bias_speed: 0.015,
+                full_power: 0.94,
             },
+            Level::Adaptive => {
+                let s = AdaptiveSettings::default();
+                s.hand_at(s.even_with(s.prior.0))
+            }
         }
+    }
+
+    /// How a fixed level chooses (`None` for `hard`, which searches, and
+    /// `adaptive`).
+    pub fn plan(self) -> Option<PlanSettings> {
+        match self {
+            Level::Easy => Some(PlanSettings {
+                spread: Spread {
+                    speeds: vec![0.4, 0.6, 0.8, 1.0],
+                    cuts: vec![0.0],
+                    caroms: false,
+                },
+                keep: 24,
+                samples: 6,
+            }),
+            Level::Medium => Some(PlanSettings {
+                spread: Spread::wide(),
+                keep: 24,
+                samples: 8,
+            }),
+            Level::Hard | Level::Adaptive => None,
+        }
+    }
+
+    /// A fixed level's bot as the chooser and its hand, which can log its
+    /// throws (`None` for `adaptive`, whose hand changes).
+    pub fn handed(self, seed: u64) -> Option<Handed<Box<dyn Bot>>> {
+        let hand = self.hand();
+        let mut rng = SplitMix64::new(seed);
+        let (a, b) = (rng.next_u64(), rng.next_u64());
+        let chooser: Box<dyn Bot> = match self {
+            Level::Easy | Level::Medium => Box::new(Planner::new(hand, self.plan()?, b)),
+            Level::Hard => {
+                let settings = SearchSettings {
+                    hand: Some(hand),
+                    ..SearchSettings::default()
+                };
+                Box::new(Search::new(b, settings))
+            }
+            Level::Adaptive => return None,
+        };
+        Some(Handed::new(chooser, hand, a))
     }
 
     /// The level's bot, its choices and its hand following from `seed`.
     pub fn bot(self, seed: u64) -> Box<dyn Bot> {
-        let hand = self.hand();
-        let mut rng = SplitMix64::new(seed);
-        let (a, b) = (rng.next_u64(), rng.next_u64());
-        match self {
-            Level::Easy => Box::new(Imprecise::new(
-                Greedy::with_spread(Spread::narrow()),
-                hand,
-                a,
-            )),
-            Level::Medium => Box::new(Imprecise::new(Greedy::default(), hand, a)),
-            Level::Hard => {
-                let settings = SearchSettings {
-                    assumed_noise: hand,
-                    ..SearchSettings::default()
-                };
-                Box::new(Imprecise::new(Search::new(b, settings), hand, a))
-            }
+        match self.handed(seed) {
+            Some(bot) => Box::new(bot),
+            None => Box::new(Adaptive::new(AdaptiveSettings::default(), seed)),
         }
     }
 }
@@ -136,8 +199,10 @@ impl fmt::Display for Level {
 /// The bots the command line and tournaments know by name: `random`,
 /// `greedy`, `search` (perfect hands: for bot-against-bot play, where the
 /// match's noise is the only imprecision) and the levels `easy`, `medium`,
-/// `hard`.
-pub const BOT_NAMES: [&str; 6] = ["random", "greedy", "search", "easy", "medium", "hard"];
+/// `hard`, `adaptive`.
+pub const BOT_NAMES: [&str; 7] = [
+    "random", "greedy", "search", "easy", "medium", "hard", "adaptive",
+];
 
 /// The bot named `name`, its choices following from `seed`.
 pub fn by_name(name: &str, seed: u64) -> Option<Box<dyn Bot>> {
@@ -162,7 +227,11 @@ mod tests {
         let Decision::Shot(aimed) = Greedy::default().decide(&ctx) else {
             panic!()
         };
-        let mut bot = Imprecise::new(Greedy::default(), Level::Easy.hand(), 1);
+        let hand = NoiseConfig {
+            angle_sigma: 0.10,
+            speed_sigma: 0.20,
+        };
+        let mut bot = Imprecise::new(Greedy::default(), hand, 1);
         let Decision::Shot(played) = bot.decide(&ctx) else {
             panic!()
         };
@@ -173,6 +242,67 @@ mod tests {
         assert!(played.speed() <= view.config.max_speed);
     }
 
+    /// Two white pieces against four black: a short shot at a piece one
+    /// square ahead, or a long cut across the board.
+    fn set_position() -> game::MatchView {
+        use game::board::{square_centre, Piece};
+        use game::{Board, PieceId};
+        let mut view = Game::new(Config::default(), 1).unwrap().view();
+        let c = view.config.clone();
+        let p = |side, k, file, rank| Piece {
+            id: PieceId::new(side, k).unwrap(),
+            pos: square_centre(&c, file, rank),
+        };
+        view.board = Board::from_pieces([
+            p(Side::White, 0, 1, 1),
+            p(Side::White, 1, 6, 0),
+            p(Side::Black, 0, 1, 2),
+            p(Side::Black, 1, 6, 4),
+            p(Side::Black, 2, 6, 7),
+            p(Side::Black, 3, 3, 6),
+        ]);
+        view
+    }
+
+    #[test]
+    fn a_shaky_hand_prefers_a_short_shot_where_a_steady_one_goes_long() {
+        let view = set_position();
+        let ctx = Context::new(&view, Side::White, Duration::from_secs(30));
+        // The same candidates for both: only the hand differs.
+        let plan = Level::Medium.plan().unwrap();
+        let chosen = |model: HandModel| {
+            let mut planner = Planner::new(model, plan.clone(), 5);
+            let (shot, _) = planner.ranked(&ctx, Side::White)[0];
+            crate::hand::Aim::of(&view.config, &view.board, &shot)
+        };
+        let steady = chosen(HandModel::PERFECT);
+        let shaky = chosen(Level::Easy.hand());
+        assert!(steady.distance > 3.0 * view.config.square, "{steady:?}");
+        assert!(shaky.distance < view.config.square, "{shaky:?}");
+    }
+
+    #[test]
+    fn the_same_seed_gives_the_same_choices_and_another_seed_another_hand() {
+        let view = Game::new(Config::default(), 3).unwrap().view();
+        let ctx = Context::new(&view, Side::White, Duration::from_secs(30));
+        for level in Level::ALL {
+            let a = level.bot(7).decide(&ctx);
+            assert_eq!(a, level.bot(7).decide(&ctx), "{level}");
+            assert_ne!(a, level.bot(8).decide(&ctx), "{level}");
+        }
+    }
+
+    #[test]
+    fn the_levels_hands_steady_from_easy_to_hard_and_each_can_overhit_full_power() {
+        let [easy, medium, hard] = [Level::Easy, Level::Medium, Level::Hard].map(Level::hand);
+        assert!(easy.angle_sigma > medium.angle_sigma && medium.angle_sigma > hard.angle_sigma);
+        assert!(easy.speed_sigma > medium.speed_sigma && medium.speed_sigma > hard.speed_sigma);
+        for h in [easy, medium, hard] {
+            // Full power is below the maximum, and a three-sigma overhit reaches it.
+            assert!(h.full_power < 1.0 && h.full_power * (1.0 + 3.0 * h.speed_sigma) > 1.0);
+        }
+    }
+
     #[test]
     fn every_named_bot_exists_and_unknown_names_do_not() {
         for name in BOT_NAMES {
@@ -180,5 +310,9 @@ mod tests {
         }
         assert!(by_name("grandmaster", 1).is_none());
         assert_eq!(Level::parse("hard"), Some(Level::Hard));
+        assert_eq!(Level::parse("adaptive"), Some(Level::Adaptive));
+        for level in Level::ALL {
+            assert_eq!(Level::parse(level.as_str()), Some(level));
+        }
     }
 }

@@ -5,7 +5,8 @@
 //! plays a candidate shot with exactly the server's physics and rules,
 //! scripted bots to learn from and measure against ([`RandomBot`],
 //! [`Greedy`], [`Search`]), the computer levels people play
-//! ([`Level`]: easy, medium, hard, each with its own imprecise hand), whole
+//! ([`Level`]: easy, medium, hard, each choosing for its own person-like
+//! [`hand`], and adaptive, which tunes its hand to keep a match even), whole
 //! matches in this process ([`arena`]), round-robin tournaments with Elo,
 //! LOS and SPRT ([`tournament`], [`stats`]), and a bot playing on a real
 //! server over the match protocol ([`runner`], following the match with
@@ -19,8 +20,12 @@
 //! shots on a copy of the board), [`candidates`] (which shots to try),
 //! [`eval`] (how good a result is), [`pie`] (the pie-rule decision by
 //! playouts), [`random`], [`greedy`], [`search`] (the
-//! scripted bots), [`level`] (computer levels and named bots), [`arena`]
-//! (one match in process), [`remote`] (one match on a server), [`remote`] (one match on a server), [`stats`] (Elo, LOS, SPRT), [`tournament`],
+//! scripted bots), [`hand`] (how a person misses), [`handed`] (a bot's
+//! shots played by such a hand), [`planner`] (choosing for one's own
+//! hand), [`adaptive`] (the level that keeps a match even), [`level`]
+//! (computer levels and named bots), [`misses`] (how the levels miss,
+//! measured), [`arena`] (one match in process), [`remote`] (one match on a
+//! server), [`stats`] (Elo, LOS, SPRT), [`tournament`],
 //! [`follow`] (a seat's view kept from the server's messages), [`runner`]
 //! (a bot on a server: create or join, play, reconnect).
 
@@ -29,15 +34,20 @@
 #[cfg(doctest)]
 pub struct ReadmeDoctests;
 
+pub mod adaptive;
 pub mod arena;
 pub mod bot;
 pub mod candidates;
 pub mod eval;
 pub mod follow;
 pub mod greedy;
+pub mod hand;
+pub mod handed;
 pub mod level;
+pub mod misses;
 pub mod online;
 pub mod pie;
+pub mod planner;
 pub mod random;
 pub mod remote;
 pub mod runner;
@@ -46,10 +56,14 @@ pub mod simulator;
 pub mod stats;
 pub mod tournament;
 
+pub use adaptive::{Adaptive, AdaptiveSettings};
 pub use arena::{play_match, ArenaLimits, MatchReport};
 pub use bot::{Ask, Bot, Context, Decision};
 pub use greedy::Greedy;
+pub use hand::{Aim, Bias, Hand, HandModel};
+pub use handed::{Handed, Throw};
 pub use level::{by_name, Imprecise, Level, BOT_NAMES};
+pub use planner::{PlanSettings, Planner};
 pub use random::RandomBot;
 pub use runner::{CreateMatch, Opponent, RunReport, Runner, RunnerError, RunnerOptions, SeatGrant};
 pub use search::{Search, SearchSettings};

@@ -36,6 +36,10 @@ enum Command {
     /// the commitment published before the first shot, every shot was
     /// played with the secret's draw, and the match replays exactly.
     Verify(VerifyArgs),
+    /// How the computer levels miss: each plays matches against itself
+    /// with its throws logged; prints the sideways miss at the target
+    /// (binned), angular misses by shot length and cut, and full power.
+    Misses(MissesArgs),
 }
 
 #[derive(Parser, Debug)]
@@ -47,6 +51,25 @@ struct VerifyArgs {
     /// Print each verdict as one JSON line instead of text.
     #[arg(long)]
     json: bool,
+}
+
+#[derive(Parser, Debug)]
+struct MissesArgs {
+    /// Comma-separated levels with a fixed hand: easy, medium, hard.
+    #[arg(long, value_delimiter = ',', default_value = "easy,medium,hard")]
+    levels: Vec<String>,
+    /// Matches of each level against itself.
+    #[arg(long, default_value_t = 10)]
+    games: u32,
+    /// Match and bot seeds.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// The rules: `standard` or `casual` (what people play the computer at).
+    #[arg(long, default_value = "casual", value_parser = parse_rules)]
+    rules: Preset,
+    /// Write the reports as JSON here.
+    #[arg(long)]
+    json: Option<PathBuf>,
 }
 
 #[derive(Parser, Debug)]
@@ -68,7 +91,7 @@ struct OnlineArgs {
     /// `{"name":...,"bot":true}`); read from CHAPAEV_KEY if not given.
     #[arg(long, env = "CHAPAEV_KEY", hide_env_values = true)]
     key: String,
-    /// The bot: random, greedy, search, easy, medium, hard.
+    /// The bot: random, greedy, search, easy, medium, hard, adaptive.
     #[arg(long, default_value = "greedy")]
     bot: String,
     /// Stay off the ladder (only accept challenges).
@@ -90,7 +113,7 @@ struct PlayArgs {
     /// The server, `http://HOST:PORT`.
     #[arg(long, default_value = "http://127.0.0.1:8080")]
     server: String,
-    /// The bot: random, greedy, search, easy, medium, hard.
+    /// The bot: random, greedy, search, easy, medium, hard, adaptive.
     #[arg(long, default_value = "greedy")]
     bot: String,
     /// The name the bot plays under.
@@ -120,13 +143,13 @@ struct HowToPlay {
     #[arg(long, value_name = "MATCH_ID")]
     join: Option<String>,
     /// Create a match against the server's built-in level.
-    #[arg(long, value_name = "LEVEL", value_parser = ["easy", "medium", "hard"])]
+    #[arg(long, value_name = "LEVEL", value_parser = ["easy", "medium", "hard", "adaptive"])]
     against: Option<String>,
 }
 
 #[derive(Parser, Debug)]
 struct TournamentArgs {
-    /// Comma-separated bot names: random, greedy, search, easy, medium, hard.
+    /// Comma-separated bot names: random, greedy, search, easy, medium, hard, adaptive.
     #[arg(long, value_delimiter = ',', default_value = "random,greedy,search")]
     bots: Vec<String>,
     /// Games per pairing (played in pairs with the seats swapped).
@@ -204,6 +227,7 @@ fn main() -> ExitCode {
         Command::Online(args) => online_command(args),
         Command::Throughput(args) => throughput_command(args),
         Command::Verify(args) => verify_command(args),
+        Command::Misses(args) => misses_command(args),
     };
     match done {
         Ok(()) => ExitCode::SUCCESS,
@@ -267,6 +291,34 @@ fn verify_command(args: VerifyArgs) -> Result<(), Box<dyn std::error::Error>> {
             total: args.records.len(),
         }
         .into());
+    }
+    Ok(())
+}
+
+fn misses_command(args: MissesArgs) -> Result<(), Box<dyn std::error::Error>> {
+    use bots::misses;
+    let config = args.rules.config();
+    let mut reports = Vec::new();
+    for name in &args.levels {
+        let level = bots::Level::parse(name)
+            .ok_or_else(|| format!("unknown level {name:?}: easy, medium or hard"))?;
+        let throws = misses::collect(level, args.games, args.seed, &config)?
+            .ok_or_else(|| format!("{name} has no fixed hand to measure"))?;
+        reports.push(misses::report(
+            name,
+            &config,
+            level.hand().full_power,
+            &throws,
+        ));
+    }
+    println!(
+        "rules {}, {} matches per level, seed {}\n",
+        args.rules, args.games, args.seed
+    );
+    print!("{}", misses::table(&reports));
+    if let Some(path) = args.json {
+        std::fs::write(&path, serde_json::to_string_pretty(&reports)?)?;
+        println!("\nresults: {}", path.display());
     }
     Ok(())
 }

@@ -5,7 +5,10 @@
 //! from its own generator, the same draws for every candidate so that they
 //! are compared on equal terms) and answers each sampled result with the
 //! best next shot — the opponent's, if the turn passes, its own if it
-//! keeps it. The candidates' samples run on all cores (rayon), in a fixed
+//! keeps it. A search given its own hand ([`SearchSettings::hand`], as the
+//! `hard` level is) makes its candidates at that hand's full power and
+//! plays each sample through that hand's error (then the match's noise,
+//! if any) instead of the assumed noise. The candidates' samples run on all cores (rayon), in a fixed
 //! order, so the choice depends only on the position and the bot's seed.
 //! The work per move is fixed (so the choice depends only on the position
 //! and the bot's seed; about 0.1 s of CPU on a mid-game board); the time
@@ -16,6 +19,7 @@ use crate::bot::{Ask, Bot, Context, Decision};
 use crate::candidates::{candidates, Spread};
 use crate::eval;
 use crate::greedy::best_shot;
+use crate::hand::{Aim, Bias, HandModel};
 use crate::simulator::Simulator;
 use game::noise::{NoiseDraw, SplitMix64};
 use game::{NoiseConfig, Shot};
@@ -32,8 +36,11 @@ pub struct SearchSettings {
     /// How much the best next shot counts against the shot's own result
     /// (0: greedy under noise; 1: full two-ply).
     pub reply_weight: f64,
-    /// The noise assumed for planning when the match has none.
+    /// The noise assumed for planning when the match has none (and the
+    /// search has no hand of its own).
     pub assumed_noise: NoiseConfig,
+    /// The bot's own hand, planned for on top of the match's noise.
+    pub hand: Option<HandModel>,
     /// A safety cap on the time spent on one move (the context's deadline
     /// also caps it); normal moves take far less and are never cut.
     pub budget: Duration,
@@ -49,6 +56,7 @@ impl Default for SearchSettings {
                 angle_sigma: 0.015,
                 speed_sigma: 0.03,
             },
+            hand: None,
             budget: Duration::from_secs(2),
         }
     }
@@ -77,7 +85,11 @@ impl Search {
         let me = ctx.me;
         let sim = Simulator::new(ctx.view);
         // First pass: every candidate as aimed.
-        let all = candidates(config, board, me, &Spread::wide());
+        let mut power = config.clone();
+        if let Some(hand) = &self.settings.hand {
+            power.max_speed = config.max_speed * hand.full_power.clamp(0.05, 1.0);
+        }
+        let all = candidates(&power, board, me, &Spread::wide());
         let mut scored: Vec<(usize, f64)> = all
             .par_iter()
             .enumerate()
@@ -98,20 +110,39 @@ impl Search {
         let draws: Vec<NoiseDraw> = (0..self.settings.samples)
             .map(|_| NoiseDraw::sample(&mut self.rng))
             .collect();
+        let hand_draws: Vec<NoiseDraw> = match self.settings.hand {
+            Some(_) => (0..self.settings.samples)
+                .map(|_| NoiseDraw::sample(&mut self.rng))
+                .collect(),
+            None => Vec::new(),
+        };
+        let hand = self.settings.hand;
+        let aims: Vec<Aim> = kept
+            .iter()
+            .map(|&i| Aim::of(config, board, &all[i]))
+            .collect();
         let budget = self.settings.budget.min(ctx.time_left());
         let w = self.settings.reply_weight;
         let mut totals = vec![0.0; kept.len()];
         let mut done = 0;
         // Samples in rounds (one draw for every kept candidate per round),
         // stopping early only when the time budget runs out.
-        for draw in &draws {
+        for (d, draw) in draws.iter().enumerate() {
             if done > 0 && started.elapsed() >= budget.mul_f64(0.8) {
                 break;
             }
             let values: Vec<f64> = kept
                 .par_iter()
-                .map(|&i| {
-                    let Ok(r) = sim.play_with(me, &all[i], &noise, *draw) else {
+                .zip(aims.par_iter())
+                .map(|(&i, aim)| {
+                    let played = match (&hand, hand_draws.get(d)) {
+                        (Some(h), Some(&hd)) => {
+                            let shot = h.shot(config, &all[i], aim, hd, Bias::default());
+                            sim.play_noisy(me, &shot, *draw)
+                        }
+                        _ => sim.play_with(me, &all[i], &noise, *draw),
+                    };
+                    let Ok(r) = played else {
                         return -eval::ROUND;
                     };
                     let now = eval::after_shot(config, &r, me);

@@ -60,7 +60,7 @@ fn a_bot_cannot_see_the_secret() {
         "{json}"
     );
     assert!(json.contains(&secret.commitment().to_hex()), "{json}");
-    for name in ["random", "greedy", "search", "easy", "medium", "hard"] {
+    for name in bots::BOT_NAMES {
         let reference = decide(name, &first);
         for seed in [2, 77, 1 << 40, u64::MAX] {
             let view = Game::new(Config::standard(), seed).unwrap().view();

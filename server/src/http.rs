@@ -449,7 +449,7 @@ The full protocol is in <code>docs/protocol.md</code>.</p>
 <pre>curl -s -XPOST localhost:8080/api/matches -d '{"name":"Petka"}'
 curl -s -XPOST localhost:8080/api/matches -d '{"name":"Petka","opponent":"bot","bot_level":"hard"}'
 curl -s -XPOST localhost:8080/api/matches -d '{"name":"MyBot","rules":"standard"}'</pre>
-<p>Computer levels: <code>easy</code>, <code>medium</code>, <code>hard</code>. Rules: <code>casual</code> (the default: shots
+<p>Computer levels: <code>easy</code>, <code>medium</code>, <code>hard</code>, <code>adaptive</code> (tunes its hand to keep the match even). Rules: <code>casual</code> (the default: shots
 played as aimed) or <code>standard</code> (competitive play and bot against bot: execution noise on every shot and
 the pie rule).</p>
 <p>The answer holds the <code>match_id</code>, your <code>seat</code> and a secret <code>token</code>:

@@ -6,7 +6,8 @@
 //! rated twice. Each rated match leaves one point per account in
 //! `rating_history` (the rating after it), which is also what makes the
 //! update idempotent. The built-in computer levels play rated matches as
-//! the bot accounts `computer-easy`, `computer-medium` and `computer-hard`,
+//! the bot accounts `computer-easy`, `computer-medium`, `computer-hard` and
+//! `computer-adaptive`,
 //! which the store creates (without keys: nobody can sign in as them).
 
 use serde::Serialize;

@@ -59,7 +59,7 @@ async fn an_account_is_created_proved_by_its_key_revoked_and_listed() {
         .map(|p| p["name"].as_str().unwrap().to_string())
         .collect();
     assert!(bots.contains(&"Furmanov".to_string()), "{bots:?}");
-    assert_eq!(bots.len(), 4, "Furmanov and the three computer levels");
+    assert_eq!(bots.len(), 5, "Furmanov and the four computer levels");
     let (_, text) = s.http("GET", "/api/leaderboard", "").await;
     assert_eq!(json(&text), serde_json::json!([]), "no people yet");
 

@@ -1,6 +1,6 @@
 //! The lobby: your name (or, signed in, your account with its rating and
 //! whether new matches are rated), a match against the computer (easy,
-//! medium or hard) or a friend (a link to send), joining by id, the way to
+//! medium, hard or adaptive) or a friend (a link to send), joining by id, the way to
 //! the leaderboard, and the server's open, live and finished matches — with
 //! the seats' ratings and rated matches marked — to join, watch or replay.
 //! A match this server cannot play (another physics version) offers no
@@ -359,16 +359,17 @@ impl Lobby {
             go = Some(r);
         }
         y += row + 12.0;
-        // The matches to start: a row of five, or a grid of two columns.
-        let choices: [(&str, &str); 6] = [
+        // The matches to start: one row, or a grid of two columns.
+        let choices: [(&str, &str); 7] = [
             ("vs-computer-easy", "Computer: easy"),
             ("vs-computer-medium", "Computer: medium"),
             ("vs-computer-hard", "Computer: hard"),
+            ("vs-computer-adaptive", "Computer: adaptive"),
             ("vs-person", "A friend (link)"),
             ("sandbox", "Physics sandbox"),
             ("leaderboard", "Leaderboard"),
         ];
-        let per_row = if narrow { 2 } else { 6 };
+        let per_row = if narrow { 2 } else { 7 };
         let bw = (col - gap * (per_row - 1) as f32) / per_row as f32;
         let bh = if narrow { row } else { 52.0 };
         for (i, (name, label)) in choices.iter().enumerate() {
@@ -379,8 +380,9 @@ impl Lobby {
                     0 => self.create(Opponent::Bot("easy")),
                     1 => self.create(Opponent::Bot("medium")),
                     2 => self.create(Opponent::Bot("hard")),
-                    3 => self.create(Opponent::Person),
-                    4 => go = Some(Route::Sandbox),
+                    3 => self.create(Opponent::Bot("adaptive")),
+                    4 => self.create(Opponent::Person),
+                    5 => go = Some(Route::Sandbox),
                     _ => go = Some(Route::Leaderboard { bots: false }),
                 }
             }
