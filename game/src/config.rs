@@ -8,6 +8,7 @@
 //! more than the board's diagonal — while a quarter of it (0.5 m/s) moves a
 //! piece about one square. The tests below prove both in closed form.
 
+pub use crate::rules::Opening;
 use serde::{Deserialize, Serialize};
 
 /// Squares along each side of the board.
@@ -50,6 +51,19 @@ pub struct Variants {
     pub quick_match: bool,
     /// Execution noise on every shot, drawn from the match's seed.
     pub noise: Option<NoiseConfig>,
+    /// Who opens each round after the first (left out of a recorded
+    /// configuration when it is the winner, as before this rule existed).
+    #[serde(skip_serializing_if = "Opening::is_winner")]
+    pub opening: Opening,
+    /// The rows meet two ranks apart instead of adjacent, and stay so: the
+    /// winner advances and pushes the loser back, with a clear rank between
+    /// them (left out of a recorded configuration when off).
+    #[serde(skip_serializing_if = "is_false")]
+    pub rows_keep_apart: bool,
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 
 /// Gaussian execution noise (standard deviations).
