@@ -28,6 +28,10 @@ export interface Variants {
   pie_rule: boolean;
   quick_match: boolean;
   noise: NoiseConfig | null;
+  /** The rows meet two ranks apart (the `standard` rules); absent: false. */
+  rows_keep_apart?: boolean;
+  /** Who opens the rounds after the first; absent: "winner". */
+  opening?: "winner" | "loser" | "alternate";
 }
 
 /** A match's configuration (`view.config`). Missing fields take the defaults. */

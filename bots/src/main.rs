@@ -161,6 +161,11 @@ struct TournamentArgs {
     /// The rules: `standard` (execution noise and the pie rule) or `casual`.
     #[arg(long, default_value = "standard", value_parser = parse_rules)]
     rules: Preset,
+    /// Play under the configuration in this JSON file instead of `--rules`
+    /// (a `game::Config`; missing fields take the defaults): how a rule
+    /// variant is measured before it becomes a preset.
+    #[arg(long, value_name = "FILE")]
+    config: Option<PathBuf>,
     /// Override the rules' execution noise: `ANGLE,SPEED` standard
     /// deviations (radians, fraction of the speed); `0,0` turns it off.
     #[arg(long, value_parser = parse_noise)]
@@ -454,7 +459,10 @@ fn play_command(args: PlayArgs) -> Result<(), Box<dyn std::error::Error>> {
 }
 
 fn tournament_command(args: TournamentArgs) -> Result<(), Box<dyn std::error::Error>> {
-    let mut config = args.rules.config();
+    let mut config = match &args.config {
+        Some(path) => serde_json::from_str(&std::fs::read_to_string(path)?)?,
+        None => args.rules.config(),
+    };
     if let Some(noise) = args.noise {
         config.variants.noise =
             (noise.angle_sigma > 0.0 || noise.speed_sigma > 0.0).then_some(noise);
@@ -474,9 +482,12 @@ fn tournament_command(args: TournamentArgs) -> Result<(), Box<dyn std::error::Er
     };
     let started = std::time::Instant::now();
     let report = tournament::run(&settings)?;
+    let rules = match &args.config {
+        Some(path) => path.display().to_string(),
+        None => args.rules.to_string(),
+    };
     println!(
-        "rules {}, seed {}, {:.1} s\n",
-        args.rules,
+        "rules {rules}, seed {}, {:.1} s\n",
         args.seed,
         started.elapsed().as_secs_f64()
     );

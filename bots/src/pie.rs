@@ -1,67 +1,108 @@
 //! The pie-rule decision: after White's first shot, Black may take White's
-//! side. The right choice is whichever side is more likely to win from
-//! here, so the decider plays the round out a number of times — both sides
-//! shooting the narrow greedy shot under the match's public noise model
-//! (or an assumed one where the match has none), with draws from the
-//! decider's own generator — and swaps when White wins more than half of
-//! those playouts. A playout that runs long is scored by the material on
-//! the board. The playouts run on all cores, each with its own stream.
+//! side. The right choice is the colour more likely to win the *match*
+//! from here, so the decider swaps exactly when White's estimated match
+//! score is above a half.
+//!
+//! A match is a chain of rounds, and every round after the first starts
+//! from a fixed setup: the two rows and the side that opens. So White's
+//! match score is estimated in two parts, both by playouts in which both
+//! sides play the greedy shot under the match's public noise model (or an
+//! assumed one where the match has none), with draws from the decider's
+//! own generator:
+//!
+//! - **The current round, played out** from the position after White's
+//!   first shot, with the side to shoot next (`view.turn`: White again when
+//!   its first shot knocked off an enemy and none of its own), choosing
+//!   from the cheap narrow spread.
+//! - **The match's value after it** ([`MatchValues`]): the playouts of
+//!   every setup the match can reach give each setup's chances, and the
+//!   rules between rounds ([`game::rules::after_round`]: rows, far edge,
+//!   who opens next) chain them into White's match score from each setup.
+//!   These carry most of the weight, so they choose from the wide spread
+//!   the built-in bots play, and a setup's playouts are pooled with its
+//!   mirror image's (the rows reflected, the other side opening: the same
+//!   chances, as the rules and the board are the same from either side).
+//!   They depend only on the rules, so they are computed once per
+//!   configuration (about 10 s of CPU) and kept.
+//!
+//! A playout that runs long is scored by the material on the board.
+//!
+//! The earlier decider swapped when White won more than half of 12 narrow
+//! playouts of round 1 alone. Under the old `standard` rules White won
+//! round 1 about 60 % of the time yet the match about 30 %: the rounds
+//! after it favoured Black. So it swapped into the losing colour.
 
 use crate::candidates::Spread;
 use crate::eval;
 use crate::greedy::best_shot;
 use crate::simulator::Simulator;
+use game::config::BOARD_SQUARES;
 use game::noise::{NoiseDraw, SplitMix64};
-use game::rules::{RoundResult, Verdict};
-use game::{Board, MatchView, NoiseConfig, Side};
+use game::rules::{after_round, AfterRound, RoundResult, Verdict};
+use game::{Board, Config, MatchResult, MatchView, NoiseConfig, Rows, Side};
 use rayon::prelude::*;
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex};
 
-/// How the decider plays the round out.
+/// How the decider plays out.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PieSettings {
-    /// Playouts of the round.
+    /// Playouts of the current round.
     pub playouts: u32,
+    /// Playouts of each setup the match can reach, for [`MatchValues`].
+    pub setup_playouts: u32,
     /// Shots after which a playout is scored by the material left.
     pub max_shots: u32,
     /// Noise assumed when the match has none.
     pub assumed_noise: NoiseConfig,
+    /// The shots both sides choose from in the playouts of the current
+    /// round (the greedy shot of this spread).
+    pub spread: Spread,
+    /// The same for the setups' playouts. They carry most of the weight
+    /// (how much winning round 1 is worth), so they play the shots the
+    /// built-in bots really choose from, once per configuration.
+    pub setup_spread: Spread,
 }
 
 impl Default for PieSettings {
     fn default() -> Self {
         PieSettings {
-            playouts: 12,
-            max_shots: 30,
+            playouts: 32,
+            setup_playouts: 16,
+            max_shots: 40,
             assumed_noise: NoiseConfig {
                 angle_sigma: 0.03,
                 speed_sigma: 0.08,
             },
+            spread: Spread::narrow(),
+            setup_spread: Spread::wide(),
         }
     }
 }
 
-/// White's expected share of the round from `view`'s position (the side to
-/// shoot is `view.turn`), 0–1.
-pub fn white_share(view: &MatchView, settings: &PieSettings, seed: u64) -> f64 {
-    let noise = view.config.variants.noise.unwrap_or(settings.assumed_noise);
-    let total: f64 = (0..settings.playouts)
-        .into_par_iter()
-        .map(|k| {
-            let mut rng =
-                SplitMix64::new(seed ^ (k as u64 + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15));
-            playout(view, &noise, settings.max_shots, &mut rng)
-        })
-        .sum();
-    total / settings.playouts.max(1) as f64
+/// How one playout of a round ended.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Ending {
+    /// The round is over; `flawless`: its winner lost no piece.
+    Over { result: RoundResult, flawless: bool },
+    /// Unfinished after the shots allowed: White's share by material.
+    Unfinished { white: f64 },
 }
 
-/// One playout: White's share (1 won, 0 lost, ½ drawn, or by material).
-fn playout(view: &MatchView, noise: &NoiseConfig, max_shots: u32, rng: &mut SplitMix64) -> f64 {
-    let config = &view.config;
-    let mut board: Board = view.board.clone();
-    let mut turn = view.turn;
+/// A round played out from `board` with `turn` to shoot.
+fn play_round(
+    config: &Config,
+    spread: &Spread,
+    noise: &NoiseConfig,
+    board: &Board,
+    turn: Side,
+    max_shots: u32,
+    rng: &mut SplitMix64,
+) -> Ending {
+    let mut board = board.clone();
+    let mut turn = turn;
     for _ in 0..max_shots {
-        let Some((shot, _)) = best_shot(config, &board, turn, &Spread::narrow()) else {
+        let Some((shot, _)) = best_shot(config, &board, turn, spread) else {
             break;
         };
         let draw = NoiseDraw::sample(rng);
@@ -69,9 +110,13 @@ fn playout(view: &MatchView, noise: &NoiseConfig, max_shots: u32, rng: &mut Spli
             break;
         };
         match r.verdict {
-            Verdict::RoundOver(RoundResult::Won(Side::White)) => return 1.0,
-            Verdict::RoundOver(RoundResult::Won(Side::Black)) => return 0.0,
-            Verdict::RoundOver(RoundResult::Draw) => return 0.5,
+            Verdict::RoundOver(result) => {
+                let flawless = match result {
+                    RoundResult::Won(w) => r.board.count(w) == board_pieces(config),
+                    RoundResult::Draw => false,
+                };
+                return Ending::Over { result, flawless };
+            }
             Verdict::ShootAgain => {}
             Verdict::PassTurn => turn = turn.opponent(),
         }
@@ -79,10 +124,243 @@ fn playout(view: &MatchView, noise: &NoiseConfig, max_shots: u32, rng: &mut Spli
     }
     // Unfinished: the material and the turn, through a logistic.
     let v = eval::position(config, &board, Side::White, turn);
-    1.0 / (1.0 + (-v / (2.0 * eval::PIECE)).exp())
+    Ending::Unfinished {
+        white: 1.0 / (1.0 + (-v / (2.0 * eval::PIECE)).exp()),
+    }
 }
 
-/// Whether Black should take White's side: White's share above a half.
+/// Pieces per side at a round's start.
+fn board_pieces(config: &Config) -> usize {
+    Board::setup(config, Rows::initial()).count(Side::White)
+}
+
+/// White's match score at the start of every round setup the match can
+/// reach (the rows, and the side that opens), for one configuration.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MatchValues {
+    white: HashMap<(Rows, Side), f64>,
+    variants: game::Variants,
+}
+
+/// How the rounds from one setup ended in its playouts: the weight of each
+/// ending.
+type Tally = Vec<(RoundResult, bool, f64)>;
+
+impl MatchValues {
+    /// Plays out every reachable setup `settings.setup_playouts` times (the
+    /// draws seeded by the setup alone, so the values depend only on the
+    /// rules and the settings) and chains them by value iteration.
+    pub fn compute(config: &Config, settings: &PieSettings) -> MatchValues {
+        let noise = config.variants.noise.unwrap_or(settings.assumed_noise);
+        let variants = config.variants.clone();
+        let mut tallies: HashMap<(Rows, Side), Tally> = HashMap::new();
+        let mut todo = vec![(Rows::initial(), Side::White)];
+        while let Some(state) = todo.pop() {
+            if tallies.contains_key(&state) {
+                continue;
+            }
+            let (rows, opens) = state;
+            let board = Board::setup(config, rows);
+            let mut tally: Tally = Vec::new();
+            let mut add = |result: RoundResult, flawless: bool, w: f64| match tally
+                .iter_mut()
+                .find(|t| t.0 == result && t.1 == flawless)
+            {
+                Some(t) => t.2 += w,
+                None => tally.push((result, flawless, w)),
+            };
+            for k in 0..settings.setup_playouts {
+                let seed = (rows.rank(Side::White) as u64) << 40
+                    ^ (rows.rank(Side::Black) as u64) << 32
+                    ^ (opens.index() as u64) << 24
+                    ^ k as u64;
+                let mut rng = SplitMix64::new(seed ^ 0x005E_ED0F_9A1E);
+                match play_round(
+                    config,
+                    &settings.setup_spread,
+                    &noise,
+                    &board,
+                    opens,
+                    settings.max_shots,
+                    &mut rng,
+                ) {
+                    Ending::Over { result, flawless } => add(result, flawless, 1.0),
+                    Ending::Unfinished { white } => {
+                        add(RoundResult::Won(Side::White), false, white);
+                        add(RoundResult::Won(Side::Black), false, 1.0 - white);
+                    }
+                }
+            }
+            // Every ending the rules allow leads somewhere, played or not.
+            for result in [
+                RoundResult::Won(Side::White),
+                RoundResult::Won(Side::Black),
+                RoundResult::Draw,
+            ] {
+                for flawless in [false, true] {
+                    if let AfterRound::Next { rows, opens: next } =
+                        after_round(&variants, rows, opens, result, flawless)
+                    {
+                        todo.push((rows, next));
+                    }
+                }
+            }
+            tallies.insert(state, tally);
+        }
+        // The rules and the board are the same seen from either side, so a
+        // setup and its mirror image (the rows reflected, the other side
+        // opening) have the same chances: pool their playouts.
+        let pooled: HashMap<(Rows, Side), Tally> = tallies
+            .iter()
+            .map(|(&state, tally)| {
+                let mut both = tally.clone();
+                if let Some(other) = mirror(state).and_then(|m| tallies.get(&m)) {
+                    both.extend(other.iter().map(|&(r, f, w)| (mirrored(r), f, w)));
+                }
+                (state, both)
+            })
+            .collect();
+        let tallies = pooled;
+        let mut values = MatchValues {
+            white: tallies.keys().map(|&s| (s, 0.5)).collect(),
+            variants,
+        };
+        // Value iteration: every round moves the match on or ends it, so
+        // this converges (a drawn round repeats at most).
+        for _ in 0..100_000 {
+            let mut change: f64 = 0.0;
+            for (&(rows, opens), tally) in &tallies {
+                let total: f64 = tally.iter().map(|t| t.2).sum();
+                if total <= 0.0 {
+                    continue;
+                }
+                let v: f64 = tally
+                    .iter()
+                    .map(|&(result, flawless, w)| w * values.after(rows, opens, result, flawless))
+                    .sum::<f64>()
+                    / total;
+                let old = values.white.insert((rows, opens), v).unwrap_or(0.5);
+                change = change.max((v - old).abs());
+            }
+            if change < 1e-12 {
+                break;
+            }
+        }
+        values
+    }
+
+    /// White's match score at the start of the round on `rows` opened by
+    /// `opens` (a half for a setup the match cannot reach).
+    pub fn white(&self, rows: Rows, opens: Side) -> f64 {
+        self.white.get(&(rows, opens)).copied().unwrap_or(0.5)
+    }
+
+    /// White's match score after a round on `rows` opened by `opened`
+    /// ended with `result`.
+    pub fn after(&self, rows: Rows, opened: Side, result: RoundResult, flawless: bool) -> f64 {
+        match after_round(&self.variants, rows, opened, result, flawless) {
+            AfterRound::Next { rows, opens } => self.white(rows, opens),
+            AfterRound::Over(MatchResult::Won { side, .. }) => {
+                if side == Side::White {
+                    1.0
+                } else {
+                    0.0
+                }
+            }
+            AfterRound::Over(MatchResult::Draw) => 0.5,
+        }
+    }
+
+    /// The values of `config` under `settings`, computed once per process.
+    pub fn cached(config: &Config, settings: &PieSettings) -> Arc<MatchValues> {
+        type Key = (Config, u32, u32, NoiseConfig, Spread);
+        type Cache = Vec<(Key, Arc<MatchValues>)>;
+        static CACHE: Mutex<Cache> = Mutex::new(Vec::new());
+        let key = (
+            config.clone(),
+            settings.setup_playouts,
+            settings.max_shots,
+            settings.assumed_noise,
+            settings.setup_spread.clone(),
+        );
+        // Computed while holding the lock, without rayon: a thread that
+        // waits in rayon could otherwise take up another decision that
+        // needs the same lock.
+        let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((_, v)) = cache.iter().find(|(k, _)| *k == key) {
+            return v.clone();
+        }
+        let values = Arc::new(MatchValues::compute(config, settings));
+        cache.push((key, values.clone()));
+        values
+    }
+}
+
+/// The setup seen from the other side: the rows reflected, the other side
+/// opening.
+fn mirror((rows, opens): (Rows, Side)) -> Option<(Rows, Side)> {
+    let last = BOARD_SQUARES - 1;
+    let (w, b) = (rows.rank(Side::White), rows.rank(Side::Black));
+    Some((Rows::new(last - b, last - w).ok()?, opens.opponent()))
+}
+
+/// A round's result seen from the other side.
+fn mirrored(result: RoundResult) -> RoundResult {
+    match result {
+        RoundResult::Won(side) => RoundResult::Won(side.opponent()),
+        RoundResult::Draw => RoundResult::Draw,
+    }
+}
+
+/// White's expected match score from `view`'s position in round 1 (opened
+/// by White; the side to shoot is `view.turn`), 0–1.
+pub fn white_share(view: &MatchView, settings: &PieSettings, seed: u64) -> f64 {
+    let config = &view.config;
+    let values = MatchValues::cached(config, settings);
+    white_share_with(view, settings, seed, &values)
+}
+
+/// [`white_share`] with the match values given.
+pub fn white_share_with(
+    view: &MatchView,
+    settings: &PieSettings,
+    seed: u64,
+    values: &MatchValues,
+) -> f64 {
+    let config = &view.config;
+    let noise = config.variants.noise.unwrap_or(settings.assumed_noise);
+    // The pie decision comes in round 1, which White opened.
+    let opened = Side::White;
+    let total: f64 = (0..settings.playouts)
+        .into_par_iter()
+        .map(|k| {
+            let mut rng =
+                SplitMix64::new(seed ^ (k as u64 + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15));
+            let ending = play_round(
+                config,
+                &settings.spread,
+                &noise,
+                &view.board,
+                view.turn,
+                settings.max_shots,
+                &mut rng,
+            );
+            match ending {
+                Ending::Over { result, flawless } => {
+                    values.after(view.rows, opened, result, flawless)
+                }
+                Ending::Unfinished { white } => {
+                    let won = |s| values.after(view.rows, opened, RoundResult::Won(s), false);
+                    white * won(Side::White) + (1.0 - white) * won(Side::Black)
+                }
+            }
+        })
+        .sum();
+    total / settings.playouts.max(1) as f64
+}
+
+/// Whether Black should take White's side: White's match score above a
+/// half.
 pub fn swap(view: &MatchView, settings: &PieSettings, seed: u64) -> bool {
     white_share(view, settings, seed) > 0.5
 }
@@ -105,8 +383,58 @@ pub fn position_seed(view: &MatchView) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use game::{Config, Game, PieceId, Shot};
+    use game::{Game, PieceId, Shot};
     use glam::DVec2;
+
+    /// Few playouts: enough for positions that are far from even.
+    fn quick() -> PieSettings {
+        PieSettings {
+            playouts: 12,
+            setup_playouts: 16,
+            setup_spread: Spread::narrow(),
+            ..PieSettings::default()
+        }
+    }
+
+    /// A standard match after White's first shot, with the board then set
+    /// to `white` and `black` pieces (by file, on the opening ranks).
+    fn position(white: &[u8], black: &[u8], turn: Side) -> MatchView {
+        let g = Game::new(Config::standard(), 4).unwrap();
+        let mut view = g.view();
+        let c = &view.config;
+        let pieces = white
+            .iter()
+            .map(|&f| (PieceId::new(Side::White, f).unwrap(), f, 0))
+            .chain(
+                black
+                    .iter()
+                    .map(|&f| (PieceId::new(Side::Black, f).unwrap(), f, 7)),
+            )
+            .map(|(id, f, r)| game::Piece {
+                id,
+                pos: game::board::square_centre(c, f, r),
+            });
+        view.board = Board::from_pieces(pieces);
+        view.turn = turn;
+        view.shots = 1;
+        view.phase = game::Phase::PieDecision;
+        view
+    }
+
+    #[test]
+    fn black_takes_whites_side_when_white_is_far_ahead_and_keeps_its_own_when_behind() {
+        let all: Vec<u8> = (0..8).collect();
+        // White kept all eight and Black has two left: White is winning.
+        let ahead = position(&all, &[0, 7], Side::White);
+        let share = white_share(&ahead, &quick(), 1);
+        assert!(share > 0.55, "{share}");
+        assert!(swap(&ahead, &quick(), 1));
+        // The other way round: keep Black.
+        let behind = position(&[0, 7], &all, Side::Black);
+        let share = white_share(&behind, &quick(), 1);
+        assert!(share < 0.45, "{share}");
+        assert!(!swap(&behind, &quick(), 1));
+    }
 
     #[test]
     fn black_keeps_its_side_when_white_opened_by_losing_its_own_piece() {
@@ -119,9 +447,38 @@ mod tests {
         g.play(Side::White, shot).unwrap();
         let view = g.view();
         assert_eq!(view.board.count(Side::White), 7);
-        let share = white_share(&view, &PieSettings::default(), 1);
+        assert_eq!(view.turn, Side::Black, "a lost own piece passes the turn");
+        let share = white_share(&view, &quick(), 1);
         assert!(share < 0.5, "{share}");
-        assert!(!swap(&view, &PieSettings::default(), 1));
+        assert!(!swap(&view, &quick(), 1));
+    }
+
+    #[test]
+    fn the_match_values_follow_the_rows_a_side_whose_row_is_about_to_win_is_ahead() {
+        let rows = |w, b| Rows::new(w, b).unwrap();
+        // Under the standard rules the rows stop two ranks apart, so the
+        // last rounds are played on 5–7 and 0–2.
+        let values = MatchValues::cached(&Config::standard(), &quick());
+        let start = values.white(Rows::initial(), Side::White);
+        let near_white_win = values.white(rows(5, 7), Side::White);
+        let near_black_win = values.white(rows(0, 2), Side::Black);
+        assert!(
+            near_white_win > start && start > near_black_win,
+            "{near_white_win} {start} {near_black_win}"
+        );
+        // White's round win on 5–7 wins the match; Black's on 0–2 loses it.
+        let won = RoundResult::Won(Side::White);
+        assert_eq!(values.after(rows(5, 7), Side::White, won, false), 1.0);
+        let lost = RoundResult::Won(Side::Black);
+        assert_eq!(values.after(rows(0, 2), Side::Black, lost, false), 0.0);
+        // A setup and its mirror image have the same chances.
+        let (a, b) = (
+            values.white(rows(1, 7), Side::White),
+            values.white(rows(0, 6), Side::Black),
+        );
+        assert!((a + b - 1.0).abs() < 1e-9, "{a} {b}");
+        // Adjacent rows cannot be reached: they count as even.
+        assert_eq!(values.white(rows(3, 4), Side::White), 0.5);
     }
 
     #[test]

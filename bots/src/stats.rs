@@ -4,8 +4,13 @@
 //! stops a pairing as soon as the evidence decides between two Elo
 //! hypotheses.
 //!
-//! Elo from a score `s`: `-400 log10(1/s - 1)`. The error bar comes from
-//! the per-game variance of the score (wins 1, draws ½, losses 0). LOS is
+//! Elo from a score `s`: `-400 log10(1/s - 1)`, taken after a prior of one
+//! drawn game (half a win and half a loss added to the counts), so that a
+//! perfect score still gives a finite Elo that grows with the games
+//! played. Its error bar is the Wilson score interval of those counts,
+//! which stays inside (0, 1) and so is finite too. A score's own 95 %
+//! interval ([`Wdl::score_error`]) comes from the per-game variance of the
+//! score (wins 1, draws ½, losses 0), as White's score is reported. LOS is
 //! `½ (1 + erf((W - L) / sqrt(2 (W + L))))`. The SPRT is the generalised
 //! (normal-approximation) test used by chess testing frameworks: the log
 //! likelihood ratio of score `s1` (Elo1) against `s0` (Elo0) after `N`
@@ -74,15 +79,30 @@ impl Wdl {
             / n
     }
 
-    /// The Elo difference the score implies, with the half-width of its 95 %
-    /// confidence interval (infinite at a score of 0 or 1).
-    pub fn elo(&self) -> (f64, f64) {
+    /// The half-width of the 95 % confidence interval of [`Wdl::score`],
+    /// from the per-game variance (0 before any game).
+    pub fn score_error(&self) -> f64 {
         let n = self.games() as f64;
-        let s = self.score();
-        let half = 1.959_964 * (self.variance() / n.max(1.0)).sqrt();
-        let lo = elo_of(s - half);
-        let hi = elo_of(s + half);
-        (elo_of(s), (hi - lo) / 2.0)
+        if n == 0.0 {
+            return 0.0;
+        }
+        Z95 * (self.variance() / n).sqrt()
+    }
+
+    /// Whether the score is even within its 95 % interval: ½ lies inside
+    /// it.
+    pub fn even_within_error(&self) -> bool {
+        (self.score() - 0.5).abs() <= self.score_error()
+    }
+
+    /// The Elo difference the score implies after a prior of one drawn game,
+    /// with the half-width of its 95 % interval (the Wilson interval of the
+    /// same counts): both finite, even at a score of 0 or 1.
+    pub fn elo(&self) -> (f64, f64) {
+        let n = self.games() as f64 + PRIOR_GAMES;
+        let s = (self.points() + 0.5 * PRIOR_GAMES) / n;
+        let (lo, hi) = wilson(s, n);
+        (elo_of(s), (elo_of(hi) - elo_of(lo)) / 2.0)
     }
 
     /// The likelihood of superiority: the probability that this side is the
@@ -105,6 +125,21 @@ impl Wdl {
         let (s0, s1) = (score_of(elo0), score_of(elo1));
         n * (s1 - s0) * (2.0 * self.score() - s0 - s1) / (2.0 * v)
     }
+}
+
+/// The normal quantile of a two-sided 95 % interval.
+const Z95: f64 = 1.959_964;
+
+/// The weight of the Elo prior, in drawn games.
+const PRIOR_GAMES: f64 = 1.0;
+
+/// The Wilson score interval (95 %) of a mean score `s` over `n` games:
+/// strictly inside (0, 1) for any `n > 0`.
+fn wilson(s: f64, n: f64) -> (f64, f64) {
+    let z2 = Z95 * Z95;
+    let centre = (s + z2 / (2.0 * n)) / (1.0 + z2 / n);
+    let half = Z95 / (1.0 + z2 / n) * (s * (1.0 - s) / n + z2 / (4.0 * n * n)).sqrt();
+    (centre - half, centre + half)
 }
 
 /// The Elo difference a mean score implies.
@@ -222,10 +257,41 @@ mod tests {
             losses: 400,
         };
         let (e1, e2) = (small.elo().1, big.elo().1);
-        assert!((e1 / e2 - 10f64.sqrt()).abs() < 0.1, "{e1} {e2}");
-        // 60 % over 100 games: about 70 ± 70 Elo.
-        assert!((small.elo().0 - 70.4).abs() < 0.1);
+        assert!((e1 / e2 - 10f64.sqrt()).abs() < 0.2, "{e1} {e2}");
+        // 60 % over 100 games: about 70 ± 70 Elo (the prior of one drawn
+        // game pulls 70.4 to 69.7).
+        assert!((small.elo().0 - 69.7).abs() < 0.1, "{}", small.elo().0);
         assert!((e1 - 70.0).abs() < 5.0, "{e1}");
+        // The score's own interval: 60 % ± 9.6 % over 100 games.
+        assert!((small.score_error() - 0.096).abs() < 0.001);
+        assert!(!small.even_within_error());
+        assert!(Wdl {
+            wins: 55,
+            draws: 0,
+            losses: 45
+        }
+        .even_within_error());
+    }
+
+    #[test]
+    fn a_perfect_score_has_a_finite_elo_that_grows_with_the_games() {
+        let perfect = |n| Wdl {
+            wins: n,
+            draws: 0,
+            losses: 0,
+        };
+        let (e10, err10) = perfect(10).elo();
+        let (e200, err200) = perfect(200).elo();
+        for x in [e10, err10, e200, err200] {
+            assert!(x.is_finite() && x > 0.0, "{x}");
+        }
+        assert!(e200 > e10 + 200.0, "{e10} {e200}");
+        let (lost, lost_err) = perfect(200).flipped().elo();
+        assert!((lost + e200).abs() < 1e-9 && (lost_err - err200).abs() < 1e-9);
+        // Before any game: even, with a wide but finite bar.
+        let (e0, err0) = Wdl::default().elo();
+        assert_eq!(e0, 0.0);
+        assert!(err0.is_finite());
     }
 
     #[test]

@@ -4,14 +4,18 @@
 //! generators seeded from the tournament's seed, so a tournament is
 //! repeatable for its seed. Each pairing reports wins, draws, losses, the
 //! Elo difference with its 95 % error bar and the LOS, and may stop early
-//! on an SPRT verdict; an overall table sums each bot's games.
+//! on an SPRT verdict. Beside the first seat's score it reports White's:
+//! under the pie rule the seat that opens is not the colour that ends up
+//! White, and only the colour's score says whether the rules are fair. An
+//! overall table sums each distinct bot's games against the others (a
+//! bot's games against itself say nothing of its strength).
 
 use crate::arena::{play_match, ArenaLimits, MatchReport};
 use crate::level::by_name;
 use crate::remote::play_on_server;
 use crate::stats::{Sprt, SprtVerdict, Wdl};
 use game::noise::SplitMix64;
-use game::{Config, MatchRecord, Seat};
+use game::{Config, MatchRecord, Seat, Side};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -61,7 +65,14 @@ pub struct GameResult {
     pub seed: u64,
     /// Points of the first seat.
     pub first_score: f64,
+    /// The bot that played White (the colour, after any pie swap).
+    pub white: String,
+    /// The colour that won the match (`null`: drawn or stopped).
+    pub winner: Option<Side>,
+    /// Points of White (the colour, after any pie swap): 1, ½ or 0.
+    pub white_score: f64,
     pub shots: u32,
+    /// Whether Black took White's side under the pie rule.
     pub swapped: bool,
     /// The full record, replayable.
     #[serde(skip)]
@@ -82,6 +93,16 @@ pub struct Pairing {
     pub sprt: Option<SprtVerdict>,
     /// The first seat's score over the pairing's games.
     pub first_seat_score: f64,
+    /// The half-width of its 95 % interval.
+    pub first_seat_error: f64,
+    /// White's score (the colour, after any pie swap) over the games.
+    pub white_score: f64,
+    /// The half-width of its 95 % interval.
+    pub white_error: f64,
+    /// White's wins, draws and losses.
+    pub white_wdl: Wdl,
+    /// Games in which Black took White's side under the pie rule.
+    pub swaps: u32,
     pub games: Vec<GameResult>,
 }
 
@@ -142,12 +163,28 @@ pub fn run(settings: &TournamentSettings) -> Result<TournamentReport, Tournament
         }
     }
     bar.finish_and_clear();
-    let standings = settings
-        .bots
-        .iter()
-        .map(|bot| {
+    Ok(TournamentReport {
+        seed: settings.seed,
+        config: settings.config.clone(),
+        standings: standings(&settings.bots, &pairings),
+        pairings,
+    })
+}
+
+/// Each distinct bot's games against the other bots, in the order first
+/// named; a bot that only played itself has no row.
+fn standings(bots: &[String], pairings: &[Pairing]) -> Vec<Standing> {
+    let mut distinct: Vec<&String> = Vec::new();
+    for bot in bots {
+        if !distinct.contains(&bot) {
+            distinct.push(bot);
+        }
+    }
+    distinct
+        .into_iter()
+        .filter_map(|bot| {
             let mut wdl = Wdl::default();
-            for p in &pairings {
+            for p in pairings.iter().filter(|p| p.a != p.b) {
                 let w = if &p.a == bot {
                     p.wdl
                 } else if &p.b == bot {
@@ -159,22 +196,19 @@ pub fn run(settings: &TournamentSettings) -> Result<TournamentReport, Tournament
                 wdl.draws += w.draws;
                 wdl.losses += w.losses;
             }
+            if wdl.games() == 0 {
+                return None;
+            }
             let (elo, elo_error) = wdl.elo();
-            Standing {
+            Some(Standing {
                 bot: bot.clone(),
                 wdl,
                 score: wdl.score(),
                 elo,
                 elo_error,
-            }
+            })
         })
-        .collect();
-    Ok(TournamentReport {
-        seed: settings.seed,
-        config: settings.config.clone(),
-        pairings,
-        standings,
-    })
+        .collect()
 }
 
 /// Games played between SPRT checks (a fixed batch keeps the stop point
@@ -222,11 +256,20 @@ fn pairing(
                         )?,
                     };
                     bar.inc(1);
+                    let winner = r.result.as_ref().and_then(|m| m.winner());
+                    let white = if r.swapped { second } else { first };
                     Ok::<_, TournamentError>(GameResult {
                         first: first.to_string(),
                         second: second.to_string(),
                         seed,
                         first_score: r.score(Seat::First),
+                        white: white.to_string(),
+                        winner,
+                        white_score: match winner {
+                            Some(Side::White) => 1.0,
+                            Some(Side::Black) => 0.0,
+                            None => 0.5,
+                        },
                         shots: r.shots,
                         swapped: r.swapped,
                         record: r.record,
@@ -251,8 +294,11 @@ fn pairing(
         }
     }
     let (elo, elo_error) = wdl.elo();
-    let first_seat_score =
-        games.iter().map(|g| g.first_score).sum::<f64>() / games.len().max(1) as f64;
+    let (mut first_seat, mut white_wdl) = (Wdl::default(), Wdl::default());
+    for g in &games {
+        first_seat.add(g.first_score);
+        white_wdl.add(g.white_score);
+    }
     Ok(Pairing {
         a,
         b,
@@ -262,21 +308,38 @@ fn pairing(
         elo_error,
         los: wdl.los(),
         sprt: verdict,
-        first_seat_score,
+        first_seat_score: first_seat.score(),
+        first_seat_error: first_seat.score_error(),
+        white_score: white_wdl.score(),
+        white_error: white_wdl.score_error(),
+        white_wdl,
+        swaps: games.iter().filter(|g| g.swapped).count() as u32,
         games,
     })
 }
 
-/// The report as the table a person reads.
+/// The report as the table a person reads: each pairing with its score,
+/// Elo and LOS, the first seat's score and White's (each ± its 95 %
+/// interval) and the pie swaps; then each distinct bot against the others.
 pub fn table(report: &TournamentReport) -> String {
     let mut out = String::new();
     out.push_str(&format!(
-        "{:<22} {:>6} {:>5} {:>5} {:>5} {:>7} {:>16} {:>7} {:>9}\n",
-        "pairing", "games", "W", "D", "L", "score", "Elo (95%)", "LOS", "1st seat"
+        "{:<22} {:>6} {:>5} {:>5} {:>5} {:>7} {:>14} {:>7} {:>13} {:>13} {:>6}\n",
+        "pairing",
+        "games",
+        "W",
+        "D",
+        "L",
+        "score",
+        "Elo (95%)",
+        "LOS",
+        "1st seat",
+        "White",
+        "swaps"
     ));
     for p in &report.pairings {
         out.push_str(&format!(
-            "{:<22} {:>6} {:>5} {:>5} {:>5} {:>6.1}% {:>16} {:>6.1}% {:>8.1}%{}\n",
+            "{:<22} {:>6} {:>5} {:>5} {:>5} {:>6.1}% {:>14} {:>6.1}% {:>13} {:>13} {:>6}{}\n",
             format!("{} v {}", p.a, p.b),
             p.wdl.games(),
             p.wdl.wins,
@@ -285,20 +348,25 @@ pub fn table(report: &TournamentReport) -> String {
             100.0 * p.score,
             elo_text(p.elo, p.elo_error),
             100.0 * p.los,
-            100.0 * p.first_seat_score,
+            percent(p.first_seat_score, p.first_seat_error),
+            percent(p.white_score, p.white_error),
+            p.swaps,
             match p.sprt {
                 Some(v) => format!("  SPRT {v:?}"),
                 None => String::new(),
             }
         ));
     }
+    if report.standings.is_empty() {
+        return out;
+    }
     out.push_str(&format!(
-        "\n{:<22} {:>6} {:>5} {:>5} {:>5} {:>7} {:>16}\n",
+        "\n{:<22} {:>6} {:>5} {:>5} {:>5} {:>7} {:>14}\n",
         "bot", "games", "W", "D", "L", "score", "Elo (95%)"
     ));
     for s in &report.standings {
         out.push_str(&format!(
-            "{:<22} {:>6} {:>5} {:>5} {:>5} {:>6.1}% {:>16}\n",
+            "{:<22} {:>6} {:>5} {:>5} {:>5} {:>6.1}% {:>14}\n",
             s.bot,
             s.wdl.games(),
             s.wdl.wins,
@@ -312,13 +380,11 @@ pub fn table(report: &TournamentReport) -> String {
 }
 
 fn elo_text(elo: f64, err: f64) -> String {
-    if elo.is_finite() && err.is_finite() {
-        format!("{elo:+.0} ± {err:.0}")
-    } else if elo > 0.0 {
-        "+inf".into()
-    } else {
-        "-inf".into()
-    }
+    format!("{elo:+.0} ± {err:.0}")
+}
+
+fn percent(score: f64, err: f64) -> String {
+    format!("{:.1}±{:.1}%", 100.0 * score, 100.0 * err)
 }
 
 #[cfg(test)]
@@ -354,6 +420,66 @@ mod tests {
         assert_eq!(one.standings[0].wdl.games(), 4);
         let other = run(&small(6)).unwrap();
         assert_ne!(json(&one), json(&other));
+    }
+
+    #[test]
+    fn every_game_reports_whites_colour_score_beside_the_first_seats() {
+        let report = run(&small(9)).unwrap();
+        let p = &report.pairings[0];
+        for g in &p.games {
+            let white_is_first = g.white == g.first && !g.swapped;
+            let white_is_second = g.white == g.second && g.swapped;
+            assert!(white_is_first || white_is_second, "{g:?}");
+            let expected = if g.swapped {
+                1.0 - g.first_score
+            } else {
+                g.first_score
+            };
+            assert_eq!(g.white_score, expected, "{g:?}");
+        }
+        let n = p.games.len() as f64;
+        let white: f64 = p.games.iter().map(|g| g.white_score).sum();
+        assert_eq!(p.white_score, white / n);
+        assert_eq!(p.white_wdl.games() as usize, p.games.len());
+        assert_eq!(
+            p.swaps as usize,
+            p.games.iter().filter(|g| g.swapped).count()
+        );
+        let json = serde_json::to_value(&report).unwrap();
+        let game = &json["pairings"][0]["games"][0];
+        for field in ["white", "winner", "white_score", "first_score", "swapped"] {
+            assert!(game.get(field).is_some(), "{field} missing from {game}");
+        }
+        let table = table(&report);
+        assert!(
+            table.contains("White") && table.contains("1st seat"),
+            "{table}"
+        );
+    }
+
+    #[test]
+    fn a_bot_paired_with_itself_gets_one_standing_row_without_those_games() {
+        let mut s = small(3);
+        s.bots = vec!["random".into(), "random".into(), "easy".into()];
+        let report = run(&s).unwrap();
+        assert_eq!(report.pairings.len(), 3);
+        let names: Vec<&str> = report.standings.iter().map(|s| s.bot.as_str()).collect();
+        assert_eq!(names, ["random", "easy"]);
+        // random's games are the eight against easy, not those against itself.
+        assert_eq!(report.standings[0].wdl.games(), 8);
+        let t = table(&report);
+        let rows = |bot: &str| {
+            t.lines()
+                .filter(|l| l.starts_with(&format!("{bot} ")) && !l.contains(" v "))
+                .count()
+        };
+        assert_eq!((rows("random"), rows("easy")), (1, 1), "{t}");
+        assert!(!t.contains("inf"), "{t}");
+        // A tournament of one bot against itself: the pairing, no standings.
+        s.bots = vec!["random".into(), "random".into()];
+        let alone = run(&s).unwrap();
+        assert!(alone.standings.is_empty());
+        assert_eq!(table(&alone).lines().count(), 2);
     }
 
     #[test]

@@ -203,6 +203,17 @@ fn scenarios() -> Vec<Scenario> {
             abandon: None,
         },
         Scenario {
+            name: "standard-rows-apart-greedy-vs-greedy",
+            rules: "standard (noise, pie rule, rows kept two ranks apart), played to its end",
+            config: standard(),
+            seed: 0x5EED_000B,
+            players: "greedy vs greedy",
+            first: named("greedy", 111),
+            second: named("greedy", 112),
+            max_shots: 400,
+            abandon: None,
+        },
+        Scenario {
             name: "casual-greedy-vs-random",
             rules: "casual (the defaults: no noise, no pie rule)",
             config: Config::default(),

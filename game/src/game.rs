@@ -15,8 +15,8 @@ use crate::outcome::{ForfeitReason, MatchResult, Next, RoundEnd, ShotOutcome, Wi
 use crate::physics_version::PhysicsVersion;
 use crate::piece::{PieceId, PIECES_PER_SIDE};
 use crate::record::{MatchRecord, RecordedMove};
-use crate::rows::{Advance, Rows};
-use crate::rules::{judge, RoundResult, Verdict};
+use crate::rows::Rows;
+use crate::rules::{after_round, judge, AfterRound, RoundResult, Verdict};
 use crate::secret::NoiseCommitment;
 use crate::shot::{check_velocity, Shot, ShotError};
 use crate::side::{Seat, Side};
@@ -398,48 +398,19 @@ impl Game {
     /// Ends the round; returns the next round's rows, or `None` if the match
     /// is over.
     fn end_round(&mut self, result: RoundResult) -> Option<Rows> {
-        let winner = match result {
-            RoundResult::Won(w) => w,
-            RoundResult::Draw => {
-                if self.config.variants.quick_match {
-                    self.phase = Phase::Over {
-                        result: MatchResult::Draw,
-                    };
-                    return None;
-                }
-                // Drawn: same rows, the same side starts again.
-                self.start_round(self.round_first);
-                return Some(self.rows);
-            }
+        let flawless = match result {
+            RoundResult::Won(w) => self.board.count(w) == PIECES_PER_SIDE as usize,
+            RoundResult::Draw => false,
         };
-        if self.config.variants.quick_match {
-            self.phase = Phase::Over {
-                result: MatchResult::Won {
-                    side: winner,
-                    reason: WinReason::QuickMatch,
-                },
-            };
-            return None;
-        }
-        let flawless = self.board.count(winner) == PIECES_PER_SIDE as usize;
-        let steps = if self.config.variants.two_row_advance && flawless {
-            2
-        } else {
-            1
-        };
-        match self.rows.advance(winner, steps) {
-            Advance::FarEdge => {
-                self.phase = Phase::Over {
-                    result: MatchResult::Won {
-                        side: winner,
-                        reason: WinReason::FarEdge,
-                    },
-                };
+        let variants = &self.config.variants;
+        match after_round(variants, self.rows, self.round_first, result, flawless) {
+            AfterRound::Over(result) => {
+                self.phase = Phase::Over { result };
                 None
             }
-            Advance::Rows(rows) => {
+            AfterRound::Next { rows, opens } => {
                 self.rows = rows;
-                self.start_round(winner);
+                self.start_round(opens);
                 Some(rows)
             }
         }
@@ -835,6 +806,37 @@ mod tests {
             g.board().piece(w(0)).unwrap().pos,
             square_centre(g.config(), 0, 1)
         );
+    }
+
+    #[test]
+    fn under_the_alternate_and_loser_openings_black_opens_the_round_after_whites_win() {
+        use crate::rules::Opening;
+        for opening in [Opening::Alternate, Opening::Loser] {
+            let mut g = game_with(|c| c.variants.opening = opening);
+            let out = white_wins_round(&mut g, Rows::initial(), &[]);
+            assert_eq!(out.next, Next::Shoot { side: Side::Black });
+            assert_eq!((g.round(), g.to_shoot()), (2, Some(Side::Black)));
+            assert_eq!(g.rows(), Rows::new(1, 7).unwrap(), "the rows move as ever");
+        }
+        // Alternating after a drawn round: the other side opens.
+        let mut g = game_with(|c| c.variants.opening = Opening::Alternate);
+        let s = cut_shot_position(&mut g, &[]);
+        g.play(Side::White, s).unwrap();
+        assert_eq!(
+            (g.rows(), g.to_shoot()),
+            (Rows::initial(), Some(Side::Black))
+        );
+    }
+
+    #[test]
+    fn a_config_with_the_default_opening_is_written_as_before_and_reads_back() {
+        let json = serde_json::to_string(&Config::standard()).unwrap();
+        assert!(!json.contains("opening"), "{json}");
+        let mut c = Config::standard();
+        c.variants.opening = crate::rules::Opening::Alternate;
+        let json = serde_json::to_string(&c).unwrap();
+        assert!(json.contains(r#""opening":"alternate""#), "{json}");
+        assert_eq!(serde_json::from_str::<Config>(&json).unwrap(), c);
     }
 
     #[test]

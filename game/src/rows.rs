@@ -4,7 +4,10 @@
 //! winner of a round moves its row one rank towards the opponent; once the
 //! two rows are adjacent (they "meet"), the winner steps into the loser's
 //! rank and pushes the loser one rank back. A side whose row reaches the far
-//! edge (rank 7 for White, rank 0 for Black) wins the match.
+//! edge (rank 7 for White, rank 0 for Black), or pushes the loser's row off
+//! the board, wins the match. Under the `rows_keep_apart` variant the rows
+//! meet two ranks apart and stay so: the winner advances one rank and
+//! pushes the loser one back, keeping a clear rank between them.
 
 use crate::config::BOARD_SQUARES;
 use crate::side::Side;
@@ -91,9 +94,16 @@ impl Rows {
 
     /// The rows after `winner` wins a round worth `steps` ranks.
     pub fn advance(self, winner: Side, steps: u8) -> Advance {
+        self.advance_apart(winner, steps, 1)
+    }
+
+    /// The rows after `winner` wins a round worth `steps` ranks, when rows
+    /// meet `closest` ranks apart (1: adjacent, the classic rule; 2: a
+    /// clear rank between them).
+    pub fn advance_apart(self, winner: Side, steps: u8, closest: u8) -> Advance {
         let mut rows = self;
         for _ in 0..steps {
-            match rows.step(winner) {
+            match rows.step(winner, closest.max(1)) {
                 Advance::Rows(r) => rows = r,
                 Advance::FarEdge => return Advance::FarEdge,
             }
@@ -101,8 +111,8 @@ impl Rows {
         Advance::Rows(rows)
     }
 
-    fn step(self, winner: Side) -> Advance {
-        let met = self.have_met();
+    fn step(self, winner: Side, closest: u8) -> Advance {
+        let met = self.black - self.white <= closest;
         let Rows { white, black } = self;
         match winner {
             Side::White => {
@@ -184,6 +194,32 @@ mod tests {
             rows(3, 7).advance(Side::Black, 1),
             Advance::Rows(rows(3, 6))
         );
+    }
+
+    #[test]
+    fn rows_kept_apart_meet_two_ranks_apart_and_push_from_there() {
+        let apart = |r: Rows, side| r.advance_apart(side, 1, 2);
+        assert_eq!(apart(rows(0, 7), Side::White), Advance::Rows(rows(1, 7)));
+        assert_eq!(apart(rows(2, 5), Side::White), Advance::Rows(rows(3, 5)));
+        // Two apart: the winner advances and the loser is pushed back.
+        assert_eq!(apart(rows(3, 5), Side::White), Advance::Rows(rows(4, 6)));
+        assert_eq!(apart(rows(3, 5), Side::Black), Advance::Rows(rows(2, 4)));
+        // A loser pushed off its own edge loses the match.
+        assert_eq!(apart(rows(5, 7), Side::White), Advance::FarEdge);
+        assert_eq!(apart(rows(0, 2), Side::Black), Advance::FarEdge);
+        assert_eq!(
+            rows(0, 7).advance_apart(Side::White, 2, 2),
+            Advance::Rows(rows(2, 7))
+        );
+        // Closest 1 is the classic rule.
+        for (w, b) in [(0, 7), (3, 4), (2, 4), (6, 7)] {
+            for side in Side::BOTH {
+                assert_eq!(
+                    rows(w, b).advance_apart(side, 1, 1),
+                    rows(w, b).advance(side, 1)
+                );
+            }
+        }
     }
 
     #[test]

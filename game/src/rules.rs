@@ -5,9 +5,19 @@
 //! the same shot), the round is drawn. Otherwise, a shot that knocked off
 //! at least one enemy piece and none of the shooter's own earns another
 //! shot; anything else passes the turn.
+//!
+//! Between rounds ([`after_round`]): a drawn round is played again on the
+//! same rows; a won round moves the winner's row ([`Rows::advance_apart`],
+//! two ranks for a flawless win under `two_row_advance`, the rows meeting
+//! two ranks apart under `rows_keep_apart`) and the match is won
+//! when it reaches the far edge (or at once under `quick_match`). Who opens
+//! the next round is the [`Opening`] rule's choice.
 
 use crate::board::Board;
+use crate::config::Variants;
+use crate::outcome::{MatchResult, WinReason};
 use crate::piece::PieceId;
+use crate::rows::{Advance, Rows};
 use crate::side::Side;
 use serde::{Deserialize, Serialize};
 
@@ -51,6 +61,88 @@ pub fn judge(shooter: Side, knocked_off: &[PieceId], after: &Board) -> Verdict {
         Verdict::ShootAgain
     } else {
         Verdict::PassTurn
+    }
+}
+
+/// Who opens each round after the first (White opens round 1).
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum Opening {
+    /// The winner of a round opens the next; after a draw the side that
+    /// opened it opens again.
+    #[default]
+    Winner,
+    /// The loser of a round opens the next; after a draw the side that
+    /// opened it opens again.
+    Loser,
+    /// The sides take turns, whatever the result: the side that did not
+    /// open a round opens the next.
+    Alternate,
+}
+
+impl Opening {
+    /// Whether this is the default ([`Opening::Winner`]), which a recorded
+    /// configuration leaves out.
+    pub fn is_winner(&self) -> bool {
+        *self == Opening::Winner
+    }
+
+    /// The side that opens the round after one opened by `opened` that
+    /// ended with `result`.
+    pub fn next(self, opened: Side, result: RoundResult) -> Side {
+        match (self, result) {
+            (Opening::Alternate, _) => opened.opponent(),
+            (_, RoundResult::Draw) => opened,
+            (Opening::Winner, RoundResult::Won(winner)) => winner,
+            (Opening::Loser, RoundResult::Won(winner)) => winner.opponent(),
+        }
+    }
+}
+
+/// What the end of a round leads to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AfterRound {
+    /// Another round, on `rows`, opened by `opens`.
+    Next { rows: Rows, opens: Side },
+    /// The match is over.
+    Over(MatchResult),
+}
+
+/// What the end of a round on `rows`, opened by `opened`, leads to under
+/// `variants`; `flawless`: the winner lost no piece in it.
+pub fn after_round(
+    variants: &Variants,
+    rows: Rows,
+    opened: Side,
+    result: RoundResult,
+    flawless: bool,
+) -> AfterRound {
+    let opens = variants.opening.next(opened, result);
+    let winner = match result {
+        RoundResult::Draw if variants.quick_match => return AfterRound::Over(MatchResult::Draw),
+        RoundResult::Draw => return AfterRound::Next { rows, opens },
+        RoundResult::Won(winner) => winner,
+    };
+    if variants.quick_match {
+        return AfterRound::Over(MatchResult::Won {
+            side: winner,
+            reason: WinReason::QuickMatch,
+        });
+    }
+    let steps = if variants.two_row_advance && flawless {
+        2
+    } else {
+        1
+    };
+    let closest = if variants.rows_keep_apart { 2 } else { 1 };
+    match rows.advance_apart(winner, steps, closest) {
+        Advance::FarEdge => AfterRound::Over(MatchResult::Won {
+            side: winner,
+            reason: WinReason::FarEdge,
+        }),
+        Advance::Rows(rows) => AfterRound::Next { rows, opens },
     }
 }
 
@@ -123,6 +215,63 @@ mod tests {
         assert_eq!(
             judge(Side::Black, &[w(0), b(0)], &board(&[])),
             Verdict::RoundOver(RoundResult::Draw)
+        );
+    }
+
+    #[test]
+    fn the_opening_rule_names_who_opens_the_next_round() {
+        use Side::{Black, White};
+        let won = |s| RoundResult::Won(s);
+        assert_eq!(Opening::Winner.next(White, won(Black)), Black);
+        assert_eq!(Opening::Winner.next(Black, RoundResult::Draw), Black);
+        assert_eq!(Opening::Loser.next(White, won(White)), Black);
+        assert_eq!(Opening::Loser.next(White, RoundResult::Draw), White);
+        for result in [won(White), won(Black), RoundResult::Draw] {
+            assert_eq!(Opening::Alternate.next(White, result), Black);
+            assert_eq!(Opening::Alternate.next(Black, result), White);
+        }
+    }
+
+    #[test]
+    fn after_a_round_the_rows_move_and_the_match_ends_at_the_far_edge() {
+        let mut v = Variants::default();
+        let rows = Rows::initial();
+        let white_won = RoundResult::Won(Side::White);
+        assert_eq!(
+            after_round(&v, rows, Side::White, white_won, true),
+            AfterRound::Next {
+                rows: Rows::new(1, 7).unwrap(),
+                opens: Side::White
+            }
+        );
+        v.two_row_advance = true;
+        v.opening = Opening::Alternate;
+        assert_eq!(
+            after_round(&v, rows, Side::White, white_won, true),
+            AfterRound::Next {
+                rows: Rows::new(2, 7).unwrap(),
+                opens: Side::Black
+            }
+        );
+        assert_eq!(
+            after_round(&v, rows, Side::Black, RoundResult::Draw, false),
+            AfterRound::Next {
+                rows,
+                opens: Side::White
+            }
+        );
+        let last = Rows::new(6, 7).unwrap();
+        assert_eq!(
+            after_round(&v, last, Side::White, white_won, false),
+            AfterRound::Over(MatchResult::Won {
+                side: Side::White,
+                reason: WinReason::FarEdge
+            })
+        );
+        v.quick_match = true;
+        assert_eq!(
+            after_round(&v, rows, Side::White, RoundResult::Draw, false),
+            AfterRound::Over(MatchResult::Draw)
         );
     }
 }
