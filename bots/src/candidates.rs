@@ -8,7 +8,7 @@ use game::{Board, Config, Shot, Side};
 use glam::DVec2;
 
 /// Which candidates to make.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Spread {
     /// Speeds, as fractions of the maximum.
     pub speeds: Vec<f64>,

@@ -24,7 +24,10 @@
 //!   what made White lose under the earlier rules), and a decider that
 //!   assumed them equal swapped into White 83 times of 100 there, where
 //!   White scored 22 %. They depend only on the rules, so they are computed
-//!   once per configuration (about 10 s of CPU) and kept.
+//!   once per configuration (about 10 s of CPU, spread over the cores) and
+//!   kept; the standard rules' values ship with the crate
+//!   (`pie_values_standard.json`), so a standard match's first decision
+//!   costs no more than any other.
 //!
 //! A playout that runs long is scored by the material on the board.
 //!
@@ -41,6 +44,7 @@ use game::noise::{NoiseDraw, SplitMix64};
 use game::rules::{after_round, AfterRound, RoundResult, Verdict};
 use game::{Board, Config, MatchResult, MatchView, NoiseConfig, Rows, Side};
 use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
@@ -146,22 +150,163 @@ pub struct MatchValues {
 /// ending.
 type Tally = Vec<(RoundResult, bool, f64)>;
 
+/// Every setup (rows, the side that opens) a match under `variants` can
+/// reach from its first round, whatever the rounds' results, sorted.
+fn reachable(variants: &game::Variants) -> Vec<(Rows, Side)> {
+    let mut seen: Vec<(Rows, Side)> = Vec::new();
+    let mut todo = vec![(Rows::initial(), Side::White)];
+    while let Some(state) = todo.pop() {
+        if seen.contains(&state) {
+            continue;
+        }
+        seen.push(state);
+        let (rows, opens) = state;
+        for result in [
+            RoundResult::Won(Side::White),
+            RoundResult::Won(Side::Black),
+            RoundResult::Draw,
+        ] {
+            for flawless in [false, true] {
+                if let AfterRound::Next { rows, opens: next } =
+                    after_round(variants, rows, opens, result, flawless)
+                {
+                    todo.push((rows, next));
+                }
+            }
+        }
+    }
+    seen.sort_by_key(|&(rows, opens)| {
+        (
+            rows.rank(Side::White),
+            rows.rank(Side::Black),
+            opens.index(),
+        )
+    });
+    seen
+}
+
+/// The match values shipped with the crate, so that the first pie decision
+/// of a standard match costs no more than the others (computing them takes
+/// about 10 s of CPU). `the_shipped_match_values_are_the_computed_ones`
+/// checks them against [`MatchValues::compute`] and rewrites the file when
+/// run with `CHAPAEV_BLESS=1`.
+const SHIPPED: &str = include_str!("pie_values_standard.json");
+
+/// The file [`SHIPPED`] is read from: what the values were computed for,
+/// and White's match score from each setup.
+#[derive(Debug, PartialEq, Serialize, Deserialize)]
+struct ShippedValues {
+    rules: Config,
+    setup_playouts: u32,
+    max_shots: u32,
+    assumed_noise: NoiseConfig,
+    setup_spread: Spread,
+    /// (White's rank, Black's rank, the side that opens, White's score).
+    white: Vec<(u8, u8, Side, f64)>,
+}
+
+impl ShippedValues {
+    /// `values` as shipped, computed for `config` under `settings`.
+    #[cfg(test)]
+    fn of(config: &Config, settings: &PieSettings, values: &MatchValues) -> ShippedValues {
+        let mut white: Vec<(u8, u8, Side, f64)> = values
+            .white
+            .iter()
+            .map(|(&(rows, opens), &v)| (rows.rank(Side::White), rows.rank(Side::Black), opens, v))
+            .collect();
+        white.sort_by_key(|&(w, b, opens, _)| (w, b, opens.index()));
+        ShippedValues {
+            rules: config.clone(),
+            setup_playouts: settings.setup_playouts,
+            max_shots: settings.max_shots,
+            assumed_noise: settings.assumed_noise,
+            setup_spread: settings.setup_spread.clone(),
+            white,
+        }
+    }
+
+    /// The values, if they were computed for `config` and `settings`.
+    fn values_for(&self, config: &Config, settings: &PieSettings) -> Option<MatchValues> {
+        let same = self.rules == *config
+            && self.setup_playouts == settings.setup_playouts
+            && self.max_shots == settings.max_shots
+            && self.assumed_noise == settings.assumed_noise
+            && self.setup_spread == settings.setup_spread;
+        if !same {
+            return None;
+        }
+        let mut white = HashMap::new();
+        for &(w, b, opens, v) in &self.white {
+            white.insert((Rows::new(w, b).ok()?, opens), v);
+        }
+        Some(MatchValues {
+            white,
+            variants: config.variants.clone(),
+        })
+    }
+}
+
 impl MatchValues {
     /// Plays out every reachable setup `settings.setup_playouts` times (the
     /// draws seeded by the setup alone, so the values depend only on the
-    /// rules and the settings) and chains them by value iteration.
+    /// rules and the settings) and chains them by value iteration. The
+    /// playouts run on plain threads, one per core: not on rayon's pool,
+    /// whose waiting workers take up other jobs (a decision that waits on
+    /// [`MatchValues::cached`]'s lock would deadlock there).
     pub fn compute(config: &Config, settings: &PieSettings) -> MatchValues {
         let noise = config.variants.noise.unwrap_or(settings.assumed_noise);
         let variants = config.variants.clone();
-        let mut tallies: HashMap<(Rows, Side), Tally> = HashMap::new();
-        let mut todo = vec![(Rows::initial(), Side::White)];
-        while let Some(state) = todo.pop() {
-            if tallies.contains_key(&state) {
-                continue;
-            }
-            let (rows, opens) = state;
-            let board = Board::setup(config, rows);
-            let mut tally: Tally = Vec::new();
+        let states = reachable(&variants);
+        // One job per playout: (the setup's index in `states`, the playout).
+        let jobs: Vec<(usize, u32)> = (0..states.len())
+            .flat_map(|s| (0..settings.setup_playouts).map(move |k| (s, k)))
+            .collect();
+        let threads = std::thread::available_parallelism()
+            .map_or(1, |n| n.get())
+            .clamp(1, jobs.len().max(1));
+        let endings: Vec<Ending> = std::thread::scope(|scope| {
+            let workers: Vec<_> = (0..threads)
+                .map(|t| {
+                    let (jobs, states) = (&jobs, &states);
+                    let (noise, spread) = (&noise, &settings.setup_spread);
+                    scope.spawn(move || {
+                        jobs.iter()
+                            .enumerate()
+                            .filter(|(i, _)| i % threads == t)
+                            .map(|(i, &(s, k))| {
+                                let (rows, opens) = states[s];
+                                let seed = (rows.rank(Side::White) as u64) << 40
+                                    ^ (rows.rank(Side::Black) as u64) << 32
+                                    ^ (opens.index() as u64) << 24
+                                    ^ k as u64;
+                                let mut rng = SplitMix64::new(seed ^ 0x005E_ED0F_9A1E);
+                                let board = Board::setup(config, rows);
+                                let ending = play_round(
+                                    config,
+                                    spread,
+                                    noise,
+                                    &board,
+                                    opens,
+                                    settings.max_shots,
+                                    &mut rng,
+                                );
+                                (i, ending)
+                            })
+                            .collect::<Vec<_>>()
+                    })
+                })
+                .collect();
+            let mut all: Vec<(usize, Ending)> = workers
+                .into_iter()
+                .flat_map(|w| w.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+                .collect();
+            all.sort_by_key(|(i, _)| *i);
+            all.into_iter().map(|(_, e)| e).collect()
+        });
+        let mut tallies: Vec<((Rows, Side), Tally)> =
+            states.iter().map(|&s| (s, Vec::new())).collect();
+        for (&(s, _), ending) in jobs.iter().zip(&endings) {
+            let tally = &mut tallies[s].1;
             let mut add = |result: RoundResult, flawless: bool, w: f64| match tally
                 .iter_mut()
                 .find(|t| t.0 == result && t.1 == flawless)
@@ -169,53 +314,24 @@ impl MatchValues {
                 Some(t) => t.2 += w,
                 None => tally.push((result, flawless, w)),
             };
-            for k in 0..settings.setup_playouts {
-                let seed = (rows.rank(Side::White) as u64) << 40
-                    ^ (rows.rank(Side::Black) as u64) << 32
-                    ^ (opens.index() as u64) << 24
-                    ^ k as u64;
-                let mut rng = SplitMix64::new(seed ^ 0x005E_ED0F_9A1E);
-                match play_round(
-                    config,
-                    &settings.setup_spread,
-                    &noise,
-                    &board,
-                    opens,
-                    settings.max_shots,
-                    &mut rng,
-                ) {
-                    Ending::Over { result, flawless } => add(result, flawless, 1.0),
-                    Ending::Unfinished { white } => {
-                        add(RoundResult::Won(Side::White), false, white);
-                        add(RoundResult::Won(Side::Black), false, 1.0 - white);
-                    }
+            match *ending {
+                Ending::Over { result, flawless } => add(result, flawless, 1.0),
+                Ending::Unfinished { white } => {
+                    add(RoundResult::Won(Side::White), false, white);
+                    add(RoundResult::Won(Side::Black), false, 1.0 - white);
                 }
             }
-            // Every ending the rules allow leads somewhere, played or not.
-            for result in [
-                RoundResult::Won(Side::White),
-                RoundResult::Won(Side::Black),
-                RoundResult::Draw,
-            ] {
-                for flawless in [false, true] {
-                    if let AfterRound::Next { rows, opens: next } =
-                        after_round(&variants, rows, opens, result, flawless)
-                    {
-                        todo.push((rows, next));
-                    }
-                }
-            }
-            tallies.insert(state, tally);
         }
         let mut values = MatchValues {
-            white: tallies.keys().map(|&s| (s, 0.5)).collect(),
+            white: states.iter().map(|&s| (s, 0.5)).collect(),
             variants,
         };
-        // Value iteration: every round moves the match on or ends it, so
+        // Value iteration, in the setups' order (so the result is the same
+        // in every process): every round moves the match on or ends it, so
         // this converges (a drawn round repeats at most).
         for _ in 0..100_000 {
             let mut change: f64 = 0.0;
-            for (&(rows, opens), tally) in &tallies {
+            for &((rows, opens), ref tally) in &tallies {
                 let total: f64 = tally.iter().map(|t| t.2).sum();
                 if total <= 0.0 {
                     continue;
@@ -269,14 +385,17 @@ impl MatchValues {
             settings.assumed_noise,
             settings.setup_spread.clone(),
         );
-        // Computed while holding the lock, without rayon: a thread that
-        // waits in rayon could otherwise take up another decision that
-        // needs the same lock.
+        // Computed while holding the lock, on plain threads (see
+        // `compute`): a thread that waits in rayon could otherwise take up
+        // another decision that needs the same lock.
         let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
         if let Some((_, v)) = cache.iter().find(|(k, _)| *k == key) {
             return v.clone();
         }
-        let values = Arc::new(MatchValues::compute(config, settings));
+        let shipped = serde_json::from_str::<ShippedValues>(SHIPPED)
+            .ok()
+            .and_then(|s| s.values_for(config, settings));
+        let values = Arc::new(shipped.unwrap_or_else(|| MatchValues::compute(config, settings)));
         cache.push((key, values.clone()));
         values
     }
@@ -449,6 +568,29 @@ mod tests {
         assert_eq!(values.after(rows(0, 2), Side::Black, lost, false), 0.0);
         // Adjacent rows cannot be reached: they count as even.
         assert_eq!(values.white(rows(3, 4), Side::White), 0.5);
+    }
+
+    #[test]
+    fn the_shipped_match_values_are_the_computed_ones() {
+        let (config, settings) = (Config::standard(), PieSettings::default());
+        let computed = MatchValues::compute(&config, &settings);
+        let fresh = ShippedValues::of(&config, &settings, &computed);
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/src/pie_values_standard.json");
+        if std::env::var_os("CHAPAEV_BLESS").is_some() {
+            let text = serde_json::to_string_pretty(&fresh).expect("plain data");
+            std::fs::write(path, text + "\n").expect("the source tree is writable");
+            return;
+        }
+        let shipped: ShippedValues =
+            serde_json::from_str(SHIPPED).expect("the shipped values parse");
+        assert_eq!(
+            shipped, fresh,
+            "{path} is stale: rerun this test with CHAPAEV_BLESS=1 to rewrite it"
+        );
+        assert_eq!(shipped.values_for(&config, &settings), Some(computed));
+        let mut other = config.clone();
+        other.variants.quick_match = true;
+        assert_eq!(shipped.values_for(&other, &settings), None);
     }
 
     #[test]
