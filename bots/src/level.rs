@@ -134,7 +134,7 @@ impl Level {
             },
             Level::Adaptive => {
                 let s = AdaptiveSettings::default();
-                s.hand_at(s.even_with(s.prior.0))
+                s.hand_at(s.start)
             }
         }
     }

@@ -27,6 +27,7 @@
 
 pub mod accounts;
 pub mod accounts_api;
+pub mod adaptive_memory;
 pub mod app;
 pub mod assets;
 pub mod auth;

@@ -231,6 +231,10 @@ pub struct Room<H: RoomHost> {
     /// the room, held across awaits, can be shared: only the room touches
     /// it).
     bots: [std::sync::Mutex<Option<Box<dyn Bot>>>; 2],
+    /// For a seat the adaptive level plays against a person with an
+    /// account: that account, until the level's first decision looks up
+    /// what it learned of them ([`crate::adaptive_memory`]).
+    adaptive_person: [Option<String>; 2],
     bot_tx: mpsc::Sender<BotAnswer>,
     bot_rx: Option<mpsc::Receiver<BotAnswer>>,
     /// What the session has said while handling the command in hand;
@@ -293,6 +297,11 @@ impl<H: RoomHost> Room<H> {
             refused: HashMap::new(),
             live: false,
             bots,
+            adaptive_person: [0, 1].map(|i| {
+                (levels[i] == Some(bots::Level::Adaptive))
+                    .then(|| stored.seats[1 - i].account.clone())
+                    .flatten()
+            }),
             bot_tx,
             bot_rx: Some(bot_rx),
             outbox: Vec::new(),
@@ -684,7 +693,21 @@ impl<H: RoomHost> Room<H> {
         };
         let tx = self.bot_tx.clone();
         let think = self.host.limits().bot_think;
+        let person = self.adaptive_person[seat.index()].take();
+        let store = self.host.store().clone();
+        let match_id = self.id.clone();
         tokio::task::spawn_blocking(move || {
+            if let Some(account) = person {
+                let settings = bots::AdaptiveSettings::default();
+                match crate::adaptive_memory::start_for(store.as_ref(), &settings, &account) {
+                    Ok(start) => {
+                        bot = Box::new(bots::Adaptive::with_start(settings, start, bot_seed()));
+                    }
+                    Err(e) => {
+                        warn!(%match_id, error = %e, "the person's history does not load; the adaptive level starts afresh");
+                    }
+                }
+            }
             let ctx = Context::new(&view, side, think);
             let decision = match bot.decide(&ctx) {
                 Decision::Shot(shot) => BotDecision::Shot(shot),
