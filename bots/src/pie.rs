@@ -175,14 +175,17 @@ fn reachable(variants: &game::Variants) -> Vec<(Rows, Side)> {
             }
         }
     }
-    seen.sort_by_key(|&(rows, opens)| {
-        (
-            rows.rank(Side::White),
-            rows.rank(Side::Black),
-            opens.index(),
-        )
-    });
+    seen.sort_by_key(|&(rows, opens)| setup_order(rows, opens));
     seen
+}
+
+/// The order setups are listed in: White's rank, Black's, the opener.
+fn setup_order(rows: Rows, opens: Side) -> (u8, u8, usize) {
+    (
+        rows.rank(Side::White),
+        rows.rank(Side::Black),
+        opens.index(),
+    )
 }
 
 /// The match values shipped with the crate, so that the first pie decision
@@ -209,12 +212,12 @@ impl ShippedValues {
     /// `values` as shipped, computed for `config` under `settings`.
     #[cfg(test)]
     fn of(config: &Config, settings: &PieSettings, values: &MatchValues) -> ShippedValues {
-        let mut white: Vec<(u8, u8, Side, f64)> = values
-            .white
-            .iter()
+        let mut setups: Vec<(&(Rows, Side), &f64)> = values.white.iter().collect();
+        setups.sort_by_key(|(&(rows, opens), _)| setup_order(rows, opens));
+        let white = setups
+            .into_iter()
             .map(|(&(rows, opens), &v)| (rows.rank(Side::White), rows.rank(Side::Black), opens, v))
             .collect();
-        white.sort_by_key(|&(w, b, opens, _)| (w, b, opens.index()));
         ShippedValues {
             rules: config.clone(),
             setup_playouts: settings.setup_playouts,

@@ -23,10 +23,15 @@ pub fn start_for(
 ) -> Result<f64, StoreError> {
     let mut scores = Vec::new();
     for summary in store.matches_of(account, HISTORY)? {
-        if summary.status != Status::Finished {
+        // Only finished matches with the adaptive level in a seat are read.
+        let against_adaptive = summary
+            .bot
+            .as_deref()
+            .is_some_and(|b| b.split('/').any(|l| l == Level::Adaptive.as_str()));
+        if summary.status != Status::Finished || !against_adaptive {
             continue;
         }
-        let Some((stored, record)) = store.load(&summary.match_id)? else {
+        let Some(stored) = store.get(&summary.match_id)? else {
             continue;
         };
         let levels = stored.bots();
@@ -40,10 +45,12 @@ pub fn start_for(
         let Some(person) = person else {
             continue;
         };
-        let swapped = record
-            .moves
-            .iter()
-            .any(|m| matches!(m, RecordedMove::Pie { swap: true }));
+        // Only a match under the pie rule can have swapped seats.
+        let swapped = stored.config.variants.pie_rule
+            && store
+                .moves(&stored.id)?
+                .iter()
+                .any(|m| matches!(m, RecordedMove::Pie { swap: true }));
         let side = [Seat::First, Seat::Second][person].side(swapped);
         let Some(result) = summary.result else {
             continue;
