@@ -13,10 +13,10 @@
 //!   the person has won rounds (by the person's margin), and weakens only a
 //!   little for rounds it wins: a level that weakened while it swept would
 //!   hand a good person the turn, perhaps for the rest of the match, and
-//!   learn that too late. Measured with a fixed strength, the score moves
-//!   from 83 % to 21 % for `easy` between strengths 0.2 and 0.35, and a
-//!   controller that weakened by 0.08 a won round lost 23 of 24 matches
-//!   to `medium`.
+//!   learn that too late. In tuning runs (24 games each, a scratch harness
+//!   not kept; see bots/README) the score moved from 83 % to 21 % for
+//!   `easy` between fixed strengths 0.2 and 0.35, and a controller that
+//!   weakened by 0.08 a won round lost 23 of 24 matches to `medium`.
 //! - **Across matches** against the same person it moves the strength it
 //!   opens with by [`AdaptiveSettings::match_step`] towards the person:
 //!   up after the person wins, down after the person loses. The server
