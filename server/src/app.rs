@@ -6,13 +6,13 @@
 //! log is checkpointed.
 
 use crate::config::Config;
-use crate::hub::Hub;
 use crate::metrics::Metrics;
+use crate::play::hub::Hub;
 use crate::store::StoreError;
 use actix_web::{web, App, HttpServer};
 use std::sync::Arc;
 use std::time::Duration;
-use tracing::{error, info};
+use tracing::{error, info, warn};
 
 /// The server could not start or stop cleanly.
 #[derive(Debug, thiserror::Error)]
@@ -22,7 +22,7 @@ pub enum AppError {
     #[error(transparent)]
     Store(#[from] StoreError),
     #[error("cannot join the cluster: {0}")]
-    Cluster(#[from] crate::cluster::ClusterError),
+    Cluster(#[from] crate::play::cluster::ClusterError),
     #[error("cannot listen on {addr}: {source}")]
     Bind {
         addr: String,
@@ -80,7 +80,8 @@ pub fn run(config: Config) -> Result<(), AppError> {
         &config.redis_url,
     ) {
         let lease = Duration::from_secs(config.lease_seconds);
-        let cluster = crate::cluster::Cluster::connect(node, db, redis, lease, game_rt.handle())?;
+        let cluster =
+            crate::play::cluster::Cluster::connect(node, db, redis, lease, game_rt.handle())?;
         hub.set_cluster(cluster.clone());
         cluster.start(&hub, game_rt.handle());
         info!(
@@ -104,7 +105,7 @@ pub fn run(config: Config) -> Result<(), AppError> {
 
     let streams = {
         let _in_game_rt = game_rt.enter();
-        crate::stream::Streams::start(hub.clone(), config.lobby_limits())
+        crate::web::stream::Streams::start(hub.clone(), config.lobby_limits())
     };
     let served =
         actix_web::rt::System::new().block_on(serve(&config, hub.clone(), streams, &game_rt));
@@ -121,38 +122,38 @@ pub fn run(config: Config) -> Result<(), AppError> {
 async fn serve(
     config: &Config,
     hub: Hub,
-    streams: crate::stream::Streams,
+    streams: crate::web::stream::Streams,
     game_rt: &tokio::runtime::Runtime,
 ) -> Result<(), AppError> {
     let limit = config.max_message_bytes;
     let data = web::Data::new(hub.clone());
     let streams = web::Data::new(streams);
-    let simulations = web::Data::new(crate::ratelimit::AddressLimiter::new(
+    let simulations = web::Data::new(crate::web::ratelimit::AddressLimiter::new(
         config.simulate_per_sec,
         config.simulate_burst,
     ));
-    let creations = web::Data::new(crate::http::Creations(
-        crate::ratelimit::AddressLimiter::new(config.create_per_sec, config.create_burst),
+    let creations = web::Data::new(crate::web::reply::Creations(
+        crate::web::ratelimit::AddressLimiter::new(config.create_per_sec, config.create_burst),
     ));
-    let origins = web::Data::new(crate::origin::Origins::new(&config.allowed_origins));
+    let origins = web::Data::new(crate::web::origin::Origins::new(&config.allowed_origins));
     let server = HttpServer::new(move || {
         App::new()
             .app_data(data.clone())
             .app_data(streams.clone())
             .app_data(origins.clone())
-            .wrap(actix_web::middleware::from_fn(crate::origin::check))
+            .wrap(actix_web::middleware::from_fn(crate::web::origin::check))
             .app_data(simulations.clone())
             .app_data(creations.clone())
             .app_data(web::PayloadConfig::new(limit))
             .wrap(
                 actix_web::middleware::ErrorHandlers::new()
                     .handler(actix_web::http::StatusCode::PAYLOAD_TOO_LARGE, move |res| {
-                        crate::http::too_large_as_json(res, limit)
+                        crate::web::reply::too_large_as_json(res, limit)
                     }),
             )
-            .configure(crate::http::routes)
+            .configure(crate::web::routes)
     })
-    .on_connect(crate::ws::on_connect)
+    .on_connect(crate::web::ws::on_connect)
     .workers(config.http_workers as usize)
     .disable_signals()
     .shutdown_timeout(config.shutdown_seconds)
@@ -163,6 +164,19 @@ async fn serve(
     })?;
     for addr in server.addrs() {
         info!(%addr, "listening");
+        if let Err(why) = crate::web::assets::web_client() {
+            if why.skipped {
+                info!(
+                    reason = why.reason,
+                    "no web client embedded (skipped on purpose)"
+                );
+            } else {
+                warn!(
+                    reason = why.reason,
+                    "no web client embedded: `/` serves a page saying why"
+                );
+            }
+        }
         // The one line on standard output: tools and tests read the address here.
         println!("listening on http://{addr}");
     }

@@ -16,15 +16,17 @@
 //! replays it through [`game::Replay`] under the match's own physics
 //! version.
 
+pub(crate) mod checkpointer;
 pub mod group_commit;
 pub mod postgres;
+pub(crate) mod readers;
 pub mod sqlite;
 #[cfg(test)]
 mod tests;
 
+use crate::accounts::ratings::RatingPoint;
 use crate::accounts::{AccountName, Profile};
 use crate::config::Config as ServerConfig;
-use crate::ratings::RatingPoint;
 use game::rating::Rating;
 use game::token::TokenHash;
 use game::{Config, MatchRecord, MatchResult, NoiseKey, NoiseSecret, PhysicsVersion, RecordedMove};

@@ -6,8 +6,8 @@
 //! connections) is tested in [`super::sqlite`].
 
 use super::*;
+use crate::accounts::ratings::computer_account;
 use crate::accounts::{AccountError, AccountName};
-use crate::ratings::computer_account;
 use game::protocol::ErrorCode;
 use game::token::SeatToken;
 use game::{Game, MatchResult, PieceId, Seat, Shot, Side, WinReason};
@@ -338,11 +338,9 @@ fn a_name_taken_in_any_case_is_refused_and_changes_nothing(b: Backend) {
     assert_eq!(code(err), ErrorCode::NameTaken);
     let anka = store.account_of_key(&key).unwrap();
     assert!(!anka.bot);
-    assert!(store
-        .leaderboard(true, 10)
-        .unwrap()
-        .iter()
-        .all(|p| p.name.starts_with(crate::ratings::COMPUTER_PREFIX)));
+    assert!(store.leaderboard(true, 10).unwrap().iter().all(|p| p
+        .name
+        .starts_with(crate::accounts::ratings::COMPUTER_PREFIX)));
 }
 
 fn a_wrong_or_revoked_key_proves_nothing(b: Backend) {
@@ -374,7 +372,10 @@ fn the_leaderboard_lists_one_kind_established_ratings_first(b: Backend) {
         .leaderboard(true, 10)
         .unwrap()
         .into_iter()
-        .filter(|p| !p.name.starts_with(crate::ratings::COMPUTER_PREFIX))
+        .filter(|p| {
+            !p.name
+                .starts_with(crate::accounts::ratings::COMPUTER_PREFIX)
+        })
         .map(|p| (p.name, p.provisional))
         .collect();
     assert_eq!(

@@ -7,8 +7,8 @@
 //! visitor to abuse). Reads (`GET`, but the WebSocket) are not checked: a
 //! foreign page cannot read their answers anyway.
 
-use crate::http::refused;
 use crate::refusal::Refusal;
+use crate::web::reply::refused;
 use actix_web::body::MessageBody;
 use actix_web::dev::{ServiceRequest, ServiceResponse};
 use actix_web::http::{header, Method};

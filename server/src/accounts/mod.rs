@@ -9,6 +9,8 @@
 //! match's result and the ratings it moves can be written in one
 //! transaction.
 
+pub(crate) mod ratings;
+
 use crate::store::{Store, StoreError};
 use crate::token::{seat_token, RandomError, SeatToken, TokenHash};
 use game::protocol::ErrorCode;
@@ -46,14 +48,14 @@ impl AccountName {
                 .next()
                 .is_some_and(|b| b.is_ascii_alphanumeric());
         let reserved = name
-            .get(..crate::ratings::COMPUTER_PREFIX.len())
-            .is_some_and(|p| p.eq_ignore_ascii_case(crate::ratings::COMPUTER_PREFIX));
+            .get(..crate::accounts::ratings::COMPUTER_PREFIX.len())
+            .is_some_and(|p| p.eq_ignore_ascii_case(crate::accounts::ratings::COMPUTER_PREFIX));
         if reserved {
             return Err(Refusal::new(
                 ErrorCode::BadName,
                 format!(
                     "names starting with {} are the computer levels'",
-                    crate::ratings::COMPUTER_PREFIX
+                    crate::accounts::ratings::COMPUTER_PREFIX
                 ),
             ));
         }

@@ -33,9 +33,9 @@
 //! restart; connections relayed through a lost subscription reconnect),
 //! and it must be reachable only by the nodes: seat tokens cross it.
 
-use crate::hub::Hub;
+use crate::play::hub::Hub;
+use crate::play::room::{Claim, Command, Connected, Inbox, Outbound};
 use crate::refusal::Refusal;
-use crate::room::{Claim, Command, Connected, Inbox, Outbound};
 use crate::store::StoreError;
 use bytestring::ByteString;
 use futures_util::StreamExt;
@@ -303,11 +303,6 @@ impl Cluster {
     /// This node's id.
     pub fn node(&self) -> &str {
         &self.node
-    }
-
-    /// How long a lease lasts unrenewed.
-    pub fn lease(&self) -> Duration {
-        self.lease
     }
 
     /// The connections this node relays to other nodes, and those it

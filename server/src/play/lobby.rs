@@ -6,7 +6,7 @@
 //! It is a state machine without I/O, like a match's session:
 //! [`Lobby::handle`] takes an [`Input`] and the time, and returns the
 //! [`Effect`]s for its driver to carry out (send a stream message, start a
-//! match). The driver (`crate::stream` and the hub) owns the sockets, the
+//! match). The driver (`crate::web::stream` and the hub) owns the sockets, the
 //! store and the timer; tests drive it with a virtual clock.
 
 use game::session::Moment;
@@ -252,7 +252,7 @@ impl Lobby {
     fn player_name(&self, p: &Player) -> String {
         match p {
             Player::Account(a) => a.clone(),
-            Player::Computer(l) => crate::ratings::computer_account(*l),
+            Player::Computer(l) => crate::accounts::ratings::computer_account(*l),
         }
     }
 
@@ -272,7 +272,7 @@ impl Lobby {
             }
         }
         for (level, r) in &mut self.computers {
-            if key(&crate::ratings::computer_account(*level)) == key(account) {
+            if key(&crate::accounts::ratings::computer_account(*level)) == key(account) {
                 *r = rating;
             }
         }
@@ -390,7 +390,7 @@ impl Lobby {
         }
         if to
             .to_ascii_lowercase()
-            .starts_with(crate::ratings::COMPUTER_PREFIX)
+            .starts_with(crate::accounts::ratings::COMPUTER_PREFIX)
         {
             return Err(refused(
                 ErrorCode::BadMessage,
@@ -409,7 +409,7 @@ impl Lobby {
             ));
         }
         if let Some(t) = turn_seconds {
-            crate::hub::check_turn_seconds(t)?;
+            crate::play::hub::check_turn_seconds(t)?;
         }
         let made = self
             .challenges
@@ -571,7 +571,7 @@ impl Lobby {
             return;
         }
         for (level, rating) in &self.computers {
-            let k = key(&crate::ratings::computer_account(*level));
+            let k = key(&crate::accounts::ratings::computer_account(*level));
             if !self.playing.contains_key(&k) {
                 pool.push((Player::Computer(*level), *rating));
             }

@@ -3,9 +3,9 @@
 //! it comes from a web page, so that a page's scripts never play as a bot.
 
 use crate::accounts::Profile;
-use crate::blocking::run_account;
-use crate::hub::Hub;
+use crate::play::hub::Hub;
 use crate::token::SeatToken;
+use crate::web::blocking::run_account;
 use actix_web::HttpRequest;
 use game::protocol::{ErrorCode, Refusal};
 

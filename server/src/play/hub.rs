@@ -11,11 +11,11 @@
 //! it writes anything, the room takes the slot over under the same lock,
 //! and a creation that fails gives its slot back ([`Slot`]).
 
-use crate::cluster::{Cluster, Lease};
 use crate::config::Limits;
 use crate::metrics::Metrics;
+use crate::play::cluster::{Cluster, Lease};
+use crate::play::room::{Claim, Command, Connected, FinishedMatch, MatchListener, Room, RoomHost};
 use crate::refusal::Refusal;
-use crate::room::{Claim, Command, Connected, FinishedMatch, MatchListener, Room, RoomHost};
 #[cfg(test)]
 use crate::store::SqliteStore;
 use crate::store::{Status, Store, StoreError, StoredMatch, StoredSeat};
@@ -52,7 +52,7 @@ pub struct RoomHandle {
     pub tx: mpsc::Sender<Command>,
     generation: u64,
     /// A room of this node's (`false`: a proxy relaying to the node that
-    /// plays the match, [`crate::cluster`]).
+    /// plays the match, [`crate::play::cluster`]).
     owned: bool,
 }
 
@@ -98,7 +98,7 @@ impl NewSeat {
             name: Some(name),
             token: None,
             bot: Some(level),
-            account: rated.then(|| crate::ratings::computer_account(level)),
+            account: rated.then(|| crate::accounts::ratings::computer_account(level)),
         }
     }
 }
@@ -566,12 +566,8 @@ impl Hub {
         Ok(id)
     }
 
-    /// The room of match `id`, loading it from the store if needed.
-    pub async fn room(&self, id: &str) -> Result<RoomHandle, Refusal> {
-        self.room_within(id, true, Reach::OwnOrRelay).await
-    }
-
-    /// [`Hub::room`]; `within_limit: false` loads past the limit on
+    /// The room of match `id`, loading it from the store if needed;
+    /// `within_limit: false` loads past the limit on
     /// matches in memory (a live match resuming after a restart); with
     /// [`Reach::Own`], a node of a cluster refuses a match another node
     /// plays instead of relaying to it.
@@ -773,6 +769,7 @@ impl Hub {
         Ok(seat)
     }
 
+    #[cfg(test)]
     /// Admits a connection to `id` (with a seat token, or as a spectator).
     pub async fn connect(
         &self,
@@ -982,7 +979,7 @@ fn no_such_match(id: &str) -> Refusal {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::room::Inbox;
+    use crate::play::room::Inbox;
     use game::protocol::{ClientMessage, ServerMessage};
     use game::{PieceId, Side};
     use glam::DVec2;

@@ -233,7 +233,7 @@ pub struct Room<H: RoomHost> {
     bots: [std::sync::Mutex<Option<Box<dyn Bot>>>; 2],
     /// For a seat the adaptive level plays against a person with an
     /// account: that account, until the level's first decision looks up
-    /// what it learned of them ([`crate::adaptive_memory`]).
+    /// what it learned of them ([`crate::play::adaptive_memory`]).
     adaptive_person: [Option<String>; 2],
     bot_tx: mpsc::Sender<BotAnswer>,
     bot_rx: Option<mpsc::Receiver<BotAnswer>>,
@@ -699,7 +699,7 @@ impl<H: RoomHost> Room<H> {
         tokio::task::spawn_blocking(move || {
             if let Some(account) = person {
                 let settings = bots::AdaptiveSettings::default();
-                match crate::adaptive_memory::start_for(store.as_ref(), &settings, &account) {
+                match crate::play::adaptive_memory::start_for(store.as_ref(), &settings, &account) {
                     Ok(start) => {
                         bot = Box::new(bots::Adaptive::with_start(settings, start, bot_seed()));
                     }

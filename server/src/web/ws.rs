@@ -25,10 +25,10 @@
 //! `--max-connections-per-address` connections; past it (or past the global
 //! `--max-connections`) the upgrade is refused with HTTP 503 `server-busy`.
 
-use crate::hub::{AddressGuard, Hub, RoomHandle};
-use crate::ratelimit::TokenBucket;
+use crate::play::hub::{AddressGuard, Hub, RoomHandle};
+use crate::play::room::{Claim, Command};
 use crate::refusal::{HttpStatus, Refusal};
-use crate::room::{Claim, Command};
+use crate::web::ratelimit::TokenBucket;
 use actix_web::{web, HttpRequest, HttpResponse};
 use actix_ws::{AggregatedMessage, CloseCode, CloseReason, ProtocolError, Session};
 use game::protocol::{ClientMessage, ErrorCode, ServerMessage, PROTOCOL_VERSION};
@@ -182,7 +182,7 @@ pub async fn handler(
         Ok(a) => a,
         Err(r) => return Ok(http_refusal(&r)),
     };
-    let browser = crate::auth::from_browser(&req);
+    let browser = crate::web::auth::from_browser(&req);
     let (response, session, stream) = actix_ws::handle(&req, body)?;
     let hub = hub.get_ref().clone();
     actix_web::rt::spawn(async move {
@@ -212,7 +212,7 @@ pub(crate) fn admit(req: &HttpRequest, hub: &Hub) -> Result<Admitted, Refusal> {
             "the server holds as many connections as it can; try later",
         ));
     }
-    let addr = crate::ratelimit::client_ip(req);
+    let addr = crate::web::ratelimit::client_ip(req);
     let Some(address_guard) = hub.admit_address(addr) else {
         return Err(Refusal::new(
             ErrorCode::ServerBusy,
@@ -448,7 +448,7 @@ async fn run(
 /// The seat the account that `key` proves holds (a bot's key from a web
 /// page is refused).
 async fn account_claim(hub: &Hub, key: SeatToken, browser: bool) -> Result<Claim, Refusal> {
-    let account = crate::auth::account_of_key(hub, key, browser).await?;
+    let account = crate::web::auth::account_of_key(hub, key, browser).await?;
     Ok(Claim::Account(account.name))
 }
 

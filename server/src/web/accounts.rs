@@ -4,13 +4,13 @@
 //! one presented, and the leaderboards of people and of bots. Creating
 //! accounts shares the per-address limit on creating matches.
 
+use crate::accounts::ratings::MAX_LISTED;
 use crate::accounts::{AccountName, Profile, MAX_LEADERBOARD};
-use crate::auth::proven;
-use crate::blocking::run_account;
-use crate::http::{json, read_body, refused, Creations};
-use crate::hub::Hub;
-use crate::ratings::MAX_LISTED;
+use crate::play::hub::Hub;
 use crate::token::SeatToken;
+use crate::web::auth::proven;
+use crate::web::blocking::run_account;
+use crate::web::reply::{json, read_body, refused, Creations};
 use actix_web::http::StatusCode;
 use actix_web::{web, HttpRequest, HttpResponse};
 use game::protocol::{ErrorCode, Refusal};

@@ -4,9 +4,9 @@
 //! runs on the blocking pool, and each client address has its own token
 //! bucket ([`AddressLimiter`]), so one client cannot take the server's CPU.
 
-use crate::http::refused;
-use crate::ratelimit::AddressLimiter;
 use crate::refusal::Refusal;
+use crate::web::ratelimit::AddressLimiter;
+use crate::web::reply::refused;
 use actix_web::{web, HttpRequest, HttpResponse};
 use game::SimulateRequest;
 use tracing::error;

@@ -6,114 +6,25 @@
 //! Creating matches and exhibitions is limited per client address
 //! ([`Creations`]: `--create-per-sec`, `--create-burst`; past it, 429
 //! `rate-limited`), and the hub holds the limit on matches in memory.
-//! The game itself (`/` and its files) is [`crate::assets`].
+//! The game itself (`/` and its files) is [`crate::web::assets`].
 
-use crate::auth::signed_in;
-use crate::blocking::blocking_with;
-use crate::hub::{Hub, NewMatch, Opponent, SeatGrant};
-use crate::ratelimit::AddressLimiter;
-use crate::refusal::{HttpStatus, Refusal};
+use crate::play::hub::{Hub, NewMatch, Opponent, SeatGrant};
+use crate::refusal::Refusal;
 use crate::store::{Status, StoreError};
+use crate::web::auth::signed_in;
+use crate::web::blocking::blocking_with;
+use crate::web::reply::{json, public_host, read_body, refused, Creations};
 use actix_web::http::StatusCode;
 use actix_web::{web, HttpRequest, HttpResponse};
 use bots::Level;
 use game::protocol::ErrorCode;
 use game::Config;
 use serde::{Deserialize, Serialize};
-use tracing::error;
 
 /// Longest player name, in characters.
 pub const MAX_NAME_CHARS: usize = 40;
 /// Most matches one listing returns.
 pub const MAX_LIST: usize = 100;
-
-/// Registers every route.
-pub fn routes(cfg: &mut web::ServiceConfig) {
-    crate::assets::routes(cfg);
-    crate::accounts_api::routes(cfg);
-    cfg.route("/api", web::get().to(api_page))
-        .route("/healthz", web::get().to(healthz))
-        .route("/metrics", web::get().to(metrics))
-        .route("/ws", web::get().to(crate::ws::handler))
-        .route("/api/stream", web::get().to(crate::stream::handler))
-        .route("/api/matches", web::post().to(create))
-        .route("/api/matches", web::get().to(list))
-        .route("/api/matches/{id}", web::get().to(summary))
-        .route("/api/matches/{id}/join", web::post().to(join))
-        .route("/api/exhibitions", web::post().to(exhibition))
-        .route("/api/simulate", web::post().to(crate::simulate::handler))
-        .route(game::protocol::SCHEMA_PATH, web::get().to(schema))
-        .route("/api/matches/{id}/record", web::get().to(record));
-}
-
-/// The per-address limit on creating matches (`POST /api/matches` and
-/// `POST /api/exhibitions` share it).
-#[derive(Debug)]
-pub struct Creations(pub AddressLimiter);
-
-impl Creations {
-    /// Refuses a creation from this request's address past the limit.
-    pub(crate) fn check(&self, req: &HttpRequest) -> Result<(), Refusal> {
-        self.0
-            .check(req, "too many matches created from this address; slow down")
-    }
-}
-
-/// Gives a `413 Payload Too Large` that actix-web produced itself (a body
-/// over the limit, refused before any handler ran) the JSON error body every
-/// other refusal has; a 413 that already is JSON passes unchanged.
-pub(crate) fn too_large_as_json<B>(
-    res: actix_web::dev::ServiceResponse<B>,
-    limit: usize,
-) -> actix_web::Result<actix_web::middleware::ErrorHandlerResponse<B>> {
-    use actix_web::middleware::ErrorHandlerResponse;
-    let json = res
-        .response()
-        .headers()
-        .get(actix_web::http::header::CONTENT_TYPE)
-        .is_some_and(|v| v.as_bytes().starts_with(b"application/json"));
-    if json {
-        return Ok(ErrorHandlerResponse::Response(res.map_into_left_body()));
-    }
-    let (req, _) = res.into_parts();
-    let body = refused(&Refusal::new(
-        ErrorCode::MessageTooLarge,
-        format!("bodies are at most {limit} bytes"),
-    ));
-    Ok(ErrorHandlerResponse::Response(
-        actix_web::dev::ServiceResponse::new(req, body).map_into_right_body(),
-    ))
-}
-
-/// A refusal as an HTTP error response with a JSON body.
-pub(crate) fn refused(r: &Refusal) -> HttpResponse {
-    let status = StatusCode::from_u16(r.http_status()).unwrap_or(StatusCode::BAD_REQUEST);
-    HttpResponse::build(status)
-        .content_type("application/json")
-        .body(r.to_message().to_json())
-}
-
-pub(crate) fn json<T: Serialize>(status: StatusCode, body: &T) -> HttpResponse {
-    match serde_json::to_string(body) {
-        Ok(text) => HttpResponse::build(status)
-            .content_type("application/json")
-            .body(text),
-        Err(e) => {
-            error!(error = %e, "serialising a response failed");
-            refused(&Refusal::internal())
-        }
-    }
-}
-
-/// Reads a JSON body (an empty body reads as `{}`).
-pub(crate) fn read_body<T: for<'de> Deserialize<'de>>(bytes: &[u8]) -> Result<T, Refusal> {
-    let text = if bytes.iter().all(u8::is_ascii_whitespace) {
-        &b"{}"[..]
-    } else {
-        bytes
-    };
-    game::protocol::read(text).map_err(|e| Refusal::new(e.code, e.message))
-}
 
 fn name(n: Option<String>, default: &str) -> Result<String, Refusal> {
     let n = n.unwrap_or_else(|| default.to_string());
@@ -134,7 +45,7 @@ async fn blocking<T: Send + 'static>(
 }
 
 /// `GET /api/schema/v1.json`: the protocol's JSON Schema.
-async fn schema() -> HttpResponse {
+pub(crate) async fn schema() -> HttpResponse {
     static SCHEMA: std::sync::OnceLock<String> = std::sync::OnceLock::new();
     let text = SCHEMA.get_or_init(|| game::protocol::schema().to_string());
     HttpResponse::Ok()
@@ -142,28 +53,10 @@ async fn schema() -> HttpResponse {
         .body(text.as_str())
 }
 
-async fn api_page(req: HttpRequest) -> HttpResponse {
+pub(crate) async fn api_page(req: HttpRequest) -> HttpResponse {
     HttpResponse::Ok()
         .content_type("text/html; charset=utf-8")
         .body(api_html(&public_host(&req)))
-}
-
-/// The host (and port) the request was addressed to, as the examples on
-/// the API page should name it: the `Host` header when it is a plain host
-/// name or address, else `localhost:8080`.
-pub(crate) fn public_host(req: &HttpRequest) -> String {
-    let info = req.connection_info();
-    let host = info.host();
-    let plain = !host.is_empty()
-        && host.len() <= 255
-        && host
-            .chars()
-            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '.' | '-' | ':' | '[' | ']'));
-    if plain {
-        host.to_string()
-    } else {
-        "localhost:8080".to_string()
-    }
 }
 
 /// The API page with its examples addressed to `host`.
@@ -171,7 +64,7 @@ pub(crate) fn api_html(host: &str) -> String {
     API_HTML.replace("localhost:8080", host)
 }
 
-async fn healthz(hub: web::Data<Hub>) -> HttpResponse {
+pub(crate) async fn healthz(hub: web::Data<Hub>) -> HttpResponse {
     json(
         StatusCode::OK,
         &serde_json::json!({
@@ -183,7 +76,7 @@ async fn healthz(hub: web::Data<Hub>) -> HttpResponse {
     )
 }
 
-async fn metrics(hub: web::Data<Hub>) -> HttpResponse {
+pub(crate) async fn metrics(hub: web::Data<Hub>) -> HttpResponse {
     let mut text = hub.metrics().render();
     hub.store().render_metrics(&mut text);
     hub.render_cluster_metrics(&mut text);
@@ -256,7 +149,7 @@ impl From<SeatGrant> for SeatResponse {
     }
 }
 
-async fn create(
+pub(crate) async fn create(
     hub: web::Data<Hub>,
     creations: web::Data<Creations>,
     req: HttpRequest,
@@ -319,7 +212,7 @@ struct ExhibitionBody {
     turn_seconds: Option<u64>,
 }
 
-async fn exhibition(
+pub(crate) async fn exhibition(
     hub: web::Data<Hub>,
     creations: web::Data<Creations>,
     req: HttpRequest,
@@ -353,7 +246,7 @@ struct JoinBody {
     name: Option<String>,
 }
 
-async fn join(
+pub(crate) async fn join(
     hub: web::Data<Hub>,
     id: web::Path<String>,
     req: HttpRequest,
@@ -379,7 +272,7 @@ struct ListQuery {
     limit: Option<usize>,
 }
 
-async fn list(hub: web::Data<Hub>, req: HttpRequest) -> HttpResponse {
+pub(crate) async fn list(hub: web::Data<Hub>, req: HttpRequest) -> HttpResponse {
     let q = match web::Query::<ListQuery>::from_query(req.query_string()) {
         Ok(q) => q.into_inner(),
         Err(e) => return refused(&Refusal::new(ErrorCode::BadMessage, e.to_string())),
@@ -408,7 +301,7 @@ fn no_such_match(id: &str) -> Refusal {
     Refusal::new(ErrorCode::NoSuchMatch, format!("no match {id:?}"))
 }
 
-async fn summary(hub: web::Data<Hub>, id: web::Path<String>) -> HttpResponse {
+pub(crate) async fn summary(hub: web::Data<Hub>, id: web::Path<String>) -> HttpResponse {
     let store = hub.store().clone();
     let key = id.clone();
     match blocking(move || store.summary(&key)).await {
@@ -418,7 +311,7 @@ async fn summary(hub: web::Data<Hub>, id: web::Path<String>) -> HttpResponse {
     }
 }
 
-async fn record(hub: web::Data<Hub>, id: web::Path<String>) -> HttpResponse {
+pub(crate) async fn record(hub: web::Data<Hub>, id: web::Path<String>) -> HttpResponse {
     let store = hub.store().clone();
     let key = id.clone();
     match blocking(move || store.load(&key)).await {

@@ -12,16 +12,16 @@
 //! `keep-alive` after 30 s of quiet. Each stream has a bounded queue: a
 //! client that stops reading is dropped, never buffered without end.
 
+use crate::accounts::ratings::computer_account;
 use crate::accounts::AccountError;
-use crate::auth::from_browser;
-use crate::hub::{Hub, NewSeat};
-use crate::lobby::{Effect, Input, Lobby, LobbyLimits, Member, Pairing, Player, StreamId};
-use crate::ratelimit::TokenBucket;
-use crate::ratings::computer_account;
+use crate::play::hub::{Hub, NewSeat};
+use crate::play::lobby::{Effect, Input, Lobby, LobbyLimits, Member, Pairing, Player, StreamId};
+use crate::play::room::{FinishedMatch, MatchListener};
 use crate::refusal::Refusal;
-use crate::room::{FinishedMatch, MatchListener};
 use crate::store::Status;
-use crate::ws::{
+use crate::web::auth::from_browser;
+use crate::web::ratelimit::TokenBucket;
+use crate::web::ws::{
     admit, http_refusal, timely, too_large, FLOOD_CLOSE_AFTER, HELLO_WITHIN, PING_EVERY, SILENT_FOR,
 };
 use actix_web::{web, HttpRequest, HttpResponse};
@@ -376,7 +376,7 @@ async fn hello(
         Ok(_) => return Err(no_hello()),
         Err(e) => return Err(Some(Refusal::new(e.code, e.message))),
     };
-    crate::auth::account_of_key(hub, key, browser)
+    crate::web::auth::account_of_key(hub, key, browser)
         .await
         .map_err(Some)
 }
@@ -421,7 +421,7 @@ async fn resolved(hub: &Hub, msg: StreamClientMessage) -> Result<StreamClientMes
     };
     let store = hub.store().clone();
     let wanted = to.clone();
-    let found = crate::blocking::run_account(move || -> Result<_, AccountError> {
+    let found = crate::web::blocking::run_account(move || -> Result<_, AccountError> {
         Ok(store.account(&wanted)?)
     })
     .await?;

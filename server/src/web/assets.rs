@@ -92,7 +92,7 @@ async fn index(req: HttpRequest) -> HttpResponse {
         Err(why) => HttpResponse::Ok()
             .content_type("text/html; charset=utf-8")
             .insert_header((header::CACHE_CONTROL, "no-cache"))
-            .body(fallback_page(why, &crate::http::public_host(&req))),
+            .body(fallback_page(why, &crate::web::reply::public_host(&req))),
     }
 }
 
@@ -180,7 +180,7 @@ fn fallback_page(why: &NotBuilt, host: &str) -> String {
          the server again (<code>cargo run --release -p server</code>) without \
          <code>CHAPAEV_SKIP_WEB_CLIENT</code>.</p>"
     );
-    crate::http::api_html(host).replacen("<h1>Chapaev online</h1>", &note, 1)
+    crate::web::matches::api_html(host).replacen("<h1>Chapaev online</h1>", &note, 1)
 }
 
 fn escape(text: &str) -> String {
@@ -212,7 +212,7 @@ mod tests {
         etag: Option<&str>,
         headers: &[(&str, &str)],
     ) -> (u16, Vec<(String, String)>, Vec<u8>) {
-        let app = web_test::init_service(App::new().configure(crate::http::routes)).await;
+        let app = web_test::init_service(App::new().configure(crate::web::routes)).await;
         let mut req = web_test::TestRequest::get().uri(path);
         if let Some(tag) = etag {
             req = req.insert_header((header::IF_NONE_MATCH, tag));

@@ -1,0 +1,19 @@
+//! The play layer: live matches and the lobby around them, between the web
+//! layer ([`crate::web`]) and the store.
+//!
+//! - [`hub`]: the registry of this node's rooms; creates, joins, finds and
+//!   stops matches;
+//! - [`room`]: the task that drives one match's [`game::session`] and asks
+//!   the computer levels of the [`bots`] crate for their moves;
+//! - [`adaptive_memory`]: where the adaptive level starts against a
+//!   returning person, from the store;
+//! - [`lobby`]: challenges, quick pairing and the bot ladder, a state
+//!   machine without I/O driven by [`crate::web::stream`];
+//! - [`cluster`]: several nodes on one PostgreSQL store, with Redis relaying
+//!   live play between them.
+
+pub(crate) mod adaptive_memory;
+pub(crate) mod cluster;
+pub(crate) mod hub;
+pub(crate) mod lobby;
+pub(crate) mod room;
