@@ -29,7 +29,9 @@
 //! [`push`] (touching discs that brake unequally and press together),
 //! [`collapse`] (the limit of endless hits at one instant),
 //! [`calendar`] and [`grid`] (which event is next, who is near whom),
-//! [`world`] (the event loop), [`model`] (the chain of scenes: queries at any
+//! [`instant`] (when two event times are one moment), [`limits`] (when a
+//! run stops, and the guards that make sure it does), [`world`] (the event
+//! loop; rules plug in through [`world::handler`]), [`model`] (the chain of scenes: queries at any
 //! time, actions, rewind, diffs), [`scene`] (the JSON scene format),
 //! [`revision`] (which rules a computation runs, so old records replay).
 //! The library does no I/O; the `sim` binary is a thin shell over it.
@@ -44,6 +46,8 @@ pub mod event;
 pub mod grid;
 pub mod id;
 pub mod impulse;
+pub mod instant;
+pub mod limits;
 pub mod model;
 pub mod obstacle;
 pub mod presets;
@@ -56,9 +60,10 @@ pub mod world;
 
 pub use event::{Event, EventKind};
 pub use id::{BodyId, LineId, PointId};
+pub use limits::{End, EndReason, Limits};
 pub use model::{Action, Model, ModelRecord, SceneDiff, Snapshot, TimedAction};
 pub use obstacle::{Line, LineKind, Point};
 pub use revision::{Revision, UnknownRevision};
 pub use scene::{BodySpec, Scene, SceneError};
 pub use trajectory::Trajectory;
-pub use world::{End, EndReason, EventHandler, ExitResponse, Limits, World, WorldConfig};
+pub use world::{EventHandler, ExitResponse, World, WorldConfig};

@@ -29,6 +29,7 @@
 //! from re-joining pair after pair at one instant without end.
 
 use crate::impulse;
+use crate::instant::same_instant;
 use crate::revision::Revision;
 use crate::trajectory::Trajectory;
 use glam::DVec2;
@@ -106,7 +107,7 @@ pub fn chatters(ti: &Trajectory, tj: &Trajectory, n: DVec2, now: f64, rev: Revis
     let (vi, vj) = (ti.velocity(now), tj.velocity(now));
     let w = (vi - vj).dot(n);
     w <= CAPTURE * (vi.length() + vj.length())
-        || (rev.at_least_r3() && crate::world::same_instant(now, now + 2.0 * w / -a))
+        || (rev.at_least_r3() && same_instant(now, now + 2.0 * w / -a))
 }
 
 /// Largest gap, as a fraction of the contact distance, that the
@@ -182,7 +183,7 @@ pub fn pressing_kick(
     }
     // So slow that the next bounce would fall within the rounding of the
     // time: the pair comes to rest here (it would within that time anyway).
-    if crate::world::same_instant(now, now + 2.0 * w_min / -g2) {
+    if same_instant(now, now + 2.0 * w_min / -g2) {
         return Some(Press::Rest);
     }
     Some(Press::Part(w_min - w.max(0.0)))
