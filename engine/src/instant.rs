@@ -9,7 +9,7 @@
 
 /// Whether `t` is the same instant as `t0` up to rounding: within about a
 /// thousand units in the last place of the later time.
-pub fn same_instant(t0: f64, t: f64) -> bool {
+pub(crate) fn same_instant(t0: f64, t: f64) -> bool {
     t - t0 <= 2.5e-13 * t.abs().max(t0.abs())
 }
 

@@ -27,7 +27,7 @@ pub struct Limits {
 }
 
 /// The hard cap on events when no other is given.
-pub const DEFAULT_MAX_EVENTS: u64 = 10_000_000;
+pub(crate) const DEFAULT_MAX_EVENTS: u64 = 10_000_000;
 
 impl Default for Limits {
     fn default() -> Self {
@@ -44,18 +44,18 @@ impl Default for Limits {
 /// [`STUCK_EVENTS_PER_BODY`] per body.
 /// A Newton's cradle of `n` discs resolves in `n - 1` events at one
 /// instant; only a configuration with no finite answer comes near this.
-pub const STUCK_EVENTS: u64 = 20_000;
+pub(crate) const STUCK_EVENTS: u64 = 20_000;
 
 /// See [`STUCK_EVENTS`].
-pub const STUCK_EVENTS_PER_BODY: u64 = 100;
+pub(crate) const STUCK_EVENTS_PER_BODY: u64 = 100;
 
 /// Every this many events at one instant, the bodies of the latest
 /// [`COLLAPSE_WINDOW`] of them are checked for an inelastic collapse
 /// (see `World::collapse`).
-pub const COLLAPSE_EVENTS: u64 = 2_000;
+pub(crate) const COLLAPSE_EVENTS: u64 = 2_000;
 
 /// See [`COLLAPSE_EVENTS`].
-pub const COLLAPSE_WINDOW: u64 = 64;
+pub(crate) const COLLAPSE_WINDOW: u64 = 64;
 
 /// From the fifth revision, hits of one inelastic pair (two discs, or a
 /// disc and an obstacle) at one instant, every one of them gentle (see
@@ -65,54 +65,54 @@ pub const COLLAPSE_WINDOW: u64 = 64;
 /// its discs into each other again and again, microseconds apart; each
 /// time its hits ring through it hundreds of times at one instant, each
 /// slower than the last, until the approach threshold cuts them off.
-pub const REPEAT_HITS: u32 = 16;
+pub(crate) const REPEAT_HITS: u32 = 16;
 
 /// From the fifth revision, the fraction of the speed of the fastest disc
 /// they involve under which every approach at one instant must stay for
 /// [`REPEAT_HITS`] to take it as a collapse: discs pressed together while
 /// they slide, not an impact ringing through a cradle or a cluster (whose
 /// sequence of hits is the model's answer, however long).
-pub const GENTLE: f64 = 1e-2;
+pub(crate) const GENTLE: f64 = 1e-2;
 
 /// Most discs one collapse is taken to its limit for (see `World::collapse`).
-pub const MAX_COLLAPSE: usize = 256;
+pub(crate) const MAX_COLLAPSE: usize = 256;
 
 /// From the third revision, a run whose events, [`CRAWL_EVENTS`] after
 /// [`CRAWL_EVENTS`], move no disc by more than this fraction of the
 /// smallest radius — as many events as would end it [`EndReason::Stuck`]
 /// at one instant — is stuck too: discs rattling in a gap of rounding (a
 /// chain pinned between two walls) advance the time by 1e-16 s an event.
-pub const CRAWL: f64 = 1e-9;
+pub(crate) const CRAWL: f64 = 1e-9;
 
 /// See [`CRAWL`].
-pub const CRAWL_EVENTS: u64 = 1_000;
+pub(crate) const CRAWL_EVENTS: u64 = 1_000;
 
 /// From the third revision, a disc whose slide after a hit is shorter than
 /// this fraction of its largest coordinate (the rounding of its position)
 /// is at rest (see `World::settled`).
-pub const SETTLE: f64 = f64::EPSILON;
+pub(crate) const SETTLE: f64 = f64::EPSILON;
 
 /// Sweeps a pressing kick over a cluster (see `World::press_cluster`) may
 /// take: it converges within tens where it has an answer at all.
-pub const PRESS_SWEEPS: usize = 200;
+pub(crate) const PRESS_SWEEPS: usize = 200;
 
 /// From the fourth revision, rounds of a pressing kick's projection that
 /// may each bias the pairs the one before left pressed (see
 /// `World::press_closure`).
-pub const PRESS_ROUNDS: usize = 4;
+pub(crate) const PRESS_ROUNDS: usize = 4;
 
 /// Past this time a run checks, before each event, that every moving body
 /// is still within [`MAX_COORDINATE`] (no scene reaches it otherwise:
 /// speeds stay below 1e150 and start positions too).
-pub const FAR_FUTURE: f64 = 1e150;
+pub(crate) const FAR_FUTURE: f64 = 1e150;
 
 /// Largest coordinate a moving body may reach: its square (contact
 /// equations square distances) stays finite.
-pub const MAX_COORDINATE: f64 = 1e154;
+pub(crate) const MAX_COORDINATE: f64 = 1e154;
 
 /// Relative error of a contact distance beyond which a hit puts the bodies
 /// back at exactly touching distance (see [`snap`]).
-pub const SNAP: f64 = 1e-11;
+pub(crate) const SNAP: f64 = 1e-11;
 
 /// How far to move apart two bodies (or a body from an obstacle) that hit
 /// at centre distance `dist` where they touch at `s`: nothing where the
@@ -120,7 +120,7 @@ pub const SNAP: f64 = 1e-11;
 /// the error. Far from the origin a position carries the rounding of its
 /// coordinates (3e-10 m at 3e6 m), which a hit would otherwise keep as an
 /// overlap or a gap; moving the bodies by it is below that rounding.
-pub fn snap(s: f64, dist: f64) -> f64 {
+pub(crate) fn snap(s: f64, dist: f64) -> f64 {
     let err = s - dist;
     if err.abs() > SNAP * s && dist > 0.0 {
         err

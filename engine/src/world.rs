@@ -1,11 +1,11 @@
 //! The world: the live state of a computation and the loop that advances it
 //! from event to event.
 //!
-//! Each body keeps its own [`Trajectory`]; the [`Calendar`] holds, for every
+//! Each body keeps its own [`Trajectory`]; the `Calendar` holds, for every
 //! body, its own earliest predicted event. Processing an event rewrites only
 //! the trajectories of the bodies involved, bumps their generation counters
 //! and re-predicts just those bodies against their neighbours (all bodies,
-//! or the 3x3 cells of the [`Grid`] broad phase). A prediction made against
+//! or the 3x3 cells of the `Grid` broad phase). A prediction made against
 //! a partner whose generation has since changed is stale; it is noticed when
 //! it reaches the top of the calendar and the body is re-predicted then.
 //! Bodies at rest are never advanced; a resting body is only looked at when
@@ -85,7 +85,7 @@ pub struct Stats {
     /// Grid cell crossings.
     pub cell_crossings: u64,
     /// Hits between discs pressed together obliquely, where the engine
-    /// approximates the contact (see [`push::pressing_kick`]): not exact.
+    /// approximates the contact (see `push::pressing_kick`): not exact.
     pub pressed: u64,
     /// Inelastic collapses taken to their limit at once (see
     /// `World::collapse`): velocities of discs touching the ones of the
