@@ -33,7 +33,9 @@
 //! run stops, and the guards that make sure it does), [`world`] (the event
 //! loop; rules plug in through [`world::handler`]), [`model`] (the chain of scenes: queries at any
 //! time, actions, rewind, diffs), [`scene`] (the JSON scene format),
-//! [`revision`] (which rules a computation runs, so old records replay).
+//! [`revision`] (which rules a computation runs, so old records replay),
+//! [`presets`] (ready-made scenes) and [`rng`] (the fixed random streams of
+//! layouts, tools and tests).
 //! The library does no I/O; the `sim` binary is a thin shell over it.
 
 // `!(x > 0.0)` is deliberate throughout: it is also true for NaN.
@@ -53,6 +55,7 @@ pub mod obstacle;
 pub mod presets;
 pub mod push;
 pub mod revision;
+pub mod rng;
 pub mod roots;
 pub mod scene;
 pub mod trajectory;
