@@ -1,5 +1,5 @@
 //! The random numbers of tests and tools: the one small generator that
-//! builds preset layouts ([`crate::presets::box_of_discs`]), the lab's
+//! builds preset layouts (`presets::box_of_discs`), the lab's
 //! hostile and benchmark scenes, the batches of the root-solver benchmarks
 //! and the random cases of the engine's own tests.
 //!
