@@ -21,23 +21,8 @@
 
 use cpu_time::ThreadTime;
 use criterion::{black_box, Criterion, Throughput};
+use engine::rng::Rng;
 use engine::roots::{Bisection, ClosedForm, Production, RootSolver};
-
-/// A small deterministic generator (SplitMix64), so the batch is fixed.
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * ((self.next_u64() >> 11) as f64 / (1u64 << 53) as f64)
-    }
-}
 
 /// `|dp + dv t + da t^2/2|^2 - s^2`, lowest degree first.
 fn contact(dp: [f64; 2], dv: [f64; 2], da: [f64; 2], s: f64) -> [f64; 5] {
@@ -52,25 +37,26 @@ fn contact(dp: [f64; 2], dv: [f64; 2], da: [f64; 2], s: f64) -> [f64; 5] {
 }
 
 fn contact_batch(n: usize) -> Vec<[f64; 5]> {
-    let mut rng = Rng(0x5EED);
+    // SplitMix64, so the batch is fixed.
+    let mut rng = Rng::splitmix64(0x5EED);
     (0..n)
         .map(|i| {
-            let s = rng.uniform(0.5, 2.0);
+            let s = rng.range(0.5, 2.0);
             let dp = if i % 4 == 0 {
                 // Exactly touching at t = 0: |(3k, 4k)| = 5k.
                 let k = (1 + rng.next_u64() % 8) as f64 * 0.125;
                 let sign = if rng.next_u64() & 1 == 0 { 1.0 } else { -1.0 };
                 return contact(
                     [3.0 * k * sign, 4.0 * k],
-                    [rng.uniform(-5.0, 5.0), rng.uniform(-5.0, 5.0)],
-                    [rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0)],
+                    [rng.range(-5.0, 5.0), rng.range(-5.0, 5.0)],
+                    [rng.range(-2.0, 2.0), rng.range(-2.0, 2.0)],
                     5.0 * k,
                 );
             } else {
-                [rng.uniform(-10.0, 10.0), rng.uniform(-10.0, 10.0)]
+                [rng.range(-10.0, 10.0), rng.range(-10.0, 10.0)]
             };
-            let dv = [rng.uniform(-5.0, 5.0), rng.uniform(-5.0, 5.0)];
-            let da = [rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0)];
+            let dv = [rng.range(-5.0, 5.0), rng.range(-5.0, 5.0)];
+            let da = [rng.range(-2.0, 2.0), rng.range(-2.0, 2.0)];
             contact(dp, dv, da, s)
         })
         .collect()

@@ -12,7 +12,7 @@
 /// An indexed 4-ary min-heap of `(time, slot)` with one entry per slot.
 /// Keys live inline in the heap array, so sifting touches one array only.
 #[derive(Clone, Debug, Default)]
-pub struct Calendar {
+pub(crate) struct Calendar {
     /// Heap of `(time, slot)`, ordered by time then slot.
     heap: Vec<(f64, u32)>,
     /// Position of each slot in `heap`.
@@ -28,37 +28,28 @@ fn less(a: (f64, u32), b: (f64, u32)) -> bool {
 
 impl Calendar {
     /// A calendar of `n` slots, all at infinity.
-    pub fn new(n: usize) -> Self {
+    pub(crate) fn new(n: usize) -> Self {
         Calendar {
             heap: (0..n as u32).map(|s| (f64::INFINITY, s)).collect(),
             pos: (0..n as u32).collect(),
         }
     }
 
-    /// Number of slots.
-    pub fn len(&self) -> usize {
-        self.heap.len()
-    }
-
-    /// Whether there are no slots.
-    pub fn is_empty(&self) -> bool {
-        self.heap.is_empty()
-    }
-
     /// The slot with the earliest time, and that time.
     #[inline]
-    pub fn peek(&self) -> Option<(usize, f64)> {
+    pub(crate) fn peek(&self) -> Option<(usize, f64)> {
         self.heap.first().map(|&(t, s)| (s as usize, t))
     }
 
-    /// The time of `slot`'s entry.
-    pub fn time_of(&self, slot: usize) -> f64 {
+    /// The time of `slot`'s entry (what the tests check the heap against).
+    #[cfg(test)]
+    pub(crate) fn time_of(&self, slot: usize) -> f64 {
         self.heap[self.pos[slot] as usize].0
     }
 
     /// Sets `slot`'s time and restores the heap order.
     #[inline]
-    pub fn set(&mut self, slot: usize, t: f64) {
+    pub(crate) fn set(&mut self, slot: usize, t: f64) {
         let i = self.pos[slot] as usize;
         let old = self.heap[i].0;
         let entry = (t, slot as u32);

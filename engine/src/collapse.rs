@@ -9,7 +9,7 @@
 //! the same over many contacts. Its limit is the plastic impact of all the
 //! touching contacts at once: the velocities nearest to the ones before
 //! (in kinetic energy, so momentum and the centre of mass are kept where
-//! no obstacle takes part) at which no contact approaches. [`plastic`]
+//! no obstacle takes part) at which no contact approaches. `plastic`
 //! computes it by projected Gauss–Seidel on the contact impulses (each
 //! impulse a push, never a pull), which is the same sequence of hits run
 //! in memory until it has converged to rounding.
@@ -21,7 +21,7 @@ use glam::DVec2;
 /// obstacle) to `a`; `bias` the speed at which the two must part at least
 /// (zero for a plastic contact; a pressed pair's bounce speed).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Contact {
+pub(crate) struct Contact {
     pub a: usize,
     pub b: Option<usize>,
     pub n: DVec2,
@@ -30,29 +30,29 @@ pub struct Contact {
 
 impl Contact {
     /// A plastic contact (no bias).
-    pub fn plastic(a: usize, b: Option<usize>, n: DVec2) -> Self {
+    pub(crate) fn plastic(a: usize, b: Option<usize>, n: DVec2) -> Self {
         Contact { a, b, n, bias: 0.0 }
     }
 }
 
 /// Speed, as a fraction of the fastest before the collapse, under which a
 /// disc after it is at rest.
-pub const REST: f64 = 1e-12;
+pub(crate) const REST: f64 = 1e-12;
 
 /// A speed (m/s) under which a disc after a collapse is at rest whatever
 /// it began with: in the 1e150 s a run may reach, it would not move 1e-50 m.
 /// (A collapse that went on long enough has driven speeds this far down.)
-pub const NEGLIGIBLE: f64 = 1e-200;
+pub(crate) const NEGLIGIBLE: f64 = 1e-200;
 
 /// Sweeps over the contacts at most (each sweep is one hit per contact).
-pub const MAX_SWEEPS: usize = 10_000;
+pub(crate) const MAX_SWEEPS: usize = 10_000;
 
 /// The velocities `vel` (of discs with inverse masses `inv_mass`) after a
 /// plastic impact of every contact at once: no contact approaches faster
 /// than `1e-15` of the fastest speed (or, with a bias, parts slower than
 /// its bias by that much). `None` if the impulses have not
 /// converged within [`MAX_SWEEPS`] (the caller keeps the velocities).
-pub fn plastic(vel: &[DVec2], inv_mass: &[f64], contacts: &[Contact]) -> Option<Vec<DVec2>> {
+pub(crate) fn plastic(vel: &[DVec2], inv_mass: &[f64], contacts: &[Contact]) -> Option<Vec<DVec2>> {
     project(vel, inv_mass, contacts, MAX_SWEEPS, false)
 }
 
@@ -76,7 +76,7 @@ const EXACT_ROUNDING: f64 = 8.0 * f64::EPSILON;
 /// rounding of its velocity; so every [`BLOCK`] sweeps the contacts that
 /// push so far are solved exactly as equalities, and that answer is taken
 /// if every impulse is a push and no other contact is left approaching.
-pub fn resolve(
+pub(crate) fn resolve(
     vel: &[DVec2],
     inv_mass: &[f64],
     contacts: &[Contact],

@@ -34,7 +34,7 @@ const COORDINATE_NOISE: f64 = 8.0 * f64::EPSILON;
 /// position `pos + w l`, where `l` is time (frictionless, `w` the velocity)
 /// or distance travelled (with friction, `w` the unit direction).
 #[derive(Clone, Copy, Debug)]
-pub struct Mover<'a> {
+pub(crate) struct Mover<'a> {
     pub tr: &'a Trajectory,
     pub now: f64,
     /// Position at `now`.
@@ -47,7 +47,7 @@ pub struct Mover<'a> {
 impl<'a> Mover<'a> {
     /// The path of `tr` from `now`, or `None` if the disc is at rest then.
     #[inline]
-    pub fn new(tr: &'a Trajectory, now: f64) -> Option<Mover<'a>> {
+    pub(crate) fn new(tr: &'a Trajectory, now: f64) -> Option<Mover<'a>> {
         if !tr.is_moving_at(now) {
             return None;
         }
@@ -74,14 +74,14 @@ impl<'a> Mover<'a> {
     /// The direction of the path parameter: velocity without friction, unit
     /// direction with it.
     #[inline]
-    pub fn direction(&self) -> DVec2 {
+    pub(crate) fn direction(&self) -> DVec2 {
         self.w
     }
 
     /// Absolute time at path parameter `l >= 0` past `now` (None if the
     /// disc stops first).
     #[inline]
-    pub fn time_at(&self, l: f64) -> Option<f64> {
+    pub(crate) fn time_at(&self, l: f64) -> Option<f64> {
         if self.tr.is_frictionless() {
             Some(self.now + l)
         } else {
@@ -95,7 +95,7 @@ impl<'a> Mover<'a> {
 /// The first time `>= now` at which the moving disc touches the fixed point
 /// `q` at centre distance `s`, approaching.
 #[inline]
-pub fn disc_point(m: &Mover, q: DVec2, s: f64, rev: Revision) -> Option<f64> {
+pub(crate) fn disc_point(m: &Mover, q: DVec2, s: f64, rev: Revision) -> Option<f64> {
     let d = m.pos - q;
     let (w, scale) = well_scaled(m.w);
     let b = d.dot(w);
@@ -188,15 +188,19 @@ const FAR: f64 = 100.0;
 const GRAZE: f64 = 16.0 * f64::EPSILON;
 
 /// A predicted hit on a line: the time, and which end if it is a corner.
+/// (Only the tests ask: the world tries the ends of its lines once each,
+/// as shared corners.)
+#[cfg(test)]
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LineHit {
+pub(crate) struct LineHit {
     pub t: f64,
     pub end: Option<u8>,
 }
 
 /// The first time `>= now` at which the moving disc of radius `r` touches
 /// the solid line (its straight part or one of its ends), approaching.
-pub fn disc_line(m: &Mover, line: &LineGeom, r: f64, rev: Revision) -> Option<LineHit> {
+#[cfg(test)]
+pub(crate) fn disc_line(m: &Mover, line: &LineGeom, r: f64, rev: Revision) -> Option<LineHit> {
     let mut best = disc_line_body(m, line, r, rev).map(|t| LineHit { t, end: None });
     for (k, end) in line.ends.iter().enumerate() {
         if let Some(q) = end {
@@ -216,7 +220,7 @@ pub fn disc_line(m: &Mover, line: &LineGeom, r: f64, rev: Revision) -> Option<Li
 /// The first time `>= now` at which the moving disc of radius `r` touches
 /// the straight part of the line (not its ends), approaching.
 #[inline]
-pub fn disc_line_body(m: &Mover, line: &LineGeom, r: f64, rev: Revision) -> Option<f64> {
+pub(crate) fn disc_line_body(m: &Mover, line: &LineGeom, r: f64, rev: Revision) -> Option<f64> {
     let h = line.signed_distance(m.pos);
     let rate = line.n.dot(m.w);
     let side = if h > 0.0 || (h == 0.0 && rate < 0.0) {
@@ -249,7 +253,7 @@ pub fn disc_line_body(m: &Mover, line: &LineGeom, r: f64, rev: Revision) -> Opti
 /// line, leaving its current side (`inside` = the left side, positive signed
 /// distance). Returns the time and whether the crossing is within the
 /// sensor's extent (a crossing outside a ray or segment is only bookkeeping).
-pub fn centre_crossing(m: &Mover, line: &LineGeom, inside: bool) -> Option<(f64, bool)> {
+pub(crate) fn centre_crossing(m: &Mover, line: &LineGeom, inside: bool) -> Option<(f64, bool)> {
     let h = line.signed_distance(m.pos);
     let rate = line.n.dot(m.w);
     let (h, rate) = if inside { (h, rate) } else { (-h, -rate) };
@@ -265,7 +269,7 @@ pub fn centre_crossing(m: &Mover, line: &LineGeom, inside: bool) -> Option<(f64,
 /// while approaching. `mi` is the path of the first disc if it moves;
 /// `solver` finds the roots of the quartic when both move with friction.
 #[inline]
-pub fn disc_disc(
+pub(crate) fn disc_disc(
     ti: &Trajectory,
     mi: Option<&Mover>,
     tj: &Trajectory,

@@ -13,7 +13,7 @@ use glam::DVec2;
 
 /// A uniform grid of body slots.
 #[derive(Clone, Debug)]
-pub struct Grid {
+pub(crate) struct Grid {
     origin: DVec2,
     cell: f64,
     nx: i32,
@@ -24,12 +24,12 @@ pub struct Grid {
 }
 
 /// Which way a disc leaves its cell: `(dx, dy)`, each -1, 0 or 1.
-pub type Step = (i8, i8);
+pub(crate) type Step = (i8, i8);
 
 impl Grid {
     /// A grid over `[lo, hi]` with cells no narrower than `min_cell`, aiming
     /// for about `target_cells` cells.
-    pub fn new(lo: DVec2, hi: DVec2, min_cell: f64, target_cells: usize) -> Grid {
+    pub(crate) fn new(lo: DVec2, hi: DVec2, min_cell: f64, target_cells: usize) -> Grid {
         let size = (hi - lo).max(DVec2::splat(min_cell));
         let ideal = (size.x * size.y / target_cells.max(1) as f64).sqrt();
         let cell = ideal.max(min_cell);
@@ -45,11 +45,6 @@ impl Grid {
         }
     }
 
-    /// Width of a cell.
-    pub fn cell_size(&self) -> f64 {
-        self.cell
-    }
-
     fn coords_of(&self, p: DVec2) -> (i32, i32) {
         let q = (p - self.origin) / self.cell;
         let cx = (q.x.floor().clamp(0.0, (self.nx - 1) as f64)) as i32;
@@ -62,7 +57,7 @@ impl Grid {
     }
 
     /// Files `slot` at position `p`.
-    pub fn insert(&mut self, slot: usize, p: DVec2) {
+    pub(crate) fn insert(&mut self, slot: usize, p: DVec2) {
         if self.cell_of.len() <= slot {
             self.cell_of.resize(slot + 1, u32::MAX);
         }
@@ -73,7 +68,7 @@ impl Grid {
     }
 
     /// Takes `slot` out of the grid.
-    pub fn remove(&mut self, slot: usize) {
+    pub(crate) fn remove(&mut self, slot: usize) {
         let c = self.cell_of[slot];
         if c == u32::MAX {
             return;
@@ -86,7 +81,7 @@ impl Grid {
     }
 
     /// Moves `slot` one cell in direction `step` (after a crossing event).
-    pub fn step(&mut self, slot: usize, step: Step) {
+    pub(crate) fn step(&mut self, slot: usize, step: Step) {
         let c = self.cell_of[slot];
         let (cx, cy) = ((c as i32) % self.nx, (c as i32) / self.nx);
         let nx = (cx + step.0 as i32).clamp(0, self.nx - 1);
@@ -99,7 +94,7 @@ impl Grid {
 
     /// The cells of the 3x3 block around `slot`'s cell (fewer at the border).
     #[inline]
-    pub fn neighbour_cells(&self, slot: usize) -> impl Iterator<Item = &[u32]> + '_ {
+    pub(crate) fn neighbour_cells(&self, slot: usize) -> impl Iterator<Item = &[u32]> + '_ {
         let c = self.cell_of[slot] as i32;
         let (cx, cy) = (c % self.nx, c / self.nx);
         let xs = (cx - 1).max(0)..=(cx + 1).min(self.nx - 1);
@@ -112,7 +107,11 @@ impl Grid {
     /// After `slot` moved one cell by `step`, the cells that have just come
     /// into its 3x3 block (the leading row or column; none at the border).
     #[inline]
-    pub fn entered_cells(&self, slot: usize, step: Step) -> impl Iterator<Item = &[u32]> + '_ {
+    pub(crate) fn entered_cells(
+        &self,
+        slot: usize,
+        step: Step,
+    ) -> impl Iterator<Item = &[u32]> + '_ {
         let c = self.cell_of[slot] as i32;
         let (cx, cy) = (c % self.nx, c / self.nx);
         let (dx, dy) = (step.0 as i32, step.1 as i32);
@@ -131,7 +130,7 @@ impl Grid {
 
     /// When the moving disc next leaves its cell (at or after now), and
     /// which way. Border cells are unbounded outwards.
-    pub fn next_crossing(&self, slot: usize, m: &Mover) -> Option<(f64, Step)> {
+    pub(crate) fn next_crossing(&self, slot: usize, m: &Mover) -> Option<(f64, Step)> {
         let c = self.cell_of[slot] as i32;
         let (cx, cy) = (c % self.nx, c / self.nx);
         let (p, w) = (m.pos, m.direction());

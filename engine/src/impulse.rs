@@ -19,7 +19,7 @@
 use glam::DVec2;
 
 /// The reduced mass `m_i m_j / (m_i + m_j)`, free of overflow.
-pub fn reduced_mass(m_i: f64, m_j: f64) -> f64 {
+pub(crate) fn reduced_mass(m_i: f64, m_j: f64) -> f64 {
     let (small, big) = if m_i <= m_j { (m_i, m_j) } else { (m_j, m_i) };
     small - small * (small / (small + big))
 }
@@ -27,7 +27,7 @@ pub fn reduced_mass(m_i: f64, m_j: f64) -> f64 {
 /// Each body's weight in a mass-weighted mean, `(m_i, m_j) / (m_i + m_j)`,
 /// from one division and free of overflow: the lighter body's weight is
 /// `q = small / (small + big)`, the heavier's `1 - q`.
-pub fn weights(m_i: f64, m_j: f64) -> (f64, f64) {
+pub(crate) fn weights(m_i: f64, m_j: f64) -> (f64, f64) {
     let (small, big) = if m_i <= m_j { (m_i, m_j) } else { (m_j, m_i) };
     let q = small / (small + big);
     if m_i <= m_j {
@@ -40,7 +40,14 @@ pub fn weights(m_i: f64, m_j: f64) -> (f64, f64) {
 /// New velocities of two discs after an impulse along `n` (from `j` to `i`).
 /// Returns the velocities unchanged if they are not approaching.
 #[inline]
-pub fn body_body(v_i: DVec2, v_j: DVec2, m_i: f64, m_j: f64, e: f64, n: DVec2) -> (DVec2, DVec2) {
+pub(crate) fn body_body(
+    v_i: DVec2,
+    v_j: DVec2,
+    m_i: f64,
+    m_j: f64,
+    e: f64,
+    n: DVec2,
+) -> (DVec2, DVec2) {
     let w = (v_i - v_j).dot(n);
     if w >= 0.0 {
         return (v_i, v_j);
@@ -84,7 +91,7 @@ fn denoised(sum: DVec2, a: DVec2, b: DVec2, n: DVec2) -> DVec2 {
 /// New velocity of a disc after hitting an immovable object with normal `n`
 /// (pointing from the object to the disc).
 #[inline]
-pub fn body_static(v: DVec2, e: f64, n: DVec2) -> DVec2 {
+pub(crate) fn body_static(v: DVec2, e: f64, n: DVec2) -> DVec2 {
     let w = v.dot(n);
     if w >= 0.0 {
         return v;

@@ -29,9 +29,13 @@
 //! [`push`] (touching discs that brake unequally and press together),
 //! [`collapse`] (the limit of endless hits at one instant),
 //! [`calendar`] and [`grid`] (which event is next, who is near whom),
-//! [`world`] (the event loop), [`model`] (the chain of scenes: queries at any
+//! [`instant`] (when two event times are one moment), [`limits`] (when a
+//! run stops, and the guards that make sure it does), [`world`] (the event
+//! loop; rules plug in through [`world::handler`]), [`model`] (the chain of scenes: queries at any
 //! time, actions, rewind, diffs), [`scene`] (the JSON scene format),
-//! [`revision`] (which rules a computation runs, so old records replay).
+//! [`revision`] (which rules a computation runs, so old records replay),
+//! [`presets`] (ready-made scenes) and [`rng`] (the fixed random streams of
+//! layouts, tools and tests).
 //! The library does no I/O; the `sim` binary is a thin shell over it.
 
 // `!(x > 0.0)` is deliberate throughout: it is also true for NaN.
@@ -44,11 +48,14 @@ pub mod event;
 pub mod grid;
 pub mod id;
 pub mod impulse;
+pub mod instant;
+pub mod limits;
 pub mod model;
 pub mod obstacle;
 pub mod presets;
 pub mod push;
 pub mod revision;
+pub mod rng;
 pub mod roots;
 pub mod scene;
 pub mod trajectory;
@@ -56,9 +63,10 @@ pub mod world;
 
 pub use event::{Event, EventKind};
 pub use id::{BodyId, LineId, PointId};
+pub use limits::{End, EndReason, Limits};
 pub use model::{Action, Model, ModelRecord, SceneDiff, Snapshot, TimedAction};
 pub use obstacle::{Line, LineKind, Point};
 pub use revision::{Revision, UnknownRevision};
 pub use scene::{BodySpec, Scene, SceneError};
 pub use trajectory::Trajectory;
-pub use world::{End, EndReason, EventHandler, ExitResponse, Limits, World, WorldConfig};
+pub use world::{EventHandler, ExitResponse, World, WorldConfig};

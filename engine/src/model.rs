@@ -14,12 +14,12 @@
 
 use crate::event::{Event, EventKind};
 use crate::id::BodyId;
+use crate::limits::{End, EndReason, Limits};
 use crate::obstacle::{Line, Point};
 use crate::scene::{BodySpec, Scene, SceneError};
 use crate::trajectory::Trajectory;
-use crate::world::{
-    BodyState, End, EndReason, EventHandler, ExitResponse, Limits, Material, World, WorldConfig,
-};
+use crate::world::handler::{EventHandler, ExitResponse};
+use crate::world::{BodyState, Material, World, WorldConfig};
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;

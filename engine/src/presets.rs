@@ -5,6 +5,7 @@
 //! xorshift generator, and no trigonometry is used.
 
 use crate::obstacle::{Line, LineKind};
+use crate::rng::{Rng, GOLDEN};
 use crate::scene::{BodySpec, Scene};
 use glam::DVec2;
 
@@ -59,7 +60,7 @@ pub fn box_of_discs(n: usize, mu: f64, seed: u64) -> Scene {
     let per_row = (n as f64).sqrt().ceil() as usize;
     let spacing = side / per_row as f64;
     let jitter = 0.9 * (0.5 * spacing - r);
-    let mut rng = XorShift(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
+    let mut rng = Rng::xorshift64_star(seed.wrapping_mul(GOLDEN) | 1);
     let bodies = (0..n)
         .map(|k| {
             let (i, j) = (k % per_row, k / per_row);
@@ -75,23 +76,6 @@ pub fn box_of_discs(n: usize, mu: f64, seed: u64) -> Scene {
         bodies,
         lines: square_walls(side),
         ..Scene::default()
-    }
-}
-
-/// xorshift64*: a tiny deterministic generator for layouts.
-struct XorShift(u64);
-
-impl XorShift {
-    fn next_u64(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-
-    /// Uniform in `[-1, 1)`.
-    fn symmetric(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 52) as f64 - 1.0
     }
 }
 

@@ -17,7 +17,7 @@
 //! push, they are joined again at once.
 //!
 //! Three or more touching discs sliding along one line form a chain
-//! ([`pooled`]): contacts can only push, so the braking may not grow from
+//! (`pooled`): contacts can only push, so the braking may not grow from
 //! the rear of the chain to its front. Wherever a rear disc brakes less than
 //! the disc in front, the two move as one block with their mass-weighted
 //! mean braking and velocity, and blocks are pooled again until the braking
@@ -29,23 +29,24 @@
 //! from re-joining pair after pair at one instant without end.
 
 use crate::impulse;
+use crate::instant::same_instant;
 use crate::revision::Revision;
 use crate::trajectory::Trajectory;
 use glam::DVec2;
 
 /// Relative tolerance for "the same velocity" and "along the line of
 /// centres": rounding noise, far below any physical difference.
-pub const SAME: f64 = 1e-9;
+pub(crate) const SAME: f64 = 1e-9;
 
 /// Relative slack on the squared contact distance under which two discs of
 /// a chain count as touching.
-pub const TOUCHING: f64 = 2e-9;
+pub(crate) const TOUCHING: f64 = 2e-9;
 
 /// Whether the discs on `ti` and `tj`, touching at `now` with centres `pi`
 /// and `pj`, push on each other: both move, with the same velocity (to
 /// rounding) along the line of their centres, and their braking presses
 /// them together (the rear one brakes less).
-pub fn pushing(ti: &Trajectory, pi: DVec2, tj: &Trajectory, pj: DVec2, now: f64) -> bool {
+pub(crate) fn pushing(ti: &Trajectory, pi: DVec2, tj: &Trajectory, pj: DVec2, now: f64) -> bool {
     if !ti.is_moving_at(now) || !tj.is_moving_at(now) {
         return false;
     }
@@ -67,7 +68,7 @@ pub fn pushing(ti: &Trajectory, pi: DVec2, tj: &Trajectory, pj: DVec2, now: f64)
 /// The common velocity (mass-weighted, so momentum is kept) and braking of
 /// two discs pushed together, from their velocities `v`, masses `m` and
 /// own brakings `alpha` (`mu g`).
-pub fn together(v: [DVec2; 2], m: [f64; 2], alpha: [f64; 2]) -> (DVec2, f64) {
+pub(crate) fn together(v: [DVec2; 2], m: [f64; 2], alpha: [f64; 2]) -> (DVec2, f64) {
     let (w_i, w_j) = impulse::weights(m[0], m[1]);
     (v[0] * w_i + v[1] * w_j, alpha[0] * w_i + alpha[1] * w_j)
 }
@@ -75,7 +76,7 @@ pub fn together(v: [DVec2; 2], m: [f64; 2], alpha: [f64; 2]) -> (DVec2, f64) {
 /// Separation speed, relative to the speeds of the pair, under which a pair
 /// whose braking presses it together is taken to chatter to rest on each
 /// other (see [`chatters`]).
-pub const CAPTURE: f64 = 1e-6;
+pub(crate) const CAPTURE: f64 = 1e-6;
 
 /// Whether the discs on `ti` and `tj`, just hit along `n` (from `j` to
 /// `i`), separate so slowly while their braking presses them together that
@@ -93,7 +94,13 @@ pub const CAPTURE: f64 = 1e-6;
 /// within the rounding of the time (late in a long run, where an instant
 /// spans microseconds) is taken to its end too, however fast it parts.
 #[inline]
-pub fn chatters(ti: &Trajectory, tj: &Trajectory, n: DVec2, now: f64, rev: Revision) -> bool {
+pub(crate) fn chatters(
+    ti: &Trajectory,
+    tj: &Trajectory,
+    n: DVec2,
+    now: f64,
+    rev: Revision,
+) -> bool {
     // Cheapest test first: without pressing braking (frictionless pairs,
     // Galperin's billiard) nothing else is looked at.
     if ti.alpha() == 0.0 && tj.alpha() == 0.0 {
@@ -106,14 +113,14 @@ pub fn chatters(ti: &Trajectory, tj: &Trajectory, n: DVec2, now: f64, rev: Revis
     let (vi, vj) = (ti.velocity(now), tj.velocity(now));
     let w = (vi - vj).dot(n);
     w <= CAPTURE * (vi.length() + vj.length())
-        || (rev.at_least_r3() && crate::world::same_instant(now, now + 2.0 * w / -a))
+        || (rev.at_least_r3() && same_instant(now, now + 2.0 * w / -a))
 }
 
 /// Largest gap, as a fraction of the contact distance, that the
 /// approximated oblique pressing contact (see [`pressing_kick`]) opens
 /// between two discs, the bound on its position error, up to the fifth
 /// revision.
-pub const PRESS_GAP: f64 = 1e-6;
+pub(crate) const PRESS_GAP: f64 = 1e-6;
 
 /// The same bound from the sixth revision: 3 micrometres between two
 /// checkers. The pair bounces `sqrt(|g2| / (8 gap s))` times a second, so
@@ -121,10 +128,10 @@ pub const PRESS_GAP: f64 = 1e-6;
 /// heavy one sliding past and a wall, pressed for seconds, took 141,258
 /// events with the narrow gap and 18,741 with this one, and came to rest
 /// 0.6 mm (0.008 of its radius) from where the narrow gap leaves it.
-pub const WIDE_PRESS_GAP: f64 = 1e-4;
+pub(crate) const WIDE_PRESS_GAP: f64 = 1e-4;
 
 /// The gap bound of the pressing contact under `rev`.
-pub fn press_gap(rev: Revision) -> f64 {
+pub(crate) fn press_gap(rev: Revision) -> f64 {
     if rev.at_least_r6() {
         WIDE_PRESS_GAP
     } else {
@@ -137,7 +144,7 @@ pub fn press_gap(rev: Revision) -> f64 {
 /// motion (the kinetic energy it adds is at most `PRESS_SPEED^2` of
 /// theirs), and a pair bounces at most about `1 / (2 PRESS_SPEED)` times
 /// before it stops.
-pub const PRESS_SPEED: f64 = 0.05;
+pub(crate) const PRESS_SPEED: f64 = 0.05;
 
 /// Two discs pressed together obliquely: the separation speed to add to a
 /// hit between them, or `None` where the model is exact.
@@ -157,7 +164,7 @@ pub const PRESS_SPEED: f64 = 0.05;
 /// per pressing episode: the bounces themselves are elastic). `vi`, `vj`
 /// are the velocities after the hit, `ai`, `aj` the accelerations, `n` the
 /// unit normal from `j` to `i`, `s` the contact distance.
-pub fn pressing_kick(
+pub(crate) fn pressing_kick(
     [vi, vj]: [DVec2; 2],
     [ai, aj]: [DVec2; 2],
     n: DVec2,
@@ -182,7 +189,7 @@ pub fn pressing_kick(
     }
     // So slow that the next bounce would fall within the rounding of the
     // time: the pair comes to rest here (it would within that time anyway).
-    if crate::world::same_instant(now, now + 2.0 * w_min / -g2) {
+    if same_instant(now, now + 2.0 * w_min / -g2) {
         return Some(Press::Rest);
     }
     Some(Press::Part(w_min - w.max(0.0)))
@@ -191,7 +198,13 @@ pub fn pressing_kick(
 /// The bounce speed of two touching discs pressed together obliquely (the
 /// `w` of [`pressing_kick`], whatever they do now), or `None` where they
 /// do not press or the model is exact.
-pub fn bounce_speed(v: [DVec2; 2], a: [DVec2; 2], n: DVec2, s: f64, rev: Revision) -> Option<f64> {
+pub(crate) fn bounce_speed(
+    v: [DVec2; 2],
+    a: [DVec2; 2],
+    n: DVec2,
+    s: f64,
+    rev: Revision,
+) -> Option<f64> {
     pressing(v, a, n, s, rev).map(|(_, w_min, _)| w_min)
 }
 
@@ -226,7 +239,7 @@ fn pressing(
 /// What the approximated pressing contact does to a pair (see
 /// [`pressing_kick`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Press {
+pub(crate) enum Press {
     /// Add this separation speed along the normal, momentum kept.
     Part(f64),
     /// Both come to rest: their next bounce would fall within the rounding
@@ -236,7 +249,7 @@ pub enum Press {
 
 /// One disc of a pushing chain: its velocity, mass and own braking.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Part {
+pub(crate) struct Part {
     pub vel: DVec2,
     pub mass: f64,
     pub alpha: f64,
@@ -247,7 +260,7 @@ pub struct Part {
 /// solution, so braking never increases from rear to front. Two discs
 /// give exactly what [`together`] gives when they push, and their own
 /// motion when they do not.
-pub fn pooled(parts: &[Part]) -> Vec<(DVec2, f64)> {
+pub(crate) fn pooled(parts: &[Part]) -> Vec<(DVec2, f64)> {
     // Each block: index of its first part, mass, velocity and braking.
     let mut blocks: Vec<(usize, f64, DVec2, f64)> = Vec::with_capacity(parts.len());
     for (k, p) in parts.iter().enumerate() {
@@ -285,7 +298,7 @@ pub fn pooled(parts: &[Part]) -> Vec<(DVec2, f64)> {
 /// same pool-adjacent-violators construction as [`pooled`]). This is the
 /// limit of an endless sequence of ever slower inelastic hits at one
 /// instant (an inelastic collapse).
-pub fn plastic(parts: &[Part], u: DVec2) -> Vec<DVec2> {
+pub(crate) fn plastic(parts: &[Part], u: DVec2) -> Vec<DVec2> {
     let mut blocks: Vec<(usize, f64, DVec2)> = Vec::with_capacity(parts.len());
     for (k, p) in parts.iter().enumerate() {
         blocks.push((k, p.mass, p.vel));

@@ -22,10 +22,10 @@ pub enum Revision {
     /// The second, as the first but:
     /// - discs pressed together obliquely keep bouncing apart by a bounded
     ///   gap (an approximation, counted in `Stats::pressed`; see
-    ///   [`crate::push::pressing_kick`]) instead of drifting into each other,
+    ///   `push::pressing_kick`) instead of drifting into each other,
     ///   and touching discs that press are a contact at once;
     /// - a hit puts bodies whose distance is off by more than
-    ///   [`crate::world::SNAP`] back at touching distance (positions far
+    ///   `limits::SNAP` back at touching distance (positions far
     ///   from the origin carry the rounding of their coordinates);
     /// - a contact from more than 100 contact distances away takes its
     ///   discriminant from Lagrange's identity (exact to rounding from
@@ -54,13 +54,13 @@ pub enum Revision {
     ///   time ends at once (a plastic hit), as one slower than the capture
     ///   speed does;
     /// - discs whose slides after a hit are all shorter than the rounding
-    ///   of their positions are at rest ([`crate::world::SETTLE`]);
+    ///   of their positions are at rest (`limits::SETTLE`);
     /// - a touching pair (or a disc touching a line) approaching slower
     ///   than rounding noise meets 1e-10 of the contact distance inside it,
     ///   and the hit puts it back at touching distance, instead of drifting
     ///   in for as long as it slides;
     /// - events that no longer move any disc by more than
-    ///   [`crate::world::CRAWL`] of a radius, block after block (a collapse
+    ///   `limits::CRAWL` of a radius, block after block (a collapse
     ///   whose hits are each a few units in the last place of the time
     ///   apart, a chain pinned between two walls), are taken as a collapse
     ///   to its limit, and a run that goes on so ends `stuck` instead of
@@ -78,14 +78,14 @@ pub enum Revision {
     ///   rest at once, at the same instant, again and again.
     R4,
     /// The fifth, as the fourth but an instant at which one inelastic pair
-    /// has been hit [`crate::world::REPEAT_HITS`] times, every hit at it
-    /// gentle ([`crate::world::GENTLE`]: discs pressed together as they
+    /// has been hit `limits::REPEAT_HITS` times, every hit at it
+    /// gentle (`limits::GENTLE`: discs pressed together as they
     /// slide, not an impact), is taken as an inelastic collapse of the
     /// pairs hit more than once to its limit at once, however few events
     /// it has had (see `World::collapse_repeated`).
     R5,
     /// The sixth, as the fifth but the approximated pressing contact keeps
-    /// a pair within [`crate::push::WIDE_PRESS_GAP`] (1e-4 of the contact
+    /// a pair within `push::WIDE_PRESS_GAP` (1e-4 of the contact
     /// distance) instead of 1e-6: a tenth of the bounces, so that a disc
     /// pressed for seconds between others and a wall comes to rest well
     /// within the event cap.

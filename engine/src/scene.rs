@@ -167,10 +167,10 @@ pub enum SceneError {
 
 /// Largest coordinate, speed or radius accepted: squares of these (contact
 /// equations) must stay finite.
-pub const MAX_MAGNITUDE: f64 = 1e150;
+pub(crate) const MAX_MAGNITUDE: f64 = 1e150;
 
 /// Most sensor lines a scene may have (each body tracks its side of each).
-pub const MAX_SENSORS: usize = 64;
+pub(crate) const MAX_SENSORS: usize = 64;
 
 /// Relative slack when checking initial overlaps, so that discs placed
 /// exactly touching (a Newton's cradle) are accepted despite rounding.

@@ -100,7 +100,7 @@ impl Trajectory {
     }
 
     /// A disc resting at `p` from `t0` on.
-    pub fn at_rest(t0: f64, p: DVec2, alpha: f64) -> Self {
+    pub(crate) fn at_rest(t0: f64, p: DVec2, alpha: f64) -> Self {
         Trajectory {
             t0,
             p,
@@ -117,7 +117,7 @@ impl Trajectory {
         self.t0
     }
     /// Position at the start.
-    pub fn start_position(&self) -> DVec2 {
+    pub(crate) fn start_position(&self) -> DVec2 {
         self.p
     }
     /// Velocity at the start.
@@ -154,7 +154,7 @@ impl Trajectory {
         t < self.t_stop
     }
     /// Whether the disc moves at all.
-    pub fn is_moving(&self) -> bool {
+    pub(crate) fn is_moving(&self) -> bool {
         self.t_stop > self.t0
     }
     /// Whether it moves without friction (never stops).
@@ -164,7 +164,7 @@ impl Trajectory {
 
     /// Distance travelled along `direction()` after `s >= 0` seconds
     /// (clamped at the stop).
-    pub fn sigma(&self, s: f64) -> f64 {
+    pub(crate) fn sigma(&self, s: f64) -> f64 {
         if self.alpha == 0.0 {
             return self.speed() * s;
         }
@@ -173,7 +173,7 @@ impl Trajectory {
     }
 
     /// Total distance it will travel (infinite without friction).
-    pub fn stopping_distance(&self) -> f64 {
+    pub(crate) fn stopping_distance(&self) -> f64 {
         if !self.is_moving() {
             0.0
         } else if self.alpha == 0.0 {
@@ -217,7 +217,7 @@ impl Trajectory {
 
     /// Absolute time at which the disc has travelled `sigma` along its
     /// direction, or `None` if it stops first.
-    pub fn time_at_distance(&self, sigma: f64) -> Option<f64> {
+    pub(crate) fn time_at_distance(&self, sigma: f64) -> Option<f64> {
         if !self.is_moving() || sigma < 0.0 {
             return None;
         }
@@ -234,13 +234,8 @@ impl Trajectory {
         Some((self.t0 + s).min(self.t_stop))
     }
 
-    /// The same motion re-anchored at time `t` (position and velocity there).
-    pub fn rebased(&self, t: f64) -> Trajectory {
-        Trajectory::new(t, self.position(t), self.velocity(t), self.alpha)
-    }
-
     /// The same path with a different deceleration from time `t` on.
-    pub fn with_alpha(&self, t: f64, alpha: f64) -> Trajectory {
+    pub(crate) fn with_alpha(&self, t: f64, alpha: f64) -> Trajectory {
         Trajectory::new(t, self.position(t), self.velocity(t), alpha)
     }
 }

@@ -7,6 +7,7 @@
 //! `sqrt(v^2 - 2 alpha L)`; impulses follow formulas (25) and (28).
 
 use engine::model::{Action, ActionError, Snapshot};
+use engine::rng::Rng;
 use engine::world::{BodyState, BroadPhase, Counter};
 use engine::{
     BodyId, BodySpec, End, EndReason, Event, EventHandler, EventKind, ExitResponse, Limits, Line,
@@ -127,25 +128,9 @@ fn square(lo: f64, hi: f64) -> Vec<Line> {
 }
 
 /// A small deterministic generator (xorshift64*), so scenes are fixed.
-struct Rng(u64);
-
-impl Rng {
-    fn next_f64(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let x = self.0.wrapping_mul(0x2545_F491_4F6C_DD1D);
-        (x >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next_f64()
-    }
-}
-
 /// `n` discs on a lattice inside the box `[0, 1]^2`, random velocities.
 fn lattice_scene(n: usize, seed: u64, mu: f64, restitution: f64, speed: f64) -> Scene {
-    let mut rng = Rng(seed);
+    let mut rng = Rng::xorshift64_star(seed);
     let side = (n as f64).sqrt().ceil() as usize;
     let cell = 1.0 / side as f64;
     let bodies = (0..n)

@@ -24,6 +24,7 @@
 
 use cpu_time::ThreadTime;
 use engine::obstacle::LineGeom;
+use engine::rng::Rng;
 use engine::{
     BodyId, BodySpec, EndReason, Event, EventHandler, ExitResponse, Limits, Line, LineId, LineKind,
     Point, Revision, Scene, World, WorldConfig,
@@ -206,53 +207,29 @@ impl fmt::Display for Report {
     }
 }
 
-/// SplitMix64: a small, seedable, portable stream of random numbers.
-#[derive(Clone, Debug)]
-pub struct Rng(u64);
+/// The stream of one hostile scene: SplitMix64 from the scene's seed.
+fn stream(seed: u64) -> Rng {
+    Rng::splitmix64(seed ^ 0x5851_f42d_4c95_7f2d)
+}
 
-impl Rng {
-    pub fn new(seed: u64) -> Self {
-        Rng(seed ^ 0x5851_f42d_4c95_7f2d)
-    }
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-    /// Uniform in `[0, 1)`.
-    pub fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
-    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-    /// Log-uniform in `[lo, hi]` (both > 0).
-    pub fn log_range(&mut self, lo: f64, hi: f64) -> f64 {
-        (lo.ln() + (hi.ln() - lo.ln()) * self.unit()).exp()
-    }
-    pub fn below(&mut self, n: u64) -> u64 {
-        self.next_u64() % n.max(1)
-    }
-    pub fn chance(&mut self, p: f64) -> bool {
-        self.unit() < p
-    }
-    /// A unit vector at a random angle.
-    pub fn direction(&mut self) -> DVec2 {
-        let a = self.range(0.0, std::f64::consts::TAU);
-        DVec2::new(a.cos(), a.sin())
-    }
+/// The materials a hostile scene draws, on top of the plain draws.
+trait MaterialDraws {
     /// Restitution: often exactly 0 or 1, else anywhere between.
-    pub fn restitution(&mut self) -> f64 {
+    fn restitution(&mut self) -> f64;
+    /// Friction: mixed, never zero.
+    fn mu(&mut self) -> f64;
+}
+
+impl MaterialDraws for Rng {
+    fn restitution(&mut self) -> f64 {
         match self.below(4) {
             0 => 0.0,
             1 => 1.0,
             _ => self.unit(),
         }
     }
-    /// Friction: mixed, never zero.
-    pub fn mu(&mut self) -> f64 {
+
+    fn mu(&mut self) -> f64 {
         match self.below(4) {
             0 => 0.3,
             1 => self.log_range(1e-3, 30.0),
@@ -292,7 +269,7 @@ impl Hostile {
 
     /// The scene of `kind` for `seed`.
     pub fn generate(kind: Kind, seed: u64) -> Hostile {
-        let mut rng = Rng::new(seed.wrapping_mul(31).wrapping_add(kind as u64));
+        let mut rng = stream(seed.wrapping_mul(31).wrapping_add(kind as u64));
         let r = &mut rng;
         match kind {
             Kind::PushChain => push_chain(r, kind, seed, false),

@@ -6,6 +6,7 @@
 //! failure table, all from the shipped examples or from a seeded generator.
 
 use crate::error::LabError;
+use engine::rng::{Rng, GOLDEN};
 use engine::{BodyId, BodySpec, Line, LineKind, Scene};
 use glam::DVec2;
 
@@ -133,23 +134,6 @@ pub fn box100() -> Result<Case, LabError> {
     })
 }
 
-/// A deterministic xorshift generator (no dependency needed for layouts).
-pub struct Rng(u64);
-
-impl Rng {
-    pub fn new(seed: u64) -> Rng {
-        Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
-    }
-
-    /// Uniform in `[0, 1)`.
-    pub fn next_f64(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// `n` discs of radius 0.01 at about 10% area fraction in a closed square
 /// box, on a jittered lattice, unit speeds in random directions.
 pub fn random_box(n: usize, mu: f64, seed: u64) -> Scene {
@@ -157,13 +141,13 @@ pub fn random_box(n: usize, mu: f64, seed: u64) -> Scene {
     let side = (n as f64 * std::f64::consts::PI * r * r / 0.1).sqrt();
     let k = (n as f64).sqrt().ceil() as usize;
     let pitch = side / k as f64;
-    let mut rng = Rng::new(seed);
+    let mut rng = Rng::xorshift64(seed.wrapping_mul(GOLDEN) | 1);
     let jitter = (pitch - 2.0 * r) * 0.4;
     let bodies = (0..n)
         .map(|i| {
             let c = DVec2::new((i % k) as f64 + 0.5, (i / k) as f64 + 0.5) * pitch;
-            let j = DVec2::new(rng.next_f64() - 0.5, rng.next_f64() - 0.5) * jitter;
-            let a = rng.next_f64() * std::f64::consts::TAU;
+            let j = DVec2::new(rng.unit() - 0.5, rng.unit() - 0.5) * jitter;
+            let a = rng.unit() * std::f64::consts::TAU;
             BodySpec::new(i as u64 + 1, c + j, r, 0.01, mu)
                 .with_velocity(DVec2::new(a.cos(), a.sin()))
         })

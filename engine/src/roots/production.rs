@@ -1114,13 +1114,8 @@ mod tests {
 
     /// A fixed xorshift stream of numbers uniform in `[-1, 1)`.
     fn uniform_stream(seed: u64) -> impl FnMut() -> f64 {
-        let mut state = seed;
-        move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        }
+        let mut rng = crate::rng::Rng::xorshift64(seed);
+        move || rng.symmetric()
     }
 
     #[test]

@@ -1,0 +1,364 @@
+//! When a run stops, and the guards that make sure it does.
+//!
+//! A caller bounds a run with [`Limits`]; the run reports where and why it
+//! stopped as an [`End`] with its [`EndReason`]. Some configurations have no
+//! finite answer (a chain pressed between two walls, an inelastic collapse
+//! whose hits pile up at one instant, discs rattling in a gap of rounding);
+//! the livelock guards here notice them, each from the revision that
+//! introduced it: the tuning constants below, the crawl of events that move
+//! nothing (`Crawl`) and the repeated gentle hits of one pair at one
+//! instant (`Repeats`). The guards read the world through `Watched`, so
+//! they name no world of their own: the event loop (`world`)
+//! implements it and drives them.
+
+use crate::event::{Event, EventKind};
+use crate::id::{BodyId, LineId, PointId};
+use serde::{Deserialize, Serialize};
+
+/// When to stop a run.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Limits {
+    /// Compute no further than this time.
+    pub until: f64,
+    /// Stop after this many collisions in this run.
+    pub max_collisions: u64,
+    /// Stop after this many events in this run (the hard cap).
+    pub max_events: u64,
+}
+
+/// The hard cap on events when no other is given.
+pub(crate) const DEFAULT_MAX_EVENTS: u64 = 10_000_000;
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits {
+            until: f64::INFINITY,
+            max_collisions: u64::MAX,
+            max_events: DEFAULT_MAX_EVENTS,
+        }
+    }
+}
+
+/// Events at one instant (see [`crate::instant::same_instant`]) beyond
+/// which a run is [`EndReason::Stuck`]: this many, plus
+/// [`STUCK_EVENTS_PER_BODY`] per body.
+/// A Newton's cradle of `n` discs resolves in `n - 1` events at one
+/// instant; only a configuration with no finite answer comes near this.
+pub(crate) const STUCK_EVENTS: u64 = 20_000;
+
+/// See [`STUCK_EVENTS`].
+pub(crate) const STUCK_EVENTS_PER_BODY: u64 = 100;
+
+/// Every this many events at one instant, the bodies of the latest
+/// [`COLLAPSE_WINDOW`] of them are checked for an inelastic collapse
+/// (see `World::collapse`).
+pub(crate) const COLLAPSE_EVENTS: u64 = 2_000;
+
+/// See [`COLLAPSE_EVENTS`].
+pub(crate) const COLLAPSE_WINDOW: u64 = 64;
+
+/// From the fifth revision, hits of one inelastic pair (two discs, or a
+/// disc and an obstacle) at one instant, every one of them gentle (see
+/// [`GENTLE`]), after which the instant is taken as an inelastic collapse
+/// of the discs pressed together (see `World::collapse_repeated`), and
+/// again after as many more. A cluster sliding with unequal braking presses
+/// its discs into each other again and again, microseconds apart; each
+/// time its hits ring through it hundreds of times at one instant, each
+/// slower than the last, until the approach threshold cuts them off.
+pub(crate) const REPEAT_HITS: u32 = 16;
+
+/// From the fifth revision, the fraction of the speed of the fastest disc
+/// they involve under which every approach at one instant must stay for
+/// [`REPEAT_HITS`] to take it as a collapse: discs pressed together while
+/// they slide, not an impact ringing through a cradle or a cluster (whose
+/// sequence of hits is the model's answer, however long).
+pub(crate) const GENTLE: f64 = 1e-2;
+
+/// Most discs one collapse is taken to its limit for (see `World::collapse`).
+pub(crate) const MAX_COLLAPSE: usize = 256;
+
+/// From the third revision, a run whose events, [`CRAWL_EVENTS`] after
+/// [`CRAWL_EVENTS`], move no disc by more than this fraction of the
+/// smallest radius — as many events as would end it [`EndReason::Stuck`]
+/// at one instant — is stuck too: discs rattling in a gap of rounding (a
+/// chain pinned between two walls) advance the time by 1e-16 s an event.
+pub(crate) const CRAWL: f64 = 1e-9;
+
+/// See [`CRAWL`].
+pub(crate) const CRAWL_EVENTS: u64 = 1_000;
+
+/// From the third revision, a disc whose slide after a hit is shorter than
+/// this fraction of its largest coordinate (the rounding of its position)
+/// is at rest (see `World::settled`).
+pub(crate) const SETTLE: f64 = f64::EPSILON;
+
+/// Sweeps a pressing kick over a cluster (see `World::press_cluster`) may
+/// take: it converges within tens where it has an answer at all.
+pub(crate) const PRESS_SWEEPS: usize = 200;
+
+/// From the fourth revision, rounds of a pressing kick's projection that
+/// may each bias the pairs the one before left pressed (see
+/// `World::press_closure`).
+pub(crate) const PRESS_ROUNDS: usize = 4;
+
+/// Past this time a run checks, before each event, that every moving body
+/// is still within [`MAX_COORDINATE`] (no scene reaches it otherwise:
+/// speeds stay below 1e150 and start positions too).
+pub(crate) const FAR_FUTURE: f64 = 1e150;
+
+/// Largest coordinate a moving body may reach: its square (contact
+/// equations square distances) stays finite.
+pub(crate) const MAX_COORDINATE: f64 = 1e154;
+
+/// Relative error of a contact distance beyond which a hit puts the bodies
+/// back at exactly touching distance (see [`snap`]).
+pub(crate) const SNAP: f64 = 1e-11;
+
+/// How far to move apart two bodies (or a body from an obstacle) that hit
+/// at centre distance `dist` where they touch at `s`: nothing where the
+/// distance is right to within [`SNAP`] (every hit near the origin), else
+/// the error. Far from the origin a position carries the rounding of its
+/// coordinates (3e-10 m at 3e6 m), which a hit would otherwise keep as an
+/// overlap or a gap; moving the bodies by it is below that rounding.
+pub(crate) fn snap(s: f64, dist: f64) -> f64 {
+    let err = s - dist;
+    if err.abs() > SNAP * s && dist > 0.0 {
+        err
+    } else {
+        0.0
+    }
+}
+
+/// Why a run stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum EndReason {
+    /// Nothing moves and nothing is pending.
+    Rest,
+    /// Bodies still move without friction, but no event can ever happen.
+    Free,
+    /// The time horizon was reached.
+    Until,
+    /// The collision limit was reached.
+    MaxCollisions,
+    /// The event cap was reached.
+    MaxEvents,
+    /// The model has no finite answer from here: events keep piling up at
+    /// one instant without end (a chain pressed between two walls, an
+    /// inelastic collapse). The state is frozen at the last event.
+    Stuck,
+    /// The next event lies so far in the future that positions there would
+    /// leave the range of doubles (an inelastic disc bouncing between two
+    /// walls pushes its event times towards 1e308). The state is frozen at
+    /// the last event.
+    OutOfRange,
+}
+
+/// Where and why a run stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct End {
+    pub t: f64,
+    pub reason: EndReason,
+}
+
+/// Events that moved nothing (see [`CRAWL`]), counted block by block.
+pub(crate) struct Crawl {
+    /// When the current block began.
+    since: f64,
+    /// Events in the current block.
+    events: u64,
+    /// Events in the blocks before it, in a row, that moved nothing.
+    still: u64,
+    /// Slots of the latest [`COLLAPSE_WINDOW`] events of the block
+    /// (`usize::MAX` for a hit on an obstacle), as `World::collapse` takes.
+    recent: Vec<usize>,
+}
+
+impl Crawl {
+    /// No events yet, the first block beginning at `t`.
+    pub(crate) fn new(t: f64) -> Self {
+        Crawl {
+            since: t,
+            events: 0,
+            still: 0,
+            recent: Vec::new(),
+        }
+    }
+
+    /// Counts `event`, at `t`. At the end of a block of [`CRAWL_EVENTS`]
+    /// in which no disc moved by more than [`CRAWL`] of the smallest radius,
+    /// returns the slots of its latest events: a collapse too slow in time
+    /// to share one instant (each hit a few units in the last place of the
+    /// time after the last), to be taken to its limit.
+    #[inline]
+    pub(crate) fn note(
+        &mut self,
+        world: &impl Watched,
+        event: &Event,
+        t: f64,
+    ) -> Option<Vec<usize>> {
+        self.events += 1;
+        if self.events + COLLAPSE_WINDOW <= CRAWL_EVENTS {
+            return None;
+        }
+        self.block_end(world, event, t)
+    }
+
+    /// The latest events of a block, and its end (see [`Crawl::note`]).
+    #[cold]
+    fn block_end(&mut self, world: &impl Watched, event: &Event, t: f64) -> Option<Vec<usize>> {
+        world.remember(&mut self.recent, event);
+        if self.events < CRAWL_EVENTS {
+            return None;
+        }
+        let (speed, radius) = world.fastest_and_smallest(t);
+        let still = (t - self.since) * speed <= CRAWL * radius;
+        self.since = t;
+        self.events = 0;
+        let recent = std::mem::take(&mut self.recent);
+        if still {
+            self.still += CRAWL_EVENTS;
+            Some(recent)
+        } else {
+            self.still = 0;
+            None
+        }
+    }
+
+    /// Events, in the blocks just ended, in a row, that moved nothing.
+    pub(crate) fn still(&self) -> u64 {
+        self.still
+    }
+}
+
+/// What two bodies hit: two discs (ids in order), or a disc and a line or
+/// a point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Pair {
+    Discs(BodyId, BodyId),
+    Line(BodyId, LineId),
+    Point(BodyId, PointId),
+}
+
+/// One pair's hits at the current instant (see [`Repeats`]).
+struct PairHits {
+    pair: Pair,
+    /// The pair's slots (the second `None` for an obstacle).
+    slots: (usize, Option<usize>),
+    hits: u32,
+}
+
+/// From the fifth revision, each inelastic pair's hits at the current
+/// instant (see [`REPEAT_HITS`]).
+#[derive(Default)]
+pub(crate) struct Repeats {
+    /// The instant's first event and the speed of its approach, counted
+    /// only once a second event shares the instant (most events have an
+    /// instant to themselves).
+    first: Option<(Event, f64)>,
+    hits: Vec<PairHits>,
+    /// The fastest approach of any hit at this instant.
+    fastest: f64,
+    /// The fastest speed of a disc after a hit at this instant.
+    moving: f64,
+}
+
+impl Repeats {
+    /// A new instant, begun by `event`, whose bodies approached at
+    /// `approach`. It is counted when a second event joins the instant, with
+    /// the speeds of its discs as they are then.
+    pub(crate) fn start(&mut self, event: Event, approach: f64) {
+        self.first = Some((event, approach));
+        self.hits.clear();
+        self.fastest = 0.0;
+        self.moving = 0.0;
+    }
+
+    /// Counts `event`'s hit, one more at the instant (the world's state
+    /// right after it), whose bodies approached at `approach`; `true` when its pair, an inelastic one, has now
+    /// been hit a multiple of [`REPEAT_HITS`] times at this instant, and
+    /// every hit so far was [`GENTLE`]. Elastic hits lose no energy: their
+    /// sequences are finite, however long (a light disc between heavy
+    /// ones), and are not counted.
+    pub(crate) fn note(&mut self, world: &impl Watched, event: &Event, approach: f64) -> bool {
+        if let Some((first, first_approach)) = self.first.take() {
+            self.count(world, &first, first_approach);
+        }
+        self.count(world, event, approach)
+    }
+
+    /// Counts one hit (see [`Repeats::note`]).
+    fn count(&mut self, world: &impl Watched, event: &Event, approach: f64) -> bool {
+        let (pair, a, b) = match event.kind {
+            EventKind::BodyBody { a, b } => (Pair::Discs(a.min(b), a.max(b)), a, Some(b)),
+            EventKind::BodyLine { body, line, .. } => (Pair::Line(body, line), body, None),
+            EventKind::BodyPoint { body, point } => (Pair::Point(body, point), body, None),
+            _ => return false,
+        };
+        let Some(sa) = world.slot_of(a) else {
+            return false;
+        };
+        let sb = match b.map(|b| world.slot_of(b)) {
+            Some(None) => return false,
+            Some(sb) => sb,
+            None => None,
+        };
+        if world.restitution(sa, sb) >= 1.0 {
+            return false;
+        }
+        self.fastest = self.fastest.max(approach.abs());
+        let speed = |c: usize| world.speed_at_last_event(c);
+        self.moving = self.moving.max(speed(sa)).max(sb.map_or(0.0, speed));
+        let hits = match self.hits.iter_mut().find(|h| h.pair == pair) {
+            Some(h) => {
+                h.hits += 1;
+                h.hits
+            }
+            None => {
+                self.hits.push(PairHits {
+                    pair,
+                    slots: (sa, sb),
+                    hits: 1,
+                });
+                1
+            }
+        };
+        hits % REPEAT_HITS == 0 && self.fastest <= GENTLE * self.moving
+    }
+
+    /// The pairs hit more than once at this instant (slots; `None` for an
+    /// obstacle).
+    pub(crate) fn repeated(&self) -> Vec<(usize, Option<usize>)> {
+        self.hits
+            .iter()
+            .filter(|h| h.hits > 1)
+            .map(|h| h.slots)
+            .collect()
+    }
+}
+
+/// What the guards read of the world they watch. The event loop's world
+/// implements it; through it the guards need no world type of their own.
+pub(crate) trait Watched {
+    /// The slot of a body still in the scene.
+    fn slot_of(&self, id: BodyId) -> Option<usize>;
+
+    /// The speed of the fastest live disc at `t` and the smallest radius.
+    fn fastest_and_smallest(&self, t: f64) -> (f64, f64);
+
+    /// The restitution of a hit between the discs in slots `a` and `b`
+    /// (the smaller of theirs), or of `a` on an obstacle (`b` = `None`).
+    fn restitution(&self, a: usize, b: Option<usize>) -> f64;
+
+    /// The speed of the disc in slot `c` at the latest event.
+    fn speed_at_last_event(&self, c: usize) -> f64;
+
+    /// Adds the slots of `event`'s bodies to `recent`, and `usize::MAX`
+    /// for a hit on an obstacle (what `World::collapse` takes).
+    fn remember(&self, recent: &mut Vec<usize>, event: &Event) {
+        recent.extend(event.kind.bodies().filter_map(|id| self.slot_of(id)));
+        if !matches!(event.kind, EventKind::BodyBody { .. }) {
+            recent.push(usize::MAX);
+        }
+    }
+}
