@@ -49,8 +49,9 @@
 //! and refusals) and [`session`] (a live match — seats, connections, turn
 //! clock, rematch — as a state machine without I/O, driven by the server's
 //! rooms and by tests on a virtual clock), with [`token`] (seat tokens and
-//! the hashes a server keeps) and [`rating`] (Glicko-2 ratings and how a
-//! rated match moves them).
+//! the hashes a server keeps), [`rating`] (Glicko-2 ratings and how a
+//! rated match moves them) and [`name`] (the account-name rule the server
+//! enforces and the client checks).
 
 pub mod batch;
 pub mod board;
@@ -58,6 +59,7 @@ pub mod config;
 pub mod film;
 pub mod game;
 pub mod golden;
+pub mod name;
 pub mod noise;
 pub mod outcome;
 pub mod physics;

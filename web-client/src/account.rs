@@ -6,6 +6,7 @@
 
 use crate::api::{Profile, SeatRating};
 use crate::platform;
+pub use game::name::{MAX_NAME, MIN_NAME};
 
 const KEY_KEY: &str = "chapaev.account.key";
 const NAME_KEY: &str = "chapaev.account.name";
@@ -36,17 +37,23 @@ pub fn sign_out() {
     platform::storage_set(NAME_KEY, "");
 }
 
-/// Whether the server accepts `name` for an account: 3 to 20 ASCII
-/// letters, digits, `_` or `-`, starting with a letter or digit.
+/// Whether `name` has the shape of an account name (the shared rule,
+/// [`game::name::check`]): [`MIN_NAME`] to [`MAX_NAME`] ASCII letters,
+/// digits, `_` or `-`, starting with a letter or digit.
 pub fn valid_name(name: &str) -> bool {
-    (3..=20).contains(&name.len())
-        && name
-            .bytes()
-            .all(|b| b.is_ascii_alphanumeric() || b == b'_' || b == b'-')
-        && name
-            .bytes()
-            .next()
-            .is_some_and(|b| b.is_ascii_alphanumeric())
+    game::name::check(name).is_ok()
+}
+
+/// The rule as the account screen's hint says it, from the shared limits:
+/// "a name of 3 to 20 letters, digits, _ or -".
+pub fn name_hint() -> String {
+    format!("a name of {MIN_NAME} to {MAX_NAME} letters, digits, _ or -")
+}
+
+/// The rule as the account screen says it when a name breaks it:
+/// "a name is 3 to 20 letters, digits, _ or -".
+pub fn name_rule() -> String {
+    format!("a name is {MIN_NAME} to {MAX_NAME} letters, digits, _ or -")
 }
 
 /// A rating as shown: rounded, with a `?` while provisional ("1500?").
@@ -113,6 +120,12 @@ mod tests {
         ] {
             assert!(!valid_name(bad), "{bad}");
         }
+    }
+
+    #[test]
+    fn the_hints_state_the_shared_limits() {
+        assert_eq!(name_hint(), "a name of 3 to 20 letters, digits, _ or -");
+        assert_eq!(name_rule(), "a name is 3 to 20 letters, digits, _ or -");
     }
 
     #[test]

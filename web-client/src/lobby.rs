@@ -6,6 +6,8 @@
 //! A match this server cannot play (another physics version) offers no
 //! Join or Watch. The lists refresh every few seconds.
 
+mod layout;
+
 use crate::account::{self, Account};
 use crate::api::{token_key, Api, Opponent, Pending, Profile, SeatGrant, Summary};
 use crate::route::Route;
@@ -305,20 +307,13 @@ impl Lobby {
     fn lists_and_controls(&mut self, ui: &mut Ui) -> Option<Route> {
         let mut go = self.poll();
         let (w, h) = crate::scale::size().into();
-        let pad = if w < 600.0 { 12.0 } else { 20.0 };
-        let col = (w - 2.0 * pad).min(980.0);
-        let x0 = (w - col) / 2.0;
-        let narrow = col < 700.0;
-        let row = ui::TOUCH;
-        let gap = 8.0;
-        let mut y = if narrow { 10.0 } else { 24.0 };
+        let l = layout::layout(w, h, self.message.is_some());
+        let (x0, col, narrow) = (l.x0, l.col, l.narrow);
+        let gap = layout::GAP;
+        let y = l.title_y;
         // The title, with two checkers for a logo, and the rules beside it.
-        let help = if narrow {
-            Rect::new(x0 + col - 84.0, y + 2.0, 84.0, row)
-        } else {
-            Rect::new(x0 + col - 150.0, y + 4.0, 150.0, row)
-        };
-        let logo = if narrow { 14.0 } else { 20.0 };
+        let help = l.help;
+        let logo = l.logo;
         draw::checker(
             vec2(x0 + logo + 2.0, y + logo + 2.0),
             logo,
@@ -353,12 +348,10 @@ impl Lobby {
         if ui.button("help", rules, help) {
             self.help = true;
         }
-        y += if narrow { 62.0 } else { 86.0 };
-        let label_w = if narrow { 98.0 } else { 100.0 };
-        if let Some(r) = self.account_row(ui, x0, y, col, label_w, narrow) {
+        let label_w = l.label_w;
+        if let Some(r) = self.account_row(ui, x0, l.account_y, col, label_w, narrow) {
             go = Some(r);
         }
-        y += row + 12.0;
         // The matches to start: one row, or a grid of two columns.
         let choices: [(&str, &str); 7] = [
             ("vs-computer-easy", "Computer: easy"),
@@ -369,12 +362,7 @@ impl Lobby {
             ("sandbox", "Physics sandbox"),
             ("leaderboard", "Leaderboard"),
         ];
-        let per_row = if narrow { 2 } else { 7 };
-        let bw = (col - gap * (per_row - 1) as f32) / per_row as f32;
-        let bh = if narrow { row } else { 52.0 };
-        for (i, (name, label)) in choices.iter().enumerate() {
-            let (c, r) = ((i % per_row) as f32, (i / per_row) as f32);
-            let rect = Rect::new(x0 + c * (bw + gap), y + r * (bh + gap), bw, bh);
+        for ((i, (name, label)), rect) in choices.iter().enumerate().zip(l.choices) {
             if ui.button(name, label, rect) {
                 match i {
                     0 => self.create(Opponent::Bot("easy")),
@@ -387,53 +375,27 @@ impl Lobby {
                 }
             }
         }
-        let rows = choices.len().div_ceil(per_row) as f32;
-        y += rows * (bh + gap) + 6.0;
-        ui::text("Join by id", x0, y + 12.0, 17.0, colors::TEXT);
-        let join_w = 80.0;
-        let field_w = (col - label_w - gap - join_w).min(300.0);
-        let field = Rect::new(x0 + label_w, y, field_w, row);
+        let field = l.join_field;
+        ui::text("Join by id", x0, field.y + 12.0, 17.0, colors::TEXT);
         let entered = ui.text_field("join-id-field", &mut self.join_id, field, "match id", 64);
         let id = self.join_id.trim().to_string();
         let ok = !id.is_empty() && id.chars().all(|c| c.is_ascii_alphanumeric());
-        let join = Rect::new(field.x + field.w + gap, y, join_w, row);
-        if (ui.button_styled("join-id", "Join", join, ok, false) || entered) && ok {
+        if (ui.button_styled("join-id", "Join", l.join, ok, false) || entered) && ok {
             go = Some(Route::Join { match_id: id });
         }
-        y += row + 10.0;
         if let Some(m) = &self.message {
-            if narrow {
-                ui::text(&ui::fit(m, 15.0, col), x0, y, 15.0, colors::MUTED);
-                y += 22.0;
-            } else {
-                let mx = join.x + join.w + 16.0;
-                ui::text(
-                    &ui::fit(m, 16.0, x0 + col - mx),
-                    mx,
-                    join.y + 12.0,
-                    16.0,
-                    colors::MUTED,
-                );
-            }
+            let (mx, my, mw) = l.message;
+            let size = if narrow { 15.0 } else { 16.0 };
+            ui::text(&ui::fit(m, size, mw), mx, my, size, colors::MUTED);
         }
         let footer = if narrow {
             "Writing a bot? See /api"
         } else {
             "Writing a bot? The HTTP and WebSocket protocol is described at /api"
         };
-        ui::text(footer, x0, h - 22.0, 14.0, colors::MUTED);
-        // The three lists side by side (or stacked on a narrow screen).
-        let top = y;
-        let bottom = h - 30.0;
-        let lw = if narrow { col } else { (col - 24.0) / 3.0 };
-        for (i, l) in self.lists.iter().enumerate() {
-            let area = if narrow {
-                let lh = (bottom - top) / 3.0;
-                Rect::new(x0, top + i as f32 * lh, lw, lh - gap)
-            } else {
-                Rect::new(x0 + i as f32 * (lw + 12.0), top, lw, bottom - top)
-            };
-            if let Some(r) = list(ui, l, area) {
+        ui::text(footer, x0, l.footer_y, 14.0, colors::MUTED);
+        for (list_, area) in self.lists.iter().zip(l.lists) {
+            if let Some(r) = list(ui, list_, area) {
                 go = Some(r);
             }
         }

@@ -88,7 +88,7 @@ impl SignIn {
     fn create(&mut self) {
         let name = self.name.trim().to_string();
         if !account::valid_name(&name) {
-            self.message = Some("a name is 3 to 20 letters, digits, _ or -".into());
+            self.message = Some(account::name_rule());
         } else if self.creating.is_none() {
             self.creating = Some(self.api.create_account(&name));
             self.message = Some("creating the account...".into());
@@ -112,7 +112,7 @@ impl SignIn {
         ui::text("A new account", x0, y, 19.0, colors::ACCENT);
         y += 26.0;
         ui::text(
-            &ui::fit("a name of 3 to 20 letters, digits, _ or -", 14.0, col),
+            &ui::fit(&account::name_hint(), 14.0, col),
             x0,
             y,
             14.0,
@@ -120,7 +120,13 @@ impl SignIn {
         );
         y += 22.0;
         let field = Rect::new(x0, y, col - bw - gap, ui::TOUCH);
-        let entered = ui.text_field("account-name", &mut self.name, field, "your name", 20);
+        let entered = ui.text_field(
+            "account-name",
+            &mut self.name,
+            field,
+            "your name",
+            account::MAX_NAME,
+        );
         let ok = account::valid_name(self.name.trim());
         let b = Rect::new(x0 + col - bw, y, bw, ui::TOUCH);
         if (ui.button_styled("account-create", "Create", b, ok, false) || entered) && ok {

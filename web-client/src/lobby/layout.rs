@@ -1,0 +1,201 @@
+//! Where the lobby's parts go, as a pure function of the window's size
+//! (layout units): the centred column, the title row with the rules
+//! button, the account row, the grid of matches to start, the join-by-id
+//! row, the message, the footer and the three match lists (side by side
+//! on a wide screen, stacked on a narrow one). Nothing here draws, so it
+//! is tested natively.
+
+use crate::ui::TOUCH;
+use macroquad::prelude::Rect;
+
+/// Room between controls.
+pub const GAP: f32 = 8.0;
+/// How many matches there are to start.
+pub const CHOICES: usize = 7;
+
+/// The lobby's places.
+#[derive(Clone, Debug)]
+pub struct Layout {
+    /// The column's left edge and width.
+    pub x0: f32,
+    pub col: f32,
+    /// A narrow column (a phone): smaller title, a grid of two columns,
+    /// stacked lists.
+    pub narrow: bool,
+    /// The title row's top.
+    pub title_y: f32,
+    /// The rules button beside the title.
+    pub help: Rect,
+    /// The logo's checkers' radius.
+    pub logo: f32,
+    /// The account row's top and the width of its label.
+    pub account_y: f32,
+    pub label_w: f32,
+    /// The matches to start.
+    pub choices: [Rect; CHOICES],
+    /// The join-by-id row: its field and button.
+    pub join_field: Rect,
+    pub join: Rect,
+    /// Where a message goes: its text's left, top and width.
+    pub message: (f32, f32, f32),
+    /// The footer line's top.
+    pub footer_y: f32,
+    /// The open, live and finished lists.
+    pub lists: [Rect; 3],
+}
+
+/// The lobby in a `w` x `h` window; `message` whether a message shows
+/// (on a narrow screen it takes a line above the lists).
+pub fn layout(w: f32, h: f32, message: bool) -> Layout {
+    let pad = if w < 600.0 { 12.0 } else { 20.0 };
+    let col = (w - 2.0 * pad).min(980.0);
+    let x0 = (w - col) / 2.0;
+    let narrow = col < 700.0;
+    let row = TOUCH;
+    let title_y = if narrow { 10.0 } else { 24.0 };
+    let help = if narrow {
+        Rect::new(x0 + col - 84.0, title_y + 2.0, 84.0, row)
+    } else {
+        Rect::new(x0 + col - 150.0, title_y + 4.0, 150.0, row)
+    };
+    let logo = if narrow { 14.0 } else { 20.0 };
+    let account_y = title_y + if narrow { 62.0 } else { 86.0 };
+    let label_w = if narrow { 98.0 } else { 100.0 };
+    let mut y = account_y + row + 12.0;
+    // The matches to start: one row, or a grid of two columns.
+    let per_row = if narrow { 2 } else { CHOICES };
+    let bw = (col - GAP * (per_row - 1) as f32) / per_row as f32;
+    let bh = if narrow { row } else { 52.0 };
+    let choices = std::array::from_fn(|i| {
+        let (c, r) = ((i % per_row) as f32, (i / per_row) as f32);
+        Rect::new(x0 + c * (bw + GAP), y + r * (bh + GAP), bw, bh)
+    });
+    y += CHOICES.div_ceil(per_row) as f32 * (bh + GAP) + 6.0;
+    let join_w = 80.0;
+    let field_w = (col - label_w - GAP - join_w).min(300.0);
+    let join_field = Rect::new(x0 + label_w, y, field_w, row);
+    let join = Rect::new(join_field.x + join_field.w + GAP, y, join_w, row);
+    y += row + 10.0;
+    let message_at = if narrow {
+        let at = (x0, y, col);
+        if message {
+            y += 22.0;
+        }
+        at
+    } else {
+        let mx = join.x + join.w + 16.0;
+        (mx, join.y + 12.0, x0 + col - mx)
+    };
+    // The three lists side by side (or stacked on a narrow screen).
+    let top = y;
+    let bottom = h - 30.0;
+    let lw = if narrow { col } else { (col - 24.0) / 3.0 };
+    let lists = std::array::from_fn(|i| {
+        if narrow {
+            let lh = (bottom - top) / 3.0;
+            Rect::new(x0, top + i as f32 * lh, lw, lh - GAP)
+        } else {
+            Rect::new(x0 + i as f32 * (lw + 12.0), top, lw, bottom - top)
+        }
+    });
+    Layout {
+        x0,
+        col,
+        narrow,
+        title_y,
+        help,
+        logo,
+        account_y,
+        label_w,
+        choices,
+        join_field,
+        join,
+        message: message_at,
+        footer_y: h - 22.0,
+        lists,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const PHONES: [(f32, f32); 2] = [(390.0, 844.0), (412.0, 915.0)];
+    const DESKTOPS: [(f32, f32); 3] = [(1100.0, 760.0), (1280.0, 720.0), (1440.0, 900.0)];
+
+    fn overlap(a: Rect, b: Rect) -> bool {
+        a.x < b.x + b.w && b.x < a.x + a.w && a.y < b.y + b.h && b.y < a.y + a.h
+    }
+
+    fn inside(inner: Rect, w: f32, h: f32) -> bool {
+        inner.x >= -1e-3
+            && inner.y >= -1e-3
+            && inner.x + inner.w <= w + 1e-3
+            && inner.y + inner.h <= h + 1e-3
+    }
+
+    fn all(l: &Layout) -> Vec<Rect> {
+        let mut v = vec![l.help, l.join_field, l.join];
+        v.extend(l.choices);
+        v.extend(l.lists);
+        v
+    }
+
+    #[test]
+    fn a_phone_gets_a_narrow_lobby_with_stacked_lists() {
+        for (w, h) in PHONES {
+            let l = layout(w, h, false);
+            assert!(l.narrow);
+            assert_eq!(l.lists[0].x, l.lists[1].x);
+            assert!(l.lists[0].y + l.lists[0].h <= l.lists[1].y);
+            // Two matches to start to a row.
+            assert_eq!(l.choices[0].y, l.choices[1].y);
+            assert!(l.choices[2].y > l.choices[0].y);
+        }
+    }
+
+    #[test]
+    fn a_desktop_sets_the_lists_side_by_side_and_the_choices_in_one_row() {
+        for (w, h) in DESKTOPS {
+            let l = layout(w, h, false);
+            assert!(!l.narrow);
+            assert_eq!(l.lists[0].y, l.lists[2].y);
+            assert!(l.lists[0].x + l.lists[0].w < l.lists[1].x);
+            assert!(l.choices.iter().all(|c| c.y == l.choices[0].y));
+            assert!(l.col <= 980.0);
+        }
+    }
+
+    #[test]
+    fn nothing_overlaps_and_everything_is_inside_the_window() {
+        for (w, h) in PHONES.into_iter().chain(DESKTOPS) {
+            for message in [false, true] {
+                let l = layout(w, h, message);
+                let rects = all(&l);
+                for (i, a) in rects.iter().enumerate() {
+                    assert!(inside(*a, w, h), "{w}x{h}: {a:?}");
+                    for b in &rects[i + 1..] {
+                        assert!(!overlap(*a, *b), "{w}x{h}: {a:?} overlaps {b:?}");
+                    }
+                }
+                // The lists end above the footer.
+                for list in l.lists {
+                    assert!(list.y + list.h <= l.footer_y);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_message_on_a_phone_takes_a_line_above_the_lists() {
+        let (w, h) = PHONES[0];
+        let without = layout(w, h, false);
+        let with = layout(w, h, true);
+        assert_eq!(with.lists[0].y, without.lists[0].y + 22.0);
+        assert!(with.message.1 < with.lists[0].y);
+        // On a desktop it stands beside the join button instead.
+        let d = layout(1100.0, 760.0, true);
+        assert!(d.message.0 > d.join.x + d.join.w);
+        assert_eq!(d.lists[0].y, layout(1100.0, 760.0, false).lists[0].y);
+    }
+}

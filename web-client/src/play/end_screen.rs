@@ -1,0 +1,135 @@
+//! The end-of-match screen over the board: the result as the viewer reads
+//! it, how it was decided, the rounds, the shots, and one press to a
+//! rematch, the replay or closing it. Its words are worked out without
+//! drawing ([`words`]); its places come from [`super::layout::end_screen`].
+
+use super::layout;
+use crate::story::{self, side_name, Score};
+use crate::ui::{self, colors, Ui};
+use game::{MatchResult, MatchView, Side, WinReason};
+use macroquad::prelude::{draw_rectangle, Color, Rect};
+
+/// What the end screen says.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Words {
+    pub title: String,
+    pub color: Color,
+    pub reason: String,
+    pub rounds: String,
+    pub counts: String,
+}
+
+/// The end screen's words for `result`, seen from `me`'s side.
+pub fn words(result: MatchResult, me: Option<Side>, score: &Score, v: &MatchView) -> Words {
+    let (title, color) = match (result.winner(), me) {
+        (None, _) => ("Drawn".to_string(), colors::TEXT),
+        (Some(wn), Some(me)) if wn == me => ("You won!".to_string(), colors::GOOD),
+        (Some(_), Some(_)) => ("You lost".to_string(), colors::DANGER),
+        (Some(wn), None) => (format!("{} won", side_name(wn)), colors::ACCENT),
+    };
+    Words {
+        title,
+        color,
+        reason: reason(result),
+        rounds: score.rounds_line(),
+        counts: format!(
+            "{} · {}",
+            story::count(v.shots, "shot"),
+            story::count(v.round, "round")
+        ),
+    }
+}
+
+/// How the match was decided, in words.
+pub fn reason(r: MatchResult) -> String {
+    match r {
+        MatchResult::Draw => "Both sides' last pieces fell together".to_string(),
+        MatchResult::Won { side, reason } => {
+            let how = match reason {
+                WinReason::FarEdge => "reached the far edge",
+                WinReason::QuickMatch => "won the round",
+                WinReason::Resignation => "won by resignation",
+                WinReason::Timeouts => "won: the other side ran out of time three times",
+                WinReason::Abandoned => "won: the other side left",
+            };
+            format!("{} {how}", side_name(side))
+        }
+    }
+}
+
+/// Draws the end screen over the board `area`; a `rematch` button (its
+/// label and whether it can be pressed) for a seated player. The names of
+/// the buttons pressed: `end-rematch`, `end-replay`, `end-close`.
+pub fn show(
+    ui: &mut Ui,
+    area: Rect,
+    w: &Words,
+    rematch: Option<(&str, bool)>,
+) -> Vec<&'static str> {
+    let l = layout::end_screen(area, rematch.is_some());
+    let r = l.r;
+    draw_rectangle(
+        r.x - 4.0,
+        r.y - 4.0,
+        r.w + 8.0,
+        r.h + 8.0,
+        Color::new(0.0, 0.0, 0.0, 0.45),
+    );
+    ui::panel(r);
+    ui::text(&w.title, l.x, r.y + 14.0, 30.0, w.color);
+    ui::text(
+        &ui::fit(&w.reason, 15.0, l.w),
+        l.x,
+        r.y + 54.0,
+        15.0,
+        colors::MUTED,
+    );
+    ui::text(
+        &ui::fit(&w.rounds, 17.0, l.w),
+        l.x,
+        r.y + 80.0,
+        17.0,
+        colors::TEXT,
+    );
+    ui::text(&w.counts, l.x, r.y + 104.0, 17.0, colors::TEXT);
+    let mut pressed = Vec::new();
+    if let (Some((label, enabled)), Some(b)) = (rematch, l.rematch) {
+        if ui.button_styled("end-rematch", label, b, enabled, false) {
+            pressed.push("end-rematch");
+        }
+    }
+    if ui.button("end-replay", "Replay", l.replay) {
+        pressed.push("end-replay");
+    }
+    if ui.button("end-close", "Close", l.close) {
+        pressed.push("end-close");
+    }
+    pressed
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use game::{Config, Game};
+
+    #[test]
+    fn the_title_is_the_viewers_result() {
+        let v = Game::new(Config::default(), 7).unwrap().view();
+        let won = MatchResult::Won {
+            side: Side::Black,
+            reason: WinReason::Timeouts,
+        };
+        let score = Score::of(std::iter::empty::<&game::ShotOutcome>());
+        assert_eq!(words(won, Some(Side::Black), &score, &v).title, "You won!");
+        assert_eq!(words(won, Some(Side::White), &score, &v).title, "You lost");
+        assert_eq!(words(won, None, &score, &v).title, "Black won");
+        let drawn = words(MatchResult::Draw, Some(Side::White), &score, &v);
+        assert_eq!(drawn.title, "Drawn");
+        assert_eq!(drawn.reason, "Both sides' last pieces fell together");
+        assert_eq!(
+            words(won, None, &score, &v).reason,
+            "Black won: the other side ran out of time three times"
+        );
+        assert_eq!(words(won, None, &score, &v).counts, "0 shots · 1 round");
+    }
+}

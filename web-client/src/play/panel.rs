@@ -1,0 +1,499 @@
+//! What the side panel says and offers, and drawing it: the heading (who
+//! you play, the match, the connection), both players with their pieces
+//! left and rows, the round and shot, whose turn it is with the clock, the
+//! shot log, the buttons the moment allows (the pie decision only to
+//! Black's seat, the invitation link while the second seat is empty,
+//! resign, rematch, replay, lobby, rules, sound) and the chat. The content
+//! is worked out from the match state without drawing ([`content`]), the
+//! places from [`super::layout::panel`].
+
+use super::layout::{self, PanelLayout, PanelSpec};
+use super::state::{MatchState, LOG_LINES};
+use crate::draw;
+use crate::story::{self, side_name};
+use crate::ui::{self, colors, Ui};
+use game::protocol::MAX_CHAT_CHARS;
+use game::{MatchResult, Phase, Seat, Side, WinReason};
+use macroquad::prelude::{vec2, Color, Rect};
+
+/// A line of text and how it shows.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Line {
+    pub text: String,
+    pub size: f32,
+    pub color: Color,
+}
+
+fn line(text: impl Into<String>, size: f32, color: Color) -> Line {
+    Line {
+        text: text.into(),
+        size,
+        color,
+    }
+}
+
+/// One player's row.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Player {
+    pub side: Side,
+    /// The name, with " (you)" for this page's seat.
+    pub name: String,
+    /// Pieces left, of 8.
+    pub left: usize,
+    /// The row the side stands on, counted from its own edge.
+    pub row: u8,
+    /// Whether it is this side's turn.
+    pub turn: bool,
+}
+
+/// A button: its name (what pressing it does), label and whether it can
+/// be pressed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Button {
+    pub name: &'static str,
+    pub label: String,
+    pub enabled: bool,
+}
+
+fn button(name: &'static str, label: impl Into<String>, enabled: bool) -> Button {
+    Button {
+        name,
+        label: label.into(),
+        enabled,
+    }
+}
+
+/// What the screen knows beside the match state.
+#[derive(Clone, Debug)]
+pub struct Context<'a> {
+    pub match_id: &'a str,
+    /// The connection's status line and its colour.
+    pub link: (String, Color),
+    /// Whether the panel is compact ([`layout::compact`]).
+    pub compact: bool,
+    /// Whether the player may aim now.
+    pub my_turn: bool,
+    /// Resign was pressed once and waits to be confirmed.
+    pub confirm_resign: bool,
+    pub sound: bool,
+}
+
+/// Everything the panel shows, top to bottom.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Content {
+    pub head: Vec<Line>,
+    /// Both players, once the match is known.
+    pub players: Option<[Player; 2]>,
+    pub body: Vec<Line>,
+    pub hints: Vec<Line>,
+    pub buttons: Vec<Button>,
+    /// Whether this page may chat (it holds a seat).
+    pub chat_field: bool,
+}
+
+impl Content {
+    /// The layout's spec for this content with `chat` lines of chat.
+    pub fn spec(&self, chat: usize) -> PanelSpec {
+        PanelSpec {
+            head: self.head.iter().map(|l| l.size).collect(),
+            players: self.players.is_some(),
+            body: self.body.iter().map(|l| l.size).collect(),
+            hints: self.hints.iter().map(|l| l.size).collect(),
+            buttons: self.buttons.len(),
+            chat,
+            chat_field: self.chat_field,
+        }
+    }
+}
+
+/// The panel's content for the match state `s`.
+pub fn content(s: &MatchState, cx: &Context) -> Content {
+    let compact = cx.compact;
+    let role = match s.my_side() {
+        Some(side) => format!("You play {}", side_name(side)),
+        None => "Watching".to_string(),
+    };
+    let mut head = Vec::new();
+    if compact {
+        head.push(line(format!("{role} · {}", cx.link.0), 15.0, cx.link.1));
+    } else {
+        head.push(line("Chapaev", 26.0, colors::ACCENT));
+        head.push(line(
+            format!("{role} · match {}", cx.match_id),
+            15.0,
+            colors::MUTED,
+        ));
+        head.push(line(cx.link.0.clone(), 15.0, cx.link.1));
+    }
+    let Some(v) = &s.view else {
+        return Content {
+            head,
+            players: None,
+            body: Vec::new(),
+            hints: Vec::new(),
+            buttons: vec![button("lobby", "Back to the lobby", true)],
+            chat_field: false,
+        };
+    };
+    let frame = s.current_frame();
+    let player = |side: Side| {
+        let seat = Seat::of(side, v.swapped);
+        let you = if Some(seat) == s.you { " (you)" } else { "" };
+        // Rows count from the side's own edge.
+        let rank = v.rows.rank(side);
+        Player {
+            side,
+            name: format!("{}{you}", s.name_of(seat)),
+            left: frame
+                .pieces
+                .iter()
+                .filter(|(p, _)| p.side() == side)
+                .count(),
+            row: if side == Side::White {
+                rank + 1
+            } else {
+                8 - rank
+            },
+            turn: v.to_shoot() == Some(side) && s.playing.is_none(),
+        }
+    };
+    let players = [player(Side::White), player(Side::Black)];
+    let over = matches!(v.phase, Phase::Over { .. });
+    let busy = s.busy();
+    let mut body = Vec::new();
+    let shots = if over && !busy {
+        format!("Round {} · {}", v.round, story::count(v.shots, "shot"))
+    } else {
+        format!("Round {} · shot {}", v.round, v.shots + 1)
+    };
+    body.push(line(shots, 16.0, colors::TEXT));
+    // Whose turn, and the clock.
+    let status = match v.phase {
+        Phase::Over { result } => result_text(result, s.my_side()),
+        Phase::PieDecision => "Black decides: swap seats or not".to_string(),
+        Phase::Shooting if busy => "...".to_string(),
+        Phase::Shooting if s.awaiting => "shooting...".to_string(),
+        Phase::Shooting if cx.my_turn => "Your turn: drag back from a piece".to_string(),
+        Phase::Shooting => format!("{} to shoot", side_name(v.turn)),
+    };
+    let status_color = if cx.my_turn {
+        colors::GOOD
+    } else {
+        colors::ACCENT
+    };
+    let clock = match (s.clock, v.phase) {
+        (Some((_, _, deadline)), Phase::Shooting) => {
+            let left = (deadline - s.now).max(0.0);
+            Some((
+                format!("{}:{:02}", (left / 60.0) as u32, left as u32 % 60),
+                left < 10.0,
+            ))
+        }
+        _ => None,
+    };
+    match (&clock, compact) {
+        // In a compact panel the clock ends the status line.
+        (Some((c, _)), true) => body.push(line(format!("{status} · {c}"), 17.0, status_color)),
+        _ => body.push(line(status, 17.0, status_color)),
+    }
+    if let (Some((c, urgent)), false) = (&clock, compact) {
+        let color = if *urgent {
+            colors::DANGER
+        } else {
+            colors::TEXT
+        };
+        body.push(line(format!("clock {c}"), 16.0, color));
+    }
+    // The shot log.
+    let log_lines = if compact { 2 } else { LOG_LINES };
+    for l in s.log.iter().skip(s.log.len().saturating_sub(log_lines)) {
+        body.push(line(l.clone(), 14.0, colors::MUTED));
+    }
+    let mut hints = Vec::new();
+    let mut buttons = Vec::new();
+    // Pie rule: Black's seat decides.
+    if v.phase == Phase::PieDecision && s.my_side() == Some(Side::Black) {
+        buttons.push(button("pie-swap", "Swap seats", true));
+        buttons.push(button("pie-keep", "Keep", true));
+    }
+    // Invite: the second seat is empty.
+    if s.players.second.is_none() && s.you == Some(Seat::First) {
+        hints.push(line(
+            "Waiting for an opponent: send them the link",
+            14.0,
+            colors::MUTED,
+        ));
+        buttons.push(button("copy-link", "Copy invitation link", true));
+    }
+    if s.you.is_some() && !over {
+        if cx.confirm_resign {
+            buttons.push(button("resign-yes", "Really resign", true));
+            buttons.push(button("resign-no", "Play on", true));
+        } else {
+            buttons.push(button("resign", "Resign", true));
+        }
+    }
+    if over {
+        if s.you.is_some() {
+            let (label, enabled) = s.rematch_label();
+            buttons.push(button("rematch", label, enabled));
+        }
+        buttons.push(button("replay", "Watch the replay", true));
+    }
+    buttons.push(button("lobby", "Lobby", true));
+    buttons.push(button("help", "Rules", true));
+    let sound = if cx.sound { "Sound: on" } else { "Sound: off" };
+    buttons.push(button("sound", sound, true));
+    Content {
+        head,
+        players: Some(players),
+        body,
+        hints,
+        buttons,
+        chat_field: s.you.is_some(),
+    }
+}
+
+/// The result as the viewer reads it.
+pub fn result_text(r: MatchResult, me: Option<Side>) -> String {
+    match r {
+        MatchResult::Draw => "Drawn".to_string(),
+        MatchResult::Won { side, reason } => {
+            let how = match reason {
+                WinReason::FarEdge => "reached the far edge",
+                WinReason::QuickMatch => "won the round",
+                WinReason::Resignation => "wins by resignation",
+                WinReason::Timeouts => "wins: the other side ran out of time three times",
+                WinReason::Abandoned => "wins: the other side left",
+            };
+            match me {
+                Some(m) if m == side => format!("You won: {how}"),
+                Some(_) => format!("You lost: {} {how}", side_name(side)),
+                None => format!("{} {how}", side_name(side)),
+            }
+        }
+    }
+}
+
+/// What the player did in the panel this frame.
+#[derive(Debug, Default)]
+pub struct Pressed {
+    /// The buttons pressed, by name.
+    pub buttons: Vec<&'static str>,
+    /// A chat line to send.
+    pub chat: Option<String>,
+}
+
+/// Draws the panel in `area` with its content and the newest chat lines
+/// that fit, the chat field editing `draft`.
+pub fn show(ui: &mut Ui, area: Rect, c: &Content, chat: &[&String], draft: &mut String) -> Pressed {
+    ui::panel(area);
+    let l: PanelLayout = layout::panel(area, &c.spec(chat.len()));
+    let text = |line: &Line, r: Rect| {
+        ui::text(
+            &ui::fit(&line.text, line.size, r.w),
+            r.x,
+            r.y,
+            line.size,
+            line.color,
+        );
+    };
+    for (line, r) in c.head.iter().zip(&l.head) {
+        text(line, *r);
+    }
+    for (p, r) in c.players.iter().flatten().zip(&l.players) {
+        draw::checker(vec2(r.x + 9.0, r.y + 10.0), 8.0, p.side, 1.0);
+        let color = if p.turn { colors::ACCENT } else { colors::TEXT };
+        let count = format!("{}/8", p.left);
+        let cw = ui::text_width(&count, 18.0);
+        ui::text(
+            &ui::fit(&p.name, 18.0, r.w - 30.0 - cw),
+            r.x + 22.0,
+            r.y,
+            18.0,
+            color,
+        );
+        ui::text(&count, r.x + r.w - cw, r.y, 18.0, colors::TEXT);
+        ui::text(
+            &format!("row {} of 8", p.row),
+            r.x + 22.0,
+            r.y + 21.0,
+            13.0,
+            colors::MUTED,
+        );
+    }
+    for (line, r) in c.body.iter().zip(&l.body) {
+        text(line, *r);
+    }
+    for (line, r) in c.hints.iter().zip(&l.hints) {
+        text(line, *r);
+    }
+    let mut pressed = Pressed::default();
+    for (b, r) in c.buttons.iter().zip(&l.buttons) {
+        if ui.button_styled(b.name, &b.label, *r, b.enabled, false) {
+            pressed.buttons.push(b.name);
+        }
+    }
+    // Chat between the seats (spectators read it), above its field.
+    for (s, r) in chat.iter().skip(chat.len() - l.chat.len()).zip(&l.chat) {
+        ui::text(&ui::fit(s, 14.0, r.w), r.x, r.y, 14.0, colors::TEXT);
+    }
+    if let Some((field, send)) = l.chat_field {
+        let entered = ui.text_field("chat", draft, field, "say something...", MAX_CHAT_CHARS);
+        let send = ui.button("chat-send", "Send", send);
+        if (entered || send) && !draft.trim().is_empty() {
+            pressed.chat = Some(std::mem::take(draft));
+        }
+    }
+    pressed
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::play::state::tests::seated;
+    use game::protocol::ServerMessage;
+
+    fn cx(compact: bool) -> Context<'static> {
+        Context {
+            match_id: "m1",
+            link: ("connected".into(), colors::GOOD),
+            compact,
+            my_turn: false,
+            confirm_resign: false,
+            sound: false,
+        }
+    }
+
+    fn names(c: &Content) -> Vec<&'static str> {
+        c.buttons.iter().map(|b| b.name).collect()
+    }
+
+    fn pie(you: Option<Seat>) -> MatchState {
+        let mut s = seated(you);
+        s.view.as_mut().unwrap().phase = Phase::PieDecision;
+        s
+    }
+
+    #[test]
+    fn the_pie_decision_is_offered_only_to_blacks_seat() {
+        let black = content(&pie(Some(Seat::Second)), &cx(false));
+        assert_eq!(&names(&black)[..2], ["pie-swap", "pie-keep"]);
+        for you in [Some(Seat::First), None] {
+            let c = content(&pie(you), &cx(false));
+            assert!(!names(&c).contains(&"pie-swap"), "{you:?}");
+            assert_eq!(c.body[1].text, "Black decides: swap seats or not");
+        }
+        // After a swap, the second seat plays White and no longer decides.
+        let mut swapped = pie(Some(Seat::Second));
+        swapped.view.as_mut().unwrap().swapped = true;
+        assert!(!names(&content(&swapped, &cx(false))).contains(&"pie-swap"));
+    }
+
+    #[test]
+    fn a_spectator_gets_no_resign_rematch_or_chat() {
+        let c = content(&seated(None), &cx(false));
+        assert_eq!(names(&c), ["lobby", "help", "sound"]);
+        assert!(!c.chat_field);
+        assert!(c.head[1].text.starts_with("Watching"));
+    }
+
+    #[test]
+    fn resigning_asks_to_be_confirmed() {
+        let s = seated(Some(Seat::First));
+        assert!(names(&content(&s, &cx(false))).contains(&"resign"));
+        let confirm = Context {
+            confirm_resign: true,
+            ..cx(false)
+        };
+        let n = names(&content(&s, &confirm));
+        assert!(n.contains(&"resign-yes") && n.contains(&"resign-no") && !n.contains(&"resign"));
+    }
+
+    #[test]
+    fn the_first_seat_alone_is_asked_to_send_the_invitation() {
+        let mut s = seated(Some(Seat::First));
+        s.players.second = None;
+        let c = content(&s, &cx(false));
+        assert!(names(&c).contains(&"copy-link"));
+        assert_eq!(c.hints.len(), 1);
+        let mut other = seated(None);
+        other.players.second = None;
+        assert!(!names(&content(&other, &cx(false))).contains(&"copy-link"));
+    }
+
+    #[test]
+    fn a_finished_match_offers_the_rematch_as_the_offers_stand() {
+        let mut s = seated(Some(Seat::First));
+        let result = MatchResult::Won {
+            side: Side::White,
+            reason: WinReason::Resignation,
+        };
+        s.view.as_mut().unwrap().phase = Phase::Over { result };
+        let c = content(&s, &cx(false));
+        assert_eq!(names(&c), ["rematch", "replay", "lobby", "help", "sound"]);
+        assert_eq!(c.buttons[0].label, "Offer a rematch");
+        assert_eq!(c.body[1].text, "You won: wins by resignation");
+        s.receive(ServerMessage::RematchOffered { by: Seat::First });
+        let c = content(&s, &cx(false));
+        assert_eq!(
+            (c.buttons[0].label.as_str(), c.buttons[0].enabled),
+            ("Rematch offered...", false)
+        );
+    }
+
+    #[test]
+    fn the_player_whose_turn_it_is_reads_so_and_the_clock_runs() {
+        let mut s = seated(Some(Seat::First));
+        s.receive(ServerMessage::Clock {
+            seat: Seat::First,
+            side: Side::White,
+            remaining_ms: 65_000,
+        });
+        let mine = Context {
+            my_turn: true,
+            ..cx(false)
+        };
+        let c = content(&s, &mine);
+        assert_eq!(c.body[1].text, "Your turn: drag back from a piece");
+        assert_eq!(c.body[2].text, "clock 1:05");
+        // Compact: the clock ends the status line.
+        let c = content(
+            &s,
+            &Context {
+                compact: true,
+                ..mine
+            },
+        );
+        assert_eq!(c.body[1].text, "Your turn: drag back from a piece · 1:05");
+        let p = c.players.unwrap();
+        assert_eq!(
+            (p[0].name.as_str(), p[0].left, p[0].turn),
+            ("Anka (you)", 8, true)
+        );
+        assert_eq!(
+            (p[1].name.as_str(), p[1].row, p[1].turn),
+            ("Petka", 1, false)
+        );
+    }
+
+    #[test]
+    fn before_the_match_is_known_only_the_way_back_is_offered() {
+        let s = MatchState::default();
+        let c = content(&s, &cx(true));
+        assert!(c.players.is_none());
+        assert_eq!(names(&c), ["lobby"]);
+        assert_eq!(c.head[0].text, "Watching · connected");
+    }
+
+    #[test]
+    fn every_panel_content_fits_its_layout_on_a_desktop() {
+        let (_, area) = layout::split(1100.0, 760.0);
+        let c = content(&seated(Some(Seat::First)), &cx(layout::compact(area)));
+        let l = layout::panel(area, &c.spec(6));
+        assert_eq!(l.head.len(), c.head.len());
+        assert_eq!(l.body.len(), c.body.len());
+        assert_eq!(l.buttons.len(), c.buttons.len());
+        assert_eq!(l.chat.len(), 6);
+    }
+}

@@ -1,0 +1,454 @@
+//! The state of a live match as this page follows it, without drawing or
+//! I/O: who sits where, the match as last shown, the announcements queued
+//! and shown in the order they came (a shot is animated from its exact
+//! film before the next announcement is taken), the turn clock, the chat,
+//! the shot log, the score and the rematch offer. The screen feeds it the
+//! server's messages and the frame time; what it shows is read back from
+//! here.
+
+use crate::clip::{Clip, Frame};
+use crate::platform::Sound;
+use crate::story::{self, Score};
+use game::protocol::{Players, ServerMessage};
+use game::{MatchView, Seat, ShotOutcome, Side};
+use std::collections::VecDeque;
+
+/// Most chat lines kept.
+pub const CHAT_LINES: usize = 6;
+/// Most shot-log lines kept.
+pub const LOG_LINES: usize = 4;
+/// How long a notice shows, in seconds.
+const NOTICE: f64 = 5.0;
+
+/// The match as this page knows it.
+#[derive(Default)]
+pub struct MatchState {
+    /// The seat this page plays (none while watching).
+    pub you: Option<Seat>,
+    pub players: Players,
+    /// The match as last shown (the announcements queued not yet applied).
+    pub view: Option<MatchView>,
+    /// Announcements not yet shown, in the order they came.
+    queue: VecDeque<ServerMessage>,
+    /// The shot being animated and its time.
+    pub playing: Option<(Clip, f64)>,
+    /// Whose turn the clock counts and when it runs out (on [`Self::now`]'s clock).
+    pub clock: Option<(Seat, Side, f64)>,
+    /// The chat, oldest first, at most [`CHAT_LINES`].
+    pub chat: VecDeque<String>,
+    /// A line shown over the board, and until when.
+    pub notice: Option<(String, f64)>,
+    /// A shot was sent; waiting for the server's answer.
+    pub awaiting: bool,
+    /// The seat that offered a rematch.
+    pub rematch_offer: Option<Seat>,
+    /// Seconds since the screen opened.
+    pub now: f64,
+    /// One line per shot shown, newest last, at most [`LOG_LINES`].
+    pub log: VecDeque<String>,
+    /// The outcomes of the shots seen.
+    pub outcomes: Vec<ShotOutcome>,
+    /// The whole match's score, from the record the server sent at its end.
+    pub final_score: Option<Score>,
+}
+
+impl MatchState {
+    /// Shows `text` over the board for a few seconds.
+    pub fn notify(&mut self, text: impl Into<String>) {
+        self.notice = Some((text.into(), self.now + NOTICE));
+    }
+
+    /// The side this page plays, once the match is known.
+    pub fn my_side(&self) -> Option<Side> {
+        let v = self.view.as_ref()?;
+        self.you.map(|s| s.side(v.swapped))
+    }
+
+    /// The name in `seat`, or "(waiting)" while it is empty.
+    pub fn name_of(&self, seat: Seat) -> String {
+        let n = match seat {
+            Seat::First => &self.players.first,
+            Seat::Second => &self.players.second,
+        };
+        n.clone().unwrap_or_else(|| "(waiting)".into())
+    }
+
+    /// Whether announcements are still being shown.
+    pub fn busy(&self) -> bool {
+        self.playing.is_some() || !self.queue.is_empty()
+    }
+
+    /// Announcements waiting to be shown.
+    #[cfg(test)]
+    pub fn queued(&self) -> usize {
+        self.queue.len()
+    }
+
+    /// Whether the player may aim now, `connected` or not: everything
+    /// announced is shown, no shot is awaited, and it is their side's turn.
+    pub fn may_aim(&self, connected: bool) -> bool {
+        let Some(v) = &self.view else { return false };
+        !self.busy()
+            && !self.awaiting
+            && connected
+            && self.my_side().is_some()
+            && v.to_shoot() == self.my_side()
+    }
+
+    /// Whether the rematch offer standing is the other seat's.
+    pub fn rematch_is_theirs(&self) -> bool {
+        self.rematch_offer.is_some_and(|s| Some(s) != self.you)
+    }
+
+    /// The rematch button's label, and whether it can be pressed.
+    pub fn rematch_label(&self) -> (&'static str, bool) {
+        let theirs = self.rematch_is_theirs();
+        let mine = self.rematch_offer.is_some() && !theirs;
+        if theirs {
+            ("Accept the rematch", true)
+        } else if mine {
+            ("Rematch offered...", false)
+        } else {
+            ("Offer a rematch", true)
+        }
+    }
+
+    /// The match's score for the end screen: the record's when it came,
+    /// else the shots seen.
+    pub fn score(&self) -> Score {
+        self.final_score
+            .clone()
+            .unwrap_or_else(|| Score::of(&self.outcomes))
+    }
+
+    /// Takes what the server said; the id of the rematch when one started.
+    pub fn receive(&mut self, m: ServerMessage) -> Option<String> {
+        match m {
+            ServerMessage::MatchState {
+                you, players, view, ..
+            } => {
+                // The full state supersedes anything not yet shown.
+                self.you = you;
+                self.players = players;
+                self.view = Some(view);
+                self.queue.clear();
+                self.playing = None;
+                self.awaiting = false;
+            }
+            m @ (ServerMessage::ShotPlayed { .. }
+            | ServerMessage::PieDecided { .. }
+            | ServerMessage::TurnPassed { .. }
+            | ServerMessage::MatchOver { .. }) => {
+                if matches!(m, ServerMessage::ShotPlayed { .. }) {
+                    self.awaiting = false;
+                }
+                self.queue.push_back(m);
+            }
+            ServerMessage::RematchOffered { by } => {
+                self.rematch_offer = Some(by);
+                if Some(by) != self.you {
+                    self.notify(format!("{} offers a rematch", self.name_of(by)));
+                }
+            }
+            ServerMessage::RematchStarted { match_id } => return Some(match_id),
+            ServerMessage::Chat { name, text, .. } => {
+                self.chat.push_back(format!("{name}: {text}"));
+                while self.chat.len() > CHAT_LINES {
+                    self.chat.pop_front();
+                }
+            }
+            ServerMessage::Error { code, message } => {
+                self.awaiting = false;
+                self.notify(format!("{message} ({code})"));
+            }
+            ServerMessage::PlayerJoined { seat, name } => {
+                match seat {
+                    Seat::First => self.players.first = Some(name.clone()),
+                    Seat::Second => self.players.second = Some(name.clone()),
+                }
+                self.notify(format!("{name} joined"));
+            }
+            ServerMessage::PlayerLeft { seat, grace_ms } => {
+                let n = self.name_of(seat);
+                self.notify(format!(
+                    "{n} lost the connection; the seat is kept for {} s",
+                    grace_ms / 1000
+                ));
+            }
+            ServerMessage::PlayerBack { seat } => {
+                let n = self.name_of(seat);
+                self.notify(format!("{n} is back"));
+            }
+            ServerMessage::Clock {
+                seat,
+                side,
+                remaining_ms,
+            } => self.clock = Some((seat, side, self.now + remaining_ms as f64 / 1000.0)),
+            ServerMessage::TurnTimedOut { seat, strikes } => {
+                let n = self.name_of(seat);
+                self.notify(format!("{n} ran out of time ({strikes} of 3)"));
+            }
+            ServerMessage::Forfeited { seat, .. } => {
+                let n = self.name_of(seat);
+                self.notify(format!("{n} forfeited"));
+            }
+            ServerMessage::Welcome { .. } | ServerMessage::MatchCreated { .. } => {}
+        }
+        None
+    }
+
+    /// Shows queued announcements in order, animating shots, `dt` seconds
+    /// on; the sounds the shots taken up make, in order.
+    pub fn advance(&mut self, dt: f64) -> Vec<Sound> {
+        let mut sounds = Vec::new();
+        // Catch up faster when several shots are waiting.
+        let speed = if self.queue.len() > 1 { 3.0 } else { 1.0 };
+        if let Some((clip, t)) = &mut self.playing {
+            *t += dt * speed;
+            if *t >= clip.duration() {
+                if let Some(v) = &self.view {
+                    self.view = Some(v.after_shot(&clip.outcome, &clip.film));
+                }
+                self.playing = None;
+            }
+        }
+        while self.playing.is_none() {
+            let Some(m) = self.queue.pop_front() else {
+                break;
+            };
+            match m {
+                ServerMessage::ShotPlayed { outcome, film, .. } => {
+                    let line = story::shot_line(&outcome, self.my_side(), true);
+                    self.log.push_back(line);
+                    while self.log.len() > LOG_LINES {
+                        self.log.pop_front();
+                    }
+                    sounds.push(Sound::Flick);
+                    if !outcome.knocked_off.is_empty() {
+                        sounds.push(Sound::Fall);
+                    }
+                    self.outcomes.push(outcome.clone());
+                    self.playing = Some((Clip::new(outcome, film), 0.0));
+                }
+                ServerMessage::PieDecided { swap } => {
+                    if let Some(v) = &self.view {
+                        self.view = Some(v.after_pie(swap));
+                    }
+                }
+                ServerMessage::TurnPassed { .. } => {
+                    if let Some(v) = &self.view {
+                        self.view = Some(v.after_pass());
+                    }
+                }
+                ServerMessage::MatchOver { result, record } => {
+                    // The last shot's line was written while the match
+                    // went on: after a resignation or forfeit nobody
+                    // shoots again.
+                    let me = self.my_side();
+                    if let (Some(o), Some(line)) = (self.outcomes.last(), self.log.back_mut()) {
+                        *line = story::shot_line(o, me, false);
+                    }
+                    if let Some(v) = &self.view {
+                        self.view = Some(v.after_result(result));
+                    }
+                    // The record has every shot, also those played before
+                    // this page connected.
+                    self.final_score = game::Replay::new(record)
+                        .ok()
+                        .map(|r| Score::of((0..r.shot_count()).filter_map(|n| r.outcome(n))));
+                }
+                _ => {}
+            }
+        }
+        sounds
+    }
+
+    /// The moment to draw: the animated shot, or the board at rest.
+    pub fn current_frame(&self) -> Frame {
+        match (&self.playing, &self.view) {
+            (Some((clip, t)), _) => clip.frame(*t),
+            (None, Some(v)) => Frame {
+                pieces: v.board.pieces().iter().map(|p| (p.id, p.pos)).collect(),
+                ..Frame::default()
+            },
+            _ => Frame::default(),
+        }
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use game::{Config, Game, MatchResult, Phase, PieceId, Shot, WinReason};
+    use glam::DVec2;
+
+    /// A match just begun, seen from `you`'s seat, both seats taken.
+    pub(crate) fn seated(you: Option<Seat>) -> MatchState {
+        let game = Game::new(Config::default(), 7).unwrap();
+        let mut s = MatchState::default();
+        s.receive(ServerMessage::MatchState {
+            match_id: "m".into(),
+            you,
+            players: Players {
+                first: Some("Anka".into()),
+                second: Some("Petka".into()),
+            },
+            view: game.view(),
+        });
+        s
+    }
+
+    /// White's e-piece flicked straight up at full power, as announced.
+    fn white_shot() -> ServerMessage {
+        let mut game = Game::new(Config::default(), 7).unwrap();
+        let piece = PieceId::new(Side::White, 4).unwrap();
+        let shot = Shot::new(piece, DVec2::new(0.0, 2.0), game.config()).unwrap();
+        let played = game.play(Side::White, shot).unwrap();
+        ServerMessage::ShotPlayed {
+            outcome: played.outcome,
+            film: played.film,
+            after: played.after,
+            view: game.view(),
+        }
+    }
+
+    #[test]
+    fn announcements_are_shown_one_after_another_in_the_order_they_came() {
+        let mut s = seated(Some(Seat::First));
+        s.receive(white_shot());
+        s.receive(ServerMessage::TurnPassed { side: Side::White });
+        assert_eq!(s.queued(), 2);
+        // The shot is taken up first and plays; the pass waits behind it.
+        let sounds = s.advance(0.0);
+        assert_eq!(sounds, vec![Sound::Flick, Sound::Fall]);
+        assert!(s.playing.is_some());
+        assert_eq!(s.queued(), 1);
+        assert_eq!(s.log.len(), 1);
+        assert_eq!(s.view.as_ref().unwrap().shots, 0);
+        // Once the film has run (at normal speed: only one announcement
+        // waits behind it), its result shows, then the pass.
+        let duration = s.playing.as_ref().unwrap().0.duration();
+        assert!(s.advance(duration * 0.9).is_empty());
+        assert!(s.playing.is_some());
+        let sounds = s.advance(duration * 0.1 + 0.01);
+        assert!(sounds.is_empty());
+        assert!(!s.busy());
+        let v = s.view.as_ref().unwrap();
+        assert_eq!(v.shots, 1);
+        assert_eq!(s.outcomes.len(), 1);
+    }
+
+    #[test]
+    fn a_full_state_drops_the_announcements_not_yet_shown() {
+        let mut s = seated(Some(Seat::First));
+        s.receive(white_shot());
+        s.advance(0.0);
+        s.receive(ServerMessage::PieDecided { swap: false });
+        assert!(s.busy());
+        let game = Game::new(Config::default(), 7).unwrap();
+        s.receive(ServerMessage::MatchState {
+            match_id: "m".into(),
+            you: Some(Seat::First),
+            players: Players::default(),
+            view: game.view(),
+        });
+        assert!(!s.busy());
+    }
+
+    #[test]
+    fn a_shot_announced_ends_the_wait_for_the_answer() {
+        let mut s = seated(Some(Seat::First));
+        s.awaiting = true;
+        assert!(!s.may_aim(true));
+        s.receive(white_shot());
+        assert!(!s.awaiting);
+    }
+
+    #[test]
+    fn only_the_side_to_shoot_may_aim_and_only_while_connected_and_idle() {
+        let white = seated(Some(Seat::First));
+        assert!(white.may_aim(true));
+        assert!(!white.may_aim(false));
+        assert!(!seated(Some(Seat::Second)).may_aim(true));
+        assert!(!seated(None).may_aim(true));
+        let mut busy = seated(Some(Seat::First));
+        busy.receive(ServerMessage::TurnPassed { side: Side::White });
+        assert!(!busy.may_aim(true));
+    }
+
+    #[test]
+    fn the_rematch_button_offers_accepts_or_waits() {
+        let mut s = seated(Some(Seat::First));
+        assert_eq!(s.rematch_label(), ("Offer a rematch", true));
+        s.receive(ServerMessage::RematchOffered { by: Seat::First });
+        assert_eq!(s.rematch_label(), ("Rematch offered...", false));
+        assert!(s.notice.is_none(), "one's own offer is not announced");
+        let mut s = seated(Some(Seat::First));
+        s.receive(ServerMessage::RematchOffered { by: Seat::Second });
+        assert_eq!(s.rematch_label(), ("Accept the rematch", true));
+        assert!(s.rematch_is_theirs());
+        assert_eq!(s.notice.unwrap().0, "Petka offers a rematch");
+    }
+
+    #[test]
+    fn a_started_rematch_names_its_match() {
+        let mut s = seated(Some(Seat::First));
+        let id = s.receive(ServerMessage::RematchStarted {
+            match_id: "next".into(),
+        });
+        assert_eq!(id.as_deref(), Some("next"));
+    }
+
+    #[test]
+    fn chat_keeps_only_the_newest_lines() {
+        let mut s = seated(None);
+        for i in 0..CHAT_LINES + 3 {
+            s.receive(ServerMessage::Chat {
+                from: Some(Seat::First),
+                name: "Anka".into(),
+                text: format!("line {i}"),
+            });
+        }
+        assert_eq!(s.chat.len(), CHAT_LINES);
+        assert_eq!(
+            s.chat.back().unwrap(),
+            &format!("Anka: line {}", CHAT_LINES + 2)
+        );
+    }
+
+    #[test]
+    fn the_clock_counts_from_when_it_was_heard() {
+        let mut s = seated(Some(Seat::First));
+        s.now = 10.0;
+        s.receive(ServerMessage::Clock {
+            seat: Seat::First,
+            side: Side::White,
+            remaining_ms: 30_000,
+        });
+        assert_eq!(s.clock, Some((Seat::First, Side::White, 40.0)));
+    }
+
+    #[test]
+    fn the_match_over_shows_after_the_shots_before_it() {
+        let mut s = seated(Some(Seat::First));
+        let mut game = Game::new(Config::default(), 7).unwrap();
+        let result = game.resign(Side::Black).unwrap();
+        assert!(matches!(
+            result,
+            MatchResult::Won {
+                reason: WinReason::Resignation,
+                ..
+            }
+        ));
+        s.receive(white_shot());
+        s.receive(ServerMessage::MatchOver {
+            result,
+            record: game.record().clone(),
+        });
+        s.advance(0.0);
+        assert_eq!(s.view.as_ref().unwrap().phase, Phase::Shooting);
+        s.advance(100.0);
+        assert_eq!(s.view.as_ref().unwrap().phase, Phase::Over { result });
+        assert!(s.final_score.is_some());
+    }
+}
