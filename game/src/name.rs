@@ -84,6 +84,37 @@ pub fn check_new(name: &str) -> Result<(), NameError> {
     check(name)
 }
 
+/// A name a new account may take: it passed [`check_new`]. The store takes
+/// only these, so no account is ever created under a name the rule
+/// refuses.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct AccountName(String);
+
+impl AccountName {
+    /// `name` as a new account's name, or why it may not be one.
+    pub fn parse(name: &str) -> Result<AccountName, NameError> {
+        check_new(name).map(|()| AccountName(name.to_string()))
+    }
+
+    /// The name.
+    pub fn as_str(&self) -> &str {
+        &self.0
+    }
+}
+
+/// The account name of a built-in computer level (`computer-easy`, …),
+/// from its wire name.
+pub fn computer_account(level: impl std::fmt::Display) -> String {
+    format!("{COMPUTER_PREFIX}{level}")
+}
+
+/// A refused name, as the protocol's `bad-name` error.
+impl From<NameError> for crate::protocol::Refusal {
+    fn from(e: NameError) -> Self {
+        crate::protocol::Refusal::new(crate::protocol::ErrorCode::BadName, e.to_string())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -173,5 +204,18 @@ mod tests {
             NameError::TooLong.to_string(),
             "an account name is at most 20 characters"
         );
+    }
+
+    #[test]
+    fn an_account_name_is_only_made_from_a_name_a_new_account_may_take() {
+        assert_eq!(AccountName::parse("Anka").unwrap().as_str(), "Anka");
+        assert_eq!(AccountName::parse("ab"), Err(NameError::TooShort));
+        assert_eq!(
+            AccountName::parse("computer-hard"),
+            Err(NameError::Reserved)
+        );
+        let refusal = crate::protocol::Refusal::from(NameError::TooLong);
+        assert_eq!(refusal.code, crate::protocol::ErrorCode::BadName);
+        assert_eq!(computer_account("easy"), "computer-easy");
     }
 }

@@ -3,97 +3,23 @@
 //! keeps one; a bot process holds one as its API token). Keys are 128
 //! random bits; the store keeps only their SHA-256 hashes, checks a
 //! presented key by its hash and compares in constant time
-//! ([`game::token`]), and a key can be revoked. Names are checked here
-//! (3 to 20 letters, digits, `_` and `-`) and unique without regard to
+//! ([`game::token`]), and a key can be revoked. Names follow
+//! [`game::name`]'s rule and are unique without regard to
 //! case. The tables live in the match store (either backend), so a
 //! match's result and the ratings it moves can be written in one
 //! transaction.
 
-pub(crate) mod ratings;
-
-use crate::store::{Store, StoreError};
+use crate::store::{Profile, Store, StoreError};
 use crate::token::{seat_token, RandomError, SeatToken, TokenHash};
+use game::name::AccountName;
 use game::protocol::ErrorCode;
 use game::protocol::Refusal;
 use game::rating::{Rating, RatingSystem};
-use serde::Serialize;
 
-/// Shortest account name, in characters.
-pub const MIN_NAME: usize = 3;
-/// Longest account name, in characters.
-pub const MAX_NAME: usize = 20;
 /// Shortest password, in characters.
 pub const MIN_PASSWORD: usize = 8;
 /// Longest password, in characters.
 pub const MAX_PASSWORD: usize = 128;
-
-/// Most accounts one leaderboard lists.
-pub const MAX_LEADERBOARD: usize = 100;
-
-/// An account name that passed the rules.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct AccountName(String);
-
-impl AccountName {
-    /// `name` if it is 3 to 20 ASCII letters, digits, `_` or `-`, starting
-    /// with a letter or digit, and not one of the computer levels'
-    /// (`computer-…`).
-    pub fn parse(name: &str) -> Result<AccountName, Refusal> {
-        let ok = (MIN_NAME..=MAX_NAME).contains(&name.chars().count())
-            && name
-                .bytes()
-                .all(|b| b.is_ascii_alphanumeric() || b == b'_' || b == b'-')
-            && name
-                .bytes()
-                .next()
-                .is_some_and(|b| b.is_ascii_alphanumeric());
-        let reserved = name
-            .get(..crate::accounts::ratings::COMPUTER_PREFIX.len())
-            .is_some_and(|p| p.eq_ignore_ascii_case(crate::accounts::ratings::COMPUTER_PREFIX));
-        if reserved {
-            return Err(Refusal::new(
-                ErrorCode::BadName,
-                format!(
-                    "names starting with {} are the computer levels'",
-                    crate::accounts::ratings::COMPUTER_PREFIX
-                ),
-            ));
-        }
-        if ok {
-            Ok(AccountName(name.to_string()))
-        } else {
-            Err(Refusal::new(
-                ErrorCode::BadName,
-                format!(
-                    "an account name is {MIN_NAME} to {MAX_NAME} letters, digits, '_' or '-', \
-                     starting with a letter or digit"
-                ),
-            ))
-        }
-    }
-
-    /// The name.
-    pub fn as_str(&self) -> &str {
-        &self.0
-    }
-}
-
-/// A person's or a bot's account as everyone may see it.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Profile {
-    pub name: String,
-    /// Whether the account is a bot's.
-    pub bot: bool,
-    pub created_at: u64,
-    /// The rating, rounded.
-    pub rating: i64,
-    /// Its deviation, rounded.
-    pub deviation: i64,
-    /// Whether the rating is still provisional (too few rated games).
-    pub provisional: bool,
-    /// Rated matches played.
-    pub games: u64,
-}
 
 /// Why an account could not be created or used.
 #[derive(Debug, thiserror::Error)]
@@ -116,28 +42,6 @@ fn bad_key() -> AccountError {
         ErrorCode::BadKey,
         "the account key is missing, wrong or revoked",
     )
-}
-
-impl Profile {
-    /// A profile from an account row's columns.
-    pub(crate) fn from_row(
-        name: String,
-        bot: bool,
-        created_at: i64,
-        rating: f64,
-        deviation: f64,
-        games: i64,
-    ) -> Profile {
-        Profile {
-            name,
-            bot,
-            created_at: created_at.max(0) as u64,
-            rating: rating.round() as i64,
-            deviation: deviation.round() as i64,
-            provisional: deviation > RatingSystem::default().provisional_above,
-            games: games.max(0) as u64,
-        }
-    }
 }
 
 /// The rules of accounts, on whichever store: keys are drawn here and
@@ -253,30 +157,6 @@ impl dyn Store {
             Ok(())
         } else {
             Err(bad_key())
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn names_are_3_to_20_plain_characters() {
-        for ok in ["abc", "Anka-the_2nd", "x2345678901234567890", "7up"] {
-            assert!(AccountName::parse(ok).is_ok(), "{ok}");
-        }
-        for bad in [
-            "ab",
-            "",
-            "a b c",
-            "-abc",
-            "x23456789012345678901",
-            "Чапаев",
-            "a\u{0}bc",
-        ] {
-            let err = AccountName::parse(bad).unwrap_err();
-            assert_eq!(err.code, ErrorCode::BadName, "{bad:?}");
         }
     }
 }

@@ -70,8 +70,8 @@ pub fn start_for(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::accounts::AccountName;
     use crate::store::{AfterMove, SqliteStore, StoredMatch, StoredSeat};
+    use game::name::AccountName;
     use game::{Config, MatchResult, NoiseKey, Side, WinReason};
 
     /// A finished match of `account` (first seat, White) against `level`,

@@ -98,7 +98,7 @@ impl NewSeat {
             name: Some(name),
             token: None,
             bot: Some(level),
-            account: rated.then(|| crate::accounts::ratings::computer_account(level)),
+            account: rated.then(|| game::name::computer_account(level)),
         }
     }
 }

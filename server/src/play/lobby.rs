@@ -252,7 +252,7 @@ impl Lobby {
     fn player_name(&self, p: &Player) -> String {
         match p {
             Player::Account(a) => a.clone(),
-            Player::Computer(l) => crate::accounts::ratings::computer_account(*l),
+            Player::Computer(l) => game::name::computer_account(*l),
         }
     }
 
@@ -272,7 +272,7 @@ impl Lobby {
             }
         }
         for (level, r) in &mut self.computers {
-            if key(&crate::accounts::ratings::computer_account(*level)) == key(account) {
+            if key(&game::name::computer_account(*level)) == key(account) {
                 *r = rating;
             }
         }
@@ -390,7 +390,7 @@ impl Lobby {
         }
         if to
             .to_ascii_lowercase()
-            .starts_with(crate::accounts::ratings::COMPUTER_PREFIX)
+            .starts_with(game::name::COMPUTER_PREFIX)
         {
             return Err(refused(
                 ErrorCode::BadMessage,
@@ -571,7 +571,7 @@ impl Lobby {
             return;
         }
         for (level, rating) in &self.computers {
-            let k = key(&crate::accounts::ratings::computer_account(*level));
+            let k = key(&game::name::computer_account(*level));
             if !self.playing.contains_key(&k) {
                 pool.push((Player::Computer(*level), *rating));
             }

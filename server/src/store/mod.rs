@@ -15,6 +15,17 @@
 //! from the store is exactly what players saw, and a restarted server
 //! replays it through [`game::Replay`] under the match's own physics
 //! version.
+//!
+//! Rated matches move their two accounts' Glicko-2 ratings inside the
+//! transaction that stores the match's last move (each backend's
+//! [`group_commit`]), so a crash leaves a finished match either rated once
+//! with its last move stored, or neither: never finished and unrated, never
+//! rated twice. Each rated match leaves one [`RatingPoint`] per account in
+//! `rating_history` (the rating after it), which is also what makes the
+//! update idempotent. The built-in computer levels play rated matches as
+//! the bot accounts `computer-easy`, `computer-medium`, `computer-hard` and
+//! `computer-adaptive`, which every store creates without keys (nobody can
+//! sign in as them).
 
 pub(crate) mod checkpointer;
 pub mod group_commit;
@@ -24,15 +35,90 @@ pub mod sqlite;
 #[cfg(test)]
 mod tests;
 
-use crate::accounts::ratings::RatingPoint;
-use crate::accounts::{AccountName, Profile};
 use crate::config::Config as ServerConfig;
-use game::rating::Rating;
+use game::name::AccountName;
+use game::rating::{Rating, RatingSystem};
 use game::token::TokenHash;
 use game::{Config, MatchRecord, MatchResult, NoiseKey, NoiseSecret, PhysicsVersion, RecordedMove};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use std::time::{SystemTime, UNIX_EPOCH};
+
+/// Most accounts one leaderboard lists.
+pub const MAX_LEADERBOARD: usize = 100;
+
+/// Most points or matches one account listing returns.
+pub const MAX_LISTED: usize = 500;
+
+/// The computer levels' account names, which every store creates.
+pub(crate) fn computer_accounts() -> impl Iterator<Item = String> {
+    bots::Level::ALL
+        .into_iter()
+        .map(game::name::computer_account)
+}
+
+/// A person's or a bot's account as everyone may see it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Profile {
+    pub name: String,
+    /// Whether the account is a bot's.
+    pub bot: bool,
+    pub created_at: u64,
+    /// The rating, rounded.
+    pub rating: i64,
+    /// Its deviation, rounded.
+    pub deviation: i64,
+    /// Whether the rating is still provisional (too few rated games).
+    pub provisional: bool,
+    /// Rated matches played.
+    pub games: u64,
+}
+
+impl Profile {
+    /// A profile from an account row's columns.
+    pub(crate) fn from_row(
+        name: String,
+        bot: bool,
+        created_at: i64,
+        rating: f64,
+        deviation: f64,
+        games: i64,
+    ) -> Profile {
+        Profile {
+            name,
+            bot,
+            created_at: created_at.max(0) as u64,
+            rating: rating.round() as i64,
+            deviation: deviation.round() as i64,
+            provisional: deviation > RatingSystem::default().provisional_above,
+            games: games.max(0) as u64,
+        }
+    }
+}
+
+/// An account's rating after one rated match.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RatingPoint {
+    pub match_id: String,
+    /// When the match finished (seconds since 1970).
+    pub at: u64,
+    /// Rounded.
+    pub rating: i64,
+    /// Rounded.
+    pub deviation: i64,
+}
+
+impl RatingPoint {
+    /// A point from a history row's columns.
+    pub(crate) fn from_row(match_id: String, at: i64, rating: f64, deviation: f64) -> RatingPoint {
+        RatingPoint {
+            match_id,
+            at: at.max(0) as u64,
+            rating: rating.round() as i64,
+            deviation: deviation.round() as i64,
+        }
+    }
+}
 
 pub use group_commit::MoveWrite;
 pub use postgres::PostgresStore;

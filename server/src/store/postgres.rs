@@ -21,9 +21,10 @@ use super::{
     now, physics_of, seat_rating, status_of, token_of, AfterMove, MoveWrite, Status, Store,
     StoreError, StoredMatch, StoredSeat, Summary,
 };
-use crate::accounts::ratings::{RatingPoint, MAX_LISTED};
-use crate::accounts::{AccountName, Profile, MAX_LEADERBOARD};
+use crate::store::{Profile, MAX_LEADERBOARD};
+use crate::store::{RatingPoint, MAX_LISTED};
 use ::postgres::{Client, GenericClient, NoTls, Row, Statement};
+use game::name::AccountName;
 use game::rating::{Rating, RatingSystem, Score};
 use game::token::TokenHash;
 use game::RecordedMove;
@@ -238,7 +239,7 @@ fn migrate(client: &mut Client) -> Result<(), StoreError> {
         tracing::info!(version, "applied a PostgreSQL migration");
     }
     let start = RatingSystem::default().start;
-    for name in crate::accounts::ratings::computer_accounts() {
+    for name in crate::store::computer_accounts() {
         tx.execute(
             "INSERT INTO accounts (name_key, name, bot, created_at, rating, deviation, volatility)
              VALUES (lower($1), $1, TRUE, $2, $3, $4, $5) ON CONFLICT DO NOTHING",
@@ -750,7 +751,7 @@ fn rating_of(conn: &mut impl GenericClient, account: &str) -> Result<Rating, Sto
 }
 
 /// Rates match `id`, just finished with the first seat's `score`, in the
-/// caller's transaction ([`crate::accounts::ratings`] says when and how).
+/// caller's transaction ([`crate::store`] says when and how).
 fn rate_finished(conn: &mut impl GenericClient, id: &str, score: Score) -> Result<(), StoreError> {
     let Some(row) = conn.query_opt(
         "SELECT rated, first_account, second_account FROM matches WHERE id = $1",

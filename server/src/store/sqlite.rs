@@ -10,15 +10,16 @@
 //! (token hashes, the physics column, the account columns).
 
 use super::group_commit::{BatchWriter, GroupCommit, QueuedMove};
+use super::Profile;
 use super::{
     now, physics_of, seat_rating, status_of, token_of, AfterMove, MoveWrite, Status, Store,
     StoreError, StoredMatch, StoredSeat, Summary,
 };
-use crate::accounts::ratings::{RatingPoint, MAX_LISTED};
-use crate::accounts::{AccountName, Profile};
 use crate::config::SyncMode;
 use crate::store::checkpointer::{Checkpointer, Nudge};
 use crate::store::readers::{Readers, READERS};
+use crate::store::{RatingPoint, MAX_LISTED};
+use game::name::AccountName;
 use game::rating::{Rating, RatingSystem, Score};
 use game::token::TokenHash;
 use game::RecordedMove;
@@ -206,7 +207,7 @@ fn migrate(conn: &Connection) -> Result<(), StoreError> {
     conn.execute_batch(ACCOUNT_TABLES)?;
     conn.execute_batch(RATING_TABLES)?;
     let start = RatingSystem::default().start;
-    for name in crate::accounts::ratings::computer_accounts() {
+    for name in crate::store::computer_accounts() {
         conn.execute(
             "INSERT OR IGNORE INTO accounts (name, bot, created_at, rating, deviation, volatility)
              VALUES (?1, 1, ?2, ?3, ?4, ?5)",
@@ -660,7 +661,7 @@ impl Store for SqliteStore {
                 params![
                     bots,
                     RatingSystem::default().provisional_above,
-                    limit.min(crate::accounts::MAX_LEADERBOARD) as i64
+                    limit.min(super::MAX_LEADERBOARD) as i64
                 ],
                 profile,
             )?
@@ -910,7 +911,7 @@ fn rating_of(conn: &Connection, account: &str) -> Result<Rating, StoreError> {
 }
 
 /// Rates match `id`, just finished with the first seat's `score`, in the
-/// caller's transaction ([`crate::accounts::ratings`] says when and how).
+/// caller's transaction ([`crate::store`] says when and how).
 fn rate_finished(conn: &Connection, id: &str, score: Score) -> Result<(), StoreError> {
     let row: Option<(bool, Option<String>, Option<String>)> = conn
         .prepare_cached("SELECT rated, first_account, second_account FROM matches WHERE id = ?1")?

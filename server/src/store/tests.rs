@@ -6,8 +6,9 @@
 //! connections) is tested in [`super::sqlite`].
 
 use super::*;
-use crate::accounts::ratings::computer_account;
-use crate::accounts::{AccountError, AccountName};
+use crate::accounts::AccountError;
+use game::name::computer_account;
+use game::name::AccountName;
 use game::protocol::ErrorCode;
 use game::token::SeatToken;
 use game::{Game, MatchResult, PieceId, Seat, Shot, Side, WinReason};
@@ -338,9 +339,11 @@ fn a_name_taken_in_any_case_is_refused_and_changes_nothing(b: Backend) {
     assert_eq!(code(err), ErrorCode::NameTaken);
     let anka = store.account_of_key(&key).unwrap();
     assert!(!anka.bot);
-    assert!(store.leaderboard(true, 10).unwrap().iter().all(|p| p
-        .name
-        .starts_with(crate::accounts::ratings::COMPUTER_PREFIX)));
+    assert!(store
+        .leaderboard(true, 10)
+        .unwrap()
+        .iter()
+        .all(|p| p.name.starts_with(game::name::COMPUTER_PREFIX)));
 }
 
 fn a_wrong_or_revoked_key_proves_nothing(b: Backend) {
@@ -372,10 +375,7 @@ fn the_leaderboard_lists_one_kind_established_ratings_first(b: Backend) {
         .leaderboard(true, 10)
         .unwrap()
         .into_iter()
-        .filter(|p| {
-            !p.name
-                .starts_with(crate::accounts::ratings::COMPUTER_PREFIX)
-        })
+        .filter(|p| !p.name.starts_with(game::name::COMPUTER_PREFIX))
         .map(|p| (p.name, p.provisional))
         .collect();
     assert_eq!(
@@ -436,7 +436,7 @@ fn resign_first(store: &dyn Store, id: &str, index: usize) -> Result<(), StoreEr
     )
 }
 
-fn account(store: &dyn Store, name: &str) -> crate::accounts::Profile {
+fn account(store: &dyn Store, name: &str) -> crate::store::Profile {
     store.account(name).unwrap().unwrap()
 }
 
@@ -497,5 +497,5 @@ fn the_computer_levels_have_bot_accounts_nobody_can_register(b: Backend) {
         assert_eq!(a.rating, 1500);
     }
     let taken = AccountName::parse("Computer-Hard").unwrap_err();
-    assert_eq!(taken.code, ErrorCode::BadName);
+    assert_eq!(taken, game::name::NameError::Reserved);
 }

@@ -4,15 +4,16 @@
 //! one presented, and the leaderboards of people and of bots. Creating
 //! accounts shares the per-address limit on creating matches.
 
-use crate::accounts::ratings::MAX_LISTED;
-use crate::accounts::{AccountName, Profile, MAX_LEADERBOARD};
 use crate::play::hub::Hub;
+use crate::store::MAX_LISTED;
+use crate::store::{Profile, MAX_LEADERBOARD};
 use crate::token::SeatToken;
 use crate::web::auth::proven;
 use crate::web::blocking::run_account;
 use crate::web::reply::{json, read_body, refused, Creations};
 use actix_web::http::StatusCode;
 use actix_web::{web, HttpRequest, HttpResponse};
+use game::name::AccountName;
 use game::protocol::{ErrorCode, Refusal};
 use serde::{Deserialize, Serialize};
 

@@ -2,8 +2,8 @@
 //! `Authorization: Bearer KEY` header, if any. A bot's key is refused when
 //! it comes from a web page, so that a page's scripts never play as a bot.
 
-use crate::accounts::Profile;
 use crate::play::hub::Hub;
+use crate::store::Profile;
 use crate::token::SeatToken;
 use crate::web::blocking::run_account;
 use actix_web::HttpRequest;

@@ -12,7 +12,6 @@
 //! `keep-alive` after 30 s of quiet. Each stream has a bounded queue: a
 //! client that stops reading is dropped, never buffered without end.
 
-use crate::accounts::ratings::computer_account;
 use crate::accounts::AccountError;
 use crate::play::hub::{Hub, NewSeat};
 use crate::play::lobby::{Effect, Input, Lobby, LobbyLimits, Member, Pairing, Player, StreamId};
@@ -26,6 +25,7 @@ use crate::web::ws::{
 };
 use actix_web::{web, HttpRequest, HttpResponse};
 use actix_ws::{AggregatedMessage, CloseCode, CloseReason, Session};
+use game::name::computer_account;
 use game::protocol::{ErrorCode, PROTOCOL_VERSION};
 use game::session::Moment;
 use game::stream::{CurrentMatch, StreamClientMessage, StreamServerMessage};
@@ -339,7 +339,7 @@ async fn hello(
     hub: &Hub,
     browser: bool,
     messages: &mut actix_ws::AggregatedMessageStream,
-) -> Result<crate::accounts::Profile, Option<Refusal>> {
+) -> Result<crate::store::Profile, Option<Refusal>> {
     let no_hello = || {
         Some(Refusal::new(
             ErrorCode::NoHello,
