@@ -48,7 +48,9 @@
 //! of numbers, for the language bindings), [`protocol`] (the wire messages
 //! and refusals) and [`session`] (a live match — seats, connections, turn
 //! clock, rematch — as a state machine without I/O, driven by the server's
-//! rooms and by tests on a virtual clock), with [`token`] (seat tokens and
+//! rooms and by tests on a virtual clock) and its twin [`lobby`]
+//! (challenges, quick pairing and the bot ladder between accounts, the
+//! same kind of state machine, driven by the server's event stream), with [`token`] (seat tokens and
 //! the hashes a server keeps), [`rating`] (Glicko-2 ratings and how a
 //! rated match moves them) and [`name`] (the account-name rule the server
 //! enforces and the client checks).
@@ -59,6 +61,7 @@ pub mod config;
 pub mod film;
 pub mod game;
 pub mod golden;
+pub mod lobby;
 pub mod name;
 pub mod noise;
 pub mod outcome;

@@ -168,6 +168,22 @@ impl TurnClock {
     }
 }
 
+/// The turn clocks a match may have, in seconds.
+pub const TURN_SECONDS: std::ops::RangeInclusive<u64> = 1..=3600;
+
+/// `seconds` if it is a turn clock a match may have ([`TURN_SECONDS`]),
+/// else `bad-config`.
+pub fn check_turn_seconds(seconds: u64) -> Result<u64, Refusal> {
+    if TURN_SECONDS.contains(&seconds) {
+        Ok(seconds)
+    } else {
+        Err(Refusal::new(
+            ErrorCode::BadConfig,
+            "turn_seconds must be between 1 and 3600",
+        ))
+    }
+}
+
 /// The seat that must act now, if any.
 pub fn to_act(game: &Game) -> Option<Seat> {
     match game.phase() {

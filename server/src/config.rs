@@ -256,8 +256,8 @@ impl Config {
 
     /// The limits part of the configuration.
     /// The lobby's settings.
-    pub fn lobby_limits(&self) -> crate::play::lobby::LobbyLimits {
-        crate::play::lobby::LobbyLimits {
+    pub fn lobby_limits(&self) -> game::lobby::LobbyLimits {
+        game::lobby::LobbyLimits {
             challenge_ttl: Duration::from_secs(self.challenge_seconds),
             ladder_every: Duration::from_secs(self.ladder_seconds),
             ..Default::default()

@@ -17,7 +17,7 @@
 //! | --- | --- |
 //! | [`app`] | startup and shutdown: the runtimes, the store, the cluster, the HTTP server |
 //! | `web` | HTTP routes and the WebSocket endpoints: `matches` (the match API, `/api`, `/healthz`, `/metrics`), `accounts` (the accounts API), `auth`, `assets` (the embedded web client), `simulate`, `ws` (a match's socket), `stream` (the lobby's event stream), `reply`, `origin`, `ratelimit`, `blocking` |
-//! | `play` | live matches: `hub` (the registry of rooms), `room` (one match's task), `adaptive_memory`, `lobby`, `cluster` (several nodes on PostgreSQL and Redis) |
+//! | `play` | live matches: `hub` (the registry of rooms), `room` (one match's task), `adaptive_memory`, `cluster` (several nodes on PostgreSQL and Redis) |
 //! | `accounts` | creating accounts, their keys and passwords (names follow `game::name`) |
 //! | [`store`] | SQLite (with its read connections and checkpointer) or PostgreSQL, behind one trait |
 //! | [`config`] | flags and limits |

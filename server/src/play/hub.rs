@@ -22,7 +22,7 @@ use crate::store::{Status, Store, StoreError, StoredMatch, StoredSeat};
 use crate::token::{self, SeatToken, TokenHash};
 use bots::Level;
 use game::protocol::ErrorCode;
-use game::session::SeatSpec;
+use game::session::{check_turn_seconds, SeatSpec};
 use game::{Config, Game, NoiseKey, Replay, ReplayError, Seat};
 use std::collections::HashMap;
 use std::future::Future;
@@ -100,19 +100,6 @@ impl NewSeat {
             bot: Some(level),
             account: rated.then(|| game::name::computer_account(level)),
         }
-    }
-}
-
-/// `seconds` if it is a turn clock a match may have (1 to 3600 s), else
-/// `bad-config`.
-pub fn check_turn_seconds(seconds: u64) -> Result<u64, Refusal> {
-    if (1..=3600).contains(&seconds) {
-        Ok(seconds)
-    } else {
-        Err(Refusal::new(
-            ErrorCode::BadConfig,
-            "turn_seconds must be between 1 and 3600",
-        ))
     }
 }
 

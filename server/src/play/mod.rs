@@ -7,13 +7,10 @@
 //!   the computer levels of the [`bots`] crate for their moves;
 //! - [`adaptive_memory`]: where the adaptive level starts against a
 //!   returning person, from the store;
-//! - [`lobby`]: challenges, quick pairing and the bot ladder, a state
-//!   machine without I/O driven by [`crate::web::stream`];
 //! - [`cluster`]: several nodes on one PostgreSQL store, with Redis relaying
 //!   live play between them.
 
 pub(crate) mod adaptive_memory;
 pub(crate) mod cluster;
 pub(crate) mod hub;
-pub(crate) mod lobby;
 pub(crate) mod room;

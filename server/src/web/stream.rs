@@ -14,7 +14,13 @@
 
 use crate::accounts::AccountError;
 use crate::play::hub::{Hub, NewSeat};
-use crate::play::lobby::{Effect, Input, Lobby, LobbyLimits, Member, Pairing, Player, StreamId};
+use game::lobby::{LobbyLimits, Member, Pairing, StreamId};
+
+/// The lobby with the server's computer levels on its ladder.
+type Lobby = game::lobby::Lobby<bots::Level>;
+type Effect = game::lobby::Effect<bots::Level>;
+type Input = game::lobby::Input<bots::Level>;
+type Player = game::lobby::Player<bots::Level>;
 use crate::play::room::{FinishedMatch, MatchListener};
 use crate::refusal::Refusal;
 use crate::store::Status;

@@ -9,9 +9,9 @@
 //! match). The driver (`crate::web::stream` and the hub) owns the sockets, the
 //! store and the timer; tests drive it with a virtual clock.
 
-use game::session::Moment;
-use game::stream::{ChallengeInfo, StreamClientMessage, StreamServerMessage};
-use game::{protocol::ErrorCode, protocol::Refusal, Preset, Side};
+use crate::session::Moment;
+use crate::stream::{ChallengeInfo, StreamClientMessage, StreamServerMessage};
+use crate::{protocol::ErrorCode, protocol::Refusal, Preset, Side};
 use std::collections::{BTreeMap, HashMap};
 use std::time::Duration;
 
@@ -52,13 +52,21 @@ pub struct Member {
     pub rating: f64,
 }
 
+/// What the lobby needs of a built-in computer level (the server's
+/// `bots::Level`): a small value to copy and compare, whose `Display` is
+/// its wire name (`easy`, …), from which its account's name is made
+/// ([`crate::name::computer_account`]). Every such type is one.
+pub trait ComputerLevel: Copy + Eq + std::fmt::Debug + std::fmt::Display {}
+
+impl<T: Copy + Eq + std::fmt::Debug + std::fmt::Display> ComputerLevel for T {}
+
 /// Who plays one seat of a match the lobby starts.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Player {
+pub enum Player<L> {
     /// A registered account, playing through its own client.
     Account(String),
     /// A built-in computer level, played by the server as its account.
-    Computer(bots::Level),
+    Computer(L),
 }
 
 /// Why the lobby starts a match.
@@ -71,7 +79,7 @@ pub enum Pairing {
 
 /// What the lobby has its driver do.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Effect {
+pub enum Effect<L> {
     /// Send `msg` on one stream.
     Send(StreamId, StreamServerMessage),
     /// Send `msg` on every stream of the account (none if it is offline).
@@ -80,7 +88,7 @@ pub enum Effect {
     /// rule swaps). The driver tells each account its seat token with
     /// `match-start`, and feeds [`Input::Finished`] when it ends.
     Start {
-        seats: [Player; 2],
+        seats: [Player<L>; 2],
         rated: bool,
         rules: Preset,
         turn_seconds: Option<u64>,
@@ -90,7 +98,7 @@ pub enum Effect {
 
 /// What happens to the lobby.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Input {
+pub enum Input<L> {
     /// A stream said hello as `member`.
     Online { stream: StreamId, member: Member },
     /// A stream closed.
@@ -105,7 +113,7 @@ pub enum Input {
     /// `ratings` are the accounts' ratings after it.
     Finished { ratings: Vec<(String, f64)> },
     /// A match the lobby asked for could not be started.
-    StartFailed { seats: [Player; 2] },
+    StartFailed { seats: [Player<L>; 2] },
     /// Time passed (expire challenges, pair the ladder).
     Tick,
 }
@@ -135,7 +143,7 @@ struct Open {
 }
 
 /// The lobby's state.
-pub struct Lobby {
+pub struct Lobby<L> {
     limits: LobbyLimits,
     streams: BTreeMap<StreamId, Online>,
     challenges: BTreeMap<String, Open>,
@@ -143,14 +151,14 @@ pub struct Lobby {
     /// (lower-case name): a ladder bot plays one ladder match at a time.
     playing: HashMap<String, u32>,
     /// The computer levels' ratings.
-    computers: Vec<(bots::Level, f64)>,
+    computers: Vec<(L, f64)>,
     next_challenge: u64,
     next_ladder: Moment,
     /// Which of an odd number of ladder bots sits out (turns round).
     rounds: u64,
     /// Draws the colours of challenges that leave them open.
-    rng: game::noise::SplitMix64,
-    out: Vec<Effect>,
+    rng: crate::noise::SplitMix64,
+    out: Vec<Effect<L>>,
 }
 
 fn key(name: &str) -> String {
@@ -161,17 +169,12 @@ fn refused(code: ErrorCode, message: impl Into<String>) -> Refusal {
     Refusal::new(code, message)
 }
 
-impl Lobby {
+impl<L: ComputerLevel> Lobby<L> {
     /// An empty lobby; `computers` are the built-in levels on the ladder,
     /// with their current ratings.
     /// `seed` draws open colours (the driver seeds it from the system's
     /// randomness).
-    pub fn new(
-        limits: LobbyLimits,
-        computers: Vec<(bots::Level, f64)>,
-        now: Moment,
-        seed: u64,
-    ) -> Lobby {
+    pub fn new(limits: LobbyLimits, computers: Vec<(L, f64)>, now: Moment, seed: u64) -> Lobby<L> {
         Lobby {
             next_ladder: now + limits.ladder_every,
             limits,
@@ -181,7 +184,7 @@ impl Lobby {
             computers,
             next_challenge: 1,
             rounds: 0,
-            rng: game::noise::SplitMix64::new(seed),
+            rng: crate::noise::SplitMix64::new(seed),
             out: Vec::new(),
         }
     }
@@ -212,7 +215,7 @@ impl Lobby {
     }
 
     /// Handles one input; what the driver must do, in order.
-    pub fn handle(&mut self, input: Input, now: Moment) -> Vec<Effect> {
+    pub fn handle(&mut self, input: Input<L>, now: Moment) -> Vec<Effect<L>> {
         match input {
             Input::Online { stream, member } => {
                 self.streams.insert(
@@ -249,10 +252,10 @@ impl Lobby {
         std::mem::take(&mut self.out)
     }
 
-    fn player_name(&self, p: &Player) -> String {
+    fn player_name(&self, p: &Player<L>) -> String {
         match p {
             Player::Account(a) => a.clone(),
-            Player::Computer(l) => game::name::computer_account(*l),
+            Player::Computer(l) => crate::name::computer_account(*l),
         }
     }
 
@@ -272,7 +275,7 @@ impl Lobby {
             }
         }
         for (level, r) in &mut self.computers {
-            if key(&game::name::computer_account(*level)) == key(account) {
+            if key(&crate::name::computer_account(*level)) == key(account) {
                 *r = rating;
             }
         }
@@ -390,7 +393,7 @@ impl Lobby {
         }
         if to
             .to_ascii_lowercase()
-            .starts_with(game::name::COMPUTER_PREFIX)
+            .starts_with(crate::name::COMPUTER_PREFIX)
         {
             return Err(refused(
                 ErrorCode::BadMessage,
@@ -409,7 +412,7 @@ impl Lobby {
             ));
         }
         if let Some(t) = turn_seconds {
-            crate::play::hub::check_turn_seconds(t)?;
+            crate::session::check_turn_seconds(t)?;
         }
         let made = self
             .challenges
@@ -480,7 +483,7 @@ impl Lobby {
 
     fn start(
         &mut self,
-        seats: [Player; 2],
+        seats: [Player<L>; 2],
         rated: bool,
         rules: Preset,
         turn_seconds: Option<u64>,
@@ -559,7 +562,7 @@ impl Lobby {
     /// ladder is for the registered bots). With an odd number, a different
     /// one sits out each round.
     fn pair_ladder(&mut self) {
-        let mut pool: Vec<(Player, f64)> = Vec::new();
+        let mut pool: Vec<(Player<L>, f64)> = Vec::new();
         let mut seen = std::collections::HashSet::new();
         for s in self.streams.values() {
             let k = key(&s.member.name);
@@ -571,7 +574,7 @@ impl Lobby {
             return;
         }
         for (level, rating) in &self.computers {
-            let k = key(&game::name::computer_account(*level));
+            let k = key(&crate::name::computer_account(*level));
             if !self.playing.contains_key(&k) {
                 pool.push((Player::Computer(*level), *rating));
             }
@@ -613,6 +616,23 @@ fn no_challenge(id: &str) -> Refusal {
 mod tests {
     use super::*;
 
+    type Lobby = super::Lobby<Level>;
+    type Effect = super::Effect<Level>;
+    type Input = super::Input<Level>;
+    type Player = super::Player<Level>;
+
+    /// A computer level of the tests' own (the server's is `bots::Level`).
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    enum Level {
+        Easy,
+    }
+
+    impl std::fmt::Display for Level {
+        fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            f.write_str("easy")
+        }
+    }
+
     fn at(s: u64) -> Moment {
         Moment::new(Duration::from_secs(s))
     }
@@ -628,7 +648,7 @@ mod tests {
     fn lobby() -> Lobby {
         Lobby::new(
             LobbyLimits::default(),
-            vec![(bots::Level::Easy, 1500.0)],
+            vec![(Level::Easy, 1500.0)],
             at(0),
             7,
         )
