@@ -2,11 +2,13 @@
 //! bots' judgement. Material first (a piece is worth [`PIECE`]), then
 //! whether the shot keeps the turn, then the safety of each side's pieces:
 //! a piece whose centre stands near an edge is easy to knock off, and it
-//! matters most for the side that does not shoot next.
+//! matters most for the side that does not shoot next. [`best_shot`] plays
+//! each candidate shot and keeps the one this judgement likes best.
 
-use crate::simulator::Simulated;
+use crate::candidates::{candidates, Spread};
+use crate::simulator::{Simulated, Simulator};
 use game::rules::{RoundResult, Verdict};
-use game::{Board, Config, Side};
+use game::{Board, Config, Shot, Side};
 
 /// The value of winning the round (losing it is the negative).
 pub const ROUND: f64 = 1000.0;
@@ -70,6 +72,32 @@ pub fn next_to_shoot(sim: &Simulated, shooter: Side) -> Side {
         Verdict::ShootAgain => shooter,
         _ => shooter.opponent(),
     }
+}
+
+/// The best of `spread`'s candidates for `side` on `board` with its value
+/// (first of equals in candidate order; `None` without a legal shot).
+pub fn best_shot(
+    config: &Config,
+    board: &Board,
+    side: Side,
+    spread: &Spread,
+) -> Option<(Shot, f64)> {
+    let sim = Simulator::on(config, board);
+    let mut best: Option<(Shot, f64)> = None;
+    for shot in candidates(config, board, side, spread) {
+        let Ok(result) = sim.play(side, &shot) else {
+            continue;
+        };
+        let v = after_shot(config, &result, side);
+        let better = match &best {
+            Some((_, b)) => v > *b,
+            None => true,
+        };
+        if better {
+            best = Some((shot, v));
+        }
+    }
+    best
 }
 
 #[cfg(test)]

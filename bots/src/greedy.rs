@@ -1,13 +1,12 @@
 //! `greedy`: tries many candidate shots ([`crate::candidates`]) on the
-//! [`Simulator`], as aimed, and plays the one whose result
+//! [`crate::simulator::Simulator`], as aimed, and plays the one whose result
 //! [`crate::eval::after_shot`] scores best — material, the turn kept, the
 //! safety of its own pieces. One ply, no look-ahead, no noise.
 
 use crate::bot::{Ask, Bot, Context, Decision};
-use crate::candidates::{candidates, Spread};
-use crate::eval;
-use crate::simulator::Simulator;
-use game::{Board, Config, MatchView, Shot, Side};
+use crate::candidates::Spread;
+use crate::eval::best_shot;
+use game::MatchView;
 
 /// The greedy bot.
 #[derive(Clone, Debug)]
@@ -28,32 +27,6 @@ impl Greedy {
     pub fn with_spread(spread: Spread) -> Greedy {
         Greedy { spread }
     }
-}
-
-/// The best of `spread`'s candidates for `side` on `board` with its value
-/// (first of equals in candidate order; `None` without a legal shot).
-pub fn best_shot(
-    config: &Config,
-    board: &Board,
-    side: Side,
-    spread: &Spread,
-) -> Option<(Shot, f64)> {
-    let sim = Simulator::on(config, board);
-    let mut best: Option<(Shot, f64)> = None;
-    for shot in candidates(config, board, side, spread) {
-        let Ok(result) = sim.play(side, &shot) else {
-            continue;
-        };
-        let v = eval::after_shot(config, &result, side);
-        let better = match &best {
-            Some((_, b)) => v > *b,
-            None => true,
-        };
-        if better {
-            best = Some((shot, v));
-        }
-    }
-    best
 }
 
 /// Black's pie decision for a bot without a generator of its own: the
@@ -83,7 +56,8 @@ impl Bot for Greedy {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use game::{Game, Phase};
+    use crate::simulator::Simulator;
+    use game::{Config, Game, Phase, Side};
     use std::time::Duration;
 
     #[test]

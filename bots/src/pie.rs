@@ -38,7 +38,7 @@
 
 use crate::candidates::Spread;
 use crate::eval;
-use crate::greedy::best_shot;
+use crate::eval::best_shot;
 use crate::simulator::Simulator;
 use game::noise::{NoiseDraw, SplitMix64};
 use game::rules::{after_round, AfterRound, RoundResult, Verdict};

@@ -18,7 +18,7 @@
 use crate::bot::{Ask, Bot, Context, Decision};
 use crate::candidates::{candidates, Spread};
 use crate::eval;
-use crate::greedy::best_shot;
+use crate::eval::best_shot;
 use crate::hand::{Aim, Bias, HandModel};
 use crate::simulator::Simulator;
 use game::noise::{NoiseDraw, SplitMix64};

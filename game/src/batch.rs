@@ -26,7 +26,7 @@
 //!
 //! A refused shot has its status and NaN everywhere else.
 
-use crate::protocol::ErrorCode;
+use crate::refusal::ErrorCode;
 use crate::rules::Verdict;
 use crate::simulate::{self, Simulation};
 use crate::{Board, Config, PieceId, RoundResult, Shot, Side};

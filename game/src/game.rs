@@ -51,8 +51,8 @@ pub enum GameError {
 
 impl GameError {
     /// The stable wire code of this error.
-    pub fn code(&self) -> crate::protocol::ErrorCode {
-        use crate::protocol::ErrorCode as C;
+    pub fn code(&self) -> crate::refusal::ErrorCode {
+        use crate::refusal::ErrorCode as C;
         match self {
             GameError::MatchOver => C::MatchOver,
             GameError::NoPieDecision => C::NoPieDecision,

@@ -71,6 +71,7 @@ pub mod piece;
 pub mod protocol;
 pub mod rating;
 pub mod record;
+pub mod refusal;
 pub mod replay;
 pub mod rows;
 pub mod rules;

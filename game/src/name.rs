@@ -109,9 +109,9 @@ pub fn computer_account(level: impl std::fmt::Display) -> String {
 }
 
 /// A refused name, as the protocol's `bad-name` error.
-impl From<NameError> for crate::protocol::Refusal {
+impl From<NameError> for crate::refusal::Refusal {
     fn from(e: NameError) -> Self {
-        crate::protocol::Refusal::new(crate::protocol::ErrorCode::BadName, e.to_string())
+        crate::refusal::Refusal::new(crate::refusal::ErrorCode::BadName, e.to_string())
     }
 }
 
@@ -214,8 +214,8 @@ mod tests {
             AccountName::parse("computer-hard"),
             Err(NameError::Reserved)
         );
-        let refusal = crate::protocol::Refusal::from(NameError::TooLong);
-        assert_eq!(refusal.code, crate::protocol::ErrorCode::BadName);
+        let refusal = crate::refusal::Refusal::from(NameError::TooLong);
+        assert_eq!(refusal.code, crate::refusal::ErrorCode::BadName);
         assert_eq!(computer_account("easy"), "computer-easy");
     }
 }

@@ -3,11 +3,20 @@
 
 use crate::piece::PieceId;
 use crate::rows::Rows;
-use crate::rules::RoundResult;
 use crate::side::Side;
 use engine::{EndReason, Event};
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
+
+/// How a round ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(tag = "result", content = "side", rename_all = "kebab-case")]
+pub enum RoundResult {
+    /// Only this colour is left on the board.
+    Won(Side),
+    /// The last pieces of both sides fell on the same shot.
+    Draw,
+}
 
 /// Why a match was won.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]

@@ -21,15 +21,7 @@ use crate::rows::{Advance, Rows};
 use crate::side::Side;
 use serde::{Deserialize, Serialize};
 
-/// How a round ended.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
-#[serde(tag = "result", content = "side", rename_all = "kebab-case")]
-pub enum RoundResult {
-    /// Only this colour is left on the board.
-    Won(Side),
-    /// The last pieces of both sides fell on the same shot.
-    Draw,
-}
+pub use crate::outcome::RoundResult;
 
 /// What happens after a shot (on the wire: `{"verdict": "shoot-again"}`,
 /// `{"verdict": "pass-turn"}` or `{"verdict": "round-over", "result":

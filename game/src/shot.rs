@@ -44,9 +44,9 @@ pub enum ShotError {
 }
 
 impl ShotError {
-    /// The stable wire code of this error (see [`crate::protocol::ErrorCode`]).
-    pub fn code(&self) -> crate::protocol::ErrorCode {
-        use crate::protocol::ErrorCode as C;
+    /// The stable wire code of this error (see [`crate::refusal::ErrorCode`]).
+    pub fn code(&self) -> crate::refusal::ErrorCode {
+        use crate::refusal::ErrorCode as C;
         match self {
             ShotError::NotYourTurn { .. } => C::NotYourTurn,
             ShotError::NotYourPiece { .. } => C::NotYourPiece,

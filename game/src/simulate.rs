@@ -144,8 +144,8 @@ pub enum SimulateError {
 
 impl SimulateError {
     /// The stable wire code of this error.
-    pub fn code(&self) -> crate::protocol::ErrorCode {
-        use crate::protocol::ErrorCode as C;
+    pub fn code(&self) -> crate::refusal::ErrorCode {
+        use crate::refusal::ErrorCode as C;
         match self {
             SimulateError::Config(_) => C::BadConfig,
             SimulateError::DuplicatePiece(_)

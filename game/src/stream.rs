@@ -13,7 +13,7 @@
 //! ```
 
 use crate::outcome::MatchResult;
-use crate::protocol::{read, ErrorCode, ProtocolError, Refusal};
+use crate::refusal::{read, ErrorCode, ProtocolError, Refusal};
 use crate::side::{Seat, Side};
 use crate::token::SeatToken;
 use serde::{Deserialize, Serialize};
