@@ -17,6 +17,7 @@ pub(crate) mod auth;
 pub(crate) mod blocking;
 pub(crate) mod matches;
 pub(crate) mod origin;
+pub(crate) mod pump;
 pub(crate) mod ratelimit;
 pub(crate) mod reply;
 pub(crate) mod simulate;
