@@ -463,3 +463,299 @@ pub(crate) async fn serve<D: Door>(
     }
     writer.close(reason).await
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use actix_web::test::TestRequest;
+    use actix_web::FromRequest;
+    use game::stream::StreamServerMessage;
+    use serde_json::{json, Value};
+    use std::cell::RefCell;
+    use std::rc::Rc;
+
+    #[test]
+    fn a_burst_passes_then_one_warning_then_silent_drops_then_a_flood_closes() {
+        let t0 = Instant::now();
+        let mut bucket = TokenBucket::new(0.0, 2.0, t0);
+        assert_eq!(admit(&mut bucket, false, t0), Admission::Pass);
+        assert_eq!(admit(&mut bucket, false, t0), Admission::Pass);
+        assert_eq!(
+            admit(&mut bucket, false, t0),
+            Admission::Drop { warn: true }
+        );
+        for _ in 2..FLOOD_CLOSE_AFTER {
+            assert_eq!(
+                admit(&mut bucket, false, t0),
+                Admission::Drop { warn: false }
+            );
+        }
+        assert_eq!(admit(&mut bucket, false, t0), Admission::Flooded);
+    }
+
+    #[test]
+    fn messages_that_pay_later_pass_an_empty_bucket_until_their_debt_bankrupts_it() {
+        let t0 = Instant::now();
+        let mut bucket = TokenBucket::new(0.0, 2.0, t0);
+        while bucket.take(t0) {}
+        assert_eq!(admit(&mut bucket, true, t0), Admission::Pass);
+        bucket.charge(10, t0);
+        assert_eq!(admit(&mut bucket, true, t0), Admission::Bankrupt);
+    }
+
+    #[test]
+    fn malformed_json_is_refused_with_its_typed_code() {
+        let bad = decode::<Value>("{").unwrap_err();
+        assert_eq!(bad.code, ErrorCode::BadJson);
+        let wrong = decode::<game::protocol::ClientMessage>(r#"{"type":"nope"}"#).unwrap_err();
+        assert_eq!(wrong.code, ErrorCode::BadMessage);
+    }
+
+    #[test]
+    fn a_refusal_reads_the_same_on_the_match_socket_and_the_event_stream() {
+        let r = Refusal::new(ErrorCode::RateLimited, "slow down");
+        assert_eq!(refusal_text(&r), StreamServerMessage::refused(&r).to_json());
+    }
+
+    /// Opens on any first message; refuses `{"refuse":true}`, keeps the
+    /// rest; `{"move":..}` pays later.
+    struct TestDoor(Rc<RefCell<Vec<Value>>>);
+
+    struct TestEndpoint(Rc<RefCell<Vec<Value>>>);
+
+    /// An outbox that never has anything.
+    struct Silent;
+
+    impl Outbox for Silent {
+        async fn next(&mut self) -> Option<ByteString> {
+            std::future::pending().await
+        }
+    }
+
+    impl Door for TestDoor {
+        type Message = Value;
+        type Endpoint = TestEndpoint;
+        type Outbox = Silent;
+
+        async fn open(
+            self,
+            hello: Value,
+            writer: &mut Writer,
+        ) -> Result<(TestEndpoint, Silent), Error> {
+            if hello != json!("hello") {
+                return Err(self.no_hello("not a hello").into());
+            }
+            writer.say("welcome").await?;
+            Ok((TestEndpoint(self.0), Silent))
+        }
+    }
+
+    impl Endpoint for TestEndpoint {
+        type Message = Value;
+
+        async fn on_message(&mut self, msg: Value) -> Result<(), Error> {
+            if msg == json!({"refuse": true}) {
+                return Err(Refusal::new(ErrorCode::BadMessage, "refused").into());
+            }
+            self.0.borrow_mut().push(msg);
+            Ok(())
+        }
+
+        fn pays_later(&self, msg: &Value) -> bool {
+            msg.get("move").is_some()
+        }
+    }
+
+    /// A masked client frame (a zero mask: the payload as it is).
+    fn frame(opcode: u8, payload: &[u8]) -> Vec<u8> {
+        let mut f = vec![0x80 | opcode];
+        if payload.len() < 126 {
+            f.push(0x80 | payload.len() as u8);
+        } else {
+            f.push(0x80 | 126);
+            f.extend_from_slice(&(payload.len() as u16).to_be_bytes());
+        }
+        f.extend_from_slice(&[0; 4]);
+        f.extend_from_slice(payload);
+        f
+    }
+
+    fn text(s: &str) -> Vec<u8> {
+        frame(0x1, s.as_bytes())
+    }
+
+    /// What the server wrote, frame by frame: texts as they are, a close as
+    /// `close CODE REASON`; pings left out.
+    fn written(mut bytes: &[u8]) -> Vec<String> {
+        let mut out = Vec::new();
+        while bytes.len() >= 2 {
+            let opcode = bytes[0] & 0x0f;
+            let (len, head) = match bytes[1] & 0x7f {
+                126 => (usize::from(u16::from_be_bytes([bytes[2], bytes[3]])), 4),
+                127 => panic!("no test writes that much"),
+                n => (usize::from(n), 2),
+            };
+            let payload = &bytes[head..head + len];
+            bytes = &bytes[head + len..];
+            match opcode {
+                0x1 => out.push(String::from_utf8(payload.to_vec()).unwrap()),
+                0x8 if payload.is_empty() => out.push("close".to_string()),
+                0x8 => out.push(format!(
+                    "close {} {}",
+                    u16::from_be_bytes([payload[0], payload[1]]),
+                    String::from_utf8_lossy(&payload[2..])
+                )),
+                _ => {}
+            }
+        }
+        out
+    }
+
+    fn code_of(json: &str) -> String {
+        let v: Value = serde_json::from_str(json).unwrap();
+        assert_eq!(v["type"], "error", "{json}");
+        v["code"].as_str().unwrap().to_string()
+    }
+
+    fn refused_count(metrics: &Metrics) -> u64 {
+        let rendered = metrics.render();
+        let line = rendered
+            .lines()
+            .find(|l| l.starts_with("chapaev_refused_messages_total "))
+            .unwrap();
+        line.rsplit(' ').next().unwrap().parse().unwrap()
+    }
+
+    struct Served {
+        stuck: bool,
+        written: Vec<String>,
+        kept: Vec<Value>,
+        refused: u64,
+    }
+
+    /// Pumps a connection whose client sent `frames`, each in a read of
+    /// its own, and then went away (its input ends), through [`TestDoor`].
+    async fn serve_frames(limits: Limits, frames: Vec<Vec<u8>>) -> Served {
+        // One frame per poll, as from a socket (actix-ws reports a size
+        // error ahead of the frames read with it).
+        let reads = futures_util::stream::unfold(frames.into_iter(), |mut frames| async move {
+            tokio::task::yield_now().await;
+            let chunk = frames.next()?;
+            Some((
+                Ok::<_, actix_web::error::PayloadError>(actix_web::web::Bytes::from(chunk)),
+                frames,
+            ))
+        });
+        let reads: std::pin::Pin<
+            Box<dyn futures_util::Stream<Item = Result<_, actix_web::error::PayloadError>>>,
+        > = Box::pin(reads);
+        let (req, _) = TestRequest::get()
+            .insert_header(("upgrade", "websocket"))
+            .insert_header(("connection", "upgrade"))
+            .insert_header(("sec-websocket-version", "13"))
+            .insert_header(("sec-websocket-key", "dGhlIHNhbXBsZSBub25jZQ=="))
+            .to_http_parts();
+        let mut payload = actix_web::dev::Payload::from(reads);
+        let body = actix_web::web::Payload::from_request(&req, &mut payload)
+            .await
+            .unwrap();
+        let (response, session, stream) = actix_ws::handle(&req, body).unwrap();
+        let kept = Rc::new(RefCell::new(Vec::new()));
+        let metrics = Metrics::default();
+        let door = TestDoor(kept.clone());
+        let (stuck, bytes) = tokio::join!(
+            serve(door, &limits, &metrics, session, stream),
+            actix_web::body::to_bytes(response.into_body())
+        );
+        let kept = kept.borrow().clone();
+        Served {
+            stuck,
+            written: written(&bytes.unwrap()),
+            kept,
+            refused: refused_count(&metrics),
+        }
+    }
+
+    #[actix_web::test]
+    async fn messages_after_the_hello_reach_the_endpoint_and_refusals_are_answered() {
+        let mut frames = vec![text(r#""hello""#)];
+        frames.push(text(r#"{"n":1}"#));
+        frames.push(text(r#"{"refuse":true}"#));
+        frames.push(text("{"));
+        frames.push(frame(0x2, b"\x01"));
+        frames.push(text(r#"{"n":2}"#));
+        let served = serve_frames(Limits::default(), frames).await;
+        assert!(!served.stuck);
+        assert_eq!(served.kept, vec![json!({"n":1}), json!({"n":2})]);
+        let (last, rest) = served.written.split_last().unwrap();
+        assert_eq!(rest[0], "welcome");
+        let codes: Vec<String> = rest[1..].iter().map(|t| code_of(t)).collect();
+        assert_eq!(codes, ["bad-message", "bad-json", "bad-message"]);
+        // The client's input ended: a plain close.
+        assert_eq!(last, "close");
+        assert_eq!(served.refused, 3);
+    }
+
+    #[actix_web::test]
+    async fn an_oversized_message_is_refused_and_closes_with_the_size_code() {
+        let limits = Limits {
+            max_message_bytes: 64,
+            ..Limits::default()
+        };
+        let mut frames = vec![text(r#""hello""#)];
+        frames.push(text(&format!("\"{}\"", "x".repeat(100))));
+        frames.push(text(r#"{"n":1}"#));
+        let served = serve_frames(limits, frames).await;
+        assert!(served.kept.is_empty(), "{:?}", served.written);
+        assert_eq!(code_of(&served.written[1]), "message-too-large");
+        assert_eq!(served.written[2], "close 1009 message-too-large");
+        assert_eq!(served.refused, 1);
+    }
+
+    #[actix_web::test]
+    async fn a_flood_is_warned_once_then_closed_rate_limited() {
+        let limits = Limits {
+            rate_per_sec: 0.0,
+            rate_burst: 1.0,
+            ..Limits::default()
+        };
+        let mut frames = vec![text(r#""hello""#)];
+        for n in 0..=FLOOD_CLOSE_AFTER + 5 {
+            frames.push(text(&format!(r#"{{"n":{n}}}"#)));
+        }
+        let served = serve_frames(limits, frames).await;
+        assert_eq!(served.kept, vec![json!({"n":0})]);
+        assert_eq!(served.written.len(), 3, "{:?}", served.written);
+        assert_eq!(code_of(&served.written[1]), "rate-limited");
+        assert_eq!(served.written[2], "close 1008 rate-limited");
+        assert_eq!(served.refused, u64::from(FLOOD_CLOSE_AFTER));
+    }
+
+    #[actix_web::test]
+    async fn messages_that_pay_later_pass_an_empty_bucket() {
+        let limits = Limits {
+            rate_per_sec: 0.0,
+            rate_burst: 1.0,
+            ..Limits::default()
+        };
+        let mut frames = vec![text(r#""hello""#)];
+        // Takes the only token.
+        frames.push(text(r#"{"n":0}"#));
+        for n in 0..5 {
+            frames.push(text(&format!(r#"{{"move":{n}}}"#)));
+        }
+        let served = serve_frames(limits, frames).await;
+        assert_eq!(served.kept.len(), 6);
+        assert_eq!(served.refused, 0);
+    }
+
+    #[actix_web::test]
+    async fn a_connection_that_does_not_open_with_a_text_hello_is_refused_no_hello() {
+        let served = serve_frames(Limits::default(), vec![frame(0x2, b"\x01")]).await;
+        assert_eq!(code_of(&served.written[0]), "no-hello");
+        assert_eq!(served.written[1], "close 1008 no-hello");
+        let served = serve_frames(Limits::default(), vec![text(r#""bye""#)]).await;
+        assert_eq!(code_of(&served.written[0]), "no-hello");
+        assert_eq!(served.refused, 1);
+    }
+}
