@@ -7,6 +7,7 @@
 //! - [`assets`]: the embedded web client at `/`;
 //! - [`simulate`]: `POST /api/simulate`;
 //! - [`ws`]: a match's WebSocket; [`stream`]: the lobby's event stream;
+//!   [`pump`]: the WebSocket loop both run on;
 //! - [`reply`]: the shapes every answer shares; [`origin`]: cross-site
 //!   requests refused; [`ratelimit`]: token buckets per connection and per
 //!   address; [`blocking`]: store work off the async threads.
@@ -17,6 +18,7 @@ pub(crate) mod auth;
 pub(crate) mod blocking;
 pub(crate) mod matches;
 pub(crate) mod origin;
+pub(crate) mod pump;
 pub(crate) mod ratelimit;
 pub(crate) mod reply;
 pub(crate) mod simulate;

@@ -25,12 +25,11 @@ use crate::play::room::{FinishedMatch, MatchListener};
 use crate::refusal::Refusal;
 use crate::store::Status;
 use crate::web::auth::from_browser;
-use crate::web::ratelimit::TokenBucket;
-use crate::web::ws::{
-    admit, http_refusal, timely, too_large, FLOOD_CLOSE_AFTER, HELLO_WITHIN, PING_EVERY, SILENT_FOR,
-};
+use crate::web::pump;
+use crate::web::ws::{admit, http_refusal};
 use actix_web::{web, HttpRequest, HttpResponse};
-use actix_ws::{AggregatedMessage, CloseCode, CloseReason, Session};
+use actix_ws::{CloseCode, CloseReason, Session};
+use bytestring::ByteString;
 use game::name::computer_account;
 use game::protocol::{ErrorCode, PROTOCOL_VERSION};
 use game::session::Moment;
@@ -324,69 +323,6 @@ pub async fn handler(
     Ok(response)
 }
 
-async fn say(session: &mut Session, wt: Duration, msg: &StreamServerMessage) -> bool {
-    timely(wt, session.text(msg.to_json())).await
-}
-
-/// Refuses with `r`, then closes; `true` if a write got stuck.
-async fn refuse(session: &mut Session, wt: Duration, r: &Refusal) -> bool {
-    if !say(session, wt, &StreamServerMessage::refused(r)).await {
-        return true;
-    }
-    let reason = CloseReason {
-        code: CloseCode::Policy,
-        description: Some(r.code.as_str().into()),
-    };
-    !timely(wt, session.clone().close(Some(reason))).await
-}
-
-/// Waits for the hello and checks its key; the account, or the refusal.
-async fn hello(
-    hub: &Hub,
-    browser: bool,
-    messages: &mut actix_ws::AggregatedMessageStream,
-) -> Result<crate::store::Profile, Option<Refusal>> {
-    let no_hello = || {
-        Some(Refusal::new(
-            ErrorCode::NoHello,
-            format!(
-                "a stream opens with {{\"type\":\"hello\",\"protocol\":{PROTOCOL_VERSION},\"key\":ACCOUNT_KEY}} within 10 s"
-            ),
-        ))
-    };
-    let deadline = tokio::time::Instant::now() + HELLO_WITHIN;
-    let text = loop {
-        match tokio::time::timeout_at(deadline, messages.recv()).await {
-            Err(_) => return Err(no_hello()),
-            Ok(None | Some(Ok(AggregatedMessage::Close(_)))) => return Err(None),
-            Ok(Some(Ok(AggregatedMessage::Text(text)))) => break text,
-            Ok(Some(Ok(AggregatedMessage::Ping(_) | AggregatedMessage::Pong(_)))) => {}
-            Ok(Some(Ok(AggregatedMessage::Binary(_)))) => return Err(no_hello()),
-            Ok(Some(Err(e))) if too_large(&e) => {
-                return Err(Some(Refusal::new(
-                    ErrorCode::MessageTooLarge,
-                    "the hello is too large",
-                )))
-            }
-            Ok(Some(Err(_))) => return Err(None),
-        }
-    };
-    let key = match StreamClientMessage::from_json(&text) {
-        Ok(StreamClientMessage::Hello { protocol, key }) if protocol == PROTOCOL_VERSION => key,
-        Ok(StreamClientMessage::Hello { .. }) => {
-            return Err(Some(Refusal::new(
-                ErrorCode::UnsupportedProtocol,
-                format!("this server speaks protocol {PROTOCOL_VERSION}"),
-            )))
-        }
-        Ok(_) => return Err(no_hello()),
-        Err(e) => return Err(Some(Refusal::new(e.code, e.message))),
-    };
-    crate::web::auth::account_of_key(hub, key, browser)
-        .await
-        .map_err(Some)
-}
-
 /// The account's matches not over yet, for its welcome.
 async fn current_matches(hub: &Hub, account: &str) -> Vec<CurrentMatch> {
     let store = hub.store().clone();
@@ -448,152 +384,137 @@ async fn run(
     hub: &Hub,
     streams: &Streams,
     browser: bool,
-    mut session: Session,
+    session: Session,
     messages: actix_ws::MessageStream,
 ) -> bool {
-    let limits = hub.limits().clone();
-    let wt = limits.write_timeout;
-    let mut messages = messages
-        .max_frame_size(limits.max_message_bytes)
-        .aggregate_continuations()
-        .max_continuation_size(limits.max_message_bytes);
-    let account = match hello(hub, browser, &mut messages).await {
-        Ok(a) => a,
-        Err(Some(r)) => {
-            hub.metrics().refused();
-            return refuse(&mut session, wt, &r).await;
-        }
-        Err(None) => return false,
+    let door = StreamDoor {
+        hub: hub.clone(),
+        streams: streams.clone(),
+        browser,
     };
-    let matches = current_matches(hub, &account.name).await;
-    let member = Member {
-        name: account.name.clone(),
-        bot: account.bot,
-        rating: account.rating as f64,
-    };
-    // Open to events first, so none is missed; the welcome still goes
-    // first (straight to the socket, ahead of the queue), and a challenge
-    // made meanwhile may then be told twice, never not at all.
-    let (id, mut rx) = streams.open(member);
-    let challenges = locked(&streams.inner.lobby).challenges_of(&account.name, streams.now());
-    let welcome = StreamServerMessage::Welcome {
-        protocol: PROTOCOL_VERSION,
-        account: account.name.clone(),
-        bot: account.bot,
-        rating: account.rating,
-        provisional: account.provisional,
-        matches,
-        challenges,
-    };
-    if !say(&mut session, wt, &welcome).await {
-        streams.close(id);
-        return true;
-    }
-    info!(account = %account.name, stream = id.0, "event stream open");
-    let mut bucket = TokenBucket::new(limits.rate_per_sec, limits.rate_burst, Instant::now());
-    let mut ping = tokio::time::interval(PING_EVERY);
-    let mut last_heard = Instant::now();
-    let mut last_said = Instant::now();
-    let mut stuck = false;
-    let reason = loop {
-        tokio::select! {
-            out = rx.recv() => match out {
-                Some(msg) => {
-                    last_said = Instant::now();
-                    if !say(&mut session, wt, &msg).await {
-                        stuck = true;
-                        break None;
-                    }
-                }
-                None => break Some(CloseReason {
-                    code: CloseCode::Policy,
-                    description: Some("the stream was not read".into()),
-                }),
-            },
-            frame = messages.recv() => {
-                last_heard = Instant::now();
-                let text = match frame {
-                    None | Some(Ok(AggregatedMessage::Close(_))) => break None,
-                    Some(Ok(AggregatedMessage::Ping(b))) => {
-                        if !timely(wt, session.pong(&b)).await {
-                            stuck = true;
-                            break None;
-                        }
-                        continue;
-                    }
-                    Some(Ok(AggregatedMessage::Pong(_))) => continue,
-                    Some(Ok(AggregatedMessage::Text(text))) => Some(text),
-                    Some(Ok(AggregatedMessage::Binary(_))) => None,
-                    Some(Err(e)) if too_large(&e) => {
-                        let r = Refusal::new(
-                            ErrorCode::MessageTooLarge,
-                            format!("messages are at most {} bytes", limits.max_message_bytes),
-                        );
-                        stuck = refuse(&mut session, wt, &r).await;
-                        break None;
-                    }
-                    Some(Err(_)) => break Some(CloseReason { code: CloseCode::Protocol, description: None }),
-                };
-                if !bucket.take(Instant::now()) {
-                    hub.metrics().refused();
-                    if bucket.dropped_in_a_row >= FLOOD_CLOSE_AFTER {
-                        break Some(CloseReason {
-                            code: CloseCode::Policy,
-                            description: Some("rate-limited".into()),
-                        });
-                    }
-                    if bucket.dropped_in_a_row == 1 {
-                        let r = Refusal::new(ErrorCode::RateLimited, "too many messages; slow down");
-                        if !say(&mut session, wt, &StreamServerMessage::refused(&r)).await {
-                            stuck = true;
-                            break None;
-                        }
-                    }
-                    continue;
-                }
-                let parsed = match text {
-                    None => Err(Refusal::new(ErrorCode::BadMessage, "messages are JSON text frames")),
-                    Some(text) => match StreamClientMessage::from_json(&text) {
-                        Ok(msg) => resolved(hub, msg).await,
-                        Err(e) => Err(Refusal::new(e.code, e.message)),
-                    },
-                };
-                match parsed {
-                    Ok(msg) => streams.feed(Input::Message { stream: id, msg }),
-                    Err(r) => {
-                        hub.metrics().refused();
-                        if !say(&mut session, wt, &StreamServerMessage::refused(&r)).await {
-                            stuck = true;
-                            break None;
-                        }
-                    }
-                }
+    pump::serve(door, hub.limits(), hub.metrics(), session, messages).await
+}
+
+/// How a stream opens: a `hello` with an account key, answered `welcome`
+/// with the full picture; the stream is then online in the lobby.
+struct StreamDoor {
+    hub: Hub,
+    streams: Streams,
+    browser: bool,
+}
+
+impl pump::Door for StreamDoor {
+    type Message = StreamClientMessage;
+    type Endpoint = StreamEndpoint;
+    type Outbox = mpsc::Receiver<StreamServerMessage>;
+
+    async fn open(
+        self,
+        hello: StreamClientMessage,
+        writer: &mut pump::Writer,
+    ) -> Result<(StreamEndpoint, Self::Outbox), pump::Error> {
+        let key = match hello {
+            StreamClientMessage::Hello { protocol, key } if protocol == PROTOCOL_VERSION => key,
+            StreamClientMessage::Hello { .. } => {
+                return Err(Refusal::new(
+                    ErrorCode::UnsupportedProtocol,
+                    format!("this server speaks protocol {PROTOCOL_VERSION}"),
+                )
+                .into())
             }
-            _ = ping.tick() => {
-                if last_heard.elapsed() > SILENT_FOR {
-                    break Some(CloseReason {
-                        code: CloseCode::Away,
-                        description: Some("no answer to pings".into()),
-                    });
-                }
-                if !timely(wt, session.ping(b"")).await {
-                    stuck = true;
-                    break None;
-                }
-                if last_said.elapsed() >= KEEP_ALIVE {
-                    last_said = Instant::now();
-                    if !say(&mut session, wt, &StreamServerMessage::KeepAlive).await {
-                        stuck = true;
-                        break None;
-                    }
-                }
-            }
+            _ => return Err(self.no_hello("the first message was not a hello").into()),
+        };
+        let account = crate::web::auth::account_of_key(&self.hub, key, self.browser).await?;
+        let (hub, streams) = (self.hub, self.streams);
+        let matches = current_matches(&hub, &account.name).await;
+        let member = Member {
+            name: account.name.clone(),
+            bot: account.bot,
+            rating: account.rating as f64,
+        };
+        // Open to events first, so none is missed; the welcome still goes
+        // first (straight to the socket, ahead of the queue), and a challenge
+        // made meanwhile may then be told twice, never not at all.
+        let (id, rx) = streams.open(member);
+        let challenges = locked(&streams.inner.lobby).challenges_of(&account.name, streams.now());
+        let welcome = StreamServerMessage::Welcome {
+            protocol: PROTOCOL_VERSION,
+            account: account.name.clone(),
+            bot: account.bot,
+            rating: account.rating,
+            provisional: account.provisional,
+            matches,
+            challenges,
+        };
+        if let Err(gone) = writer.say(welcome.to_json()).await {
+            streams.close(id);
+            return Err(gone);
         }
-    };
-    streams.close(id);
-    info!(account = %account.name, stream = id.0, "event stream closed");
-    if stuck {
-        return true;
+        info!(account = %account.name, stream = id.0, "event stream open");
+        let endpoint = StreamEndpoint {
+            hub,
+            streams,
+            id,
+            account: account.name,
+        };
+        Ok((endpoint, rx))
     }
-    !timely(wt, session.close(reason)).await
+
+    fn no_hello(&self, _why: &str) -> Refusal {
+        Refusal::new(
+            ErrorCode::NoHello,
+            format!(
+                "a stream opens with {{\"type\":\"hello\",\"protocol\":{PROTOCOL_VERSION},\"key\":ACCOUNT_KEY}} within 10 s"
+            ),
+        )
+    }
+}
+
+/// What the lobby tells this stream, as it comes.
+impl pump::Outbox for mpsc::Receiver<StreamServerMessage> {
+    async fn next(&mut self) -> Option<ByteString> {
+        self.recv().await.map(|msg| msg.to_json().into())
+    }
+}
+
+/// An open stream: its messages go to the lobby; a quiet one is sent
+/// `keep-alive`.
+struct StreamEndpoint {
+    hub: Hub,
+    streams: Streams,
+    id: StreamId,
+    /// The account's name, as registered.
+    account: String,
+}
+
+impl pump::Endpoint for StreamEndpoint {
+    type Message = StreamClientMessage;
+
+    const OVERSIZE_CLOSE: CloseCode = CloseCode::Policy;
+    const SLOW_DOWN: &'static str = "too many messages; slow down";
+
+    async fn on_message(&mut self, msg: StreamClientMessage) -> Result<(), pump::Error> {
+        let msg = resolved(&self.hub, msg).await?;
+        self.streams.feed(Input::Message {
+            stream: self.id,
+            msg,
+        });
+        Ok(())
+    }
+
+    fn on_quiet(&mut self, quiet: Duration) -> Option<ByteString> {
+        (quiet >= KEEP_ALIVE).then(|| StreamServerMessage::KeepAlive.to_json().into())
+    }
+
+    fn outbox_closed(&self) -> CloseReason {
+        CloseReason {
+            code: CloseCode::Policy,
+            description: Some("the stream was not read".into()),
+        }
+    }
+
+    async fn on_close(&mut self) {
+        self.streams.close(self.id);
+        info!(account = %self.account, stream = self.id.0, "event stream closed");
+    }
 }

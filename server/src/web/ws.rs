@@ -26,28 +26,19 @@
 //! `--max-connections`) the upgrade is refused with HTTP 503 `server-busy`.
 
 use crate::play::hub::{AddressGuard, Hub, RoomHandle};
-use crate::play::room::{Claim, Command};
+use crate::play::room::{Claim, Command, Inbox};
 use crate::refusal::{HttpStatus, Refusal};
-use crate::web::ratelimit::TokenBucket;
+use crate::web::pump;
 use actix_web::{web, HttpRequest, HttpResponse};
-use actix_ws::{AggregatedMessage, CloseCode, CloseReason, ProtocolError, Session};
+use actix_ws::{CloseCode, CloseReason, Session};
+use bytestring::ByteString;
 use game::protocol::{ClientMessage, ErrorCode, ServerMessage, PROTOCOL_VERSION};
 use game::token::SeatToken;
 use serde::Deserialize;
-use std::future::Future;
+use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 use tracing::debug;
-
-/// How often the server pings a quiet connection.
-pub(crate) const PING_EVERY: Duration = Duration::from_secs(15);
-/// A connection silent this long (no pong either) is closed.
-pub(crate) const SILENT_FOR: Duration = Duration::from_secs(45);
-/// Dropped messages in a row after which a flooding connection is closed.
-pub(crate) const FLOOD_CLOSE_AFTER: u32 = 200;
-
-/// How long a new connection has to say hello.
-pub(crate) const HELLO_WITHIN: Duration = Duration::from_secs(10);
 
 /// The query of `/ws`.
 #[derive(Debug, Deserialize)]
@@ -129,23 +120,6 @@ pub fn on_connect(conn: &dyn std::any::Any, data: &mut actix_web::dev::Extension
     }
     #[cfg(not(unix))]
     let _ = (conn, data);
-}
-
-/// Whether a WebSocket read failed on the size limit: one frame above it
-/// (`Overflow`), or a message fragmented into continuation frames that add
-/// up to more (actix-ws reports that one only as an I/O error with this
-/// text, having no variant of its own for it).
-pub(crate) fn too_large(e: &ProtocolError) -> bool {
-    match e {
-        ProtocolError::Overflow => true,
-        ProtocolError::Io(io) => io.to_string().contains("maximum continuation size"),
-        _ => false,
-    }
-}
-
-/// Writes within the write timeout; `false`: the socket is gone or stuck.
-pub(crate) async fn timely<E>(limit: Duration, write: impl Future<Output = Result<(), E>>) -> bool {
-    matches!(tokio::time::timeout(limit, write).await, Ok(Ok(())))
 }
 
 pub(crate) fn http_refusal(r: &Refusal) -> HttpResponse {
@@ -260,189 +234,160 @@ async fn release(
     drop(guards);
 }
 
-async fn send(session: &mut Session, limit: Duration, msg: &ServerMessage) -> bool {
-    timely(limit, session.text(msg.to_json())).await
-}
-
 /// Runs one session; `true` when it ended on a write that could not finish
 /// in time (the socket is stuck).
 async fn run(
     hub: Hub,
     query: WsQuery,
     browser: bool,
-    mut session: Session,
+    session: Session,
     stream: actix_ws::MessageStream,
 ) -> bool {
     let limits = hub.limits().clone();
-    let wt = limits.write_timeout;
-    let mut stream = stream
-        .max_frame_size(limits.max_message_bytes)
-        .aggregate_continuations()
-        .max_continuation_size(limits.max_message_bytes);
-    let claim = match hello(&mut stream, &mut session, wt).await {
-        Opening::Hello(Some(token), _) => Ok(Claim::Token(token)),
-        Opening::Hello(None, Some(key)) => account_claim(&hub, key, browser).await,
-        Opening::Hello(None, None) => Ok(Claim::Watch),
-        Opening::Stuck => return true,
-        Opening::Refused(r, code) => {
-            hub.metrics().refused();
-            if !send(&mut session, wt, &r.to_message()).await {
-                return true;
-            }
-            let reason = CloseReason {
-                code,
-                description: Some(r.code.as_str().into()),
-            };
-            return !timely(wt, session.close(Some(reason))).await;
-        }
+    let metrics = hub.metrics().clone();
+    let door = MatchDoor {
+        hub,
+        match_id: query.match_id,
+        browser,
     };
-    let connected = match claim {
-        Ok(claim) => hub.connect_as(&query.match_id, claim).await,
-        Err(r) => Err(r),
-    };
-    let (room, connected) = match connected {
-        Ok(c) => c,
-        Err(r) => {
-            hub.metrics().refused();
-            if !send(&mut session, wt, &r.to_message()).await {
-                return true;
-            }
-            let reason = CloseReason {
-                code: CloseCode::Policy,
-                description: Some(r.code.as_str().into()),
-            };
-            return !timely(wt, session.close(Some(reason))).await;
-        }
-    };
-    // Before the room's first message (the match state) is forwarded.
-    let welcome = ServerMessage::Welcome {
-        protocol: PROTOCOL_VERSION,
-    };
-    if !send(&mut session, wt, &welcome).await {
-        let _ = room
-            .tx
-            .send(Command::Disconnect {
-                conn: connected.conn,
-            })
-            .await;
-        return true;
-    }
-    let conn = connected.conn;
-    let mut rx = connected.rx;
-    let refused = connected.refused;
-    let mut refused_seen = 0u32;
-    let mut bucket = TokenBucket::new(limits.rate_per_sec, limits.rate_burst, Instant::now());
-    let mut ping = tokio::time::interval(PING_EVERY);
-    let mut last_heard = Instant::now();
-    // Set when a write did not finish in time.
-    let mut stuck = false;
-    let reason: Option<CloseReason> = loop {
-        tokio::select! {
-            out = rx.recv() => match out {
-                Some(text) => {
-                    if !timely(wt, session.text(text)).await {
-                        stuck = true;
-                        break None;
-                    }
-                }
-                None => break Some(CloseReason {
-                    code: CloseCode::Away,
-                    description: Some("the match closed this connection".into()),
-                }),
+    pump::serve(door, &limits, &metrics, session, stream).await
+}
+
+/// How a match's socket opens: a `hello` with a seat token (a player), an
+/// account key (the account's seat), or neither (a spectator), admitted to
+/// the match's room and answered `welcome`.
+struct MatchDoor {
+    hub: Hub,
+    match_id: String,
+    browser: bool,
+}
+
+impl pump::Door for MatchDoor {
+    type Message = ClientMessage;
+    type Endpoint = MatchEndpoint;
+    type Outbox = Inbox;
+
+    async fn open(
+        self,
+        hello: ClientMessage,
+        writer: &mut pump::Writer,
+    ) -> Result<(MatchEndpoint, Inbox), pump::Error> {
+        let claim = match hello {
+            ClientMessage::Hello {
+                protocol,
+                token,
+                key,
+                ..
+            } if protocol == PROTOCOL_VERSION => match (token, key) {
+                (Some(token), _) => Claim::Token(token),
+                (None, Some(key)) => account_claim(&self.hub, key, self.browser).await?,
+                (None, None) => Claim::Watch,
             },
-            frame = stream.recv() => {
-                last_heard = Instant::now();
-                match frame {
-                    None | Some(Ok(AggregatedMessage::Close(_))) => break None,
-                    Some(Ok(AggregatedMessage::Ping(b))) => {
-                        if !timely(wt, session.pong(&b)).await {
-                            stuck = true;
-                            break None;
-                        }
-                    }
-                    Some(Ok(AggregatedMessage::Pong(_))) => {}
-                    Some(Ok(AggregatedMessage::Text(text))) => {
-                        // Moves the match refused since the last message
-                        // are charged now: junk pays, legal play does not.
-                        let now = Instant::now();
-                        let count = refused.load(std::sync::atomic::Ordering::Relaxed);
-                        bucket.charge(count.wrapping_sub(refused_seen), now);
-                        refused_seen = count;
-                        let parsed = ClientMessage::from_json(&text);
-                        let play = matches!(&parsed, Ok(m) if m.is_move());
-                        if play && bucket.bankrupt() {
-                            break Some(CloseReason {
-                                code: CloseCode::Policy,
-                                description: Some("rate-limited".into()),
-                            });
-                        }
-                        if !play && !bucket.take(now) {
-                            if let Some(r) = flooded(&hub, &mut session, wt, &bucket).await {
-                                break Some(r);
-                            }
-                            continue;
-                        }
-                        if !handle_message(&hub, &room, conn, &mut session, wt, parsed).await {
-                            stuck = true;
-                            break None;
-                        }
-                    }
-                    Some(Ok(AggregatedMessage::Binary(_))) => {
-                        if !bucket.take(Instant::now()) {
-                            if let Some(r) = flooded(&hub, &mut session, wt, &bucket).await {
-                                break Some(r);
-                            }
-                            continue;
-                        }
-                        hub.metrics().refused();
-                        let r = Refusal::new(ErrorCode::BadMessage, "messages are JSON text frames");
-                        if !send(&mut session, wt, &r.to_message()).await {
-                            stuck = true;
-                            break None;
-                        }
-                    }
-                    Some(Err(e)) if too_large(&e) => {
-                        hub.metrics().refused();
-                        let r = Refusal::new(
-                            ErrorCode::MessageTooLarge,
-                            format!("messages are at most {} bytes", limits.max_message_bytes),
-                        );
-                        if !send(&mut session, wt, &r.to_message()).await {
-                            stuck = true;
-                        }
-                        break Some(CloseReason {
-                            code: CloseCode::Size,
-                            description: Some(r.code.as_str().into()),
-                        });
-                    }
-                    Some(Err(e)) => {
-                        debug!(error = %e, "websocket protocol error");
-                        break Some(CloseReason {
-                            code: CloseCode::Protocol,
-                            description: None,
-                        });
-                    }
-                }
+            ClientMessage::Hello { .. } => {
+                return Err(Refusal::new(
+                    ErrorCode::UnsupportedProtocol,
+                    format!("this server speaks protocol {PROTOCOL_VERSION}"),
+                )
+                .into())
             }
-            _ = ping.tick() => {
-                if last_heard.elapsed() > SILENT_FOR {
-                    break Some(CloseReason {
-                        code: CloseCode::Away,
-                        description: Some("no answer to pings".into()),
-                    });
-                }
-                if !timely(wt, session.ping(b"")).await {
-                    stuck = true;
-                    break None;
-                }
-            }
+            _ => return Err(self.no_hello("the first message was not a hello").into()),
+        };
+        let (room, connected) = self.hub.connect_as(&self.match_id, claim).await?;
+        // Before the room's first message (the match state) is forwarded.
+        let welcome = ServerMessage::Welcome {
+            protocol: PROTOCOL_VERSION,
+        };
+        if let Err(gone) = writer.say(welcome.to_json()).await {
+            let _ = room
+                .tx
+                .send(Command::Disconnect {
+                    conn: connected.conn,
+                })
+                .await;
+            return Err(gone);
         }
-    };
-    let _ = room.tx.send(Command::Disconnect { conn }).await;
-    if stuck {
-        return true;
+        let endpoint = MatchEndpoint {
+            room,
+            conn: connected.conn,
+            refused: connected.refused,
+            refused_seen: 0,
+        };
+        Ok((endpoint, connected.rx))
     }
-    !timely(wt, session.close(reason)).await
+
+    fn no_hello(&self, why: &str) -> Refusal {
+        Refusal::new(
+            ErrorCode::NoHello,
+            format!(
+                "{why}: a connection opens with {{\"type\":\"hello\",\"protocol\":\
+                 {PROTOCOL_VERSION},\"name\":...,\"token\":...}} (no token: watch)"
+            ),
+        )
+    }
+}
+
+/// The room's messages to this connection, as they come.
+impl pump::Outbox for Inbox {
+    async fn next(&mut self) -> Option<ByteString> {
+        self.recv().await
+    }
+}
+
+/// An open match connection: its messages go to the room. Moves pass the
+/// flood guard free and pay only when the room refuses them.
+struct MatchEndpoint {
+    room: RoomHandle,
+    conn: u64,
+    /// How many of this connection's moves the room has refused...
+    refused: Arc<AtomicU32>,
+    /// ... of which this many are charged already.
+    refused_seen: u32,
+}
+
+impl pump::Endpoint for MatchEndpoint {
+    type Message = ClientMessage;
+
+    async fn on_message(&mut self, msg: ClientMessage) -> Result<(), pump::Error> {
+        if let ClientMessage::Hello { .. } = msg {
+            return Err(Refusal::new(
+                ErrorCode::BadMessage,
+                "hello is the first message of a connection, and only the first",
+            )
+            .into());
+        }
+        let command = Command::message(self.conn, msg);
+        self.room
+            .tx
+            .send(command)
+            .await
+            .map_err(|_| pump::Error::Gone)
+    }
+
+    fn pays_later(&self, msg: &ClientMessage) -> bool {
+        msg.is_move()
+    }
+
+    fn debt(&mut self) -> u32 {
+        let count = self.refused.load(Ordering::Relaxed);
+        let debt = count.wrapping_sub(self.refused_seen);
+        self.refused_seen = count;
+        debt
+    }
+
+    fn outbox_closed(&self) -> CloseReason {
+        CloseReason {
+            code: CloseCode::Away,
+            description: Some("the match closed this connection".into()),
+        }
+    }
+
+    async fn on_close(&mut self) {
+        let _ = self
+            .room
+            .tx
+            .send(Command::Disconnect { conn: self.conn })
+            .await;
+    }
 }
 
 /// The seat the account that `key` proves holds (a bot's key from a web
@@ -450,134 +395,4 @@ async fn run(
 async fn account_claim(hub: &Hub, key: SeatToken, browser: bool) -> Result<Claim, Refusal> {
     let account = crate::web::auth::account_of_key(hub, key, browser).await?;
     Ok(Claim::Account(account.name))
-}
-
-/// How a connection's opening went.
-enum Opening {
-    /// It said hello in the protocol this server speaks, with this token.
-    Hello(Option<SeatToken>, Option<SeatToken>),
-    /// It must be refused with this, and closed with this code.
-    Refused(Refusal, CloseCode),
-    /// A write did not finish in time, or the client went away.
-    Stuck,
-}
-
-/// Waits (at most [`HELLO_WITHIN`]) for the client's `hello`, answering
-/// pings meanwhile. Anything else first is refused with `no-hello`.
-async fn hello(
-    stream: &mut actix_ws::AggregatedMessageStream,
-    session: &mut Session,
-    wt: Duration,
-) -> Opening {
-    let no_hello = |what: &str| {
-        Opening::Refused(
-            Refusal::new(
-                ErrorCode::NoHello,
-                format!(
-                    "{what}: a connection opens with {{\"type\":\"hello\",\"protocol\":\
-                     {PROTOCOL_VERSION},\"name\":...,\"token\":...}} (no token: watch)"
-                ),
-            ),
-            CloseCode::Policy,
-        )
-    };
-    let deadline = tokio::time::Instant::now() + HELLO_WITHIN;
-    loop {
-        let frame = match tokio::time::timeout_at(deadline, stream.recv()).await {
-            Err(_) => return no_hello("no hello within 10 s"),
-            Ok(frame) => frame,
-        };
-        match frame {
-            None | Some(Ok(AggregatedMessage::Close(_))) => return Opening::Stuck,
-            Some(Ok(AggregatedMessage::Ping(b))) => {
-                if !timely(wt, session.pong(&b)).await {
-                    return Opening::Stuck;
-                }
-            }
-            Some(Ok(AggregatedMessage::Pong(_))) => {}
-            Some(Ok(AggregatedMessage::Text(text))) => {
-                return match ClientMessage::from_json(&text) {
-                    Ok(ClientMessage::Hello {
-                        protocol,
-                        token,
-                        key,
-                        ..
-                    }) if protocol == PROTOCOL_VERSION => Opening::Hello(token, key),
-                    Ok(ClientMessage::Hello { .. }) => Opening::Refused(
-                        Refusal::new(
-                            ErrorCode::UnsupportedProtocol,
-                            format!("this server speaks protocol {PROTOCOL_VERSION}"),
-                        ),
-                        CloseCode::Policy,
-                    ),
-                    Ok(_) => no_hello("the first message was not a hello"),
-                    Err(e) => Opening::Refused(Refusal::new(e.code, e.message), CloseCode::Policy),
-                }
-            }
-            Some(Ok(AggregatedMessage::Binary(_))) => {
-                return no_hello("messages are JSON text frames")
-            }
-            Some(Err(e)) if too_large(&e) => {
-                return Opening::Refused(
-                    Refusal::new(ErrorCode::MessageTooLarge, "the hello is too large"),
-                    CloseCode::Size,
-                )
-            }
-            Some(Err(_)) => return Opening::Stuck,
-        }
-    }
-}
-
-/// Answers a dropped message; closes a connection that floods on.
-async fn flooded(
-    hub: &Hub,
-    session: &mut Session,
-    wt: Duration,
-    bucket: &TokenBucket,
-) -> Option<CloseReason> {
-    hub.metrics().refused();
-    let close = Some(CloseReason {
-        code: CloseCode::Policy,
-        description: Some("rate-limited".into()),
-    });
-    if bucket.dropped_in_a_row >= FLOOD_CLOSE_AFTER {
-        return close;
-    }
-    // One warning per run of drops, not one per dropped message.
-    if bucket.dropped_in_a_row == 1 {
-        let r = Refusal::new(
-            ErrorCode::RateLimited,
-            "too many messages; this one was dropped, slow down",
-        );
-        if !send(session, wt, &r.to_message()).await {
-            return close;
-        }
-    }
-    None
-}
-
-/// Handles one text message as read; `false` if the session is gone.
-async fn handle_message(
-    hub: &Hub,
-    room: &RoomHandle,
-    conn: u64,
-    session: &mut Session,
-    wt: Duration,
-    parsed: Result<ClientMessage, game::protocol::ProtocolError>,
-) -> bool {
-    match parsed {
-        Err(e) => {
-            hub.metrics().refused();
-            send(session, wt, &e.to_message()).await
-        }
-        Ok(ClientMessage::Hello { .. }) => {
-            hub.metrics().refused();
-            let r = Refusal::new(
-                ErrorCode::BadMessage,
-                "hello is the first message of a connection, and only the first",
-            );
-            send(session, wt, &r.to_message()).await
-        }
-        Ok(msg) => room.tx.send(Command::message(conn, msg)).await.is_ok(),
-    }
 }
