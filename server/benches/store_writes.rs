@@ -7,7 +7,7 @@
 //! - SQLite: a store on disk with `--sync full`; the process's CPU (user +
 //!   system, every thread: the writer, the checkpointer).
 //! - PostgreSQL (where the machine has it: a throwaway server from
-//!   `server::local_postgres`): the process's CPU plus the database
+//!   `local_services::local_postgres`): the process's CPU plus the database
 //!   server's (the postmaster and its backends, from `/proc`), since the
 //!   work happens there.
 //!
@@ -83,13 +83,13 @@ fn backends() -> Vec<Backend> {
         }),
         cpu: Box::new(cpu_time),
     }];
-    if let Some(pg) = server::local_postgres::shared() {
+    if let Some(pg) = local_services::local_postgres::shared("store_writes") {
         let pid = pg.pid();
         all.push(Backend {
             name: "postgresql",
             open: Box::new(|| {
-                let url =
-                    server::local_postgres::shared_database("store_writes").expect("a database");
+                let url = local_services::local_postgres::shared_database("store_writes")
+                    .expect("a database");
                 (
                     Box::new(PostgresStore::connect(&url).expect("a store")),
                     None,

@@ -25,15 +25,15 @@
 //! | `token` | seat tokens, account keys and ids |
 //! | `refusal` | errors sent to clients, with their HTTP statuses |
 //! | [`loopback`] | the HTTP client of the server's own tools (`crashtest`, `loadgen`) |
-//! | [`local_postgres`], [`local_redis`] | throwaway servers for tests |
+//!
+//! The throwaway PostgreSQL and Redis of the tests are the
+//! `local-services` crate (`testkit/`), a dev-dependency only.
 //!
 //! Public are only the modules the server's binaries and tests use.
 
 mod accounts;
 pub mod app;
 pub mod config;
-pub mod local_postgres;
-pub mod local_redis;
 pub mod loopback;
 pub mod metrics;
 mod play;

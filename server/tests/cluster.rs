@@ -39,8 +39,8 @@ fn node(dir: &std::path::Path, db: &str, redis: &str, node: &str) -> Server {
 /// block: off the runtime's thread.)
 fn services(test: &str) -> Option<(String, String)> {
     tokio::task::block_in_place(|| {
-        let db = server::local_postgres::shared_database(test)?;
-        let redis = server::local_redis::shared()?.url();
+        let db = local_services::local_postgres::shared_database(test)?;
+        let redis = local_services::local_redis::shared(test)?.url();
         Some((db, redis))
     })
 }

@@ -56,7 +56,9 @@ fn a_small_crash_test_passes_kills_twice_and_leaves_no_server_behind() {
 
 #[test]
 fn on_postgresql_a_small_crash_test_passes_and_every_acknowledged_shot_is_in_the_database() {
-    let Some(url) = server::local_postgres::shared_database("crashtest") else {
+    let Some(url) = local_services::local_postgres::shared_database(
+        "on_postgresql_a_small_crash_test_passes_and_every_acknowledged_shot_is_in_the_database",
+    ) else {
         return;
     };
     let dir = tempfile::tempdir().unwrap();

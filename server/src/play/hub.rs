@@ -13,7 +13,7 @@
 
 use crate::config::Limits;
 use crate::metrics::Metrics;
-use crate::play::cluster::{Cluster, Lease};
+use crate::play::cluster::{Cluster, Lease, LocalRooms};
 use crate::play::room::{Claim, Command, Connected, FinishedMatch, MatchListener, Room, RoomHost};
 use crate::refusal::Refusal;
 #[cfg(test)]
@@ -871,6 +871,41 @@ impl Hub {
                 warn!("giving the leases up failed; they expire");
             }
         }
+    }
+}
+
+/// The cluster reaches this node's rooms through these, each the
+/// inherent method of the same name.
+impl LocalRooms for Hub {
+    async fn connect_owned(
+        &self,
+        id: &str,
+        claim: Claim,
+    ) -> Result<(mpsc::Sender<Command>, Connected), Refusal> {
+        let (room, connected) = Hub::connect_owned(self, id, claim).await?;
+        Ok((room.tx, connected))
+    }
+
+    async fn join_owned(
+        &self,
+        id: &str,
+        name: String,
+        token: TokenHash,
+        account: Option<String>,
+    ) -> Result<Seat, Refusal> {
+        Hub::join_owned(self, id, name, token, account).await
+    }
+
+    async fn own(&self, id: &str) -> Result<bool, Refusal> {
+        Hub::own(self, id).await
+    }
+
+    fn owned_matches(&self) -> Vec<String> {
+        Hub::owned_matches(self)
+    }
+
+    async fn stop_room(&self, id: &str) {
+        Hub::stop_room(self, id).await
     }
 }
 

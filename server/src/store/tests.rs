@@ -1,7 +1,8 @@
 //! The store's promises, checked on both backends: every test here runs
 //! once on SQLite (in memory) and once on PostgreSQL (a fresh database on
-//! a local server, [`crate::local_postgres`]; skipped with a note where the
-//! machine has no PostgreSQL, unless `CHAPAEV_REQUIRE_POSTGRES` is set).
+//! a local server, `local_services::local_postgres`; skipped with a line
+//! on stderr where the machine has no PostgreSQL, unless
+//! `CHAPAEV_REQUIRE_POSTGRES` is set).
 //! What only SQLite has (its log file, migrations from older files, read
 //! connections) is tested in [`super::sqlite`].
 
@@ -37,7 +38,7 @@ fn sqlite() -> Option<Backend> {
 }
 
 fn postgres(test: &str) -> Option<Backend> {
-    let url = crate::local_postgres::shared_database(test)?;
+    let url = local_services::local_postgres::shared_database(test)?;
     let store = Arc::new(PostgresStore::connect(&url).unwrap());
     let again = url.clone();
     Some(Backend {

@@ -8,8 +8,10 @@
 //! [`LocalPostgres`] is dropped, and, should the process that started it
 //! die first, when that process ends (the kernel's parent-death signal).
 
+use crate::process::{command, free_port, start_for_process};
+use crate::skip::{self, Service};
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
+use std::process::{Child, Stdio};
 use std::time::{Duration, Instant};
 
 /// Why no local PostgreSQL could be started.
@@ -20,7 +22,7 @@ pub enum LocalPostgresError {
     )]
     NotInstalled,
     #[error("{0}: {1}")]
-    Io(&'static str, std::io::Error),
+    Io(&'static str, #[source] std::io::Error),
     #[error("initdb failed: {0}")]
     Initdb(String),
     #[error("PostgreSQL did not accept connections within {0:?} (its log: {1})")]
@@ -82,36 +84,6 @@ fn run_as() -> Result<Option<(u32, u32)>, LocalPostgresError> {
         .ok_or(LocalPostgresError::NoUser)
 }
 
-/// A command that runs as `user` (if any) and gets SIGTERM when this
-/// process's thread that spawned it ends.
-pub(crate) fn command(program: PathBuf, user: Option<(u32, u32)>) -> Command {
-    use std::os::unix::process::CommandExt;
-    let mut cmd = Command::new(program);
-    // SAFETY: only async-signal-safe calls between fork and exec.
-    unsafe {
-        cmd.pre_exec(move || {
-            if let Some((uid, gid)) = user {
-                if libc::setgid(gid) != 0 || libc::setuid(uid) != 0 {
-                    return Err(std::io::Error::last_os_error());
-                }
-            }
-            // After the credentials change, which clears it.
-            libc::prctl(libc::PR_SET_PDEATHSIG, libc::SIGTERM);
-            Ok(())
-        });
-    }
-    cmd
-}
-
-/// A port on loopback nobody listens on now.
-pub(crate) fn free_port() -> Result<u16, LocalPostgresError> {
-    let l = std::net::TcpListener::bind("127.0.0.1:0")
-        .map_err(|e| LocalPostgresError::Io("finding a free port", e))?;
-    l.local_addr()
-        .map(|a| a.port())
-        .map_err(|e| LocalPostgresError::Io("finding a free port", e))
-}
-
 impl LocalPostgres {
     /// Initialises a cluster in a fresh folder and starts it; returns once
     /// it accepts connections.
@@ -150,7 +122,7 @@ impl LocalPostgres {
                 String::from_utf8_lossy(&out.stderr).into_owned(),
             ));
         }
-        let port = free_port()?;
+        let port = free_port().map_err(|e| LocalPostgresError::Io("finding a free port", e))?;
         let log_path = dir.path().join("postgres.log");
         let log = std::fs::File::create(&log_path)
             .map_err(|e| LocalPostgresError::Io("opening its log", e))?;
@@ -237,11 +209,11 @@ impl Drop for LocalPostgres {
 
 /// The process-wide local PostgreSQL the tests share, started on first
 /// use from a thread that lives as long as the process (so the
-/// parent-death signal stops it only when the process ends). `None`, with
-/// the reason printed, when this machine has no PostgreSQL; a test run
-/// that must cover PostgreSQL sets `CHAPAEV_REQUIRE_POSTGRES=1`, and then
-/// that is a failure.
-pub fn shared() -> Option<&'static LocalPostgres> {
+/// parent-death signal stops it only when the process ends). `None` when
+/// this machine has no PostgreSQL: test `test` is then skipped, with a
+/// line on stderr that says so, or fails where `CHAPAEV_REQUIRE_POSTGRES`
+/// is set ([`crate::skip`]).
+pub fn shared(test: &str) -> Option<&'static LocalPostgres> {
     static SHARED: std::sync::OnceLock<Result<LocalPostgres, String>> = std::sync::OnceLock::new();
     let started = start_for_process(&SHARED, "local-postgres", || {
         LocalPostgres::start().map_err(|e| e.to_string())
@@ -259,39 +231,10 @@ pub fn shared() -> Option<&'static LocalPostgres> {
             Some(pg)
         }
         Err(e) => {
-            assert!(
-                std::env::var_os("CHAPAEV_REQUIRE_POSTGRES").is_none(),
-                "CHAPAEV_REQUIRE_POSTGRES is set and no local PostgreSQL started: {e}"
-            );
-            eprintln!("skipped on PostgreSQL: {e}");
+            skip::without(test, Service::Postgres, e);
             None
         }
     }
-}
-
-/// Starts a service once per process, from a thread parked for good (the
-/// service's parent-death signal is tied to the thread that started it),
-/// and keeps the outcome in `cell`.
-pub(crate) fn start_for_process<T: Send + Sync + 'static>(
-    cell: &'static std::sync::OnceLock<Result<T, String>>,
-    thread: &str,
-    start: fn() -> Result<T, String>,
-) -> &'static Result<T, String> {
-    cell.get_or_init(|| {
-        let (tx, rx) = std::sync::mpsc::channel();
-        let spawned = std::thread::Builder::new()
-            .name(thread.into())
-            .spawn(move || {
-                let _ = tx.send(start());
-                loop {
-                    std::thread::park();
-                }
-            });
-        match spawned {
-            Ok(_) => rx.recv().map_err(|e| e.to_string()).and_then(|r| r),
-            Err(e) => Err(e.to_string()),
-        }
-    })
 }
 
 /// The shared server's process id and folder, for [`stop_shared_at_exit`].
@@ -316,13 +259,15 @@ extern "C" fn stop_shared_at_exit() {
 }
 
 /// A fresh database on the [`shared`] server, named after `test` and
-/// unique in this process.
+/// unique in this process; `None` (test `test` skipped) as [`shared`].
 pub fn shared_database(test: &str) -> Option<String> {
     use std::sync::atomic::{AtomicU32, Ordering};
     static NEXT: AtomicU32 = AtomicU32::new(0);
-    let pg = shared()?;
+    let pg = shared(test)?;
     let n = NEXT.fetch_add(1, Ordering::Relaxed);
-    let name: String = format!("{test}_{}_{n}", std::process::id())
+    // The test's name, cut short enough that the suffix (what makes the
+    // name unique) fits PostgreSQL's 63 bytes.
+    let test: String = test
         .chars()
         .map(|c| {
             if c.is_ascii_alphanumeric() {
@@ -331,8 +276,9 @@ pub fn shared_database(test: &str) -> Option<String> {
                 '_'
             }
         })
-        .take(60)
+        .take(40)
         .collect();
+    let name = format!("{test}_{}_{n}", std::process::id());
     match pg.fresh_database(&name) {
         Ok(url) => Some(url),
         Err(e) => panic!("creating database {name}: {e}"),

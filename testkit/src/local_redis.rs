@@ -1,9 +1,10 @@
 //! A throwaway Redis server on loopback, for the tests of several server
 //! nodes: `redis-server` (from the machine's packages) on a free port,
-//! keeping nothing on disk. Like [`crate::local_postgres`] it stops when
-//! dropped, or when the process that started it ends.
+//! keeping nothing on disk. It stops when dropped, or when the process
+//! that started it ends ([`crate::process`]).
 
-use crate::local_postgres::{command, free_port, LocalPostgresError};
+use crate::process::{command, free_port, start_for_process};
+use crate::skip::{self, Service};
 use std::path::PathBuf;
 use std::process::{Child, Stdio};
 use std::time::{Duration, Instant};
@@ -13,10 +14,10 @@ use std::time::{Duration, Instant};
 pub enum LocalRedisError {
     #[error("redis-server was not found on PATH (install the redis-server package)")]
     NotInstalled,
-    #[error(transparent)]
-    Port(#[from] LocalPostgresError),
+    #[error("finding a free port: {0}")]
+    Port(#[source] std::io::Error),
     #[error("starting redis-server: {0}")]
-    Io(std::io::Error),
+    Io(#[source] std::io::Error),
     #[error("redis-server did not answer within {0:?}")]
     NotReady(Duration),
 }
@@ -39,7 +40,7 @@ impl LocalRedis {
     /// answers.
     pub fn start() -> Result<LocalRedis, LocalRedisError> {
         let bin = redis_server().ok_or(LocalRedisError::NotInstalled)?;
-        let port = free_port()?;
+        let port = free_port().map_err(LocalRedisError::Port)?;
         let child = command(bin, None)
             .args(["--port", &port.to_string(), "--bind", "127.0.0.1"])
             .args(["--save", "", "--appendonly", "no", "--daemonize", "no"])
@@ -74,22 +75,19 @@ impl Drop for LocalRedis {
 }
 
 /// The process-wide local Redis the tests share, started on first use
-/// from a thread that lives as long as the process. `None`, with the
-/// reason printed, when this machine has no Redis; with
-/// `CHAPAEV_REQUIRE_REDIS` set that is a failure.
-pub fn shared() -> Option<&'static LocalRedis> {
+/// from a thread that lives as long as the process. `None` when this
+/// machine has no Redis: test `test` is then skipped, with a line on
+/// stderr that says so, or fails where `CHAPAEV_REQUIRE_REDIS` is set
+/// ([`crate::skip`]).
+pub fn shared(test: &str) -> Option<&'static LocalRedis> {
     static SHARED: std::sync::OnceLock<Result<LocalRedis, String>> = std::sync::OnceLock::new();
-    let started = crate::local_postgres::start_for_process(&SHARED, "local-redis", || {
+    let started = start_for_process(&SHARED, "local-redis", || {
         LocalRedis::start().map_err(|e| e.to_string())
     });
     match started {
         Ok(r) => Some(r),
         Err(e) => {
-            assert!(
-                std::env::var_os("CHAPAEV_REQUIRE_REDIS").is_none(),
-                "CHAPAEV_REQUIRE_REDIS is set and no local Redis started: {e}"
-            );
-            eprintln!("skipped on Redis: {e}");
+            skip::without(test, Service::Redis, e);
             None
         }
     }

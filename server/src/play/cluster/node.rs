@@ -1,0 +1,290 @@
+//! One node of the cluster: its connections to PostgreSQL (the leases and
+//! the nodes' heartbeats) and Redis (publishing to the other nodes), and
+//! the tables of what it relays and serves. The queries here only ask and
+//! record; what their answers mean is [`super::leases`].
+
+use super::leases::{self, Lease};
+use super::relay::{LinkEnd, Links};
+use super::wire::{channel, Envelope};
+use crate::play::room::Command;
+use crate::refusal::Refusal;
+use crate::store::StoreError;
+use game::protocol::ErrorCode;
+use game::Seat;
+use r2d2_postgres::PostgresConnectionManager;
+use redis::AsyncCommands;
+use std::collections::{HashMap, HashSet};
+use std::sync::atomic::AtomicU64;
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
+use tokio::sync::oneshot;
+use tracing::warn;
+
+/// Why the cluster could not start.
+#[derive(Debug, thiserror::Error)]
+pub enum ClusterError {
+    #[error("redis: {0}")]
+    Redis(#[from] redis::RedisError),
+    #[error("postgresql: {0}")]
+    Postgres(#[from] postgres::Error),
+    #[error("no PostgreSQL connection: {0}")]
+    Pool(#[from] r2d2::Error),
+}
+
+impl From<ClusterError> for StoreError {
+    fn from(e: ClusterError) -> StoreError {
+        match e {
+            ClusterError::Postgres(e) => StoreError::Postgres(e),
+            ClusterError::Pool(e) => StoreError::Pool(e),
+            ClusterError::Redis(e) => StoreError::Corrupt(format!("redis: {e}")),
+        }
+    }
+}
+
+/// What one node knows of the cluster (see the cluster's documentation).
+pub struct Cluster {
+    pub(super) node: String,
+    pub(super) lease: Duration,
+    pool: r2d2::Pool<PostgresConnectionManager<postgres::NoTls>>,
+    publisher: redis::aio::MultiplexedConnection,
+    pub(super) redis: redis::Client,
+    /// Numbers links, join requests and proxies.
+    pub(super) next: AtomicU64,
+    /// Relayed connections of this node's clients (proxy side), by link.
+    pub(super) links: Mutex<Links>,
+    /// Connects and joins waiting for their owner's answer, by link or
+    /// request number.
+    pub(super) pending_connects: Mutex<HashMap<u64, PendingConnect>>,
+    pub(super) pending_joins: Mutex<HashMap<u64, oneshot::Sender<Result<Seat, Refusal>>>>,
+    /// Connections this node's rooms serve for clients of other nodes
+    /// (owner side), by (their node, their link).
+    pub(super) served: Mutex<HashMap<(String, u64), Served>>,
+    /// This node's proxy rooms: the node each relays to, and how to tell
+    /// it that the match moved.
+    pub(super) proxies: Mutex<HashMap<String, ProxyEntry>>,
+}
+
+/// A relayed connect waiting for the owner: its connection's end, put in
+/// place (before anything is delivered to it) when the owner admits it.
+pub(super) struct PendingConnect {
+    pub end: LinkEnd,
+    pub reply: oneshot::Sender<Result<Option<Seat>, Refusal>>,
+}
+
+/// A proxy room as the check on its owner's lease sees it.
+pub(super) struct ProxyEntry {
+    /// Which proxy (a match may get a new one after its old one ended).
+    pub number: u64,
+    pub owner: String,
+    pub moved: oneshot::Sender<()>,
+}
+
+/// A connection served for another node's client.
+pub(super) struct Served {
+    pub room: tokio::sync::mpsc::Sender<Command>,
+    pub conn: u64,
+}
+
+/// The refusal of a relayed request whose owner did not answer in time,
+/// or whose match moved meanwhile.
+pub(super) fn moved() -> Refusal {
+    Refusal::new(
+        ErrorCode::ServerBusy,
+        "the match is moving between server nodes; connect again",
+    )
+}
+
+/// Locks `m`, even if a thread panicked holding it.
+pub(super) fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+impl Cluster {
+    /// Connects to PostgreSQL (the leases) and Redis (its connection
+    /// driven on `rt`), and records this node. Blocks: call it outside the
+    /// runtime.
+    pub fn connect(
+        node: String,
+        database_url: &str,
+        redis_url: &str,
+        lease: Duration,
+        rt: &tokio::runtime::Handle,
+    ) -> Result<Arc<Cluster>, ClusterError> {
+        let config: postgres::Config = database_url.parse()?;
+        let pool = r2d2::Pool::builder()
+            .max_size(4)
+            .connection_timeout(Duration::from_secs(10))
+            .build(PostgresConnectionManager::new(config, postgres::NoTls))?;
+        let redis = redis::Client::open(redis_url)?;
+        let publisher = rt.block_on(redis.get_multiplexed_async_connection())?;
+        let cluster = Arc::new(Cluster {
+            node,
+            lease,
+            pool,
+            publisher,
+            redis,
+            next: AtomicU64::new(1),
+            links: Mutex::default(),
+            pending_connects: Mutex::default(),
+            pending_joins: Mutex::default(),
+            served: Mutex::default(),
+            proxies: Mutex::default(),
+        });
+        cluster.heartbeat()?;
+        Ok(cluster)
+    }
+
+    /// This node's id.
+    pub fn node(&self) -> &str {
+        &self.node
+    }
+
+    /// The connections this node relays to other nodes, and those it
+    /// serves for them.
+    pub fn connection_counts(&self) -> (usize, usize) {
+        (lock(&self.links).len(), lock(&self.served).len())
+    }
+
+    /// Runs `f` on a blocking thread with this cluster.
+    pub(super) async fn blocking<T: Send + 'static>(
+        self: &Arc<Self>,
+        f: impl FnOnce(&Cluster) -> Result<T, ClusterError> + Send + 'static,
+    ) -> Result<T, ClusterError> {
+        let me = self.clone();
+        match tokio::task::spawn_blocking(move || f(&me)).await {
+            Ok(r) => r,
+            Err(e) => Err(ClusterError::Redis(redis::RedisError::from((
+                redis::ErrorKind::ClientError,
+                "a blocking task failed",
+                e.to_string(),
+            )))),
+        }
+    }
+
+    fn db(
+        &self,
+    ) -> Result<r2d2::PooledConnection<PostgresConnectionManager<postgres::NoTls>>, ClusterError>
+    {
+        Ok(self.pool.get()?)
+    }
+
+    fn lease_ms(&self) -> f64 {
+        self.lease.as_secs_f64() * 1000.0
+    }
+
+    /// Records that this node lives.
+    fn heartbeat(&self) -> Result<(), ClusterError> {
+        self.db()?.execute(
+            "INSERT INTO cluster_nodes (id, started_at, seen_at) VALUES ($1, now(), now())
+             ON CONFLICT (id) DO UPDATE SET seen_at = now()",
+            &[&self.node],
+        )?;
+        Ok(())
+    }
+
+    /// Takes the lease of match `id` if it is free, expired or already
+    /// ours; otherwise says who holds it. (Blocking.)
+    pub fn acquire(&self, id: &str) -> Result<Lease, ClusterError> {
+        let mut db = self.db()?;
+        let taken = db.query_opt(
+            "INSERT INTO match_leases (match_id, owner, expires_at)
+             SELECT $1, $2, now() + $3 * interval '1 millisecond'
+             WHERE EXISTS (SELECT 1 FROM matches WHERE id = $1)
+             ON CONFLICT (match_id) DO UPDATE SET owner = EXCLUDED.owner, expires_at = EXCLUDED.expires_at
+             WHERE match_leases.owner = EXCLUDED.owner OR match_leases.expires_at < now()
+             RETURNING owner",
+            &[&id, &self.node, &self.lease_ms()],
+        )?;
+        if taken.is_some() {
+            return Ok(Lease::Ours);
+        }
+        let holder = db.query_opt(
+            "SELECT owner FROM match_leases WHERE match_id = $1 AND expires_at >= now()",
+            &[&id],
+        )?;
+        Ok(Lease::held_by(holder.map(|row| row.get(0))))
+    }
+
+    /// Of the matches `ids`, those whose lease is unexpired, with their
+    /// owners. (Blocking.)
+    pub(super) fn owners(&self, ids: &[String]) -> Result<HashMap<String, String>, ClusterError> {
+        if ids.is_empty() {
+            return Ok(HashMap::new());
+        }
+        let rows = self.db()?.query(
+            "SELECT match_id, owner FROM match_leases WHERE match_id = ANY($1) AND expires_at >= now()",
+            &[&ids],
+        )?;
+        Ok(rows.iter().map(|r| (r.get(0), r.get(1))).collect())
+    }
+
+    /// Gives up the lease of `id` (the match's room stopped). (Blocking.)
+    pub fn release(&self, id: &str) -> Result<(), ClusterError> {
+        self.db()?.execute(
+            "DELETE FROM match_leases WHERE match_id = $1 AND owner = $2",
+            &[&id, &self.node],
+        )?;
+        Ok(())
+    }
+
+    /// Gives up every lease of this node (it is stopping). (Blocking.)
+    pub fn release_all(&self) -> Result<(), ClusterError> {
+        let mut db = self.db()?;
+        db.execute("DELETE FROM match_leases WHERE owner = $1", &[&self.node])?;
+        db.execute("DELETE FROM cluster_nodes WHERE id = $1", &[&self.node])?;
+        Ok(())
+    }
+
+    /// Renews the leases of `ids`; the ids whose lease this node no longer
+    /// holds. (Blocking.)
+    pub(super) fn renew(&self, ids: &[String]) -> Result<Vec<String>, ClusterError> {
+        self.heartbeat()?;
+        if ids.is_empty() {
+            return Ok(Vec::new());
+        }
+        let rows = self.db()?.query(
+            "UPDATE match_leases SET expires_at = now() + $3 * interval '1 millisecond'
+             WHERE owner = $1 AND match_id = ANY($2) RETURNING match_id",
+            &[&self.node, &ids, &self.lease_ms()],
+        )?;
+        let kept: HashSet<String> = rows.iter().map(|r| r.get(0)).collect();
+        Ok(leases::lost(ids, &kept))
+    }
+
+    /// Live matches whose lease expired or was never taken. (Blocking.)
+    pub(super) fn orphans(&self) -> Result<Vec<String>, ClusterError> {
+        let rows = self.db()?.query(
+            "SELECT m.id FROM matches m LEFT JOIN match_leases l ON l.match_id = m.id
+             WHERE m.status = 'live' AND (l.match_id IS NULL OR l.expires_at < now())
+             ORDER BY m.updated_at DESC LIMIT 500",
+            &[],
+        )?;
+        Ok(rows.iter().map(|r| r.get(0)).collect())
+    }
+
+    /// Of `nodes`, those not seen within a lease. (Blocking.)
+    pub(super) fn dead(&self, nodes: &[String]) -> Result<Vec<String>, ClusterError> {
+        if nodes.is_empty() {
+            return Ok(Vec::new());
+        }
+        let rows = self.db()?.query(
+            "SELECT id FROM cluster_nodes WHERE id = ANY($1)
+             AND seen_at >= now() - $2 * interval '1 millisecond'",
+            &[&nodes, &self.lease_ms()],
+        )?;
+        let alive: HashSet<String> = rows.iter().map(|r| r.get(0)).collect();
+        Ok(leases::dead(nodes, &alive))
+    }
+
+    /// Publishes `e` on `node`'s channel (lost if nobody listens, as
+    /// pub/sub is).
+    pub(super) async fn send(&self, node: &str, e: &Envelope) {
+        let Some(text) = e.encode() else {
+            return;
+        };
+        let mut conn = self.publisher.clone();
+        if let Err(err) = conn.publish::<_, _, ()>(channel(node), text).await {
+            warn!(error = %err, node, "publishing to another node failed");
+        }
+    }
+}

@@ -1,0 +1,274 @@
+//! The relay's wire format: what one node publishes on another's Redis
+//! channel. Every message is one JSON [`Envelope`], tagged by `kind`;
+//! refusals and claims cross as [`WireRefusal`] and [`WireClaim`], plain
+//! data that converts to and from the room's own types without loss.
+//! Nothing here does I/O: the node encodes before it publishes and decodes
+//! what its subscription reads.
+
+use crate::play::room::Claim;
+use crate::refusal::Refusal;
+use game::protocol::ErrorCode;
+use game::token::SeatToken;
+use game::Seat;
+use serde::{Deserialize, Serialize};
+
+/// A refusal as it crosses Redis.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub(super) struct WireRefusal {
+    pub code: ErrorCode,
+    pub message: String,
+}
+
+impl From<&Refusal> for WireRefusal {
+    fn from(r: &Refusal) -> WireRefusal {
+        WireRefusal {
+            code: r.code,
+            message: r.message.clone(),
+        }
+    }
+}
+
+impl From<WireRefusal> for Refusal {
+    fn from(r: WireRefusal) -> Refusal {
+        Refusal::new(r.code, r.message)
+    }
+}
+
+/// What a connection claims, as it crosses Redis.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(tag = "as", rename_all = "kebab-case")]
+pub(super) enum WireClaim {
+    Watch,
+    Token { token: String },
+    Account { account: String },
+}
+
+impl From<&Claim> for WireClaim {
+    fn from(c: &Claim) -> WireClaim {
+        match c {
+            Claim::Watch => WireClaim::Watch,
+            Claim::Token(t) => WireClaim::Token {
+                token: t.expose().to_string(),
+            },
+            Claim::Account(a) => WireClaim::Account { account: a.clone() },
+        }
+    }
+}
+
+impl From<WireClaim> for Claim {
+    fn from(c: WireClaim) -> Claim {
+        match c {
+            WireClaim::Watch => Claim::Watch,
+            WireClaim::Token { token } => Claim::Token(SeatToken::new(token)),
+            WireClaim::Account { account } => Claim::Account(account),
+        }
+    }
+}
+
+/// A message between two nodes, on the receiving node's channel.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub(super) enum Envelope {
+    // To the owner of a match, from the node of a client (`from`).
+    Connect {
+        from: String,
+        link: u64,
+        match_id: String,
+        claim: WireClaim,
+    },
+    Message {
+        from: String,
+        link: u64,
+        text: String,
+    },
+    Disconnect {
+        from: String,
+        link: u64,
+    },
+    Join {
+        from: String,
+        request: u64,
+        match_id: String,
+        name: String,
+        token: String,
+        account: Option<String>,
+    },
+    // Back to the node of a client.
+    Connected {
+        link: u64,
+        conn: u64,
+        seat: Option<Seat>,
+    },
+    Refused {
+        link: u64,
+        refusal: WireRefusal,
+    },
+    Deliver {
+        /// The node serving the connection.
+        from: String,
+        link: u64,
+        seq: u64,
+        text: String,
+        refused: u32,
+    },
+    Closed {
+        link: u64,
+    },
+    Joined {
+        request: u64,
+        result: Result<Seat, WireRefusal>,
+    },
+}
+
+impl Envelope {
+    /// Its text on the wire (`None` only if it cannot be serialised,
+    /// which these plain fields never make happen).
+    pub fn encode(&self) -> Option<String> {
+        serde_json::to_string(self).ok()
+    }
+
+    /// An envelope read back from its text.
+    pub fn decode(text: &str) -> Result<Envelope, serde_json::Error> {
+        serde_json::from_str(text)
+    }
+}
+
+/// The Redis channel of `node`.
+pub(super) fn channel(node: &str) -> String {
+    format!("chapaev:node:{node}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One envelope of every kind.
+    fn every_kind() -> Vec<Envelope> {
+        let refusal = WireRefusal {
+            code: ErrorCode::MatchFull,
+            message: "taken".into(),
+        };
+        vec![
+            Envelope::Connect {
+                from: "a".into(),
+                link: 1,
+                match_id: "m1".into(),
+                claim: WireClaim::Token {
+                    token: "tok".into(),
+                },
+            },
+            Envelope::Message {
+                from: "a".into(),
+                link: 1,
+                text: r#"{"type":"ping"}"#.into(),
+            },
+            Envelope::Disconnect {
+                from: "a".into(),
+                link: 1,
+            },
+            Envelope::Join {
+                from: "a".into(),
+                request: 7,
+                match_id: "m1".into(),
+                name: "Anka".into(),
+                token: "00ff".into(),
+                account: Some("anka".into()),
+            },
+            Envelope::Connected {
+                link: 1,
+                conn: 42,
+                seat: Some(Seat::Second),
+            },
+            Envelope::Refused {
+                link: 1,
+                refusal: refusal.clone(),
+            },
+            Envelope::Deliver {
+                from: "b".into(),
+                link: 1,
+                seq: 3,
+                text: "{\"type\":\"match-state\",\"quote\":\"\\\"\"}".into(),
+                refused: 2,
+            },
+            Envelope::Closed { link: 1 },
+            Envelope::Joined {
+                request: 7,
+                result: Ok(Seat::Second),
+            },
+            Envelope::Joined {
+                request: 8,
+                result: Err(refusal),
+            },
+        ]
+    }
+
+    #[test]
+    fn every_envelope_comes_back_from_its_text_as_it_was_sent() {
+        for e in every_kind() {
+            let text = e.encode().unwrap();
+            assert_eq!(Envelope::decode(&text).unwrap(), e, "{text}");
+        }
+    }
+
+    #[test]
+    fn envelopes_are_tagged_by_a_kebab_case_kind_and_claims_by_as() {
+        let connect = every_kind().remove(0).encode().unwrap();
+        assert!(connect.starts_with(r#"{"kind":"connect","#), "{connect}");
+        assert!(
+            connect.contains(r#""claim":{"as":"token","token":"tok"}"#),
+            "{connect}"
+        );
+        let watch = Envelope::decode(
+            r#"{"kind":"connect","from":"a","link":2,"match_id":"m","claim":{"as":"watch"}}"#,
+        )
+        .unwrap();
+        assert!(matches!(
+            watch,
+            Envelope::Connect {
+                claim: WireClaim::Watch,
+                ..
+            }
+        ));
+    }
+
+    #[test]
+    fn an_unknown_kind_or_a_missing_field_does_not_decode() {
+        assert!(Envelope::decode(r#"{"kind":"teleport","link":1}"#).is_err());
+        assert!(Envelope::decode(r#"{"kind":"closed"}"#).is_err());
+        assert!(Envelope::decode("not json").is_err());
+    }
+
+    #[test]
+    fn a_refusal_crosses_with_its_code_and_message() {
+        let r = Refusal::new(ErrorCode::ServerBusy, "full");
+        let back = Refusal::from(WireRefusal::from(&r));
+        assert_eq!((back.code, back.message), (r.code, r.message));
+    }
+
+    #[test]
+    fn every_claim_crosses_as_what_it_claims() {
+        let token = SeatToken::new("540a0bf048fe73e1505aeb84de7f0fcd");
+        let cases = [
+            Claim::Watch,
+            Claim::Token(token.clone()),
+            Claim::Account("anka".into()),
+        ];
+        for c in cases {
+            let wire = WireClaim::from(&c);
+            let text = serde_json::to_string(&wire).unwrap();
+            let back = Claim::from(serde_json::from_str::<WireClaim>(&text).unwrap());
+            match (c, back) {
+                (Claim::Watch, Claim::Watch) => {}
+                (Claim::Token(a), Claim::Token(b)) => assert_eq!(a.expose(), b.expose()),
+                (Claim::Account(a), Claim::Account(b)) => assert_eq!(a, b),
+                (a, b) => panic!("{a:?} came back as {b:?}"),
+            }
+        }
+    }
+
+    #[test]
+    fn each_node_listens_on_a_channel_named_after_it() {
+        assert_eq!(channel("node-a"), "chapaev:node:node-a");
+        assert_ne!(channel("a"), channel("b"));
+    }
+}
