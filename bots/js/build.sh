@@ -31,6 +31,12 @@ if command -v rustup >/dev/null 2>&1; then
   fi
 fi
 
+target_dir="${CARGO_TARGET_DIR:-target}"
+case "$target_dir" in /*) ;; *) target_dir="$root/$target_dir" ;; esac
+# A wasm-bindgen-cli of the locked version on PATH is used as it is; else
+# it is installed under target/tools (cached with the build).
+export PATH="$PATH:$target_dir/tools/bin"
+
 if [ "$(wasm-bindgen --version 2>/dev/null || true)" != "wasm-bindgen $version" ]; then
   say "installing wasm-bindgen-cli $version (a few minutes, once)"
   # --locked first; a registry index without some locked dependency
@@ -39,16 +45,14 @@ if [ "$(wasm-bindgen --version 2>/dev/null || true)" != "wasm-bindgen $version" 
   # its own build (the slow part of a first run) takes half the time.
   export CARGO_PROFILE_RELEASE_OPT_LEVEL=1 CARGO_PROFILE_RELEASE_DEBUG=0 \
     CARGO_PROFILE_RELEASE_LTO=false CARGO_PROFILE_RELEASE_CODEGEN_UNITS=16
-  cargo install wasm-bindgen-cli --version "$version" --locked \
-    || cargo install wasm-bindgen-cli --version "$version"
+  cargo install --root "$target_dir/tools" wasm-bindgen-cli --version "$version" --locked \
+    || cargo install --root "$target_dir/tools" wasm-bindgen-cli --version "$version"
   unset CARGO_PROFILE_RELEASE_OPT_LEVEL CARGO_PROFILE_RELEASE_DEBUG \
     CARGO_PROFILE_RELEASE_LTO CARGO_PROFILE_RELEASE_CODEGEN_UNITS
 fi
 
 cargo build -p chapaev-js --release --target "$target"
 
-target_dir="${CARGO_TARGET_DIR:-target}"
-case "$target_dir" in /*) ;; *) target_dir="$root/$target_dir" ;; esac
 wasm="$target_dir/$target/release/chapaev_js.wasm"
 [ -f "$wasm" ] || { say "cargo built no $wasm"; exit 1; }
 
