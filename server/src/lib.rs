@@ -24,17 +24,17 @@
 //! | [`metrics`] | the Prometheus metrics |
 //! | `token` | seat tokens, account keys and ids |
 //! | `refusal` | errors sent to clients, with their HTTP statuses |
-//! | [`loopback`] | the HTTP client of the server's own tools (`crashtest`, `loadgen`) |
 //! | [`local_postgres`], [`local_redis`] | throwaway servers for tests |
 //!
-//! Public are only the modules the server's binaries and tests use.
+//! Public are only the modules the server's binaries and tests use. The
+//! HTTP client those share is not here but in `tools/loopback.rs`, which
+//! each of them includes.
 
 mod accounts;
 pub mod app;
 pub mod config;
 pub mod local_postgres;
 pub mod local_redis;
-pub mod loopback;
 pub mod metrics;
 mod play;
 mod refusal;
