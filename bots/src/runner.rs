@@ -10,13 +10,14 @@
 //! the server is noted in the [`RunReport`] and the match goes on: the bot
 //! is asked again only when the match changes (a refused turn stays the
 //! bot's until its clock runs out). A dropped connection or a restarted
-//! server is reconnected with exponential backoff (the server sends the
-//! full state again); outgoing messages pass a token bucket well below the
-//! server's rate limit. [`Runner::play`] returns when the match is over.
+//! server is reconnected with exponential backoff and full jitter (the
+//! server sends the full state again); outgoing messages pass a token
+//! bucket well below the server's rate limit. [`Runner::play`] returns when the match is over.
 
 use crate::bot::{Bot, Context, Decision};
 use crate::follow::{Followed, Follower};
 use futures_util::{SinkExt, StreamExt};
+use game::noise::SplitMix64;
 use game::protocol::{ClientMessage, ErrorCode, ServerMessage, PROTOCOL_VERSION};
 use game::token::SeatToken;
 use game::{Config, MatchRecord, MatchResult, Seat, ShotOutcome, Side};
@@ -150,15 +151,36 @@ pub struct SeatGrant {
     pub ws: String,
 }
 
-/// How the runner reconnects a dropped WebSocket: waits `first`, doubling
-/// up to `max`, and gives up after `max_attempts` failed attempts in a row
-/// or `max_total` without a connection that brought the match state.
+/// How the runner reconnects a dropped WebSocket: waits up to `first`,
+/// the ceiling doubling up to `max`, each wait drawn uniformly below its
+/// ceiling (full jitter: the bots a server restart dropped together do not
+/// come back together), and gives up after `max_attempts` failed attempts
+/// in a row or `max_total` without a connection that brought the match
+/// state.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Backoff {
     pub first: Duration,
     pub max: Duration,
     pub max_attempts: u32,
     pub max_total: Duration,
+}
+
+impl Backoff {
+    /// The wait under `ceiling`, drawn from `rng` (full jitter).
+    pub fn jittered(&self, ceiling: Duration, rng: &mut SplitMix64) -> Duration {
+        ceiling.mul_f64(rng.next_f64())
+    }
+
+    /// The jitter's generator for one match in this process: seeded by the
+    /// process id and the match id, so that processes and matches differ
+    /// and a run is reproducible from them.
+    pub fn rng_for(match_id: &str) -> SplitMix64 {
+        use std::hash::{Hash, Hasher};
+        // SipHash with fixed keys: the same for the same match id.
+        let mut hasher = std::hash::DefaultHasher::new();
+        match_id.hash(&mut hasher);
+        SplitMix64::for_shot(hasher.finish(), std::process::id())
+    }
 }
 
 impl Default for Backoff {
@@ -427,6 +449,7 @@ impl Runner {
         let mut connections = 0u32;
         let mut attempts = 0u32;
         let mut wait = backoff.first;
+        let mut jitter = Backoff::rng_for(&grant.match_id);
         let mut since = Instant::now();
         loop {
             let dropped = match tokio_tungstenite::connect_async(url.as_str()).await {
@@ -462,7 +485,7 @@ impl Runner {
                     source: Box::new(dropped),
                 });
             }
-            tokio::time::sleep(wait).await;
+            tokio::time::sleep(backoff.jittered(wait, &mut jitter)).await;
             wait = (wait * 2).min(backoff.max);
         }
         // The bot may still be out deciding a move nobody asks for any more.
@@ -841,6 +864,24 @@ mod tests {
             assert_eq!(b.take(t1), Duration::ZERO);
         }
         assert!(b.take(t1) > Duration::ZERO);
+    }
+
+    #[test]
+    fn reconnection_waits_are_drawn_below_their_ceiling_and_differ_by_match() {
+        let backoff = Backoff::default();
+        let ceiling = Duration::from_secs(1);
+        let mut rng = Backoff::rng_for("m1");
+        let waits: Vec<Duration> = (0..1000)
+            .map(|_| backoff.jittered(ceiling, &mut rng))
+            .collect();
+        assert!(waits.iter().all(|w| *w < ceiling));
+        assert!(waits.iter().any(|w| *w < Duration::from_millis(100)));
+        assert!(waits.iter().any(|w| *w > Duration::from_millis(900)));
+        // Reproducible for a match in this process; another match differs.
+        let again = backoff.jittered(ceiling, &mut Backoff::rng_for("m1"));
+        assert_eq!(again, waits[0]);
+        let other = backoff.jittered(ceiling, &mut Backoff::rng_for("m2"));
+        assert_ne!(other, waits[0]);
     }
 
     #[test]

@@ -24,17 +24,16 @@
 //! | [`metrics`] | the Prometheus metrics |
 //! | `token` | seat tokens, account keys and ids |
 //! | `refusal` | errors sent to clients, with their HTTP statuses |
-//! | [`loopback`] | the HTTP client of the server's own tools (`crashtest`, `loadgen`) |
 //!
 //! The throwaway PostgreSQL and Redis of the tests are the
-//! `local-services` crate (`testkit/`), a dev-dependency only.
-//!
-//! Public are only the modules the server's binaries and tests use.
+//! `local-services` crate (`testkit/`), a dev-dependency only. Public are
+//! only the modules the server's binaries and tests use. The HTTP client
+//! those share is not here but in `tools/loopback.rs`, which each of them
+//! includes.
 
 mod accounts;
 pub mod app;
 pub mod config;
-pub mod loopback;
 pub mod metrics;
 mod play;
 mod refusal;

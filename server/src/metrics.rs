@@ -1,12 +1,18 @@
-//! Prometheus metrics in the text exposition format, kept in atomics (no
-//! locks on the hot path): connections, matches in memory and live, shots
-//! resolved, refused client messages, and two histograms: shot resolution
-//! time (physics and the store write, up to the broadcast) and the whole
-//! server-side shot-to-broadcast time (from the frame's arrival on its
-//! connection, so the wait in the match's queue counts too).
+//! The server's Prometheus metrics, kept in `prometheus-client`'s metric
+//! types (atomics for the counters and gauges, a short lock per
+//! observation for the histograms) and written in the Prometheus text
+//! format (version 0.0.4) by its encoder: connections, matches in memory
+//! and live, shots resolved, refused client messages, and two histograms:
+//! shot resolution time (physics and the store write, up to the broadcast)
+//! and the whole server-side shot-to-broadcast time (from the frame's
+//! arrival on its connection, so the wait in the match's queue counts too).
+//! The other layers add theirs (the store's group commits, a cluster
+//! node's share) to the same [`Registry`] before it is encoded once.
 
-use std::fmt::Write as _;
-use std::sync::atomic::{AtomicI64, AtomicU64, Ordering};
+use prometheus_client::encoding::prometheus_text;
+use prometheus_client::metrics::counter::{ConstCounter, Counter};
+use prometheus_client::metrics::gauge::{ConstGauge, Gauge};
+use prometheus_client::registry::Registry;
 use std::time::Duration;
 
 /// Upper bounds of the latency histograms' buckets, seconds.
@@ -14,90 +20,87 @@ pub const BUCKETS: [f64; 12] = [
     0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1.0, 2.5,
 ];
 
+/// The `Content-Type` of the text [`encode`] writes.
+pub const CONTENT_TYPE: &str = prometheus_text::CONTENT_TYPE;
+
+/// The metrics registered in `registry` as Prometheus text. Counters are
+/// registered without their `_total`, which the encoder appends; help
+/// texts without their final period, which the registry appends.
+pub fn encode(registry: &Registry) -> String {
+    let mut out = String::new();
+    prometheus_text::encode(&mut out, registry).expect("writing to a String does not fail");
+    out
+}
+
 /// The server's counters and gauges.
 #[derive(Debug, Default)]
 pub struct Metrics {
-    connections: AtomicI64,
-    rooms: AtomicI64,
-    live: AtomicI64,
-    shots: AtomicU64,
-    refused: AtomicU64,
+    connections: Gauge,
+    rooms: Gauge,
+    live: Gauge,
+    shots: Counter,
+    refused: Counter,
     resolution: Histogram,
     to_broadcast: Histogram,
 }
 
-/// A latency histogram over [`BUCKETS`] (cumulative, as Prometheus wants).
-#[derive(Debug, Default)]
-pub struct Histogram {
-    buckets: [AtomicU64; BUCKETS.len()],
-    sum_nanos: AtomicU64,
-    count: AtomicU64,
+/// A latency histogram over [`BUCKETS`].
+#[derive(Debug, Clone)]
+pub struct Histogram(prometheus_client::metrics::histogram::Histogram);
+
+impl Default for Histogram {
+    fn default() -> Self {
+        Histogram(prometheus_client::metrics::histogram::Histogram::new(
+            BUCKETS,
+        ))
+    }
 }
 
 impl Histogram {
     /// Counts one observation of `took`.
     pub fn observe(&self, took: Duration) {
-        let secs = took.as_secs_f64();
-        for (bound, bucket) in BUCKETS.iter().zip(&self.buckets) {
-            if secs <= *bound {
-                bucket.fetch_add(1, Ordering::Relaxed);
-            }
-        }
-        let nanos = u64::try_from(took.as_nanos()).unwrap_or(u64::MAX);
-        self.sum_nanos.fetch_add(nanos, Ordering::Relaxed);
-        self.count.fetch_add(1, Ordering::Relaxed);
+        self.0.observe(took.as_secs_f64());
     }
 
-    /// Appends the histogram as Prometheus text under `name`.
-    pub fn render(&self, out: &mut String, name: &str, help: &str) {
-        let _ = writeln!(out, "# HELP {name} {help}\n# TYPE {name} histogram");
-        for (bound, bucket) in BUCKETS.iter().zip(&self.buckets) {
-            let _ = writeln!(
-                out,
-                "{name}_bucket{{le=\"{bound}\"}} {}",
-                bucket.load(Ordering::Relaxed)
-            );
-        }
-        let count = self.count.load(Ordering::Relaxed);
-        let _ = writeln!(out, "{name}_bucket{{le=\"+Inf\"}} {count}");
-        let sum = self.sum_nanos.load(Ordering::Relaxed) as f64 / 1e9;
-        let _ = writeln!(out, "{name}_sum {sum}\n{name}_count {count}");
+    /// Registers the histogram in `registry` under `name`.
+    pub fn register(&self, registry: &mut Registry, name: &str, help: &str) {
+        registry.register(name, help, self.0.clone());
     }
 }
 
 impl Metrics {
     pub fn connection_opened(&self) {
-        self.connections.fetch_add(1, Ordering::Relaxed);
+        self.connections.inc();
     }
     pub fn connection_closed(&self) {
-        self.connections.fetch_sub(1, Ordering::Relaxed);
+        self.connections.dec();
     }
     pub fn connections(&self) -> i64 {
-        self.connections.load(Ordering::Relaxed)
+        self.connections.get()
     }
     pub fn room_opened(&self) {
-        self.rooms.fetch_add(1, Ordering::Relaxed);
+        self.rooms.inc();
     }
     pub fn room_closed(&self) {
-        self.rooms.fetch_sub(1, Ordering::Relaxed);
+        self.rooms.dec();
     }
     /// A match became live (`+1`) or stopped being live (`-1`).
     pub fn live_changed(&self, delta: i64) {
-        self.live.fetch_add(delta, Ordering::Relaxed);
+        self.live.inc_by(delta);
     }
     pub fn live(&self) -> i64 {
-        self.live.load(Ordering::Relaxed)
+        self.live.get()
     }
     pub fn refused(&self) {
-        self.refused.fetch_add(1, Ordering::Relaxed);
+        self.refused.inc();
     }
     pub fn shots(&self) -> u64 {
-        self.shots.load(Ordering::Relaxed)
+        self.shots.get()
     }
 
     /// A shot was resolved and stored in `took`.
     pub fn shot_resolved(&self, took: Duration) {
-        self.shots.fetch_add(1, Ordering::Relaxed);
+        self.shots.inc();
         self.resolution.observe(took);
     }
 
@@ -107,72 +110,65 @@ impl Metrics {
         self.to_broadcast.observe(took);
     }
 
-    /// The metrics as Prometheus text.
-    pub fn render(&self) -> String {
-        let mut out = String::new();
-        let mut gauge = |name: &str, help: &str, kind: &str, value: String| {
-            let _ = writeln!(
-                out,
-                "# HELP {name} {help}\n# TYPE {name} {kind}\n{name} {value}"
-            );
-        };
-        gauge(
+    /// Registers these metrics, and the process's CPU time and resident
+    /// memory as they are now, in `registry`.
+    pub fn register(&self, registry: &mut Registry) {
+        registry.register(
             "chapaev_connections",
-            "Open WebSocket connections.",
-            "gauge",
-            self.connections().to_string(),
+            "Open WebSocket connections",
+            self.connections.clone(),
         );
-        gauge(
+        registry.register(
             "chapaev_matches_in_memory",
-            "Matches held in memory (open, live, recently finished).",
-            "gauge",
-            self.rooms.load(Ordering::Relaxed).to_string(),
+            "Matches held in memory (open, live, recently finished)",
+            self.rooms.clone(),
         );
-        gauge(
+        registry.register(
             "chapaev_live_matches",
-            "Matches with both seats taken and not over.",
-            "gauge",
-            self.live().to_string(),
+            "Matches with both seats taken and not over",
+            self.live.clone(),
         );
-        gauge(
-            "chapaev_shots_resolved_total",
-            "Shots resolved and stored.",
-            "counter",
-            self.shots().to_string(),
+        registry.register(
+            "chapaev_shots_resolved",
+            "Shots resolved and stored",
+            self.shots.clone(),
         );
-        gauge(
-            "chapaev_refused_messages_total",
-            "Client messages answered with an error.",
-            "counter",
-            self.refused.load(Ordering::Relaxed).to_string(),
+        registry.register(
+            "chapaev_refused_messages",
+            "Client messages answered with an error",
+            self.refused.clone(),
         );
         if let Some(cpu) = cpu_seconds() {
-            gauge(
-                "process_cpu_seconds_total",
-                "CPU time the server process has used (user and system).",
-                "counter",
-                cpu.to_string(),
+            registry.register(
+                "process_cpu_seconds",
+                "CPU time the server process has used (user and system)",
+                ConstCounter::new(cpu),
             );
         }
         if let Some(rss) = resident_bytes() {
-            gauge(
+            registry.register(
                 "process_resident_memory_bytes",
-                "Resident memory of the server process.",
-                "gauge",
-                rss.to_string(),
+                "Resident memory of the server process",
+                ConstGauge::new(i64::try_from(rss).unwrap_or(i64::MAX)),
             );
         }
-        self.resolution.render(
-            &mut out,
+        self.resolution.register(
+            registry,
             "chapaev_shot_resolution_seconds",
-            "Time from a shot's turn in its match to its broadcast (physics and store write).",
+            "Time from a shot's turn in its match to its broadcast (physics and store write)",
         );
-        self.to_broadcast.render(
-            &mut out,
+        self.to_broadcast.register(
+            registry,
             "chapaev_shot_to_broadcast_seconds",
-            "Time from a shot's frame arriving on its connection to its broadcast (queueing included).",
+            "Time from a shot's frame arriving on its connection to its broadcast (queueing included)",
         );
-        out
+    }
+
+    /// These metrics alone as Prometheus text.
+    pub fn render(&self) -> String {
+        let mut registry = Registry::default();
+        self.register(&mut registry);
+        encode(&registry)
     }
 }
 
@@ -237,5 +233,37 @@ mod tests {
         assert_eq!(cpu_seconds_in(stat), Some(3.25));
         assert_eq!(cpu_seconds_in("no parenthesis"), None);
         assert_eq!(cpu_seconds_in("1 (x) S 1 2"), None);
+    }
+
+    #[test]
+    fn names_help_and_types_are_those_of_the_prometheus_text_format() {
+        let m = Metrics::default();
+        m.refused();
+        let text = m.render();
+        for family in [
+            "# HELP chapaev_connections Open WebSocket connections.\n\
+             # TYPE chapaev_connections gauge\n\
+             chapaev_connections 0\n",
+            "# HELP chapaev_shots_resolved_total Shots resolved and stored.\n\
+             # TYPE chapaev_shots_resolved_total counter\n\
+             chapaev_shots_resolved_total 0\n",
+            "# TYPE chapaev_refused_messages_total counter\n\
+             chapaev_refused_messages_total 1\n",
+            "# TYPE chapaev_shot_resolution_seconds histogram\n",
+            "chapaev_shot_to_broadcast_seconds_bucket{le=\"1\"} 0\n\
+             chapaev_shot_to_broadcast_seconds_bucket{le=\"2.5\"} 0\n\
+             chapaev_shot_to_broadcast_seconds_bucket{le=\"+Inf\"} 0\n\
+             chapaev_shot_to_broadcast_seconds_sum 0.0\n\
+             chapaev_shot_to_broadcast_seconds_count 0\n",
+        ] {
+            assert!(text.contains(family), "{family}\nnot in\n{text}");
+        }
+        if cpu_seconds().is_some() {
+            assert!(text.contains("# TYPE process_cpu_seconds_total counter\n"));
+            assert!(text.contains("# TYPE process_resident_memory_bytes gauge\n"));
+        }
+        // Version 0.0.4, not OpenMetrics: no end marker.
+        assert!(!text.contains("# EOF"), "{text}");
+        assert!(CONTENT_TYPE.starts_with("text/plain; version=0.0.4"));
     }
 }

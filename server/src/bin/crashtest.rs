@@ -18,6 +18,10 @@
 //! target/release/crashtest --matches 1000 --kills 3 --play-seconds 10
 //! ```
 
+// The HTTP client shared with the tests (not in the server library).
+#[path = "../../tools/loopback.rs"]
+mod loopback;
+
 use clap::Parser;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -81,7 +85,7 @@ enum CrashError {
     #[error("HTTP: {0}")]
     Http(String),
     #[error("HTTP: {0}")]
-    Request(#[from] server::loopback::HttpError),
+    Request(#[from] loopback::HttpError),
     #[error("JSON: {0}")]
     Json(#[from] serde_json::Error),
     #[error("server: {0}")]
@@ -912,15 +916,14 @@ async fn two_seats(addr: &str) -> Result<(String, String, String), CrashError> {
             .ok_or_else(|| CrashError::Http(format!("no {k} in {v}")))
     };
     let (status, body) =
-        server::loopback::request(addr, "POST", "/api/matches", r#"{"name":"crash"}"#).await?;
+        loopback::request(addr, "POST", "/api/matches", &[], r#"{"name":"crash"}"#).await?;
     if status != 201 {
         return Err(CrashError::Http(format!("create: {status} {body}")));
     }
     let created: serde_json::Value = serde_json::from_str(&body)?;
     let id = field(&created, "match_id")?;
     let path = format!("/api/matches/{id}/join");
-    let (status, body) =
-        server::loopback::request(addr, "POST", &path, r#"{"name":"crash"}"#).await?;
+    let (status, body) = loopback::request(addr, "POST", &path, &[], r#"{"name":"crash"}"#).await?;
     if status != 200 {
         return Err(CrashError::Http(format!("join {id}: {status} {body}")));
     }
@@ -940,7 +943,7 @@ async fn cross_check(
         .map(|(m, id)| async move {
             let acked = ledger.acked_of(m);
             let answer =
-                server::loopback::request(addr, "GET", &format!("/api/matches/{id}"), "").await;
+                loopback::request(addr, "GET", &format!("/api/matches/{id}"), &[], "").await;
             let summary = match answer {
                 Ok((200, body)) => serde_json::from_str::<server::store::Summary>(&body)
                     .map_err(|e| format!("{id}: {e}")),

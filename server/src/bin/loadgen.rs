@@ -27,6 +27,10 @@
 //!     --matches 50 --clients 400 --seconds 20
 //! ```
 
+// The HTTP client shared with the tests (not in the server library).
+#[path = "../../tools/loopback.rs"]
+mod loopback;
+
 use clap::Parser;
 use futures_util::{SinkExt, StreamExt};
 use game::noise::SplitMix64;
@@ -83,7 +87,7 @@ enum LoadError {
 
 /// One request; the body of a 2xx answer.
 async fn http(addr: &str, method: &str, path: &str, body: &str) -> Result<String, LoadError> {
-    let (status, text) = server::loopback::request(addr, method, path, body)
+    let (status, text) = loopback::request(addr, method, path, &[], body)
         .await
         .map_err(|e| LoadError::Http(e.to_string()))?;
     if !(200..300).contains(&status) {

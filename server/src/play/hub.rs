@@ -24,6 +24,8 @@ use bots::Level;
 use game::protocol::ErrorCode;
 use game::session::{check_turn_seconds, SeatSpec};
 use game::{Config, Game, NoiseKey, Replay, ReplayError, Seat};
+use prometheus_client::metrics::gauge::ConstGauge;
+use prometheus_client::registry::Registry;
 use std::collections::HashMap;
 use std::future::Future;
 use std::net::IpAddr;
@@ -265,9 +267,10 @@ impl Hub {
         }
     }
 
-    /// On a node of a cluster, its share as Prometheus text: matches it
-    /// plays and relays, and the connections it relays and serves.
-    pub fn render_cluster_metrics(&self, out: &mut String) {
+    /// On a node of a cluster, registers its share in `registry`:
+    /// matches it plays and relays, and the connections it relays and
+    /// serves, as they are now.
+    pub fn register_cluster_metrics(&self, registry: &mut Registry) {
         let Some(cluster) = self.cluster() else {
             return;
         };
@@ -277,33 +280,30 @@ impl Hub {
             (owned, rooms.len() - owned)
         };
         let (links, served) = cluster.connection_counts();
-        use std::fmt::Write as _;
         for (name, help, value) in [
             (
-                "matches_owned",
-                "Matches this node plays (holds the lease of).",
+                "chapaev_cluster_matches_owned",
+                "Matches this node plays (holds the lease of)",
                 owned,
             ),
             (
-                "matches_relayed",
-                "Matches played on other nodes that this node relays.",
+                "chapaev_cluster_matches_relayed",
+                "Matches played on other nodes that this node relays",
                 relayed,
             ),
             (
-                "connections_relayed",
-                "This node's connections to matches played elsewhere.",
+                "chapaev_cluster_connections_relayed",
+                "This node's connections to matches played elsewhere",
                 links,
             ),
             (
-                "connections_served",
-                "Connections of other nodes' clients to matches played here.",
+                "chapaev_cluster_connections_served",
+                "Connections of other nodes' clients to matches played here",
                 served,
             ),
         ] {
-            let _ = writeln!(
-                out,
-                "# HELP chapaev_cluster_{name} {help}\n# TYPE chapaev_cluster_{name} gauge\nchapaev_cluster_{name} {value}"
-            );
+            let value = i64::try_from(value).unwrap_or(i64::MAX);
+            registry.register(name, help, ConstGauge::new(value));
         }
     }
 

@@ -13,7 +13,8 @@ use super::{AfterMove, Status, StoreError};
 use crate::metrics::Histogram;
 use game::rating::Score;
 use game::{RecordedMove, Seat};
-use std::sync::atomic::{AtomicU64, Ordering};
+use prometheus_client::metrics::counter::Counter;
+use prometheus_client::registry::Registry;
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::Instant;
 use tokio::sync::oneshot;
@@ -113,7 +114,7 @@ struct Shared {
     /// answers (writes, commit, sync).
     commits: Histogram,
     /// Moves written by those commits.
-    moves_committed: AtomicU64,
+    moves_committed: Counter,
 }
 
 /// The queue and the writer thread.
@@ -159,21 +160,18 @@ impl GroupCommit {
         Ok(MoveWrite(answer))
     }
 
-    /// Group commits (count and duration) and the moves they wrote, as
-    /// Prometheus text.
-    pub fn render_metrics(&self, out: &mut String) {
-        use std::fmt::Write as _;
-        let moves = self.shared.moves_committed.load(Ordering::Relaxed);
-        let _ = writeln!(
-            out,
-            "# HELP chapaev_store_moves_committed_total Moves handed to group commits.\n\
-             # TYPE chapaev_store_moves_committed_total counter\n\
-             chapaev_store_moves_committed_total {moves}"
+    /// Registers the group commits (count and duration) and the moves
+    /// they wrote in `registry`.
+    pub fn register_metrics(&self, registry: &mut Registry) {
+        registry.register(
+            "chapaev_store_moves_committed",
+            "Moves handed to group commits",
+            self.shared.moves_committed.clone(),
         );
-        self.shared.commits.render(
-            out,
+        self.shared.commits.register(
+            registry,
             "chapaev_store_commit_seconds",
-            "Time of each group commit: the batch's writes, the commit and its sync.",
+            "Time of each group commit: the batch's writes, the commit and its sync",
         );
     }
 }
@@ -219,9 +217,7 @@ fn write_loop(shared: &Shared, mut backend: impl BatchWriter) {
             Err(StoreError::GroupCommit("no answer for this move".into()))
         });
         shared.commits.observe(started.elapsed());
-        shared
-            .moves_committed
-            .fetch_add(moves.len() as u64, Ordering::Relaxed);
+        shared.moves_committed.inc_by(moves.len() as u64);
         for (done, result) in answers.into_iter().zip(results) {
             let _ = done.send(result);
         }

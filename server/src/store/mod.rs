@@ -40,6 +40,7 @@ use game::name::AccountName;
 use game::rating::{Rating, RatingSystem};
 use game::token::TokenHash;
 use game::{Config, MatchRecord, MatchResult, NoiseKey, NoiseSecret, PhysicsVersion, RecordedMove};
+use prometheus_client::registry::Registry;
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use std::time::{SystemTime, UNIX_EPOCH};
@@ -468,9 +469,16 @@ pub trait Store: Send + Sync {
 
     // --- operations ---
 
-    /// The store's metrics as Prometheus text (group commits: count and
-    /// duration, and the moves they wrote).
-    fn render_metrics(&self, out: &mut String);
+    /// Registers the store's metrics (group commits: count and duration,
+    /// and the moves they wrote) in `registry`.
+    fn register_metrics(&self, registry: &mut Registry);
+
+    /// The store's metrics alone, as Prometheus text appended to `out`.
+    fn render_metrics(&self, out: &mut String) {
+        let mut registry = Registry::default();
+        self.register_metrics(&mut registry);
+        out.push_str(&crate::metrics::encode(&registry));
+    }
 
     /// Makes sure everything written is where a fresh start reads it first
     /// (on shutdown; SQLite copies its log into the database file).

@@ -28,6 +28,7 @@ use game::name::AccountName;
 use game::rating::{Rating, RatingSystem, Score};
 use game::token::TokenHash;
 use game::RecordedMove;
+use prometheus_client::registry::Registry;
 use r2d2_postgres::PostgresConnectionManager;
 use std::time::Duration;
 
@@ -577,8 +578,8 @@ impl Store for PostgresStore {
             .collect())
     }
 
-    fn render_metrics(&self, out: &mut String) {
-        self.commit.render_metrics(out);
+    fn register_metrics(&self, registry: &mut Registry) {
+        self.commit.register_metrics(registry);
     }
 }
 

@@ -23,6 +23,7 @@ use game::name::AccountName;
 use game::rating::{Rating, RatingSystem, Score};
 use game::token::TokenHash;
 use game::RecordedMove;
+use prometheus_client::registry::Registry;
 use rusqlite::{params, Connection, OptionalExtension};
 use std::path::Path;
 use std::sync::{Arc, Mutex, MutexGuard};
@@ -690,8 +691,8 @@ impl Store for SqliteStore {
         Ok(points)
     }
 
-    fn render_metrics(&self, out: &mut String) {
-        self.commit.render_metrics(out);
+    fn register_metrics(&self, registry: &mut Registry) {
+        self.commit.register_metrics(registry);
     }
 
     fn checkpoint(&self) -> Result<(), StoreError> {

@@ -8,6 +8,7 @@
 //! `rate-limited`), and the hub holds the limit on matches in memory.
 //! The game itself (`/` and its files) is [`crate::web::assets`].
 
+use crate::metrics;
 use crate::play::hub::{Hub, NewMatch, Opponent, SeatGrant};
 use crate::refusal::Refusal;
 use crate::store::{Status, StoreError};
@@ -19,6 +20,7 @@ use actix_web::{web, HttpRequest, HttpResponse};
 use bots::Level;
 use game::protocol::ErrorCode;
 use game::Config;
+use prometheus_client::registry::Registry;
 use serde::{Deserialize, Serialize};
 
 /// Longest player name, in characters.
@@ -77,12 +79,13 @@ pub(crate) async fn healthz(hub: web::Data<Hub>) -> HttpResponse {
 }
 
 pub(crate) async fn metrics(hub: web::Data<Hub>) -> HttpResponse {
-    let mut text = hub.metrics().render();
-    hub.store().render_metrics(&mut text);
-    hub.render_cluster_metrics(&mut text);
+    let mut registry = Registry::default();
+    hub.metrics().register(&mut registry);
+    hub.store().register_metrics(&mut registry);
+    hub.register_cluster_metrics(&mut registry);
     HttpResponse::Ok()
-        .content_type("text/plain; version=0.0.4")
-        .body(text)
+        .content_type(metrics::CONTENT_TYPE)
+        .body(metrics::encode(&registry))
 }
 
 /// `POST /api/matches`.

@@ -1,6 +1,10 @@
 //! End-to-end test support: the real server binary on a free port with a
-//! temporary data folder, a raw HTTP/1.1 client and a WebSocket client.
+//! temporary data folder, the tools' HTTP client and a WebSocket client.
 #![allow(dead_code)]
+
+// The HTTP client shared with the server's tools (not in the server library).
+#[path = "../../tools/loopback.rs"]
+mod loopback;
 
 use futures_util::{SinkExt, StreamExt};
 use game::protocol::{ClientMessage, ServerMessage};
@@ -8,7 +12,6 @@ use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::Duration;
-use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::TcpStream;
 use tokio_tungstenite::tungstenite::Message;
 use tokio_tungstenite::{MaybeTlsStream, WebSocketStream};
@@ -136,7 +139,7 @@ impl Drop for Server {
     }
 }
 
-/// One HTTP/1.1 request; returns the status and body.
+/// One HTTP request; returns the status and body.
 pub async fn http(addr: &str, method: &str, path: &str, body: &str) -> (u16, String) {
     http_with(addr, method, path, "", body).await
 }
@@ -149,42 +152,17 @@ pub async fn http_with(
     headers: &str,
     body: &str,
 ) -> (u16, String) {
-    let mut s = TcpStream::connect(addr).await.unwrap();
-    let req = format!(
-        "{method} {path} HTTP/1.1\r\nHost: {addr}\r\n{headers}Content-Type: application/json\r\nContent-Length: {}\r\nConnection: close\r\n\r\n{body}",
-        body.len()
-    );
-    s.write_all(req.as_bytes()).await.unwrap();
-    let mut raw = Vec::new();
-    tokio::time::timeout(Duration::from_secs(10), s.read_to_end(&mut raw))
+    let headers: Vec<(&str, &str)> = headers
+        .split("\r\n")
+        .filter(|line| !line.is_empty())
+        .map(|line| {
+            let (name, value) = line.split_once(':').expect("a header line");
+            (name.trim(), value.trim())
+        })
+        .collect();
+    loopback::request(addr, method, path, &headers, body)
         .await
-        .expect("an HTTP answer in time")
-        .unwrap();
-    let text = String::from_utf8_lossy(&raw).to_string();
-    let status: u16 = text.split_whitespace().nth(1).unwrap().parse().unwrap();
-    let (head, rest) = text.split_once("\r\n\r\n").unwrap();
-    let body = if head
-        .to_ascii_lowercase()
-        .contains("transfer-encoding: chunked")
-    {
-        dechunk(rest)
-    } else {
-        rest.to_string()
-    };
-    (status, body)
-}
-
-fn dechunk(mut s: &str) -> String {
-    let mut out = String::new();
-    while let Some((size, rest)) = s.split_once("\r\n") {
-        let n = usize::from_str_radix(size.trim(), 16).unwrap_or(0);
-        if n == 0 {
-            break;
-        }
-        out.push_str(&rest[..n]);
-        s = &rest[n + 2..];
-    }
-    out
+        .unwrap_or_else(|e| panic!("no HTTP answer: {e}"))
 }
 
 /// A WebSocket client speaking the protocol.
