@@ -25,6 +25,13 @@
 //! ulps, deterministic always): `u1 = 1 - (a >> 11) / 2^53`, `u2 = (b >>
 //! 11) / 2^53`, `r = sqrt(-2 ln u1)`, angle draw `r cos(2 pi u2)`, speed draw
 //! `r sin(2 pi u2)`.
+//!
+//! Hand-written on purpose, where a crate exists for each piece (`rand_distr`
+//! for normal draws, `libm` for `ln`, `sin`, `cos`): every match ever
+//! recorded must replay bit for bit, and a crate's next version may change
+//! its stream or its last bits. Only the ChaCha20 keystream comes from a
+//! crate (`rand_chacha`), because ChaCha20's output is fixed by its
+//! specification.
 
 use crate::config::NoiseConfig;
 use crate::secret::NoiseSecret;
