@@ -1,0 +1,292 @@
+//! The sandbox's controls, drawn where [`layout`] puts them and applied to
+//! the [`State`]: the toolbar (the lobby, the tools, walls or edges, the
+//! side panel's button on a phone, export and import), the side panel
+//! (the presets, gravity, what new discs are made of, the selected body)
+//! and the playback bar (rewind, play, the speeds and the time slider).
+//! Every control is finger-sized.
+
+use super::format::{num, speed_label};
+use super::layout::{self, NewDiscs, Row};
+use super::presets::{Kind, MAX_GALPERIN};
+use super::sim::SPEEDS;
+use super::state::State;
+use super::tools::{Tool, TOOLS};
+use crate::platform;
+use crate::route::Route;
+use crate::ui::{self, colors, Ui};
+use ::glam::DVec2;
+use engine::{Action, LineKind, Scene};
+use macroquad::prelude::Rect;
+
+/// The toolbar in a window `w` wide; the route to take, if one was asked.
+pub fn toolbar(s: &mut State, ui: &mut Ui, w: f32, compact: bool) -> Option<Route> {
+    // (name, label, selected), in the order of [`layout::toolbar`].
+    let mut items: Vec<(String, &str, bool)> = vec![("lobby".into(), "Lobby", false)];
+    for tool in TOOLS {
+        let label = match tool {
+            Tool::Select => "Select",
+            Tool::Velocity => "Velocity",
+            Tool::Disc => "Disc",
+            Tool::Point => "Point",
+            Tool::Line(LineKind::Line) => "Line",
+            Tool::Line(LineKind::Ray) => "Ray",
+            Tool::Line(LineKind::Segment) => "Segment",
+            Tool::Delete => "Delete",
+        };
+        items.push((format!("tool-{}", tool.name()), label, s.tool == tool));
+    }
+    let sensor = if s.sensor { "Edge" } else { "Wall" };
+    items.push(("sensor".into(), sensor, s.sensor));
+    if compact {
+        items.push(("panel".into(), "Panel", s.panel_open));
+    }
+    items.push(("export".into(), "Export", false));
+    items.push(("import".into(), "Import", false));
+    let mut go = None;
+    for ((name, label, selected), r) in items.iter().zip(layout::toolbar(w, compact)) {
+        if !ui.button_styled(name, label, r, true, *selected) {
+            continue;
+        }
+        match name.as_str() {
+            "lobby" => go = Some(Route::Lobby),
+            "sensor" => s.toggle_sensor(),
+            "panel" => s.toggle_panel(),
+            "import" => {
+                platform::request_file();
+                s.await_file();
+            }
+            "export" => match platform::save_file("scene.json", &s.sim.export()) {
+                Ok(m) => s.say(format!("{m} (the scene at t = {} s)", num(s.sim.t)), false),
+                Err(e) => s.say(e, true),
+            },
+            tool => {
+                if let Some(t) = TOOLS.iter().find(|t| format!("tool-{}", t.name()) == tool) {
+                    s.tool = *t;
+                }
+            }
+        }
+    }
+    go
+}
+
+/// The material of new discs.
+fn new_disc_controls(s: &mut State, ui: &mut Ui, x: f32, d: NewDiscs) {
+    ui::text("New discs", x, d.heading, 15.0, colors::MUTED);
+    let t = s.template;
+    let radius = format!("radius {}", num(t.radius));
+    if let Some(f) = stepper(ui, "new-radius", &radius, d.radius) {
+        s.template.radius = (t.radius * f).clamp(1e-4, 1e3);
+    }
+    if let Some(f) = stepper(ui, "new-mass", &format!("mass {}", num(t.mass)), d.mass) {
+        s.template.mass = (t.mass * f * f).clamp(1e-6, 1e12);
+    }
+    s.template.mu = unit_slider(ui, "new-mu", "mu", t.mu, d.mu);
+    s.template.restitution = unit_slider(ui, "new-e", "e", t.restitution, d.e);
+}
+
+/// The side panel in `r` over the scene shown.
+pub fn side_panel(s: &mut State, ui: &mut Ui, r: Rect, scene: &Scene) {
+    ui::panel(r);
+    // The presets and the world's controls, which stand where they do
+    // whatever is selected (a preset may change the selection).
+    let top = layout::side_panel(r, false);
+    let x = top.x;
+    let heading = |t: &str, y: f32| ui::text(t, x, y, 17.0, colors::ACCENT);
+
+    heading("Presets", top.presets);
+    let n = s.galperin_n;
+    if ui.button_styled(
+        "preset-galperin",
+        &format!("Galperin n={n}"),
+        top.galperin,
+        true,
+        s.kind == Kind::Galperin(n),
+    ) {
+        s.load_preset(Kind::Galperin(n));
+    }
+    if ui.button_styled("galperin-less", "-", top.galperin_less, n > 1, false) {
+        s.galperin(n - 1);
+    }
+    if ui.button_styled(
+        "galperin-more",
+        "+",
+        top.galperin_more,
+        n < MAX_GALPERIN,
+        false,
+    ) {
+        s.galperin(n + 1);
+    }
+    let presets = [
+        (
+            "preset-brownian",
+            "Brownian box",
+            top.brownian,
+            Kind::Brownian,
+        ),
+        ("preset-break", "Chapaev break", top.chapaev, Kind::Break),
+        ("preset-empty", "Empty table", top.empty, Kind::Empty),
+    ];
+    for (name, label, rect, kind) in presets {
+        if ui.button_styled(name, label, rect, true, s.kind == kind) {
+            s.load_preset(kind);
+        }
+    }
+    if ui.button("fit", "Fit view", top.fit) {
+        s.refit = true;
+    }
+
+    heading("World", top.world);
+    let g_now = s.g_edit.unwrap_or(scene.g);
+    let row = top.gravity;
+    ui::text(
+        &format!("g = {g_now:.2} m/s2"),
+        x,
+        row.y + 4.0,
+        16.0,
+        colors::TEXT,
+    );
+    let g = ui.slider("gravity", g_now, 0.0, 20.0, layout::slider_of(row));
+    s.drag_gravity(g_now, g, ui.input.down, scene);
+
+    let l = layout::side_panel(r, s.selected_body(scene).is_some());
+    if let Some(d) = l.new_discs {
+        new_disc_controls(s, ui, x, d);
+    }
+
+    match (s.selected, s.selected_body(scene).zip(l.body)) {
+        (Some(_), Some((b, c))) => {
+            heading(&format!("Body {}", b.id.0), l.selection);
+            ui::text(
+                &format!(
+                    "at ({}, {})  |v| {} m/s",
+                    num(b.pos.x),
+                    num(b.pos.y),
+                    num(b.vel.length())
+                ),
+                x,
+                c.info,
+                15.0,
+                colors::TEXT,
+            );
+            let radius = format!("radius {}", num(b.radius));
+            if let Some(f) = stepper(ui, "body-radius", &radius, c.radius) {
+                s.update_selected(scene, |b| b.radius *= f);
+            }
+            if let Some(f) = stepper(ui, "body-mass", &format!("mass {}", num(b.mass)), c.mass) {
+                s.update_selected(scene, |b| b.mass *= f * f);
+            }
+            if let Some(f) = stepper(ui, "body-mu", &format!("mu {:.2}", b.mu), c.mu) {
+                let step = if f > 1.0 { 0.05 } else { -0.05 };
+                s.update_selected(scene, |b| {
+                    b.mu = ((b.mu + step) * 100.0).round().max(0.0) / 100.0
+                });
+            }
+            if let Some(f) = stepper(ui, "body-e", &format!("e {:.2}", b.restitution), c.e) {
+                let step = if f > 1.0 { 0.1 } else { -0.1 };
+                s.update_selected(scene, |b| {
+                    b.restitution = ((b.restitution + step) * 10.0).round().clamp(0.0, 10.0) / 10.0
+                });
+            }
+            if ui.button("body-stop", "Stop it", c.stop) {
+                s.edit(Action::SetVelocity {
+                    id: b.id,
+                    vel: DVec2::ZERO,
+                });
+            }
+            if ui.button("body-delete", "Delete", c.delete) {
+                s.edit(Action::RemoveBody { id: b.id });
+            }
+        }
+        (Some(id), None) => {
+            heading(&format!("Body {}", id.0), l.selection);
+            ui::text(
+                "not in the scene at this time",
+                x,
+                l.selection + 22.0,
+                15.0,
+                colors::MUTED,
+            );
+        }
+        (None, _) => {
+            heading("Selection", l.selection);
+            for (k, line) in [
+                "Click a body to select it.",
+                "Drag it to move it; right-drag",
+                "(or the Velocity tool) to aim it.",
+                "Wheel: zoom.  Drag empty: pan.",
+                "Space: play/pause.  Del: delete.",
+            ]
+            .iter()
+            .enumerate()
+            {
+                let ly = l.selection + 22.0 + 18.0 * k as f32;
+                // As many as the panel holds.
+                if ly + 18.0 > r.y + r.h {
+                    break;
+                }
+                ui::text(line, x, ly, 15.0, colors::MUTED);
+            }
+        }
+    }
+}
+
+/// The playback bar in `r`: rewind, play, the speeds and the time slider.
+pub fn playback_bar(s: &mut State, ui: &mut Ui, r: Rect, compact: bool) {
+    ui::panel(r);
+    let l = layout::playback(r, compact);
+    if ui.button("rewind", "|<", l.rewind) {
+        s.rewind();
+    }
+    let label = if s.sim.playing { "Pause" } else { "Play" };
+    if ui.button_styled("play", label, l.play, true, s.sim.playing) {
+        s.toggle_play();
+    }
+    for (&speed, rect) in SPEEDS.iter().zip(&l.speeds) {
+        let name = format!("speed-{speed}");
+        let selected = s.sim.speed == speed;
+        if ui.button_styled(&name, &speed_label(speed), *rect, true, selected) {
+            s.set_speed(speed);
+        }
+    }
+    let (start, hi) = s.time_range();
+    let t = ui.slider("time", s.sim.t, start, hi, l.slider);
+    s.scrub(t);
+    let (tx, ty, tw) = l.time;
+    ui::text(
+        &ui::fit(&format!("t = {} s", num(s.sim.t)), 17.0, tw),
+        tx,
+        ty,
+        17.0,
+        colors::TEXT,
+    );
+}
+
+/// A labelled slider over `[0, 1]` in `row`: the value shown and returned
+/// to two decimals.
+fn unit_slider(ui: &mut Ui, id: &str, label: &str, value: f64, row: Row) -> f64 {
+    ui::text(
+        &format!("{label} {value:.2}"),
+        row.x,
+        row.y + 4.0,
+        16.0,
+        colors::TEXT,
+    );
+    let v = ui.slider(id, value, 0.0, 1.0, layout::slider_of(row));
+    (v * 100.0).round() / 100.0
+}
+
+/// A `-` / `+` pair with a label in `row`; the factor 1/1.25 or 1.25 when
+/// clicked.
+fn stepper(ui: &mut Ui, name: &str, label: &str, row: Row) -> Option<f64> {
+    ui::text(label, row.x, row.y + 13.0, 16.0, colors::TEXT);
+    let (less, more) = layout::stepper_buttons(row);
+    let less = ui.button(&format!("{name}-less"), "-", less);
+    let more = ui.button(&format!("{name}-more"), "+", more);
+    if less {
+        Some(1.0 / 1.25)
+    } else if more {
+        Some(1.25)
+    } else {
+        None
+    }
+}

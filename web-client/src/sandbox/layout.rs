@@ -1,0 +1,579 @@
+//! Where everything of the sandbox goes, as pure functions from the
+//! window's size (and whether a body's controls show) to rectangles in
+//! layout units: the world, the toolbar, the side panel and the playback
+//! bar; every button of the toolbar, the side panel and the bar; the
+//! overlays over the world; and the view that fits a scene into the
+//! world. A window narrower than a desktop's (a phone) gets the compact
+//! layout: the tools wrap in rows above the world, the playback bar takes
+//! two rows below it and the side panel opens over the world. Nothing here
+//! draws, so all of it is tested natively.
+
+use super::sim::SPEEDS;
+use super::tools::TOOLS;
+use crate::ui::TOUCH;
+use crate::viewport::Viewport;
+use ::glam::DVec2;
+use engine::Scene;
+use macroquad::prelude::{vec2, Rect};
+
+/// Height of the toolbar and the playback bar; width of the side panel.
+const TOP: f32 = 56.0;
+const BOTTOM: f32 = 60.0;
+const SIDE: f32 = 262.0;
+/// The narrowest window the desktop layout fits (narrower ones get the
+/// compact layout).
+const MIN_WIDTH: f32 = 1000.0;
+/// Gap between controls.
+pub const GAP: f32 = 4.0;
+/// The compact toolbar's buttons: Lobby, the tools, Wall/Edge, Panel,
+/// Import, Export (about 70 units each).
+const TOOLBAR_BUTTONS: usize = TOOLS.len() + 5;
+
+/// Height of a row of the side panel (a finger-sized control and a gap).
+const ROW: f32 = TOUCH + GAP;
+
+/// Width the statistics panel takes from the world area (with margins).
+pub const STATS_W: f32 = 248.0;
+
+/// Where a slider of a side panel row starts, right of its label.
+const SLIDER_AT: f32 = 118.0;
+
+/// The screen's parts in a window.
+#[derive(Clone, Copy, Debug)]
+pub struct Areas {
+    /// The compact (phone) layout.
+    pub compact: bool,
+    /// Heights of the toolbar's and the playback bar's bands.
+    pub top: f32,
+    pub bottom: f32,
+    /// Where the scene shows.
+    pub world: Rect,
+    /// The side panel (over the world in the compact layout).
+    pub side: Rect,
+    /// The playback bar.
+    pub bar: Rect,
+}
+
+/// The parts of a `w` x `h` window.
+pub fn areas(w: f32, h: f32) -> Areas {
+    let compact = w < MIN_WIDTH;
+    let (top, bottom) = if compact {
+        let rows = toolbar_rows(w);
+        (6.0 + rows * (TOUCH + GAP) + 2.0, 2.0 * (TOUCH + GAP) + 12.0)
+    } else {
+        (TOP, BOTTOM)
+    };
+    let world = if compact {
+        Rect::new(0.0, top, w, h - top - bottom)
+    } else {
+        Rect::new(0.0, top, w - SIDE - 8.0, h - top - bottom)
+    };
+    let side = if compact {
+        Rect::new(4.0, top, w - 8.0, h - top - bottom - 4.0)
+    } else {
+        Rect::new(w - SIDE - 4.0, top, SIDE, h - top - bottom - 4.0)
+    };
+    let bar = Rect::new(4.0, h - bottom, w - 8.0, bottom - 4.0);
+    Areas {
+        compact,
+        top,
+        bottom,
+        world,
+        side,
+        bar,
+    }
+}
+
+/// How many buttons a row of the compact toolbar holds in a window `w`
+/// units wide (at least 4, about 70 units each).
+fn toolbar_per_row(w: f32) -> usize {
+    (((w - 16.0) / 70.0).floor() as usize).clamp(4, TOOLBAR_BUTTONS)
+}
+
+/// The rows the compact toolbar takes in a window `w` units wide.
+fn toolbar_rows(w: f32) -> f32 {
+    TOOLBAR_BUTTONS.div_ceil(toolbar_per_row(w)) as f32
+}
+
+/// The toolbar's buttons in a window `w` wide, in order: Lobby, the tools
+/// (as [`TOOLS`]), Wall/Edge, Panel (compact only), Export, Import. On a
+/// desktop they stand in one row, Export and Import at the right; in the
+/// compact layout they wrap in rows of equal width.
+pub fn toolbar(w: f32, compact: bool) -> Vec<Rect> {
+    let (h, y) = (TOUCH, 6.0);
+    if compact {
+        let per_row = toolbar_per_row(w);
+        let bw = (w - 16.0 - GAP * (per_row - 1) as f32) / per_row as f32;
+        return (0..TOOLBAR_BUTTONS)
+            .map(|i| {
+                let (c, r) = ((i % per_row) as f32, (i / per_row) as f32);
+                Rect::new(8.0 + c * (bw + GAP), y + r * (h + GAP), bw, h)
+            })
+            .collect();
+    }
+    let mut rects = Vec::with_capacity(TOOLBAR_BUTTONS - 1);
+    // Lobby, set apart from the tools.
+    let mut x = 8.0;
+    rects.push(Rect::new(x, y, 70.0, h));
+    x += 70.0 + 14.0;
+    for i in 0..TOOLS.len() {
+        rects.push(Rect::new(x, y, 74.0, h));
+        // The last tool (Delete) is set apart from Wall/Edge.
+        x += 74.0 + if i + 1 == TOOLS.len() { 14.0 } else { GAP };
+    }
+    rects.push(Rect::new(x, y, 58.0, h));
+    // Export, then Import left of it, at the right.
+    let mut right = w - 8.0;
+    for _ in 0..2 {
+        right -= 74.0;
+        rects.push(Rect::new(right, y, 74.0, h));
+        right -= GAP;
+    }
+    rects
+}
+
+/// The playback bar's controls.
+#[derive(Clone, Debug)]
+pub struct Playback {
+    pub rewind: Rect,
+    pub play: Rect,
+    /// One per [`SPEEDS`], in order.
+    pub speeds: Vec<Rect>,
+    /// The time slider.
+    pub slider: Rect,
+    /// The time's text: its left, its top and the width it may take.
+    pub time: (f32, f32, f32),
+}
+
+/// Rewind, play, the speeds and the time slider in the bar `r`: one row
+/// on a desktop; two in the compact layout (the speeds below).
+pub fn playback(r: Rect, compact: bool) -> Playback {
+    let h = TOUCH;
+    let y = r.y + 6.0;
+    let mut x = r.x + 8.0;
+    let rewind = Rect::new(x, y, h, h);
+    x += h + GAP;
+    let play = Rect::new(x, y, 70.0, h);
+    // Room for the slider's knob beside Play.
+    x += 70.0 + 24.0;
+    let n = SPEEDS.len() as f32;
+    let (mut sx, sy, sw) = if compact {
+        let sw = (r.w - 16.0 - GAP / 2.0 * (n - 1.0)) / n;
+        (r.x + 8.0, y + h + GAP, sw)
+    } else {
+        (x, y, 44.0)
+    };
+    let speeds = SPEEDS
+        .iter()
+        .map(|_| {
+            let s = Rect::new(sx, sy, sw, h);
+            sx += sw + GAP / 2.0;
+            s
+        })
+        .collect();
+    if !compact {
+        x = sx + 24.0;
+    }
+    let label_w = if compact { 96.0 } else { 120.0 };
+    let slider = Rect::new(x, y, (r.x + r.w - label_w - 16.0 - x).max(40.0), h);
+    Playback {
+        rewind,
+        play,
+        speeds,
+        slider,
+        time: (slider.x + slider.w + 12.0, y + 13.0, label_w),
+    }
+}
+
+/// A stepper's or a slider's row of the side panel: the label at its
+/// left, the control at its right.
+pub type Row = Rect;
+
+/// A stepper row's `-` and `+` buttons.
+pub fn stepper_buttons(row: Row) -> (Rect, Rect) {
+    let h = TOUCH;
+    (
+        Rect::new(row.x + row.w - 2.0 * h - GAP, row.y, h, h),
+        Rect::new(row.x + row.w - h, row.y, h, h),
+    )
+}
+
+/// A slider row's slider, right of its label.
+pub fn slider_of(row: Row) -> Rect {
+    Rect::new(row.x + SLIDER_AT, row.y, row.w - SLIDER_AT, TOUCH)
+}
+
+/// The controls of new discs.
+#[derive(Clone, Copy, Debug)]
+pub struct NewDiscs {
+    /// The heading's top.
+    pub heading: f32,
+    /// Stepper rows.
+    pub radius: Row,
+    pub mass: Row,
+    /// Slider rows.
+    pub mu: Row,
+    pub e: Row,
+}
+
+/// The selected body's controls.
+#[derive(Clone, Copy, Debug)]
+pub struct BodyControls {
+    /// Its position and speed's line's top.
+    pub info: f32,
+    /// Stepper rows.
+    pub radius: Row,
+    pub mass: Row,
+    pub mu: Row,
+    pub e: Row,
+    pub stop: Rect,
+    pub delete: Rect,
+}
+
+/// The side panel's parts.
+#[derive(Clone, Copy, Debug)]
+pub struct SidePanel {
+    /// The text's left edge.
+    pub x: f32,
+    /// The presets' heading's top and their buttons.
+    pub presets: f32,
+    pub galperin: Rect,
+    pub galperin_less: Rect,
+    pub galperin_more: Rect,
+    pub brownian: Rect,
+    pub chapaev: Rect,
+    pub empty: Rect,
+    pub fit: Rect,
+    /// The world's heading's top and the gravity's slider row.
+    pub world: f32,
+    pub gravity: Row,
+    /// The controls of new discs, unless a body's replace them.
+    pub new_discs: Option<NewDiscs>,
+    /// The selection's heading's top (and its help lines below).
+    pub selection: f32,
+    /// The selected body's controls, when one is in the scene.
+    pub body: Option<BodyControls>,
+}
+
+/// The side panel in `r`, with the selected body's controls if `body`.
+/// Without the room for both (a panel under 720 tall), a body's controls
+/// replace those of new discs.
+pub fn side_panel(r: Rect, body: bool) -> SidePanel {
+    let x = r.x + 10.0;
+    let w = r.w - 20.0;
+    let h = TOUCH;
+    let row = |y: f32| Rect::new(x, y, w, h);
+    let mut y = r.y + 8.0;
+    let presets = y;
+    y += 22.0;
+    let galperin = Rect::new(x, y, w - 2.0 * (h + GAP), h);
+    let (galperin_less, galperin_more) = stepper_buttons(row(y));
+    y += h + 4.0;
+    let half = (w - 4.0) / 2.0;
+    let brownian = Rect::new(x, y, half, h);
+    let chapaev = Rect::new(x + half + 4.0, y, half, h);
+    y += h + 4.0;
+    let empty = Rect::new(x, y, half, h);
+    let fit = Rect::new(x + half + 4.0, y, half, h);
+    y += h + 12.0;
+    let world = y;
+    y += 22.0;
+    let gravity = row(y);
+    y += ROW;
+    let compact = r.h < 720.0;
+    let new_discs = (!(compact && body)).then(|| {
+        let heading = y;
+        y += 18.0;
+        let d = NewDiscs {
+            heading,
+            radius: row(y),
+            mass: row(y + ROW),
+            mu: row(y + 2.0 * ROW),
+            e: row(y + 3.0 * ROW),
+        };
+        y += 4.0 * ROW + 6.0;
+        d
+    });
+    let selection = y;
+    let body = body.then(|| {
+        let info = y + 22.0;
+        let y = info + 20.0;
+        let buttons = y + 4.0 * ROW + 2.0;
+        BodyControls {
+            info,
+            radius: row(y),
+            mass: row(y + ROW),
+            mu: row(y + 2.0 * ROW),
+            e: row(y + 3.0 * ROW),
+            stop: Rect::new(x, buttons, half, h),
+            delete: Rect::new(x + half + 4.0, buttons, half, h),
+        }
+    });
+    SidePanel {
+        x,
+        presets,
+        galperin,
+        galperin_less,
+        galperin_more,
+        brownian,
+        chapaev,
+        empty,
+        fit,
+        world,
+        gravity,
+        new_discs,
+        selection,
+        body,
+    }
+}
+
+/// The statistics panel over the world's top left corner.
+pub fn stats(world: Rect) -> Rect {
+    Rect::new(world.x + 8.0, world.y + 8.0, 232.0, 265.0)
+}
+
+/// Galperin's counter over the world's top right corner.
+pub fn galperin_counter(world: Rect) -> Rect {
+    let w = 330.0;
+    Rect::new(world.x + world.w - w - 8.0, world.y + 8.0, w, 112.0)
+}
+
+/// The message's box at the world's bottom for a text `text_w` wide.
+pub fn message(world: Rect, text_w: f32) -> Rect {
+    let w = text_w.min(world.w - 24.0) + 20.0;
+    Rect::new(world.x + 8.0, world.y + world.h - 36.0, w, 28.0)
+}
+
+/// A view that shows the whole scene (and the board) in `area`, leaving
+/// `stats_w` on its left for the statistics panel.
+pub fn fit(scene: &Scene, board: Option<f64>, area: Rect, stats_w: f32) -> Viewport {
+    let mut lo = DVec2::splat(f64::INFINITY);
+    let mut hi = DVec2::splat(f64::NEG_INFINITY);
+    let mut take = |p: DVec2, r: f64| {
+        if p.is_finite() {
+            lo = lo.min(p - DVec2::splat(r));
+            hi = hi.max(p + DVec2::splat(r));
+        }
+    };
+    for b in &scene.bodies {
+        take(b.pos, b.radius);
+    }
+    for q in &scene.points {
+        take(q.pos, 0.0);
+    }
+    for l in &scene.lines {
+        take(l.a, 0.0);
+        take(l.b, 0.0);
+    }
+    if let Some(size) = board {
+        take(DVec2::ZERO, size * 0.06);
+        take(DVec2::splat(size), size * 0.06);
+    }
+    if !(lo.x <= hi.x && lo.y <= hi.y) {
+        lo = DVec2::splat(-1.0);
+        hi = DVec2::splat(1.0);
+    }
+    let size = (hi - lo).max(DVec2::splat(0.05));
+    // Leave room for the statistics panel on the left of the world area.
+    let left = stats_w.min(area.w * 0.4);
+    let usable = Rect::new(area.x + left, area.y, area.w - left, area.h - 40.0);
+    let scale = (usable.w as f64 / size.x).min(usable.h as f64 / size.y) * 0.9;
+    Viewport {
+        centre: (lo + hi) / 2.0,
+        anchor: vec2(usable.x + usable.w / 2.0, usable.y + usable.h / 2.0),
+        scale: scale.clamp(1.0, 1e7),
+        flipped: false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::presets::{self, Kind};
+    use super::*;
+
+    /// Phones upright and on their side (layout units).
+    const PHONES: [(f32, f32); 3] = [(390.0, 844.0), (412.0, 915.0), (844.0, 390.0)];
+    const DESKTOPS: [(f32, f32); 2] = [(1280.0, 720.0), (1920.0, 1080.0)];
+
+    fn overlap(a: Rect, b: Rect) -> bool {
+        a.x < b.x + b.w && b.x < a.x + a.w && a.y < b.y + b.h && b.y < a.y + a.h
+    }
+
+    fn inside(inner: Rect, outer: Rect) -> bool {
+        inner.x >= outer.x - 1e-3
+            && inner.y >= outer.y - 1e-3
+            && inner.x + inner.w <= outer.x + outer.w + 1e-3
+            && inner.y + inner.h <= outer.y + outer.h + 1e-3
+    }
+
+    fn apart(what: &str, rects: &[Rect]) {
+        for (i, a) in rects.iter().enumerate() {
+            for b in &rects[i + 1..] {
+                assert!(!overlap(*a, *b), "{what}: {a:?} overlaps {b:?}");
+            }
+        }
+    }
+
+    /// Every button of the side panel.
+    fn side_buttons(p: &SidePanel) -> Vec<Rect> {
+        let mut all = vec![
+            p.galperin,
+            p.galperin_less,
+            p.galperin_more,
+            p.brownian,
+            p.chapaev,
+            p.empty,
+            p.fit,
+            slider_of(p.gravity),
+        ];
+        if let Some(d) = p.new_discs {
+            let (a, b) = stepper_buttons(d.radius);
+            let (c, e) = stepper_buttons(d.mass);
+            all.extend([a, b, c, e, slider_of(d.mu), slider_of(d.e)]);
+        }
+        if let Some(b) = p.body {
+            for row in [b.radius, b.mass, b.mu, b.e] {
+                let (less, more) = stepper_buttons(row);
+                all.extend([less, more]);
+            }
+            all.extend([b.stop, b.delete]);
+        }
+        all
+    }
+
+    #[test]
+    fn the_fitted_view_shows_every_body_on_a_desktop_and_a_phone() {
+        let desktop = (Rect::new(0.0, 56.0, 750.0, 600.0), STATS_W);
+        let phone = (Rect::new(0.0, 152.0, 390.0, 584.0), 0.0);
+        for (area, stats_w) in [desktop, phone] {
+            for kind in [Kind::Galperin(4), Kind::Brownian, Kind::Break] {
+                let p = presets::build(kind);
+                let v = fit(&p.scene, p.board, area, stats_w);
+                for b in &p.scene.bodies {
+                    let s = v.to_screen(b.pos);
+                    assert!(area.contains(s), "{kind:?} in {area:?}: {s} outside");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_compact_toolbar_takes_three_rows_on_a_phone_and_one_on_a_wide_window() {
+        assert_eq!(toolbar_rows(390.0), 3.0);
+        assert_eq!(toolbar_rows(999.0), 1.0);
+        assert_eq!(toolbar_rows(200.0), 4.0);
+    }
+
+    #[test]
+    fn a_wide_window_sets_the_side_panel_right_of_the_world_between_the_bars() {
+        for (w, h) in DESKTOPS {
+            let a = areas(w, h);
+            assert!(!a.compact, "{w}x{h}");
+            assert_eq!((a.top, a.bottom), (TOP, BOTTOM));
+            assert_eq!((a.world.x, a.world.y), (0.0, TOP));
+            assert!(a.world.x + a.world.w < a.side.x, "{w}x{h}");
+            assert_eq!(a.side.w, SIDE);
+            assert!(a.bar.y >= a.world.y + a.world.h, "{w}x{h}");
+            // One row of tools, Export and Import at the right.
+            let t = toolbar(w, false);
+            assert_eq!(t.len(), TOOLBAR_BUTTONS - 1);
+            assert!(t.iter().all(|r| r.y == 6.0));
+            assert_eq!(t[t.len() - 2].x + t[t.len() - 2].w, w - 8.0);
+        }
+    }
+
+    #[test]
+    fn a_tall_window_is_compact_the_world_full_width_the_panel_over_it() {
+        for (w, h) in [(390.0, 844.0), (412.0, 915.0), (768.0, 1024.0)] {
+            let a = areas(w, h);
+            assert!(a.compact, "{w}x{h}");
+            assert_eq!((a.world.x, a.world.w), (0.0, w));
+            assert!(inside(a.side, a.world), "{w}x{h}");
+            // The toolbar wraps in rows above the world, Panel among them.
+            let t = toolbar(w, true);
+            assert_eq!(t.len(), TOOLBAR_BUTTONS);
+            assert!(t.iter().any(|r| r.y > 6.0));
+            assert!(t.iter().all(|r| r.y + r.h < a.world.y));
+            // The speeds take the bar's second row.
+            let p = playback(a.bar, true);
+            assert!(p.speeds.iter().all(|s| s.y > p.play.y + p.play.h));
+        }
+        assert!(areas(999.0, 700.0).compact && !areas(1000.0, 700.0).compact);
+    }
+
+    #[test]
+    fn every_control_is_inside_the_window_apart_and_finger_tall_at_phone_and_desktop_sizes() {
+        for (w, h) in PHONES.into_iter().chain(DESKTOPS) {
+            let window = Rect::new(0.0, 0.0, w, h);
+            let a = areas(w, h);
+            for part in [a.world, a.side, a.bar] {
+                assert!(inside(part, window), "{w}x{h}: {part:?}");
+            }
+            assert!(!overlap(a.world, a.bar), "{w}x{h}");
+            assert!(a.compact || !overlap(a.world, a.side), "{w}x{h}");
+            let tools = toolbar(w, a.compact);
+            let p = playback(a.bar, a.compact);
+            let mut bar = vec![p.rewind, p.play, p.slider];
+            bar.extend(&p.speeds);
+            for r in tools.iter().chain(&bar) {
+                assert!(inside(*r, window), "{w}x{h}: {r:?} outside");
+                assert!(r.h >= TOUCH, "{w}x{h}: {r:?} is short");
+                assert!(!overlap(*r, a.world), "{w}x{h}: {r:?} over the world");
+            }
+            for r in &bar {
+                assert!(inside(*r, a.bar), "{w}x{h}: {r:?} outside the bar");
+            }
+            let (tx, _, tw) = p.time;
+            assert!(tx + tw <= a.bar.x + a.bar.w + 1e-3, "{w}x{h}: the time");
+            apart(&format!("{w}x{h} toolbar"), &tools);
+            apart(&format!("{w}x{h} bar"), &bar);
+        }
+    }
+
+    #[test]
+    fn the_side_panels_controls_fit_it_apart_with_or_without_a_body() {
+        // A phone on its side is left out: its panel (174 tall) is shorter
+        // than its controls, which run under the playback bar.
+        for (w, h) in PHONES.into_iter().take(2).chain(DESKTOPS) {
+            let a = areas(w, h);
+            for body in [false, true] {
+                let p = side_panel(a.side, body);
+                assert_eq!(p.body.is_some(), body);
+                let all = side_buttons(&p);
+                for r in &all {
+                    assert!(inside(*r, a.side), "{w}x{h} {body}: {r:?} outside");
+                    assert!(r.h >= TOUCH, "{w}x{h}: {r:?} is short");
+                }
+                apart(&format!("{w}x{h} side panel"), &all);
+            }
+        }
+    }
+
+    #[test]
+    fn a_short_panel_swaps_the_new_disc_controls_for_the_bodys_and_a_tall_one_shows_both() {
+        let short = side_panel(areas(1280.0, 720.0).side, true);
+        assert!(short.new_discs.is_none() && short.body.is_some());
+        let tall = side_panel(areas(1920.0, 1080.0).side, true);
+        assert!(tall.new_discs.is_some() && tall.body.is_some());
+        let nothing = side_panel(areas(1280.0, 720.0).side, false);
+        assert!(nothing.new_discs.is_some() && nothing.body.is_none());
+    }
+
+    #[test]
+    fn the_overlays_stay_inside_the_world_and_apart() {
+        for (w, h) in PHONES.into_iter().chain(DESKTOPS) {
+            let a = areas(w, h);
+            let counter = galperin_counter(a.world);
+            let msg = message(a.world, 300.0);
+            let mut shown = vec![counter, msg];
+            // The statistics panel shows in the desktop layout only.
+            if !a.compact {
+                shown.push(stats(a.world));
+            }
+            for r in &shown {
+                assert!(inside(*r, a.world), "{w}x{h}: {r:?} outside");
+            }
+            apart(&format!("{w}x{h} overlays"), &shown);
+        }
+    }
+}

@@ -1,0 +1,117 @@
+//! The panels drawn over the sandbox's world: the statistics (time, speed,
+//! how far the chain is computed, the events by kind, the scene's size,
+//! the frame's time), Galperin's counter of collisions against the digits
+//! of pi, and the message line that fades after a few seconds. They read
+//! the [`State`] and change nothing; [`layout`] places them.
+
+use super::format::{num, speed_label};
+use super::layout;
+use super::state::State;
+use crate::ui::{self, colors};
+use engine::{EndReason, Scene};
+use macroquad::prelude::*;
+
+/// How long a message stays, seconds.
+const MESSAGE_SECS: f64 = 7.0;
+
+/// The statistics panel over the world `area`.
+pub fn stats(s: &State, area: Rect, scene: &Scene) {
+    let tally = &s.tally;
+    let r = layout::stats(area);
+    ui::panel(r);
+    let mut y = r.y + 8.0;
+    let mut row = |label: &str, value: String, color: Color| {
+        ui::text(label, r.x + 10.0, y, 16.0, colors::MUTED);
+        ui::text(&value, r.x + 128.0, y, 16.0, color);
+        y += 19.0;
+    };
+    let end = match s.sim.end() {
+        Some(e) if e.reason == EndReason::Rest => "end (rest)".to_string(),
+        Some(e) if e.reason == EndReason::Free => "end (free)".to_string(),
+        _ => format!("{} s", num(s.sim.computed_to())),
+    };
+    row("time", format!("{} s", num(s.sim.t)), colors::TEXT);
+    row("speed", speed_label(s.sim.speed), colors::TEXT);
+    row("computed to", end, colors::TEXT);
+    row("events", tally.physical().to_string(), colors::TEXT);
+    row("  body-body", tally.body_body.to_string(), colors::TEXT);
+    row("  body-line", tally.body_line.to_string(), colors::TEXT);
+    row("  body-point", tally.body_point.to_string(), colors::TEXT);
+    row("  stops", tally.stops.to_string(), colors::TEXT);
+    row("  fell off", tally.exits.to_string(), colors::TEXT);
+    row("edits", tally.actions.to_string(), colors::TEXT);
+    row("bodies", scene.bodies.len().to_string(), colors::TEXT);
+    row(
+        "lines, points",
+        format!("{}, {}", scene.lines.len(), scene.points.len()),
+        colors::TEXT,
+    );
+    row("frame", format!("{:.1} ms", s.frame_ms), colors::TEXT);
+    if s.sim.behind {
+        row(
+            "computing",
+            format!("{:.0} ms/frame", s.compute_ms),
+            colors::ACCENT,
+        );
+    }
+}
+
+/// Galperin's counter: collisions so far against the digits of pi.
+pub fn galperin(s: &State, area: Rect, n: u32) {
+    let count = s.tally.body_body + s.tally.body_line;
+    let target = engine::presets::pi_digits(n);
+    let r = layout::galperin_counter(area);
+    ui::panel(r);
+    ui::text("collisions", r.x + 12.0, r.y + 8.0, 16.0, colors::MUTED);
+    let done = count == target && s.sim.end().is_some_and(|e| e.reason == EndReason::Free);
+    let color = if done { colors::GOOD } else { colors::ACCENT };
+    ui::text(&count.to_string(), r.x + 12.0, r.y + 26.0, 44.0, color);
+    let digits = target.to_string();
+    let pi = format!("{}.{}", &digits[..1], &digits[1..]);
+    ui::text(
+        &format!("pi to {n} digits: {pi}"),
+        r.x + 12.0,
+        r.y + 70.0,
+        18.0,
+        colors::TEXT,
+    );
+    let ratio = format!("mass ratio 100^{} ", n - 1);
+    let status = if done { "all done" } else { "" };
+    ui::text(
+        &format!("{ratio}{status}"),
+        r.x + 12.0,
+        r.y + 90.0,
+        15.0,
+        colors::MUTED,
+    );
+}
+
+/// The message at the bottom of the world `area`, fading in its last
+/// second.
+pub fn message(s: &State, area: Rect) {
+    let Some((text, error, since)) = &s.message else {
+        return;
+    };
+    let age = s.clock - since;
+    if age > MESSAGE_SECS {
+        return;
+    }
+    let alpha = (1.0 - ((age - MESSAGE_SECS + 1.0).max(0.0))) as f32;
+    let size = 17.0;
+    let r = layout::message(area, ui::text_width(text, size));
+    draw_rectangle(
+        r.x,
+        r.y,
+        r.w,
+        r.h,
+        Color::new(0.1, 0.07, 0.05, 0.85 * alpha),
+    );
+    let c = if *error { colors::DANGER } else { colors::TEXT };
+    ui::text(
+        &ui::fit(text, size, area.w - 24.0),
+        r.x + 10.0,
+        r.y + 6.0,
+        size,
+        Color::new(c.r, c.g, c.b, alpha),
+    );
+}
