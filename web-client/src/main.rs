@@ -26,6 +26,8 @@ mod scale;
 mod screen;
 mod sign_in;
 mod story;
+#[cfg(test)]
+mod test_geometry;
 mod timeline;
 mod ui;
 mod viewport;

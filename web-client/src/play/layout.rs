@@ -246,22 +246,10 @@ pub fn meter_rect(pointer: Vec2, window: Vec2) -> Rect {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_geometry::{inside, overlap, PHONES};
     use macroquad::prelude::vec2;
 
-    /// Phones upright and on their side, a laptop, a desktop (layout units).
-    const PHONES: [(f32, f32); 3] = [(390.0, 844.0), (412.0, 915.0), (844.0, 390.0)];
     const DESKTOPS: [(f32, f32); 3] = [(1100.0, 760.0), (1280.0, 720.0), (1440.0, 900.0)];
-
-    fn overlap(a: Rect, b: Rect) -> bool {
-        a.x < b.x + b.w && b.x < a.x + a.w && a.y < b.y + b.h && b.y < a.y + a.h
-    }
-
-    fn inside(inner: Rect, outer: Rect) -> bool {
-        inner.x >= outer.x - 1e-3
-            && inner.y >= outer.y - 1e-3
-            && inner.x + inner.w <= outer.x + outer.w + 1e-3
-            && inner.y + inner.h <= outer.y + outer.h + 1e-3
-    }
 
     /// A seated player's panel during a match: as the screen fills it.
     fn playing(area: Rect, buttons: usize, chat: usize) -> PanelSpec {

@@ -390,21 +390,9 @@ pub fn fit(scene: &Scene, board: Option<f64>, area: Rect, stats_w: f32) -> Viewp
 mod tests {
     use super::super::presets::{self, Kind};
     use super::*;
+    use crate::test_geometry::{inside, overlap, PHONES};
 
-    /// Phones upright and on their side (layout units).
-    const PHONES: [(f32, f32); 3] = [(390.0, 844.0), (412.0, 915.0), (844.0, 390.0)];
     const DESKTOPS: [(f32, f32); 2] = [(1280.0, 720.0), (1920.0, 1080.0)];
-
-    fn overlap(a: Rect, b: Rect) -> bool {
-        a.x < b.x + b.w && b.x < a.x + a.w && a.y < b.y + b.h && b.y < a.y + a.h
-    }
-
-    fn inside(inner: Rect, outer: Rect) -> bool {
-        inner.x >= outer.x - 1e-3
-            && inner.y >= outer.y - 1e-3
-            && inner.x + inner.w <= outer.x + outer.w + 1e-3
-            && inner.y + inner.h <= outer.y + outer.h + 1e-3
-    }
 
     fn apart(what: &str, rects: &[Rect]) {
         for (i, a) in rects.iter().enumerate() {
