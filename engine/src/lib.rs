@@ -42,6 +42,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod calendar;
+pub mod clock;
 pub mod collapse;
 pub mod contact;
 pub mod event;

@@ -225,6 +225,12 @@ impl Crawl {
         }
     }
 
+    /// Moves the block's start `by` seconds earlier: the world's working
+    /// time moved its origin (see `clock`).
+    pub(crate) fn rebase(&mut self, by: f64) {
+        self.since -= by;
+    }
+
     /// Events, in the blocks just ended, in a row, that moved nothing.
     pub(crate) fn still(&self) -> u64 {
         self.still

@@ -234,6 +234,25 @@ impl Trajectory {
         Some((self.t0 + s).min(self.t_stop))
     }
 
+    /// The same motion on another clock: its start and stop times mapped by
+    /// `map`, an increasing change of clock (the world's working time moving
+    /// its origin, or back to absolute time; see `clock`). Position and
+    /// velocity are kept as they are.
+    pub(crate) fn retimed(&self, map: impl Fn(f64) -> f64) -> Trajectory {
+        let t0 = map(self.t0);
+        // A disc at rest stays at rest (its stop is its start).
+        let t_stop = if self.t_stop == self.t0 {
+            t0
+        } else {
+            map(self.t_stop)
+        };
+        Trajectory {
+            t0,
+            t_stop,
+            ..*self
+        }
+    }
+
     /// The same path with a different deceleration from time `t` on.
     pub(crate) fn with_alpha(&self, t: f64, alpha: f64) -> Trajectory {
         Trajectory::new(t, self.position(t), self.velocity(t), alpha)
@@ -283,6 +302,21 @@ mod tests {
         assert_eq!(tr.position(2.0), DVec2::new(-3.0, 2.0));
         assert_eq!(tr.velocity(1e9), DVec2::new(-2.0, 0.5));
         assert!(tr.stop_time().is_infinite());
+    }
+
+    #[test]
+    fn a_retimed_motion_is_the_same_motion_on_the_new_clock() {
+        let tr = Trajectory::new(3.0, DVec2::new(1.0, 2.0), DVec2::new(0.3, -0.4), 0.7);
+        let shifted = tr.retimed(|t| t - 2.0);
+        assert_eq!(shifted.start_time(), 1.0);
+        assert_eq!(shifted.stop_time(), tr.stop_time() - 2.0);
+        assert_eq!(shifted.position(1.25), tr.position(3.25));
+        assert_eq!(shifted.velocity(1.25), tr.velocity(3.25));
+        let rest = Trajectory::at_rest(3.0, DVec2::ZERO, 0.7).retimed(|t| t * 0.5);
+        assert!(!rest.is_moving());
+        let free = Trajectory::new(3.0, DVec2::ZERO, DVec2::X, 0.0).retimed(|t| t - 3.0);
+        assert_eq!(free.stop_time(), f64::INFINITY);
+        assert_eq!(free.position(2.0), DVec2::new(2.0, 0.0));
     }
 
     #[test]

@@ -22,6 +22,7 @@ pub use crate::limits::{End, EndReason, Limits};
 pub use handler::{Counter, EventHandler, ExitResponse};
 
 use crate::calendar::Calendar;
+use crate::clock::Clock;
 use crate::collapse;
 use crate::contact::{self, Mover};
 use crate::event::{Event, EventKind};
@@ -212,8 +213,12 @@ struct Corner {
 /// The live state of a computation.
 #[derive(Clone, Debug)]
 pub struct World {
+    /// Where the computation stands, in working time (see `clock`): every
+    /// time the world holds (these, the calendar's, the trajectories') is
+    /// seconds since `clock`'s origin; what it shows is absolute.
     t: f64,
     last_event_t: f64,
+    clock: Clock,
     g: f64,
     config: WorldConfig,
     ids: Vec<BodyId>,
@@ -349,6 +354,7 @@ impl World {
         let mut w = World {
             t,
             last_event_t: t,
+            clock: Clock::default(),
             g,
             config,
             ids: bodies.iter().map(|b| b.id).collect(),
@@ -417,12 +423,12 @@ impl World {
 
     /// Current time: where the computation stands.
     pub fn time(&self) -> f64 {
-        self.t
+        self.clock.absolute(self.t)
     }
 
     /// Time of the last event processed.
     pub fn last_event_time(&self) -> f64 {
-        self.last_event_t
+        self.clock.absolute(self.last_event_t)
     }
 
     /// Gravity.
@@ -446,10 +452,15 @@ impl World {
     }
 
     fn state(&self, i: usize) -> BodyState {
+        let traj = self.slots[i].traj;
         BodyState {
             id: self.ids[i],
             material: self.material[i],
-            trajectory: self.slots[i].traj,
+            trajectory: if self.clock.moved() {
+                traj.retimed(|t| self.clock.absolute(t))
+            } else {
+                traj
+            },
         }
     }
 
@@ -501,6 +512,12 @@ impl World {
         let mut crawl = Crawl::new(self.last_event_t);
         let r5 = self.config.revision.at_least_r5();
         let mut repeats = Repeats::default();
+        // From the seventh revision: the fine clock (see `clock`), and the
+        // current instant's tick (see `World::instant_tick`), worked out
+        // only once an event comes near it.
+        let fine = self.config.revision.at_least_r7();
+        let mut until = self.clock.working(limits.until);
+        let mut instant_tick: Option<f64> = None;
         loop {
             let Some((slot, t)) = self.calendar.peek() else {
                 return self.end_at_rest();
@@ -510,8 +527,8 @@ impl World {
                 // any horizon.
                 return self.end_at_rest();
             }
-            if t > limits.until {
-                self.t = self.t.max(limits.until);
+            if t > until {
+                self.t = self.t.max(until);
                 return End {
                     t: limits.until,
                     reason: EndReason::Until,
@@ -523,14 +540,24 @@ impl World {
             if collisions_left == 0 {
                 return self.end_on(EndReason::MaxCollisions);
             }
-            if t > FAR_FUTURE && !self.in_range_at(t) {
+            if self.clock.absolute(t) > FAR_FUTURE && !self.in_range_at(t) {
                 return self.end_on(EndReason::OutOfRange);
             }
+            let prev = self.last_event_t;
             if let Some(event) = self.process(slot, t, handler) {
-                let same = t == instant.0
-                    || same_instant(instant.0, t)
-                    || (instant.1 > 0
-                        && t - instant.0 <= *tick.get_or_insert_with(|| self.instant_tick()));
+                let same = if fine {
+                    // One instant while no disc moves beyond the rounding
+                    // of a position, however fine the clock.
+                    t == instant.0
+                        || ((instant.1 > 0 || same_instant(instant.0, t))
+                            && t - instant.0
+                                <= *instant_tick.get_or_insert_with(|| self.instant_tick()))
+                } else {
+                    t == instant.0
+                        || same_instant(instant.0, t)
+                        || (instant.1 > 0
+                            && t - instant.0 <= *tick.get_or_insert_with(|| self.instant_tick()))
+                };
                 if same {
                     instant.1 += 1;
                     if instant.1 > stuck_after {
@@ -550,6 +577,7 @@ impl World {
                     }
                 } else {
                     instant = (t, 0);
+                    instant_tick = None;
                     recent.clear();
                     if r5 {
                         repeats.start(event, self.last_approach);
@@ -569,6 +597,12 @@ impl World {
                 if self.config.recompute_all {
                     self.recompute_all();
                 }
+                if fine && !same && Clock::moves_for(t - prev, t) {
+                    self.rebase(t);
+                    instant.0 -= t;
+                    crawl.rebase(t);
+                    until = self.clock.working(limits.until);
+                }
                 handler.on_event(self, &event);
             }
         }
@@ -579,19 +613,48 @@ impl World {
     pub fn step<H: EventHandler + ?Sized>(&mut self, until: f64, handler: &mut H) -> Option<Event> {
         loop {
             let (slot, t) = self.calendar.peek()?;
-            if t == f64::INFINITY || t > until {
+            if t == f64::INFINITY || t > self.clock.working(until) {
                 return None;
             }
+            let prev = self.last_event_t;
             if let Some(event) = self.process(slot, t, handler) {
+                if self.config.revision.at_least_r7() && Clock::moves_for(t - prev, t) {
+                    self.rebase(t);
+                }
                 handler.on_event(self, &event);
                 return Some(event);
             }
         }
     }
 
+    /// From the seventh revision, moves the origin of the working time up
+    /// to working time `by` (the latest event's; see `clock`): every time
+    /// the world holds is re-expressed from there, so that what comes next
+    /// is resolved to the rounding of its distance from the latest event
+    /// rather than from the start.
+    fn rebase(&mut self, by: f64) {
+        self.clock.advance(by);
+        self.t -= by;
+        self.last_event_t -= by;
+        for s in &mut self.slots {
+            s.traj = s.traj.retimed(|t| t - by);
+        }
+        for p in &mut self.pending {
+            p.t -= by;
+        }
+        for c in &mut self.cross {
+            c.0 -= by;
+        }
+        self.calendar.shift(by);
+    }
+
     /// How close in time two events must be to count as one instant beyond
     /// rounding of the time itself: while the fastest disc moves less than
     /// the rounding of a position at the scale of the smallest radius.
+    /// From the seventh revision, whose clock resolves events far closer
+    /// than the rounding of the time, this alone decides (worked out for
+    /// each instant): a fast but finite sequence of hits, each moving a
+    /// disc by more than that, is no longer one instant.
     fn instant_tick(&self) -> f64 {
         let (speed, radius) = self.fastest_and_smallest(self.t);
         if speed > 0.0 {
@@ -1132,7 +1195,7 @@ impl World {
 
     fn end_on(&self, reason: EndReason) -> End {
         End {
-            t: self.last_event_t,
+            t: self.clock.absolute(self.last_event_t),
             reason,
         }
     }
@@ -1234,7 +1297,8 @@ impl World {
                     self.predict(i, true);
                     EventKind::RegionEntry { body, line }
                 } else {
-                    let removed = handler.on_region_exit(t, body, line) == ExitResponse::Remove;
+                    let removed = handler.on_region_exit(self.clock.absolute(t), body, line)
+                        == ExitResponse::Remove;
                     if removed {
                         self.remove_slot(i, t);
                     } else {
@@ -1251,7 +1315,10 @@ impl World {
         };
         self.last_event_t = t;
         self.stats.events += 1;
-        Some(Event { t, kind })
+        Some(Event {
+            t: self.clock.absolute(t),
+            kind,
+        })
     }
 
     /// Every body's next event from scratch (the naive loop, for comparison).
