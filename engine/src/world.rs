@@ -597,7 +597,7 @@ impl World {
                 if self.config.recompute_all {
                     self.recompute_all();
                 }
-                if fine && !same && Clock::moves_for(t - prev, t) {
+                if fine && self.clock.moves_for(t - prev, t, same) {
                     self.rebase(t);
                     instant.0 -= t;
                     crawl.rebase(t);
@@ -618,7 +618,9 @@ impl World {
             }
             let prev = self.last_event_t;
             if let Some(event) = self.process(slot, t, handler) {
-                if self.config.revision.at_least_r7() && Clock::moves_for(t - prev, t) {
+                if self.config.revision.at_least_r7()
+                    && self.clock.moves_for(t - prev, t, same_instant(prev, t))
+                {
                     self.rebase(t);
                 }
                 handler.on_event(self, &event);

@@ -11,7 +11,7 @@ use engine::rng::Rng;
 use engine::world::{BodyState, BroadPhase, Counter};
 use engine::{
     BodyId, BodySpec, End, EndReason, Event, EventHandler, EventKind, ExitResponse, Limits, Line,
-    LineId, LineKind, Model, Point, Scene, World, WorldConfig,
+    LineId, LineKind, Model, Point, Revision, Scene, World, WorldConfig,
 };
 use glam::DVec2;
 use std::collections::HashMap;
@@ -474,8 +474,14 @@ fn wall_restitution_below_one_scales_only_the_normal_speed() {
 // ---------------------------------------------------------------------------
 
 fn galperin(digits: i32) -> (u64, End) {
+    galperin_from(digits, 0.0, Revision::LATEST)
+}
+
+/// Galperin's billiard for `digits` digits begun at time `t`, computed
+/// under `revision`.
+fn galperin_from(digits: i32, t: f64, revision: Revision) -> (u64, End) {
     let big = 100f64.powi(digits - 1);
-    let sc = scene(
+    let mut sc = scene(
         9.81,
         vec![
             disc(1, v(1.0, 0.0), DVec2::ZERO, 0.1, 1.0, 0.0),
@@ -484,10 +490,15 @@ fn galperin(digits: i32) -> (u64, End) {
         vec![Line::new(v(0.0, -1.0), v(0.0, 1.0), LineKind::Line)],
         vec![],
     );
-    let mut world = World::new(&sc, WorldConfig::default()).unwrap();
+    sc.t = t;
+    let config = WorldConfig {
+        revision,
+        ..WorldConfig::default()
+    };
+    let mut world = World::new(&sc, config).unwrap();
     let mut counter = Counter::default();
     let limits = Limits {
-        max_events: 1_000_000_000,
+        max_events: 10_000_000_000,
         ..Limits::default()
     };
     let end = world.run(&limits, &mut counter);
@@ -538,14 +549,37 @@ galperin_test!(
     galperin_billiard_mass_ratio_1e14_makes_31415926_collisions,
     8,
     31415926,
-    ignore = "slow: 31 million events"
+    ignore = "slow: 31 million events, about 5 s with --release"
 );
 galperin_test!(
     galperin_billiard_mass_ratio_1e16_makes_314159265_collisions,
     9,
     314159265,
-    ignore = "slow: 314 million events"
+    ignore = "slow: 314 million events, about 45 s with --release"
 );
+galperin_test!(
+    galperin_billiard_mass_ratio_1e18_makes_3141592653_collisions,
+    10,
+    3141592653,
+    ignore = "slow: 3.1 billion events, about 8 min with --release"
+);
+
+/// Begun at t = 1e9 s, where an f64 time resolves 1.2e-7 s, Galperin's
+/// billiard at five digits hits about 2e-8 s apart near its end: as at
+/// nine digits from t = 0, its hits share one number of time. The fine clock
+/// of the seventh revision tells them apart and counts exactly; the sixth
+/// revision cannot.
+#[test]
+fn galperin_billiard_counts_exactly_where_its_hits_are_closer_than_the_rounding_of_the_time() {
+    let late = 1e9;
+    assert_eq!(galperin_from(5, 0.0, Revision::R6).0, 31415);
+    let (count, end) = galperin_from(5, late, Revision::R7);
+    assert_eq!(count, 31415);
+    assert_eq!(end.reason, EndReason::Free);
+    assert!(end.t > late);
+    let (old, _) = galperin_from(5, late, Revision::R6);
+    assert_ne!(old, 31415, "the sixth revision's f64 time resolves these hits");
+}
 
 // ---------------------------------------------------------------------------
 // Newton's cradle
@@ -1843,6 +1877,31 @@ fn sim_output_is_identical_across_two_runs_of_each_example() {
             assert_eq!(json["end"]["reason"], "rest", "{name}");
         }
     }
+}
+
+#[test]
+fn sim_summary_gives_the_counts_end_and_bodies_of_the_full_output_without_the_events() {
+    for name in ["break.json", "galperin.json"] {
+        let path = example(name);
+        let full = sim(&[&path], None);
+        let summary = sim(&[&path, "--summary"], None);
+        assert!(
+            summary.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&summary.stderr)
+        );
+        let full: serde_json::Value = serde_json::from_slice(&full.stdout).unwrap();
+        let summary: serde_json::Value = serde_json::from_slice(&summary.stdout).unwrap();
+        let listed = full["events"].as_array().unwrap().len() as u64;
+        assert_eq!(summary["events"].as_u64(), Some(listed), "{name}");
+        for key in ["collisions", "pressed", "collapses", "end", "bodies"] {
+            assert_eq!(summary[key], full[key], "{name}: {key}");
+        }
+    }
+    let galperin = sim(&[&example("galperin.json"), "--summary"], None);
+    let json: serde_json::Value = serde_json::from_slice(&galperin.stdout).unwrap();
+    assert_eq!(json["collisions"].as_u64(), Some(31415));
+    assert_eq!(json["end"]["reason"], "free");
 }
 
 #[test]

@@ -1,12 +1,14 @@
 //! `sim`: computes a scene file to its end and prints the events as JSON.
 //!
 //! A thin shell over the engine library: read the scene, run a [`World`],
-//! print `{events, collisions, pressed, collapses, end, bodies}`. Exit
+//! print `{events, collisions, pressed, collapses, end, bodies}` (with
+//! `--summary`, `events` is their number instead of their list). Exit
 //! status 0 on success, 2 on invalid input (the message, naming the object
 //! and field, on stderr).
 //! The contract is `docs/scene-format.md`.
 
 use clap::Parser;
+use engine::world::Counter;
 use engine::{BodyId, End, Event, EventHandler, Limits, Scene, World, WorldConfig};
 use glam::DVec2;
 use serde::Serialize;
@@ -33,11 +35,24 @@ struct Args {
     /// Stop after this many events (default 1000000, a hard cap).
     #[arg(long, value_name = "N")]
     max_events: Option<u64>,
+    /// Print the number of events instead of their list (counts, end and
+    /// final state only: for long runs, such as Galperin's billiard at
+    /// nine digits, whose list would not fit in memory).
+    #[arg(long)]
+    summary: bool,
+}
+
+/// The events of a run: their list, or with `--summary` their number.
+#[derive(Serialize)]
+#[serde(untagged)]
+enum Events {
+    List(Vec<Event>),
+    Count(u64),
 }
 
 #[derive(Serialize)]
 struct Output {
-    events: Vec<Event>,
+    events: Events,
     collisions: u64,
     /// Hits between discs pressed together obliquely, where the engine
     /// approximates the contact (0: every number is exact to rounding).
@@ -90,8 +105,15 @@ fn run(args: &Args) -> Result<Output, String> {
         max_collisions: args.max_collisions.unwrap_or(u64::MAX),
         max_events: args.max_events.unwrap_or(DEFAULT_SIM_MAX_EVENTS),
     };
-    let mut events = Collect(Vec::new());
-    let end = world.run(&limits, &mut events);
+    let (end, events) = if args.summary {
+        let mut counter = Counter::default();
+        let end = world.run(&limits, &mut counter);
+        (end, Events::Count(counter.events))
+    } else {
+        let mut list = Collect(Vec::new());
+        let end = world.run(&limits, &mut list);
+        (end, Events::List(list.0))
+    };
     let mut bodies: Vec<BodyOut> = world
         .bodies()
         .map(|b| BodyOut {
@@ -105,7 +127,7 @@ fn run(args: &Args) -> Result<Output, String> {
         collisions: world.stats().collisions(),
         pressed: world.stats().pressed,
         collapses: world.stats().collapses,
-        events: events.0,
+        events,
         end,
         bodies,
     })
