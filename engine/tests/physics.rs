@@ -555,13 +555,13 @@ galperin_test!(
     galperin_billiard_mass_ratio_1e16_makes_314159265_collisions,
     9,
     314159265,
-    ignore = "slow: 314 million events, about 45 s with --release"
+    ignore = "slow: 314 million events, about 30 s of CPU with --release"
 );
 galperin_test!(
     galperin_billiard_mass_ratio_1e18_makes_3141592653_collisions,
     10,
     3141592653,
-    ignore = "slow: 3.1 billion events, about 8 min with --release"
+    ignore = "slow: 3.1 billion events, about 4.5 min of CPU with --release"
 );
 
 /// Begun at t = 1e9 s, where an f64 time resolves 1.2e-7 s, Galperin's
@@ -578,7 +578,10 @@ fn galperin_billiard_counts_exactly_where_its_hits_are_closer_than_the_rounding_
     assert_eq!(end.reason, EndReason::Free);
     assert!(end.t > late);
     let (old, _) = galperin_from(5, late, Revision::R6);
-    assert_ne!(old, 31415, "the sixth revision's f64 time resolves these hits");
+    assert_ne!(
+        old, 31415,
+        "the sixth revision's f64 time resolves these hits"
+    );
 }
 
 // ---------------------------------------------------------------------------
