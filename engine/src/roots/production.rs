@@ -632,8 +632,9 @@ fn halley<const N: usize>(
         let denom = df * df - f * h2;
         let mut step = f * df / denom;
         let mut xn = x - step;
-        if xn == x {
-            // The step is below half an ulp: converged.
+        if xn == x && df != 0.0 {
+            // The step is below half an ulp: converged. (With `df = 0` the
+            // step is zero at a flat point, not at the root: bisect.)
             return (x, d);
         }
         if !(xn > a && xn < b) {
@@ -696,11 +697,28 @@ fn certain_value<const N: usize>(p: &Coeffs, x: f64) -> (f64, f64) {
 /// further correction is doubled until one overshoots and brackets the root
 /// tightly. `d` estimates `p'` near the root.
 #[inline(always)]
-fn polish<const N: usize>(p: &Coeffs, x: f64, mut a: f64, mut b: f64, fa: f64, d: f64) -> f64 {
+fn polish<const N: usize>(p: &Coeffs, x: f64, a: f64, b: f64, fa: f64, d: f64) -> f64 {
+    polish_with(|x| certain_value::<N>(p, x), x, a, b, fa, d)
+}
+
+/// [`polish`] for any function whose value at a point comes with a sign
+/// that can be trusted and an error bound (`value`, as [`certain_value`];
+/// a value of exactly `0.0` means "at the root within what `value` can
+/// tell"): the root of that function in `(a, b)`, where `fa` is its value
+/// at `a` and `d` estimates its derivative near the root.
+#[inline(always)]
+fn polish_with(
+    value: impl Fn(f64) -> (f64, f64),
+    x: f64,
+    mut a: f64,
+    mut b: f64,
+    fa: f64,
+    d: f64,
+) -> f64 {
     let neg_a = fa < 0.0;
     let mut x = x;
     let mut d = d;
-    let (mut v, mut e) = certain_value::<N>(p, x);
+    let (mut v, mut e) = value(x);
     let mut mult = 1.0;
     for _ in 0..100 {
         if v == 0.0 {
@@ -736,11 +754,20 @@ fn polish<const N: usize>(p: &Coeffs, x: f64, mut a: f64, mut b: f64, fa: f64, d
             let end = if xn <= a { a } else { b };
             xn = x + 0.5 * (end - x);
             if !(xn > a && xn < b) {
-                // The bracket is as tight as the format allows.
-                return x;
+                // The bracket is as tight as the format allows, or the
+                // correction points out at the end that `x` now is. A small
+                // one is rounding at the root: `x` is it. A large one comes
+                // from a derivative estimate of the wrong sign (a flat
+                // point next to a cluster): go halfway to the other end.
+                let other = if end == a { b } else { a };
+                xn = x + 0.5 * (other - x);
+                if (mult * correction).abs() <= 4.0 * f64::EPSILON * x.abs() || !(xn > a && xn < b)
+                {
+                    return x;
+                }
             }
         }
-        let (vn, en) = certain_value::<N>(p, xn);
+        let (vn, en) = value(xn);
         let slope = (vn - v) / (xn - x);
         if slope.is_finite() && slope != 0.0 && (slope < 0.0) == (d < 0.0) {
             d = slope;
@@ -757,7 +784,50 @@ fn polish<const N: usize>(p: &Coeffs, x: f64, mut a: f64, mut b: f64, fa: f64, d
         v = vn;
         e = en;
     }
-    x
+    // Out of iterations (secant steps that creep from one side towards a
+    // root with a flat neighbour): the certified bracket is still right.
+    bisect_bracket(value, a, b, neg_a, x)
+}
+
+/// The root of `value` (as in [`polish_with`]) in the certified bracket
+/// `(a, b)` whose left end has the sign `neg_a`, by bisection down to
+/// neighbouring floats: at most about 64 steps from any finite bracket.
+/// Falls back to `x` when the bracket is not finite.
+#[cold]
+#[inline(never)]
+fn bisect_bracket(
+    value: impl Fn(f64) -> (f64, f64),
+    mut a: f64,
+    mut b: f64,
+    neg_a: bool,
+    x: f64,
+) -> f64 {
+    if !(a.is_finite() && b.is_finite() && a < b) {
+        return x;
+    }
+    let (mut va, mut vb) = (f64::INFINITY, f64::INFINITY);
+    for _ in 0..200 {
+        let m = split_point(a, b);
+        if !(m > a && m < b) {
+            break;
+        }
+        let v = value(m).0;
+        if v == 0.0 {
+            return m;
+        }
+        if (v < 0.0) == neg_a {
+            a = m;
+            va = v.abs();
+        } else {
+            b = m;
+            vb = v.abs();
+        }
+    }
+    if va <= vb {
+        a
+    } else {
+        b
+    }
 }
 
 /// Relative step below which Halley hands over (the error after such a step
@@ -964,6 +1034,7 @@ fn critical_point(
     f_prev: f64,
 ) -> (f64, f64, Option<(f64, f64)>) {
     let neg_lo = g_lo < 0.0;
+    let bracket = (lo, hi);
     let mut y = start;
     for _ in 0..128 {
         let (g, dg) = horner_d::<3>(d, y);
@@ -999,23 +1070,93 @@ fn critical_point(
             y = m;
         }
     }
-    let f = signed_value::<4>(p, y);
-    if f == 0.0 {
-        // A touching (double) root: place it where the compensated p'
-        // vanishes, to an ulp, rather than where plain Newton stopped.
-        for _ in 0..4 {
-            let (g, e) = horner_comp::<3>(d, y);
-            if g.abs() <= e {
-                break;
-            }
-            let yn = y - g / horner_d::<3>(d, y).1;
-            if yn == y || !(yn > lo && yn < hi) {
-                break;
-            }
-            y = yn;
-        }
+    let mut f = signed_value::<4>(p, y);
+    if f == 0.0 || !critical_value_is_settled(d, y, f) {
+        // Inside a cluster of roots plain Newton on p' stops wherever its
+        // rounding noise hides the true critical point, which may be
+        // further away than the neighbouring roots; and a touching (double)
+        // root belongs where p' vanishes, to an ulp, not where plain Newton
+        // stopped. Locate it with certified signs of p' instead, in the
+        // bracket the caller proved.
+        y = certified_critical_point(p, d, bracket, g_lo, y);
+        f = signed_value::<4>(p, y);
     }
     (y, f, None)
+}
+
+/// True when `p(y) = f` (a trusted sign) settles the walk at the
+/// approximate critical point `y` of the quartic `p` (derivative `d`):
+/// plain Horner puts the true critical point within `delta = (|p'(y)| +
+/// err) / |p''(y)|` of `y`, over which `p` changes by about
+/// `p'' delta^2 / 2`; with `|f|` four times above that bound, `p` keeps the
+/// sign of `f` from `y` to the true critical point, so no root lies
+/// between them and the extremum has the sign of `f`. (Away from clusters
+/// `delta` is a few ulps and the test always passes.)
+#[inline(always)]
+fn critical_value_is_settled(d: &Coeffs, y: f64, f: f64) -> bool {
+    let (g, eg) = horner_bounded::<3>(d, y);
+    let eg = eg + 2.0 * U * d[2].abs() * (y * y);
+    let dg = horner_d::<3>(d, y).1;
+    let delta = (g.abs() + eg) / dg.abs();
+    f.abs() > 4.0 * dg.abs() * delta * delta
+}
+
+/// The critical point of the quartic `p` in `bracket`, where `p'` has the
+/// sign of `g_lo` at the left end and the opposite one at the right end,
+/// located by the certified polish on `p'` from `y`: every sign of `p'`
+/// from compensated Horner on coefficients that are exact (the rounding
+/// of `3 a3` is carried as its own term), so the point is right to within
+/// what that precision can tell, even inside a tight cluster of roots.
+#[cold]
+#[inline(never)]
+fn certified_critical_point(p: &Coeffs, d: &Coeffs, bracket: (f64, f64), g_lo: f64, y: f64) -> f64 {
+    let dg = horner_d::<3>(d, y).1;
+    if !(y > bracket.0 && y < bracket.1) || !(dg.is_finite() && dg != 0.0) {
+        return y;
+    }
+    polish_with(
+        |x| certain_slope(p, d, x),
+        y,
+        bracket.0,
+        bracket.1,
+        g_lo,
+        dg,
+    )
+}
+
+/// `p'(x)` of the quartic `p` (`d` = [`derivative`] of it) with a sign that
+/// can be trusted, and a bound on its error: compensated Horner on `d`,
+/// plus the rounding of `d`'s one inexact coefficient (`3 a3`; the others
+/// are exact multiples by powers of two) carried as its own term. Exact
+/// evaluation when that cannot decide and `3 a3` was exact; otherwise
+/// `0.0` ("a critical point, as far as this precision can tell").
+#[inline(always)]
+fn certain_slope(p: &Coeffs, d: &Coeffs, x: f64) -> (f64, f64) {
+    let low = two_prod(p[3], 3.0).1;
+    let (v, e) = horner_comp::<3>(d, x);
+    let t = low * x * x;
+    let w = v + t;
+    let bound = e + gamma(3) * t.abs() + 2.0 * U * w.abs();
+    if w.abs() > bound {
+        (w, bound)
+    } else if low == 0.0 {
+        let w = horner_exact::<3>(d, x);
+        (w, w.abs() * f64::EPSILON)
+    } else {
+        (0.0, bound)
+    }
+}
+
+/// `p'(x)` of the quartic `p` when its sign can be trusted (`0.0` when it
+/// cannot be told from zero), as [`signed_value`] but with the rounding of
+/// `d`'s coefficient `3 a3` in the plain bound and in the fallback.
+#[inline(always)]
+fn signed_slope(p: &Coeffs, d: &Coeffs, x: f64) -> f64 {
+    let (v, e) = horner_bounded::<3>(d, x);
+    if v.abs() > e + 2.0 * U * d[2].abs() * (x * x) || !v.is_finite() {
+        return v;
+    }
+    certain_slope(p, d, x).0
 }
 
 #[inline(never)]
@@ -1038,7 +1179,7 @@ fn quartic(a: &Coeffs, r: f64, lo: f64, hi: f64, first: bool, out: &mut Roots) {
             let gh = if fh.abs() == f64::MAX {
                 f64::MAX.copysign(d[3])
             } else {
-                signed_value::<3>(&d, h)
+                signed_slope(a, &d, h)
             };
             if variations == 1 && g0 != 0.0 && gh != 0.0 && (g0 < 0.0) != (gh < 0.0) {
                 let start = start_point::<3>(&d, (0.0, g0), (h, gh), None);
@@ -1055,7 +1196,7 @@ fn quartic(a: &Coeffs, r: f64, lo: f64, hi: f64, first: bool, out: &mut Roots) {
     // between the roots of the quadratic p'' (the inflection points).
     let (k, infl) = quadratic(d[1], 2.0 * d[2], 3.0 * d[3]);
     let mut x = l;
-    let mut gx = signed_value::<3>(&d, l);
+    let mut gx = signed_slope(a, &d, l);
     let mut i = 0;
     loop {
         let (e, ge, is_infl) = if i < k {
@@ -1064,9 +1205,9 @@ fn quartic(a: &Coeffs, r: f64, lo: f64, hi: f64, first: bool, out: &mut Roots) {
             if !(e > x && e < h) {
                 continue;
             }
-            (e, signed_value::<3>(&d, e), true)
+            (e, signed_slope(a, &d, e), true)
         } else {
-            (h, signed_value::<3>(&d, h), false)
+            (h, signed_slope(a, &d, h), false)
         };
         if gx != 0.0 && ge != 0.0 && (gx < 0.0) != (ge < 0.0) {
             let start = start_point::<3>(&d, (x, gx), (e, ge), None);
