@@ -151,6 +151,7 @@ impl Screen for Lobby {
         );
         m.insert("rated".into(), self.s.rated_request().into());
         m.insert("name".into(), self.s.name.clone().into());
+        m.insert("message".into(), self.s.message.clone().into());
         m.insert(
             "dialog".into(),
             self.dialog.as_ref().map(|d| format!("{d:?}")).into(),
