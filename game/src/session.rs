@@ -7,7 +7,10 @@
 //! admitted, the turn clock with its strikes and forfeits, the pie decision
 //! on timeout, resignation, chat, the rematch offer, the match's
 //! [`Status`], the idle-out of a match nobody watches and the delay before
-//! a built-in bot acts.
+//! a built-in bot acts: while anyone watches a match between two bots (an
+//! exhibition), each bot waits for the film of the shot before it to end
+//! and a pause more ([`WATCHED_PAUSE`]), so people can follow it; bots
+//! alone play on at full speed.
 //!
 //! A driver (the server's room task, a test, a tournament) feeds it
 //! [`Input`]s with the time they happen, as a [`Moment`] on a clock the
@@ -37,6 +40,14 @@ use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::ops::Add;
 use std::time::Duration;
+
+/// The pause after a shot's film before a bot shoots again in a match
+/// between two bots that someone watches.
+pub const WATCHED_PAUSE: Duration = Duration::from_millis(1_500);
+
+/// The longest a shot's film may hold up a watched bot (a film is never
+/// longer in play; this bounds a corrupt one).
+const LONGEST_FILM: Duration = Duration::from_secs(30);
 
 /// Timeouts in a row that forfeit a match.
 pub const STRIKES_TO_FORFEIT: u32 = 3;
@@ -219,7 +230,9 @@ pub struct SessionLimits {
     pub turn: Duration,
     /// How long a dropped player keeps the seat.
     pub grace: Duration,
-    /// How long a built-in bot waits before it acts.
+    /// How long a built-in bot waits before it acts. Zero means at once,
+    /// always (tests, tournaments); otherwise, while anyone watches two bots
+    /// play, each waits for the last shot's film and [`WATCHED_PAUSE`].
     pub bot_delay: Duration,
     /// How long a match that is not live stays with nobody connected.
     pub idle: Duration,
@@ -498,6 +511,8 @@ pub struct Session {
     rematch_pending: Option<ConnId>,
     /// When the bot that must act is asked for its move.
     bot_at: Option<Moment>,
+    /// How long the film of the last shot lasts.
+    last_film: Duration,
     /// The bot asked for its move, and the moves played when asked.
     bot_asked: Option<(Seat, usize)>,
     /// Since when nobody has been connected.
@@ -533,6 +548,7 @@ impl Session {
             rematch: None,
             rematch_pending: None,
             bot_at: None,
+            last_film: Duration::ZERO,
             bot_asked: None,
             idle_since: Some(now),
             closed: false,
@@ -1018,6 +1034,12 @@ impl Session {
         }
         match (action, played) {
             (Action::Shot(..), Some(played)) => {
+                let film = played.film.duration();
+                self.last_film = if film.is_finite() && film > 0.0 {
+                    Duration::from_secs_f64(film).min(LONGEST_FILM)
+                } else {
+                    Duration::ZERO
+                };
                 let view = self.game.view();
                 self.broadcast(ServerMessage::shot_played(played, view))
             }
@@ -1049,7 +1071,7 @@ impl Session {
                 if self.bot_asked != Some((seat, at_move)) {
                     self.bot_asked = None;
                     if self.bot_at.is_none() {
-                        self.bot_at = Some(now + self.limits.bot_delay);
+                        self.bot_at = Some(now + self.bot_delay());
                     }
                 }
             }
@@ -1066,6 +1088,19 @@ impl Session {
                 self.bot_asked = None;
                 self.clock.start(None, now);
             }
+        }
+    }
+
+    /// How long the bot that must act waits: the film of the last shot and
+    /// a pause when people watch two bots play (unless the delay is zero),
+    /// else the configured delay.
+    fn bot_delay(&self) -> Duration {
+        let exhibition = self.seats.iter().all(|s| s.spec.bot.is_some());
+        let paced = !self.limits.bot_delay.is_zero();
+        if paced && exhibition && !self.conns.is_empty() {
+            self.limits.bot_delay.max(self.last_film + WATCHED_PAUSE)
+        } else {
+            self.limits.bot_delay
         }
     }
 
@@ -1766,6 +1801,56 @@ mod tests {
             Some(at(10_000)),
             "the turn clock only"
         );
+    }
+
+    /// A match between two bots, watched by a spectator or not: the first
+    /// bot's shot is played at 5 s; how long after it the second bot is
+    /// asked, and how long the shot's film lasts.
+    fn second_bot_asked_after(watched: bool) -> (Duration, Duration) {
+        let game = Game::new(Config::default(), 7).unwrap();
+        let mut s = Session::new("m1", game, [bot("easy"), bot("hard")], limits(), at(0));
+        if watched {
+            connect(&mut s, A, None, 0);
+        }
+        let first = s.next_deadline().expect("the first bot is armed");
+        let e = s.handle(Input::Timer, first);
+        assert_eq!(kinds(&e), ["bot-to-act"]);
+        let shot = Shot::new(
+            PieceId::new(Side::White, 4).unwrap(),
+            DVec2::new(0.0, 2.0),
+            s.game().config(),
+        )
+        .unwrap();
+        let answer = Input::BotMove {
+            seat: Seat::First,
+            at_move: 0,
+            decision: BotDecision::Shot(shot),
+        };
+        let answered = at(5_000);
+        let e = s.handle(answer, answered);
+        assert_eq!(kinds(&e)[..2], ["store:Shot", "send:shot-played"]);
+        let Some(Effect::Send {
+            msg: ServerMessage::ShotPlayed { film, .. },
+            ..
+        }) = e.get(1)
+        else {
+            panic!("{:?}", kinds(&e))
+        };
+        let next = s.next_deadline().expect("a bot is armed");
+        (
+            next.saturating_since(answered),
+            Duration::from_secs_f64(film.duration()),
+        )
+    }
+
+    #[test]
+    fn watched_bots_wait_for_each_shots_film_and_a_pause_and_bots_alone_do_not() {
+        let (alone, _) = second_bot_asked_after(false);
+        assert_eq!(alone, limits().bot_delay);
+        let (watched, film) = second_bot_asked_after(true);
+        assert!(film > Duration::ZERO);
+        assert_eq!(watched, film + WATCHED_PAUSE);
+        assert!(watched > alone);
     }
 
     #[test]

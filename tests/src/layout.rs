@@ -56,9 +56,7 @@ pub fn faults(controls: &[Control], width: f64, height: f64, min_height: f64) ->
     }
     for (i, a) in controls.iter().enumerate() {
         for b in &controls[i + 1..] {
-            let dx = (a.x + a.w).min(b.x + b.w) - a.x.max(b.x);
-            let dy = (a.y + a.h).min(b.y + b.h) - a.y.max(b.y);
-            if dx > SLACK && dy > SLACK {
+            if let Some((dx, dy)) = overlap(a, b) {
                 out.push(format!(
                     "{} and {} overlap ({dx:.0}x{dy:.0} px)",
                     a.name, b.name
@@ -67,6 +65,14 @@ pub fn faults(controls: &[Control], width: f64, height: f64, min_height: f64) ->
         }
     }
     out
+}
+
+/// How far `a` and `b` overlap (width, height), beyond rounding; `None`
+/// when they do not.
+pub fn overlap(a: &Control, b: &Control) -> Option<(f64, f64)> {
+    let dx = (a.x + a.w).min(b.x + b.w) - a.x.max(b.x);
+    let dy = (a.y + a.h).min(b.y + b.h) - a.y.max(b.y);
+    (dx > SLACK && dy > SLACK).then_some((dx, dy))
 }
 
 #[cfg(test)]

@@ -458,6 +458,7 @@ async fn accounts(client: &Client, server: &Server, artifacts: &Path, window: &s
     check_layout(client, artifacts, &shot("f-player"), &page, true).await?;
     click_button(client, "lobby").await?;
     click_button(client, "sign-out").await?;
+    click_button(client, "sign-out-yes").await?;
     state_until(client, "the lobby, signed out", 10, |s| {
         s["screen"] == "lobby" && s["signed_in"].is_null() && s["buttons"]["sign-in"].is_array()
     })
@@ -764,4 +765,408 @@ fn centre(rect: &Value) -> Result<(f64, f64)> {
             "not an [x, y, w, h] rectangle: {rect}"
         ))),
     }
+}
+
+// ---- The defects a player found (issue 34), each at phone and desktop size.
+
+/// The two windows the defects are checked in: a phone held upright and a
+/// laptop.
+const PLAYER_WINDOWS: [Window; 2] = [
+    Window {
+        name: "phone",
+        width: 390,
+        height: 844,
+        dpr: 3,
+    },
+    Window {
+        name: "desktop",
+        width: 1280,
+        height: 800,
+        dpr: 1,
+    },
+];
+
+/// A scenario run in one window: the page is open on the lobby.
+type Scenario =
+    for<'a> fn(
+        &'a Client,
+        &'a Server,
+        &'a Path,
+        &'a Window,
+    ) -> std::pin::Pin<Box<dyn std::future::Future<Output = Result<()>> + Send + 'a>>;
+
+/// Runs `scenario` in a fresh browser at each of [`PLAYER_WINDOWS`],
+/// the page opened on the lobby first; fails with every window's failure.
+async fn in_player_windows(tag: &str, scenario: Scenario) {
+    let Some(Setup {
+        programs,
+        artifacts,
+        scratch,
+        server,
+        driver,
+    }) = setup(tag)
+    else {
+        return;
+    };
+    let mut failures = Vec::new();
+    for window in &PLAYER_WINDOWS {
+        let extra = [
+            format!("--window-size={},{}", window.width, window.height),
+            format!("--force-device-scale-factor={}", window.dpr),
+        ];
+        let profile = scratch.path().join(format!("profile{tag}-{}", window.name));
+        let client = driver
+            .session_with(&programs, &profile, &extra)
+            .await
+            .unwrap_or_else(|e| panic!("{e}"));
+        let outcome = async {
+            browser::fit_viewport(&client, window.width, window.height).await?;
+            client.goto(&server.url("/")).await?;
+            state_until(&client, "the lobby", 30, |s| {
+                s["screen"] == "lobby" && s["buttons"]["vs-computer-easy"].is_array()
+            })
+            .await?;
+            scenario(&client, &server, &artifacts, window).await
+        }
+        .await;
+        if let Err(e) = outcome {
+            let _ = browser::screenshot(
+                &client,
+                &artifacts.join(format!("failure{tag}-{}.png", window.name)),
+            )
+            .await;
+            if let Ok(state) = browser::eval(&client, STATE).await {
+                eprintln!("e2e: chapaev_state at the failure: {state}");
+            }
+            failures.push(format!("{}: {e}", window.name));
+        }
+        let _ = client.close().await;
+    }
+    drop(driver);
+    drop(server);
+    assert!(
+        failures.is_empty(),
+        "{}\n(screenshots and logs are in {})",
+        failures.join("\n"),
+        artifacts.display()
+    );
+}
+
+/// Saves a screenshot of what the player sees now as `fixed-<name>-<window>.png`.
+async fn snap(client: &Client, artifacts: &Path, name: &str, window: &Window) -> Result<()> {
+    let shot = format!("fixed-{name}-{}.png", window.name);
+    let png = browser::screenshot(client, &artifacts.join(&shot)).await?;
+    picture::stats(&png)?.check_drawn(&shot, 8, 0.001)
+}
+
+/// Types `keys` into the focused canvas in one go (one script, so every
+/// key lands in the same frame), as the browser delivers a fast typist's
+/// keys: `\u{8}` is Backspace, anything else a character.
+async fn type_burst(client: &Client, keys: &str) -> Result<()> {
+    const SCRIPT: &str = "const c = document.querySelector('#glcanvas');
+        for (const k of arguments[0]) {
+            if (k === '\\b') {
+                c.dispatchEvent(new KeyboardEvent('keydown', {code: 'Backspace', key: 'Backspace', bubbles: true}));
+                c.dispatchEvent(new KeyboardEvent('keyup', {code: 'Backspace', key: 'Backspace', bubbles: true}));
+                continue;
+            }
+            const code = 'Key' + k.toUpperCase();
+            c.dispatchEvent(new KeyboardEvent('keydown', {code, key: k, bubbles: true}));
+            const press = new KeyboardEvent('keypress', {code, key: k, bubbles: true});
+            Object.defineProperty(press, 'charCode', {get: () => k.charCodeAt(0)});
+            c.dispatchEvent(press);
+            c.dispatchEvent(new KeyboardEvent('keyup', {code, key: k, bubbles: true}));
+        }
+        return true;";
+    client
+        .execute(SCRIPT, vec![serde_json::json!(keys)])
+        .await?;
+    Ok(())
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn keys_typed_in_one_frame_keep_their_order_and_every_backspace_counts() {
+    in_player_windows("-typing", |client, _server, artifacts, window| {
+        Box::pin(async move {
+            click_button(client, "name").await?;
+            // Whatever the field held, 45 Backspaces empty it (it holds at
+            // most 40); then "Anka", all in one frame.
+            type_burst(client, &format!("{}Anka", "\u{8}".repeat(45))).await?;
+            state_until(client, "the name typed as Anka", 10, |s| {
+                s["name"] == "Anka"
+            })
+            .await?;
+            type_burst(client, "abcdefgh\u{8}\u{8}gh").await?;
+            state_until(client, "the name typed on in order", 10, |s| {
+                s["name"] == "Ankaabcdefgh"
+            })
+            .await?;
+            snap(client, artifacts, "typing", window).await
+        })
+    })
+    .await;
+}
+
+/// Makes an account through the API and signs in with its key pasted into
+/// the account screen; ends on the lobby, signed in. The account's name.
+async fn sign_in_by_key(client: &Client, server: &Server, window: &Window) -> Result<String> {
+    let account = format!("out-{}", window.name);
+    let (status, made) = api::post_json(
+        &server.addr,
+        "/api/accounts",
+        &serde_json::json!({ "name": account, "bot": false }),
+    )
+    .await?;
+    let key = made["key"]
+        .as_str()
+        .filter(|_| status == 201)
+        .ok_or_else(|| E2eError::Check(format!("POST /api/accounts: {status} {made}")))?
+        .to_string();
+    click_button(client, "sign-in").await?;
+    click_button(client, "account-key").await?;
+    browser::paste(client, &key).await?;
+    click_button(client, "account-use-key").await?;
+    state_until(client, "the lobby, signed in", 15, |s| {
+        s["screen"] == "lobby" && s["signed_in"] == account.as_str()
+    })
+    .await?;
+    Ok(account)
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn signing_out_asks_first_and_offers_to_copy_the_key() {
+    in_player_windows("-sign-out", |client, server, artifacts, window| {
+        Box::pin(async move {
+            let account = sign_in_by_key(client, server, window).await?;
+            click_button(client, "sign-out").await?;
+            state_until(client, "the question before signing out", 10, |s| {
+                s["dialog"] == "SignOut"
+                    && s["signed_in"] == account.as_str()
+                    && s["buttons"]["sign-out-copy"].is_array()
+            })
+            .await?;
+            snap(client, artifacts, "sign-out", window).await?;
+            click_button(client, "sign-out-copy").await?;
+            state_until(client, "the key copied, still signed in", 10, |s| {
+                s["message"].as_str().is_some_and(|m| m.contains("copied"))
+                    && s["signed_in"] == account.as_str()
+            })
+            .await?;
+            click_button(client, "sign-out-no").await?;
+            state_until(client, "still signed in after Cancel", 10, |s| {
+                s["dialog"].is_null() && s["signed_in"] == account.as_str()
+            })
+            .await?;
+            click_button(client, "sign-out").await?;
+            click_button(client, "sign-out-yes").await?;
+            state_until(client, "signed out after saying so", 10, |s| {
+                s["signed_in"].is_null() && s["buttons"]["sign-in"].is_array()
+            })
+            .await?;
+            Ok(())
+        })
+    })
+    .await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_friends_match_waits_for_the_friend_before_anyone_aims() {
+    in_player_windows("-friend", |client, server, artifacts, window| {
+        Box::pin(async move {
+            click_button(client, "vs-person").await?;
+            let waiting = state_until(client, "the friend's match, connected", 30, |s| {
+                s["screen"] == "play" && s["connected"] == true && s["animating"] == false
+            })
+            .await?;
+            // Settle a moment: nothing may offer the turn.
+            tokio::time::sleep(Duration::from_millis(600)).await;
+            let s = browser::eval(client, STATE).await?;
+            if s["my_turn"] != false
+                || s["status"] != "Waiting for your friend to join"
+                || !s["buttons"]["copy-link"].is_array()
+            {
+                return Err(E2eError::Check(format!(
+                    "alone in a friend's match the page offers the turn or no link: {s}"
+                )));
+            }
+            snap(client, artifacts, "friend-waiting", window).await?;
+            // The friend takes the seat: now it is our turn.
+            let id = waiting["match_id"].as_str().unwrap_or_default();
+            let (status, joined) = api::post_json(
+                &server.addr,
+                &format!("/api/matches/{id}/join"),
+                &serde_json::json!({ "name": "Petka" }),
+            )
+            .await?;
+            if status != 200 && status != 201 {
+                return Err(E2eError::Check(format!("join: {status} {joined}")));
+            }
+            state_until(client, "our turn once the friend joined", 15, |s| {
+                s["my_turn"] == true
+            })
+            .await?;
+            Ok(())
+        })
+    })
+    .await;
+}
+
+/// Opens a match against the easy computer and waits for our turn.
+async fn against_the_computer(client: &Client) -> Result<Value> {
+    click_button(client, "vs-computer-easy").await?;
+    state_until(client, "our turn against the computer", 30, |s| {
+        s["screen"] == "play" && s["my_turn"] == true && s["animating"] == false
+    })
+    .await
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn leaving_a_match_mid_play_asks_first_and_the_lobby_offers_the_way_back() {
+    in_player_windows("-leave", |client, _server, artifacts, window| {
+        Box::pin(async move {
+            let play = against_the_computer(client).await?;
+            let id = play["match_id"].clone();
+            click_button(client, "lobby").await?;
+            state_until(client, "the question before leaving", 10, |s| {
+                s["screen"] == "play" && s["buttons"]["leave-yes"].is_array()
+            })
+            .await?;
+            snap(client, artifacts, "leave-warning", window).await?;
+            click_button(client, "leave-no").await?;
+            state_until(client, "still in the match after Stay", 10, |s| {
+                s["screen"] == "play" && !s["buttons"]["leave-yes"].is_array()
+            })
+            .await?;
+            click_button(client, "lobby").await?;
+            click_button(client, "leave-yes").await?;
+            state_until(client, "the lobby offering the way back", 15, |s| {
+                s["screen"] == "lobby" && s["buttons"]["return-match"].is_array()
+            })
+            .await?;
+            snap(client, artifacts, "lobby-return", window).await?;
+            click_button(client, "return-match").await?;
+            state_until(client, "back in the same match", 20, |s| {
+                s["screen"] == "play" && s["match_id"] == id && s["connected"] == true
+            })
+            .await?;
+            Ok(())
+        })
+    })
+    .await;
+}
+
+/// Pulls the piece of ours nearest the middle straight down and lets go.
+async fn shoot(client: &Client, play: &Value) -> Result<()> {
+    let size = browser::eval(client, "return [window.innerWidth, window.innerHeight];").await?;
+    let (width, height) = (
+        size[0].as_f64().unwrap_or(390.0),
+        size[1].as_f64().unwrap_or(844.0),
+    );
+    let piece = play["pieces"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter(|p| p["mine"] == true)
+        .filter_map(|p| Some((p["x"].as_f64()?, p["y"].as_f64()?)))
+        .filter(|&(_, y)| y + 40.0 < height - 2.0)
+        .min_by(|a, b| {
+            let off = |p: &(f64, f64)| (p.0 - width / 2.0).abs();
+            off(a).total_cmp(&off(b))
+        })
+        .ok_or_else(|| E2eError::Check(format!("no piece of ours: {}", play["pieces"])))?;
+    let to = (piece.0, (piece.1 + 80.0).min(height - 2.0));
+    browser::drag(client, piece, to, 8).await
+}
+
+/// Whether the rectangles `a` and `b` (`[x, y, w, h]`) overlap.
+fn overlaps(a: &Value, b: &Value) -> bool {
+    let (a, b) = (serde_json::json!({ "a": a }), serde_json::json!({ "b": b }));
+    match (layout::controls(&a), layout::controls(&b)) {
+        (Ok(a), Ok(b)) => layout::overlap(&a[0], &b[0]).is_some(),
+        _ => false,
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_panels_buttons_keep_their_places_and_resigns_confirmation_stands_elsewhere() {
+    in_player_windows("-panel", |client, _server, artifacts, window| {
+        Box::pin(async move {
+            let start = against_the_computer(client).await?;
+            let fixed = ["lobby", "help", "sound", "resign"];
+            let at = |s: &Value, n: &str| s["buttons"][n].clone();
+            // Two shots each way: the log grows.
+            for round in 0..2 {
+                let ready = state_until(client, "our turn", 60, |s| {
+                    s["my_turn"] == true && s["animating"] == false
+                })
+                .await?;
+                shoot(client, &ready).await?;
+                state_until(client, "the shot counted", 30, |s| {
+                    s["shots"].as_u64().is_some_and(|n| n > 2 * round)
+                })
+                .await?;
+            }
+            let later = state_until(client, "a log of shots, our turn", 60, |s| {
+                s["my_turn"] == true && s["log"].as_array().is_some_and(|l| l.len() >= 3)
+            })
+            .await?;
+            for n in fixed {
+                if at(&start, n) != at(&later, n) {
+                    return Err(E2eError::Check(format!(
+                        "{n} moved from {} to {} as the log grew to {}",
+                        at(&start, n),
+                        at(&later, n),
+                        later["log"]
+                    )));
+                }
+            }
+            // A double tap on Resign: the second tap finds no confirmation
+            // under the finger.
+            let (x, y) = centre(&at(&start, "resign"))?;
+            click(client, x, y).await?;
+            click(client, x, y).await?;
+            let asking = state_until(client, "Resign's question", 10, |s| {
+                s["buttons"]["resign-yes"].is_array()
+            })
+            .await?;
+            if overlaps(&at(&asking, "resign-yes"), &at(&start, "resign"))
+                || asking["end_screen"] == true
+            {
+                return Err(E2eError::Check(format!(
+                    "Resign's confirmation stands under Resign: {asking}"
+                )));
+            }
+            snap(client, artifacts, "resign-question", window).await?;
+            let yes = at(&asking, "resign-yes");
+            click_button(client, "resign-yes").await?;
+            let over = state_until(client, "the match over", 30, |s| {
+                s["end_screen"] == true && s["buttons"]["rematch"].is_array()
+            })
+            .await?;
+            for n in ["resign", "resign-yes"] {
+                let was = if n == "resign" {
+                    at(&start, n)
+                } else {
+                    yes.clone()
+                };
+                if overlaps(&at(&over, "rematch"), &was) {
+                    return Err(E2eError::Check(format!(
+                        "the rematch took {n}'s place: {}",
+                        at(&over, "rematch")
+                    )));
+                }
+            }
+            for n in ["lobby", "help", "sound"] {
+                if at(&start, n) != at(&over, n) {
+                    return Err(E2eError::Check(format!(
+                        "{n} moved at the match's end: {} to {}",
+                        at(&start, n),
+                        at(&over, n)
+                    )));
+                }
+            }
+            snap(client, artifacts, "panel-over", window).await
+        })
+    })
+    .await;
 }

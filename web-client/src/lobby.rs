@@ -36,6 +36,17 @@ pub struct Lobby {
     /// The lists' requests in flight, one per list.
     listing: [Option<Pending<Vec<Summary>>>; 3],
     fetching_profile: Option<Pending<Profile>>,
+    /// A question over the lobby, if one is open.
+    dialog: Option<Dialog>,
+}
+
+/// The questions the lobby asks over itself.
+#[derive(Clone, Debug, PartialEq)]
+enum Dialog {
+    /// The player left this match while it was on: offer the way back.
+    Return(String),
+    /// "Sign out" was pressed: the key is the only way into the account.
+    SignOut,
 }
 
 impl Lobby {
@@ -50,6 +61,9 @@ impl Lobby {
             api,
             creating: None,
             listing: [None, None, None],
+            dialog: platform::storage_get(crate::play::LEFT_KEY)
+                .filter(|id| crate::route::valid_id(id))
+                .map(Dialog::Return),
         }
     }
 
@@ -109,6 +123,10 @@ pub fn saved_name() -> String {
 impl Screen for Lobby {
     fn frame(&mut self, ui: &mut Ui, dt: f64) -> Option<Route> {
         self.s.tick(dt);
+        if let Some(d) = self.dialog.clone() {
+            ui.without_input(|ui| self.lists_and_controls(ui));
+            return self.dialog(ui, &d);
+        }
         if self.s.help {
             ui.without_input(|ui| self.lists_and_controls(ui));
             self.s.help = !crate::help::show(ui);
@@ -132,6 +150,12 @@ impl Screen for Lobby {
             self.s.profile.as_ref().map(account::profile_rating).into(),
         );
         m.insert("rated".into(), self.s.rated_request().into());
+        m.insert("name".into(), self.s.name.clone().into());
+        m.insert("message".into(), self.s.message.clone().into());
+        m.insert(
+            "dialog".into(),
+            self.dialog.as_ref().map(|d| format!("{d:?}")).into(),
+        );
         let listed: Vec<serde_json::Value> = self
             .s
             .lists
@@ -200,11 +224,76 @@ impl Lobby {
         }
         let out = Rect::new(rated.x + other_w + gap, y, other_w, row);
         if ui.button("sign-out", "Sign out", out) {
-            account::sign_out();
-            self.s.signed_out();
-            self.api.key = None;
+            self.dialog = Some(Dialog::SignOut);
         }
         go
+    }
+
+    /// The question `d` over the lobby, and what its buttons do.
+    fn dialog(&mut self, ui: &mut Ui, d: &Dialog) -> Option<Route> {
+        use crate::play::layout::{dialog, dialog_buttons};
+        let (title, lines, h): (&str, &[&str], f32) = match d {
+            Dialog::Return(_) => (
+                "Your match is still on",
+                &[
+                    "You left it while it was being played:",
+                    "return before you forfeit it.",
+                ],
+                190.0,
+            ),
+            Dialog::SignOut => (
+                "Sign out?",
+                &[
+                    "The key is the only way back into this",
+                    "account. Copy it and keep it somewhere",
+                    "safe first, or the account is lost.",
+                ],
+                268.0,
+            ),
+        };
+        let box_ = dialog(crate::scale::size(), h);
+        ui::panel(box_);
+        let (x, w) = (box_.x + 16.0, box_.w - 32.0);
+        ui::text(title, x, box_.y + 14.0, 21.0, colors::ACCENT);
+        for (i, l) in lines.iter().enumerate() {
+            let y = box_.y + 50.0 + i as f32 * 22.0;
+            ui::text(&ui::fit(l, 16.0, w), x, y, 16.0, colors::TEXT);
+        }
+        match d {
+            Dialog::Return(match_id) => {
+                platform::storage_set(crate::play::LEFT_KEY, "");
+                let (back, stay) = dialog_buttons(box_, h - 64.0);
+                if ui.button("return-match", "Return to it", back) {
+                    self.dialog = None;
+                    return Some(Route::Play {
+                        match_id: match_id.clone(),
+                    });
+                }
+                if ui.button("return-no", "Stay here", stay) {
+                    self.dialog = None;
+                }
+            }
+            Dialog::SignOut => {
+                let copy = Rect::new(x, box_.y + h - 116.0, w, ui::TOUCH);
+                if ui.button("sign-out-copy", "Copy the key", copy) {
+                    if let Some(a) = account::signed_in() {
+                        platform::copy_text(&a.key);
+                        self.s.message = Some("The key is copied: keep it safe".into());
+                    }
+                }
+                let (cancel, out) = dialog_buttons(box_, h - 64.0);
+                if ui.button("sign-out-no", "Cancel", cancel) {
+                    self.dialog = None;
+                }
+                if ui.button("sign-out-yes", "Sign out", out) {
+                    self.dialog = None;
+                    account::sign_out();
+                    self.s.signed_out();
+                    self.api.key = None;
+                }
+            }
+        }
+        None
     }
 
     /// The lobby itself (drawn under the rules when they are open).

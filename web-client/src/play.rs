@@ -54,6 +54,10 @@ pub struct Play {
     chat_draft: String,
     drag: Option<Drag>,
     confirm_resign: bool,
+    /// "Lobby" was pressed while the match is on: asking before leaving.
+    confirm_leave: bool,
+    /// The panel's status line this frame (for the test report).
+    status: String,
     /// The rules are open over the board.
     help: bool,
     /// Where the pieces were drawn this frame (for the test report).
@@ -73,6 +77,8 @@ pub struct Play {
 
 const SOUND_KEY: &str = "chapaev.sound";
 const NAME_KEY: &str = "chapaev.name";
+/// The match this browser left while it was on (the lobby offers the way back).
+pub const LEFT_KEY: &str = "chapaev.left-match";
 
 impl Play {
     /// Plays (with the token this browser holds) or watches `match_id`;
@@ -104,6 +110,8 @@ impl Play {
             chat_draft: String::new(),
             drag: None,
             confirm_resign: false,
+            confirm_leave: false,
+            status: String::new(),
             help: false,
             drawn: Vec::new(),
             viewport: None,
@@ -230,6 +238,11 @@ impl Play {
             sound: self.sound,
         };
         let content = panel::content(&self.state, &cx);
+        self.status = content
+            .body
+            .get(1)
+            .map(|l| l.text.clone())
+            .unwrap_or_default();
         let chat: Vec<&String> = self.state.chat.iter().collect();
         let pressed = panel::show(ui, area, &content, &chat, &mut self.chat_draft);
         let mut go = None;
@@ -274,7 +287,13 @@ impl Play {
                     match_id: self.match_id.clone(),
                 })
             }
+            "lobby" | "end-lobby" if self.seated_and_on() => self.confirm_leave = true,
             "lobby" | "end-lobby" => return Some(Route::Lobby),
+            "leave-yes" => {
+                platform::storage_set(LEFT_KEY, &self.match_id);
+                return Some(Route::Lobby);
+            }
+            "leave-no" => self.confirm_leave = false,
             "help" => self.help = true,
             "sound" => {
                 self.sound = !self.sound;
@@ -285,6 +304,42 @@ impl Play {
             }
             "end-close" => self.end_closed = true,
             _ => {}
+        }
+        None
+    }
+
+    /// Whether this page holds a seat in a match still being played.
+    fn seated_and_on(&self) -> bool {
+        self.state.you.is_some()
+            && self
+                .state
+                .view
+                .as_ref()
+                .is_some_and(|v| !matches!(v.phase, Phase::Over { .. }))
+    }
+
+    /// The question before leaving a match that goes on without the player.
+    fn leave_dialog(&mut self, ui: &mut Ui) -> Option<Route> {
+        let box_ = layout::dialog(crate::scale::size(), 190.0);
+        ui::panel(box_);
+        let (x, w) = (box_.x + 16.0, box_.w - 32.0);
+        ui::text("Leave the match?", x, box_.y + 14.0, 21.0, colors::ACCENT);
+        for (i, l) in [
+            "It goes on without you: come back within",
+            "a minute or you forfeit it.",
+        ]
+        .iter()
+        .enumerate()
+        {
+            let y = box_.y + 50.0 + i as f32 * 22.0;
+            ui::text(&ui::fit(l, 16.0, w), x, y, 16.0, colors::TEXT);
+        }
+        let (stay, leave) = layout::dialog_buttons(box_, 126.0);
+        if ui.button("leave-no", "Stay", stay) {
+            return self.press("leave-no");
+        }
+        if ui.button("leave-yes", "Leave", leave) {
+            return self.press("leave-yes");
         }
         None
     }
@@ -400,7 +455,13 @@ impl Screen for Play {
         // slingshot does; with the rules open, nothing sees the pointer.
         self.board(board);
         let help = self.help;
-        let nav = if help {
+        let nav = if self.confirm_leave {
+            ui.without_input(|ui| {
+                self.panel(ui, panel);
+                self.end_screen(ui, board)
+            });
+            self.leave_dialog(ui)
+        } else if help {
             ui.without_input(|ui| {
                 let nav = self.panel(ui, panel);
                 nav.or(self.end_screen(ui, board))
@@ -454,6 +515,7 @@ impl Screen for Play {
             serde_json::to_value(self.state.you).unwrap_or_default(),
         );
         m.insert("my_turn".into(), self.my_turn().into());
+        m.insert("status".into(), self.status.clone().into());
         m.insert("animating".into(), self.state.busy().into());
         m.insert(
             "connected".into(),

@@ -28,7 +28,7 @@ pub enum Route {
 }
 
 /// Whether `id` looks like a match id (hex, as the server makes them).
-fn valid_id(id: &str) -> bool {
+pub(crate) fn valid_id(id: &str) -> bool {
     !id.is_empty() && id.len() <= 64 && id.chars().all(|c| c.is_ascii_alphanumeric())
 }
 

@@ -115,22 +115,75 @@ pub struct Input {
     /// Secondary (right) button pressed this frame.
     pub alt_pressed: bool,
     pub wheel: f32,
-    pub chars: Vec<char>,
-    pub backspace: bool,
+    /// The characters typed and the Backspaces pressed this frame, in the
+    /// order they came (several can land in one frame).
+    pub typed: Vec<Typed>,
     pub enter: bool,
     /// Text pasted this frame (Ctrl+V or the browser's paste event).
     pub paste: Option<String>,
 }
 
+/// One keyboard edit of a text field.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Typed {
+    Char(char),
+    /// Backspace, held keys' repeats included.
+    Backspace,
+}
+
+/// Collects the keyboard's edits in the order miniquad delivered them.
+/// (macroquad's `get_char_pressed` hands the frame's characters out newest
+/// first and `is_key_pressed` sees one Backspace a frame, so neither keeps
+/// a fast typist's text.)
+#[derive(Default)]
+struct Typing(Vec<Typed>);
+
+impl macroquad::miniquad::EventHandler for Typing {
+    fn update(&mut self) {}
+    fn draw(&mut self) {}
+    fn char_event(&mut self, c: char, _mods: macroquad::miniquad::KeyMods, _repeat: bool) {
+        if !c.is_control() {
+            self.0.push(Typed::Char(c));
+        }
+    }
+    fn key_down_event(&mut self, key: KeyCode, _mods: macroquad::miniquad::KeyMods, _repeat: bool) {
+        if key == KeyCode::Backspace {
+            self.0.push(Typed::Backspace);
+        }
+    }
+}
+
+thread_local! {
+    /// Our subscription to macroquad's queue of input events.
+    static SUBSCRIBER: usize = macroquad::input::utils::register_input_subscriber();
+}
+
+/// This frame's edits, in order.
+fn typed() -> Vec<Typed> {
+    let mut typing = Typing::default();
+    SUBSCRIBER.with(|&id| macroquad::input::utils::repeat_all_miniquad_input(&mut typing, id));
+    typing.0
+}
+
+/// `value` after the `typed` edits in order, at most `max` characters.
+pub fn edit(value: &mut String, typed: &[Typed], max: usize) {
+    for t in typed {
+        match *t {
+            Typed::Char(c) if value.chars().count() < max => value.push(c),
+            Typed::Char(_) => {}
+            Typed::Backspace => {
+                value.pop();
+            }
+        }
+    }
+}
+
 impl Input {
     /// Reads this frame's input from macroquad (touch arrives as mouse).
     pub fn read() -> Input {
-        let mut chars = Vec::new();
-        while let Some(c) = get_char_pressed() {
-            if !c.is_control() {
-                chars.push(c);
-            }
-        }
+        // The characters are read from the subscription; macroquad's own
+        // queue is emptied so it cannot grow.
+        while get_char_pressed().is_some() {}
         Input {
             pointer: scale::pointer(),
             pressed: is_mouse_button_pressed(MouseButton::Left),
@@ -138,8 +191,7 @@ impl Input {
             released: is_mouse_button_released(MouseButton::Left),
             alt_pressed: is_mouse_button_pressed(MouseButton::Right),
             wheel: mouse_wheel().1,
-            chars,
-            backspace: is_key_pressed(KeyCode::Backspace),
+            typed: typed(),
             enter: is_key_pressed(KeyCode::Enter) || is_key_pressed(KeyCode::KpEnter),
             paste: platform::pasted(),
         }
@@ -332,17 +384,10 @@ impl Ui {
         let focused = self.focus.as_deref() == Some(name);
         let mut entered = false;
         if focused {
-            for &c in &self.input.chars {
-                if value.chars().count() < max {
-                    value.push(c);
-                }
-            }
+            edit(value, &self.input.typed, max);
             if let Some(pasted) = &self.input.paste {
                 let room = max.saturating_sub(value.chars().count());
                 value.extend(pasted.chars().filter(|c| !c.is_control()).take(room));
-            }
-            if self.input.backspace {
-                value.pop();
             }
             entered = self.input.enter;
         }
@@ -389,5 +434,44 @@ impl Ui {
     /// Whether a widget took this frame's press (so the board should not).
     pub fn captured(&self) -> bool {
         self.captured
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn chars(s: &str) -> Vec<Typed> {
+        s.chars().map(Typed::Char).collect()
+    }
+
+    #[test]
+    fn keys_typed_in_one_frame_keep_their_order() {
+        let mut v = String::new();
+        edit(&mut v, &chars("abcdefgh"), 40);
+        assert_eq!(v, "abcdefgh");
+        let mut v = String::from("An");
+        edit(&mut v, &chars("ka"), 40);
+        assert_eq!(v, "Anka");
+    }
+
+    #[test]
+    fn every_backspace_counts_in_its_place() {
+        let mut v = String::from("Anak");
+        let mut typed = vec![Typed::Backspace, Typed::Backspace];
+        typed.extend(chars("ka"));
+        typed.push(Typed::Backspace);
+        typed.push(Typed::Char('a'));
+        edit(&mut v, &typed, 40);
+        assert_eq!(v, "Anka");
+    }
+
+    #[test]
+    fn typing_stops_at_the_limit_and_backspace_on_empty_is_harmless() {
+        let mut v = String::new();
+        edit(&mut v, &[Typed::Backspace], 3);
+        assert_eq!(v, "");
+        edit(&mut v, &chars("abcdef"), 3);
+        assert_eq!(v, "abc");
     }
 }

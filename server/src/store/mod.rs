@@ -48,6 +48,17 @@ use std::time::{SystemTime, UNIX_EPOCH};
 /// Most accounts one leaderboard lists.
 pub const MAX_LEADERBOARD: usize = 100;
 
+/// A leaderboard lists only the accounts active in this many days: made,
+/// or rated in a match, since then. An account whose key is lost can never
+/// play again, so it leaves the boards once this much time has passed.
+pub const LEADERBOARD_ACTIVE_DAYS: u64 = 180;
+
+/// The `…_at` time (seconds) before which an account has not been active
+/// enough to be listed.
+pub(crate) fn leaderboard_cutoff() -> i64 {
+    now().saturating_sub(LEADERBOARD_ACTIVE_DAYS * 24 * 3600) as i64
+}
+
 /// Most points or matches one account listing returns.
 pub const MAX_LISTED: usize = 500;
 
@@ -460,7 +471,8 @@ pub trait Store: Send + Sync {
     fn password(&self, name: &str) -> Result<Option<(String, String)>, StoreError>;
 
     /// The accounts of people (or of bots) by rating, highest first, those
-    /// whose rating is established before the provisional ones.
+    /// whose rating is established before the provisional ones; only those
+    /// active in the last [`LEADERBOARD_ACTIVE_DAYS`] (made or rated since).
     fn leaderboard(&self, bots: bool, limit: usize) -> Result<Vec<Profile>, StoreError>;
 
     /// The rating of `account` after each of its rated matches, oldest

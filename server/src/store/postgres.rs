@@ -553,12 +553,15 @@ impl Store for PostgresStore {
         let rows = self.conn()?.query(
             &format!(
                 "SELECT {PROFILE_COLUMNS} FROM accounts WHERE bot = $1
+                   AND (created_at >= $4 OR EXISTS (SELECT 1 FROM rating_history h
+                        WHERE h.account_key = accounts.name_key AND h.at >= $4))
                  ORDER BY deviation > $2, rating DESC, name_key COLLATE \"C\" LIMIT $3"
             ),
             &[
                 &bots,
                 &RatingSystem::default().provisional_above,
                 &(limit.min(MAX_LEADERBOARD) as i64),
+                &super::leaderboard_cutoff(),
             ],
         )?;
         Ok(rows.iter().map(profile).collect())

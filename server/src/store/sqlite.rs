@@ -655,6 +655,8 @@ impl Store for SqliteStore {
         let conn = self.read()?;
         let mut stmt = conn.prepare(&format!(
             "SELECT {PROFILE_COLUMNS} FROM accounts WHERE bot = ?1
+               AND (created_at >= ?4 OR EXISTS (SELECT 1 FROM rating_history h
+                    WHERE h.account = accounts.name AND h.at >= ?4))
              ORDER BY deviation > ?2, rating DESC, name LIMIT ?3"
         ))?;
         let rows = stmt
@@ -662,7 +664,8 @@ impl Store for SqliteStore {
                 params![
                     bots,
                     RatingSystem::default().provisional_above,
-                    limit.min(super::MAX_LEADERBOARD) as i64
+                    limit.min(super::MAX_LEADERBOARD) as i64,
+                    super::leaderboard_cutoff()
                 ],
                 profile,
             )?

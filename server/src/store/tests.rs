@@ -81,6 +81,7 @@ on_both_backends!(
     a_wrong_or_revoked_key_proves_nothing,
     the_leaderboard_lists_one_kind_established_ratings_first,
     a_person_may_add_a_password_and_sign_in_with_it_for_a_new_key,
+    an_account_inactive_for_the_stated_window_leaves_the_leaderboard,
     the_last_move_of_a_rated_match_moves_both_ratings_once,
     a_casual_match_or_a_seat_without_an_account_rates_nothing,
     the_computer_levels_have_bot_accounts_nobody_can_register,
@@ -384,6 +385,26 @@ fn the_leaderboard_lists_one_kind_established_ratings_first(b: Backend) {
         [("search".to_string(), false), ("greedy".to_string(), true)]
     );
     assert_eq!(store.leaderboard(false, 10).unwrap().len(), 1);
+}
+
+fn an_account_inactive_for_the_stated_window_leaves_the_leaderboard(b: Backend) {
+    let store = b.store;
+    for n in ["Anka", "Petka"] {
+        store.create_account(&name(n), false).unwrap();
+    }
+    let listed = || -> Vec<String> {
+        let board = store.leaderboard(false, 10).unwrap();
+        board.into_iter().map(|p| p.name).collect()
+    };
+    assert_eq!(listed(), ["Anka", "Petka"]);
+    // Made a day longer ago than the window, never rated since.
+    let old = now() - (super::LEADERBOARD_ACTIVE_DAYS + 1) * 24 * 3600;
+    (b.raw)(&format!(
+        "UPDATE accounts SET created_at = {old} WHERE name = 'Petka'"
+    ));
+    assert_eq!(listed(), ["Anka"]);
+    // Still an account: its page and its key work.
+    assert!(store.account("Petka").unwrap().is_some());
 }
 
 fn a_person_may_add_a_password_and_sign_in_with_it_for_a_new_key(b: Backend) {

@@ -175,11 +175,23 @@ pub fn clean_name(n: &str) -> String {
 /// A match in two lines: who plays whom (with their ratings where the
 /// seats have them), then how it stands.
 pub fn describe(s: &Summary) -> (String, String) {
-    let first = account::with_rating(s.first.as_deref().unwrap_or("?"), s.first_rating);
-    let second = match (&s.second, &s.bot) {
-        (_, Some(level)) => account::with_rating(&format!("computer ({level})"), s.second_rating),
-        (Some(n), None) => account::with_rating(n, s.second_rating),
-        (None, None) => "...".to_string(),
+    // The bot column: the second seat's level, or `FIRST/SECOND` for an
+    // exhibition (both seats the computer).
+    let levels = s.bot.as_deref().map(|b| match b.split_once('/') {
+        Some((a, b)) => (Some(a), b),
+        None => (None, b),
+    });
+    let computer = |level: &str| format!("computer ({level})");
+    let first = match levels {
+        Some((Some(level), _)) => account::with_rating(&computer(level), s.first_rating),
+        _ => account::with_rating(s.first.as_deref().unwrap_or("?"), s.first_rating),
+    };
+    let second = match (&s.second, levels) {
+        (_, Some((_, level))) if !level.is_empty() => {
+            account::with_rating(&computer(level), s.second_rating)
+        }
+        (Some(n), _) => account::with_rating(n, s.second_rating),
+        (None, _) => "...".to_string(),
     };
     let mut facts = Vec::new();
     if s.rated {
@@ -214,6 +226,16 @@ mod tests {
 
     fn summary(json: serde_json::Value) -> Summary {
         serde_json::from_value(json).expect("a summary")
+    }
+
+    #[test]
+    fn an_exhibition_names_both_computers_by_their_levels() {
+        let s = summary(serde_json::json!({
+            "match_id": "x", "status": "live", "created_at": 0, "updated_at": 0,
+            "first": "bot (medium)", "second": "bot (hard)", "bot": "medium/hard",
+            "shots": 3, "turn_seconds": 30, "result": null, "physics": 1, "playable": true
+        }));
+        assert_eq!(describe(&s).0, "computer (medium) vs computer (hard)");
     }
 
     #[test]

@@ -43,8 +43,10 @@ pub fn compact(area: Rect) -> bool {
 /// What the panel holds, in order from the top: the heading lines' text
 /// sizes, whether the players' rows follow (only once the match is known;
 /// without it a single button to the lobby), the lines below them, hint
-/// lines above the buttons, the buttons, the chat lines there are and
-/// whether the chat's field shows (for a seated player).
+/// lines above the buttons, the buttons' slots, the shot log's lines (its
+/// own area below the buttons, so the buttons never move as it grows), the
+/// chat lines there are and whether the chat's field shows (for a seated
+/// player).
 #[derive(Clone, Debug, Default)]
 pub struct PanelSpec {
     pub head: Vec<f32>,
@@ -52,6 +54,7 @@ pub struct PanelSpec {
     pub body: Vec<f32>,
     pub hints: Vec<f32>,
     pub buttons: usize,
+    pub log: usize,
     pub chat: usize,
     pub chat_field: bool,
 }
@@ -65,6 +68,7 @@ pub struct PanelLayout {
     pub body: Vec<Rect>,
     pub hints: Vec<Rect>,
     pub buttons: Vec<Rect>,
+    pub log: Vec<Rect>,
     pub chat: Vec<Rect>,
     /// The chat's text field and its send button.
     pub chat_field: Option<(Rect, Rect)>,
@@ -80,6 +84,7 @@ impl PanelLayout {
             &self.body,
             &self.hints,
             &self.buttons,
+            &self.log,
             &self.chat,
         ]
         .into_iter()
@@ -151,6 +156,7 @@ pub fn panel(area: Rect, spec: &PanelSpec) -> PanelLayout {
         })
         .collect();
     y += spec.buttons.div_ceil(per_row) as f32 * (TOUCH + GAP) + 4.0;
+    l.log = lines(&vec![14.0; spec.log], x, w, &mut y);
     // The chat above its field (spectators read it, without a field).
     let field_y = bottom - TOUCH;
     let chat_bottom = if spec.chat_field {
@@ -263,13 +269,13 @@ mod tests {
         if !c {
             body.push(16.0);
         }
-        body.resize(body.len() + if c { 2 } else { 4 }, 14.0);
         PanelSpec {
             head,
             players: true,
             body,
-            hints: vec![],
+            hints: vec![14.0],
             buttons,
+            log: if c { 2 } else { 4 },
             chat,
             chat_field: true,
         }
@@ -323,7 +329,7 @@ mod tests {
             let (_, area) = split(w, h);
             // While shooting (resign, lobby, rules, sound) and at the end
             // (rematch, replay, lobby, rules, sound), with a full chat.
-            for buttons in [4, 5] {
+            for buttons in [6] {
                 let l = panel(area, &playing(area, buttons, 6));
                 assert_eq!(l.buttons.len(), buttons);
                 let all = l.all();

@@ -6,6 +6,11 @@
 //! resign, rematch, replay, lobby, rules, sound) and the chat. The content
 //! is worked out from the match state without drawing ([`content`]), the
 //! places from [`super::layout::panel`].
+//!
+//! Every button has a fixed slot ([`Slot`]), so no button moves when the
+//! log grows or the match ends, and none takes the place of the one a
+//! finger just pressed: Resign's confirmation, and the rematch after it,
+//! stand in other slots than Resign.
 
 use super::layout::{self, PanelLayout, PanelSpec};
 use super::state::{MatchState, LOG_LINES};
@@ -46,20 +51,41 @@ pub struct Player {
     pub turn: bool,
 }
 
-/// A button: its name (what pressing it does), label and whether it can
-/// be pressed.
+/// A button: its name (what pressing it does), label, whether it can be
+/// pressed and its slot.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Button {
     pub name: &'static str,
     pub label: String,
     pub enabled: bool,
+    pub slot: Slot,
 }
 
-fn button(name: &'static str, label: impl Into<String>, enabled: bool) -> Button {
+/// The fixed places of the panel's buttons, in reading order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Slot {
+    Lobby,
+    Rules,
+    Sound,
+    /// Resign while the match is on, the replay once it is over.
+    Resign,
+    /// The first of a question's answers: swap seats, really resign, copy
+    /// the invitation. Left empty once the match is over, so a second tap
+    /// on "Really resign" hits nothing.
+    First,
+    /// The second answer: keep, play on; the rematch once the match is over.
+    Second,
+}
+
+/// How many slots there are.
+pub const SLOTS: usize = 6;
+
+fn button(slot: Slot, name: &'static str, label: impl Into<String>, enabled: bool) -> Button {
     Button {
         name,
         label: label.into(),
         enabled,
+        slot,
     }
 }
 
@@ -84,9 +110,16 @@ pub struct Content {
     pub head: Vec<Line>,
     /// Both players, once the match is known.
     pub players: Option<[Player; 2]>,
+    /// The round, the status and (in a full panel) the clock: always the
+    /// same lines, so nothing below them moves.
     pub body: Vec<Line>,
+    /// One line above the buttons (empty when there is nothing to say).
     pub hints: Vec<Line>,
     pub buttons: Vec<Button>,
+    /// The newest lines of the shot log, shown in their own area below the
+    /// buttons, and how many lines that area holds.
+    pub log: Vec<Line>,
+    pub log_lines: usize,
     /// Whether this page may chat (it holds a seat).
     pub chat_field: bool,
 }
@@ -99,7 +132,12 @@ impl Content {
             players: self.players.is_some(),
             body: self.body.iter().map(|l| l.size).collect(),
             hints: self.hints.iter().map(|l| l.size).collect(),
-            buttons: self.buttons.len(),
+            buttons: if self.players.is_some() {
+                SLOTS
+            } else {
+                self.buttons.len()
+            },
+            log: self.log_lines,
             chat,
             chat_field: self.chat_field,
         }
@@ -131,11 +169,12 @@ pub fn content(s: &MatchState, cx: &Context) -> Content {
             players: None,
             body: Vec::new(),
             hints: Vec::new(),
-            buttons: vec![button("lobby", "Back to the lobby", true)],
+            buttons: vec![button(Slot::Lobby, "lobby", "Back to the lobby", true)],
+            log: Vec::new(),
+            log_lines: 0,
             chat_field: false,
         };
     };
-    let frame = s.current_frame();
     let player = |side: Side| {
         let seat = Seat::of(side, v.swapped);
         let you = if Some(seat) == s.you { " (you)" } else { "" };
@@ -144,10 +183,13 @@ pub fn content(s: &MatchState, cx: &Context) -> Content {
         Player {
             side,
             name: format!("{}{you}", s.name_of(seat)),
-            left: frame
-                .pieces
+            // Counted on the board at rest: a shot's losses show once
+            // its film has run.
+            left: v
+                .board
+                .pieces()
                 .iter()
-                .filter(|(p, _)| p.side() == side)
+                .filter(|p| p.id.side() == side)
                 .count(),
             row: if side == Side::White {
                 rank + 1
@@ -159,6 +201,8 @@ pub fn content(s: &MatchState, cx: &Context) -> Content {
     };
     let players = [player(Side::White), player(Side::Black)];
     let over = matches!(v.phase, Phase::Over { .. });
+    // A friend's match waits for the friend before anyone shoots.
+    let waiting = s.you.is_some() && !s.both_seated() && !over;
     let busy = s.busy();
     let mut body = Vec::new();
     let shots = if over && !busy {
@@ -171,6 +215,7 @@ pub fn content(s: &MatchState, cx: &Context) -> Content {
     let status = match v.phase {
         Phase::Over { result } => result_text(result, s.my_side()),
         Phase::PieDecision => "Black decides: swap seats or not".to_string(),
+        Phase::Shooting if waiting => "Waiting for your friend to join".to_string(),
         Phase::Shooting if busy => "...".to_string(),
         Phase::Shooting if s.awaiting => "shooting...".to_string(),
         Phase::Shooting if cx.my_turn => "Your turn: drag back from a piece".to_string(),
@@ -196,60 +241,70 @@ pub fn content(s: &MatchState, cx: &Context) -> Content {
         (Some((c, _)), true) => body.push(line(format!("{status} · {c}"), 17.0, status_color)),
         _ => body.push(line(status, 17.0, status_color)),
     }
-    if let (Some((c, urgent)), false) = (&clock, compact) {
-        let color = if *urgent {
-            colors::DANGER
-        } else {
-            colors::TEXT
+    if !compact {
+        // The clock's line is kept while there is no clock.
+        let (text, color) = match &clock {
+            Some((c, true)) => (format!("clock {c}"), colors::DANGER),
+            Some((c, false)) => (format!("clock {c}"), colors::TEXT),
+            None => (String::new(), colors::TEXT),
         };
-        body.push(line(format!("clock {c}"), 16.0, color));
+        body.push(line(text, 16.0, color));
     }
-    // The shot log.
+    // The shot log, in its own area.
     let log_lines = if compact { 2 } else { LOG_LINES };
-    for l in s.log.iter().skip(s.log.len().saturating_sub(log_lines)) {
-        body.push(line(l.clone(), 14.0, colors::MUTED));
-    }
-    let mut hints = Vec::new();
+    let log = s
+        .log
+        .iter()
+        .skip(s.log.len().saturating_sub(log_lines))
+        .map(|l| line(l.clone(), 14.0, colors::MUTED))
+        .collect();
+    let mut hint = String::new();
     let mut buttons = Vec::new();
-    // Pie rule: Black's seat decides.
-    if v.phase == Phase::PieDecision && s.my_side() == Some(Side::Black) {
-        buttons.push(button("pie-swap", "Swap seats", true));
-        buttons.push(button("pie-keep", "Keep", true));
-    }
-    // Invite: the second seat is empty.
-    if s.players.second.is_none() && s.you == Some(Seat::First) {
-        hints.push(line(
-            "Waiting for an opponent: send them the link",
-            14.0,
-            colors::MUTED,
-        ));
-        buttons.push(button("copy-link", "Copy invitation link", true));
-    }
+    buttons.push(button(Slot::Lobby, "lobby", "Lobby", true));
+    buttons.push(button(Slot::Rules, "help", "Rules", true));
+    let sound = if cx.sound { "Sound: on" } else { "Sound: off" };
+    buttons.push(button(Slot::Sound, "sound", sound, true));
     if s.you.is_some() && !over {
-        if cx.confirm_resign {
-            buttons.push(button("resign-yes", "Really resign", true));
-            buttons.push(button("resign-no", "Play on", true));
+        // Pressed again while its question is open, Resign does nothing.
+        let label = if cx.confirm_resign {
+            "Resign?"
         } else {
-            buttons.push(button("resign", "Resign", true));
-        }
+            "Resign"
+        };
+        buttons.push(button(Slot::Resign, "resign", label, !cx.confirm_resign));
     }
     if over {
-        if s.you.is_some() {
-            let (label, enabled) = s.rematch_label();
-            buttons.push(button("rematch", label, enabled));
-        }
-        buttons.push(button("replay", "Watch the replay", true));
+        buttons.push(button(Slot::Resign, "replay", "Watch the replay", true));
     }
-    buttons.push(button("lobby", "Lobby", true));
-    buttons.push(button("help", "Rules", true));
-    let sound = if cx.sound { "Sound: on" } else { "Sound: off" };
-    buttons.push(button("sound", sound, true));
+    if over && s.you.is_some() {
+        let (label, enabled) = s.rematch_label();
+        buttons.push(button(Slot::Second, "rematch", label, enabled));
+    } else if s.you.is_some() && cx.confirm_resign {
+        buttons.push(button(Slot::First, "resign-yes", "Really resign", true));
+        buttons.push(button(Slot::Second, "resign-no", "Play on", true));
+    } else if v.phase == Phase::PieDecision && s.my_side() == Some(Side::Black) {
+        // Pie rule: Black's seat decides.
+        buttons.push(button(Slot::First, "pie-swap", "Swap seats", true));
+        buttons.push(button(Slot::Second, "pie-keep", "Keep", true));
+    } else if waiting {
+        // Invite: a seat is empty.
+        hint = format!("Send your friend the link, or the id {}", cx.match_id);
+        buttons.push(button(
+            Slot::First,
+            "copy-link",
+            "Copy invitation link",
+            true,
+        ));
+    }
+    buttons.sort_by_key(|b| b.slot);
     Content {
         head,
         players: Some(players),
         body,
-        hints,
+        hints: vec![line(hint, 14.0, colors::MUTED)],
         buttons,
+        log,
+        log_lines,
         chat_field: s.you.is_some(),
     }
 }
@@ -329,10 +384,16 @@ pub fn show(ui: &mut Ui, area: Rect, c: &Content, chat: &[&String], draft: &mut 
         text(line, *r);
     }
     let mut pressed = Pressed::default();
-    for (b, r) in c.buttons.iter().zip(&l.buttons) {
+    for b in &c.buttons {
+        let Some(r) = l.buttons.get(b.slot as usize) else {
+            continue;
+        };
         if ui.button_styled(b.name, &b.label, *r, b.enabled, false) {
             pressed.buttons.push(b.name);
         }
+    }
+    for (line, r) in c.log.iter().zip(&l.log) {
+        text(line, *r);
     }
     // Chat between the seats (spectators read it), above its field.
     for (s, r) in chat.iter().skip(chat.len() - l.chat.len()).zip(&l.chat) {
@@ -378,7 +439,7 @@ mod tests {
     #[test]
     fn the_pie_decision_is_offered_only_to_blacks_seat() {
         let black = content(&pie(Some(Seat::Second)), &cx(false));
-        assert_eq!(&names(&black)[..2], ["pie-swap", "pie-keep"]);
+        assert!(names(&black).ends_with(&["pie-swap", "pie-keep"]));
         for you in [Some(Seat::First), None] {
             let c = content(&pie(you), &cx(false));
             assert!(!names(&c).contains(&"pie-swap"), "{you:?}");
@@ -406,8 +467,12 @@ mod tests {
             confirm_resign: true,
             ..cx(false)
         };
-        let n = names(&content(&s, &confirm));
-        assert!(n.contains(&"resign-yes") && n.contains(&"resign-no") && !n.contains(&"resign"));
+        let c = content(&s, &confirm);
+        let n = names(&c);
+        assert!(n.contains(&"resign-yes") && n.contains(&"resign-no"));
+        // Resign stays where it was, pressed again it does nothing.
+        let resign = c.buttons.iter().find(|b| b.name == "resign").unwrap();
+        assert!(!resign.enabled);
     }
 
     #[test]
@@ -417,6 +482,8 @@ mod tests {
         let c = content(&s, &cx(false));
         assert!(names(&c).contains(&"copy-link"));
         assert_eq!(c.hints.len(), 1);
+        assert!(c.hints[0].text.contains("m1"), "{:?}", c.hints);
+        assert_eq!(c.body[1].text, "Waiting for your friend to join");
         let mut other = seated(None);
         other.players.second = None;
         assert!(!names(&content(&other, &cx(false))).contains(&"copy-link"));
@@ -431,13 +498,13 @@ mod tests {
         };
         s.view.as_mut().unwrap().phase = Phase::Over { result };
         let c = content(&s, &cx(false));
-        assert_eq!(names(&c), ["rematch", "replay", "lobby", "help", "sound"]);
-        assert_eq!(c.buttons[0].label, "Offer a rematch");
+        assert_eq!(names(&c), ["lobby", "help", "sound", "replay", "rematch"]);
+        assert_eq!(c.buttons[4].label, "Offer a rematch");
         assert_eq!(c.body[1].text, "You won: wins by resignation");
         s.receive(ServerMessage::RematchOffered { by: Seat::First });
         let c = content(&s, &cx(false));
         assert_eq!(
-            (c.buttons[0].label.as_str(), c.buttons[0].enabled),
+            (c.buttons[4].label.as_str(), c.buttons[4].enabled),
             ("Rematch offered...", false)
         );
     }
@@ -493,7 +560,72 @@ mod tests {
         let l = layout::panel(area, &c.spec(6));
         assert_eq!(l.head.len(), c.head.len());
         assert_eq!(l.body.len(), c.body.len());
-        assert_eq!(l.buttons.len(), c.buttons.len());
+        assert_eq!(l.buttons.len(), SLOTS);
+        assert_eq!(l.log.len(), c.log_lines);
         assert_eq!(l.chat.len(), 6);
+    }
+
+    fn slot_of(c: &Content, name: &str) -> Option<Slot> {
+        c.buttons.iter().find(|b| b.name == name).map(|b| b.slot)
+    }
+
+    #[test]
+    fn resigns_confirmation_and_the_rematch_never_take_resigns_place() {
+        let s = seated(Some(Seat::First));
+        let on = content(&s, &cx(false));
+        let confirm = content(
+            &s,
+            &Context {
+                confirm_resign: true,
+                ..cx(false)
+            },
+        );
+        let resign = slot_of(&on, "resign").unwrap();
+        let yes = slot_of(&confirm, "resign-yes").unwrap();
+        assert_ne!(yes, resign);
+        let mut over = seated(Some(Seat::First));
+        over.view.as_mut().unwrap().phase = Phase::Over {
+            result: MatchResult::Won {
+                side: Side::Black,
+                reason: WinReason::Resignation,
+            },
+        };
+        let over = content(&over, &cx(false));
+        let rematch = slot_of(&over, "rematch").unwrap();
+        assert!(rematch != resign && rematch != yes);
+        // Nothing waits under the finger that pressed "Really resign".
+        assert!(over.buttons.iter().all(|b| b.slot != yes));
+    }
+
+    #[test]
+    fn the_buttons_keep_their_places_as_the_log_grows_and_the_match_ends() {
+        for compact in [false, true] {
+            let (_, area) = if compact {
+                layout::split(390.0, 844.0)
+            } else {
+                layout::split(1280.0, 800.0)
+            };
+            let mut s = seated(Some(Seat::First));
+            let first = content(&s, &cx(compact));
+            for i in 0..6 {
+                s.log.push_back(format!("shot {i}"));
+            }
+            let long = content(&s, &cx(compact));
+            s.view.as_mut().unwrap().phase = Phase::Over {
+                result: MatchResult::Draw,
+            };
+            let over = content(&s, &cx(compact));
+            let place = |c: &Content, name: &str| {
+                let l = layout::panel(area, &c.spec(3));
+                l.buttons[slot_of(c, name).unwrap() as usize]
+            };
+            for name in ["lobby", "help", "sound"] {
+                assert_eq!(place(&first, name), place(&long, name), "{name}");
+                assert_eq!(place(&first, name), place(&over, name), "{name}");
+            }
+            assert_eq!(place(&first, "resign"), place(&long, "resign"));
+            assert_eq!(long.log.len(), long.log_lines);
+            assert_eq!(first.body.len(), long.body.len());
+        }
     }
 }

@@ -84,11 +84,18 @@ impl MatchState {
         self.queue.len()
     }
 
-    /// Whether the player may aim now, `connected` or not: everything
-    /// announced is shown, no shot is awaited, and it is their side's turn.
+    /// Whether both seats are taken (a friend's match waits for the friend).
+    pub fn both_seated(&self) -> bool {
+        self.players.first.is_some() && self.players.second.is_some()
+    }
+
+    /// Whether the player may aim now, `connected` or not: both seats are
+    /// taken, everything announced is shown, no shot is awaited, and it is
+    /// their side's turn.
     pub fn may_aim(&self, connected: bool) -> bool {
         let Some(v) = &self.view else { return false };
-        !self.busy()
+        self.both_seated()
+            && !self.busy()
             && !self.awaiting
             && connected
             && self.my_side().is_some()
@@ -203,11 +210,18 @@ impl MatchState {
         let mut sounds = Vec::new();
         // Catch up faster when several shots are waiting.
         let speed = if self.queue.len() > 1 { 3.0 } else { 1.0 };
+        let me = self.my_side();
         if let Some((clip, t)) = &mut self.playing {
             *t += dt * speed;
             if *t >= clip.duration() {
                 if let Some(v) = &self.view {
                     self.view = Some(v.after_shot(&clip.outcome, &clip.film));
+                }
+                // Told once the film has shown it.
+                let line = story::shot_line(&clip.outcome, me, true);
+                self.log.push_back(line);
+                while self.log.len() > LOG_LINES {
+                    self.log.pop_front();
                 }
                 self.playing = None;
             }
@@ -218,11 +232,6 @@ impl MatchState {
             };
             match m {
                 ServerMessage::ShotPlayed { outcome, film, .. } => {
-                    let line = story::shot_line(&outcome, self.my_side(), true);
-                    self.log.push_back(line);
-                    while self.log.len() > LOG_LINES {
-                        self.log.pop_front();
-                    }
                     sounds.push(Sound::Flick);
                     if !outcome.knocked_off.is_empty() {
                         sounds.push(Sound::Fall);
@@ -323,7 +332,8 @@ pub(crate) mod tests {
         assert_eq!(sounds, vec![Sound::Flick, Sound::Fall]);
         assert!(s.playing.is_some());
         assert_eq!(s.queued(), 1);
-        assert_eq!(s.log.len(), 1);
+        // The shot is told once its film has shown it.
+        assert_eq!(s.log.len(), 0);
         assert_eq!(s.view.as_ref().unwrap().shots, 0);
         // Once the film has run (at normal speed: only one announcement
         // waits behind it), its result shows, then the pass.
@@ -336,6 +346,7 @@ pub(crate) mod tests {
         let v = s.view.as_ref().unwrap();
         assert_eq!(v.shots, 1);
         assert_eq!(s.outcomes.len(), 1);
+        assert_eq!(s.log.len(), 1);
     }
 
     #[test]
@@ -353,6 +364,18 @@ pub(crate) mod tests {
             view: game.view(),
         });
         assert!(!s.busy());
+    }
+
+    #[test]
+    fn nobody_aims_in_a_friends_match_until_the_friend_has_joined() {
+        let mut s = seated(Some(Seat::First));
+        s.players.second = None;
+        assert!(!s.may_aim(true));
+        s.receive(ServerMessage::PlayerJoined {
+            seat: Seat::Second,
+            name: "Petka".into(),
+        });
+        assert!(s.may_aim(true));
     }
 
     #[test]
