@@ -13,6 +13,7 @@ mod clip;
 mod connection;
 mod draw;
 mod help;
+mod highlight;
 mod leaderboard;
 mod lobby;
 mod pace;
@@ -70,9 +71,7 @@ fn open(route: &Route) -> Box<dyn Screen> {
     let name = signed_in.map_or_else(lobby::saved_name, |a| a.name);
     match route {
         Route::Lobby => Box::new(lobby::Lobby::new(api)),
-        Route::QuickMatch { rated } => {
-            Box::new(quick_match::QuickMatch::new(api, name, *rated))
-        }
+        Route::QuickMatch { rated } => Box::new(quick_match::QuickMatch::new(api, name, *rated)),
         Route::Play { match_id } => {
             Box::new(play::Play::new(api, match_id.clone(), name, false, false))
         }

@@ -161,7 +161,13 @@ impl Screen for QuickMatch {
             }
             None => "You will play the next person who presses Quick match.".to_string(),
         };
-        ui::text(&ui::fit(&hint, 15.0, tw), x, p.status_y + 24.0, 15.0, colors::MUTED);
+        ui::text(
+            &ui::fit(&hint, 15.0, tw),
+            x,
+            p.status_y + 24.0,
+            15.0,
+            colors::MUTED,
+        );
         let mut go = None;
         if ui.button("quick-cancel", "Cancel", p.cancel) {
             self.stop();
@@ -194,10 +200,7 @@ impl Screen for QuickMatch {
 
     fn report(&self) -> serde_json::Map<String, serde_json::Value> {
         let mut m = serde_json::Map::new();
-        m.insert(
-            "seeking".into(),
-            (self.seek.phase == Phase::Waiting).into(),
-        );
+        m.insert("seeking".into(), (self.seek.phase == Phase::Waiting).into());
         m.insert("rated".into(), self.seek.rated.into());
         m.insert("waited".into(), self.seek.waited.into());
         m.insert("offer_computer".into(), self.seek.offer_computer().into());
@@ -218,7 +221,10 @@ mod tests {
 
     #[test]
     fn the_wait_s_buttons_fit_every_window_without_overlapping() {
-        for (w, h) in PHONES.into_iter().chain([(1100.0, 760.0), (1920.0, 1080.0)]) {
+        for (w, h) in PHONES
+            .into_iter()
+            .chain([(1100.0, 760.0), (1920.0, 1080.0)])
+        {
             let p = places(w, h);
             let window = Rect::new(0.0, 0.0, w, h);
             let buttons = [p.cancel, p.computer, p.sign_in];

@@ -89,12 +89,7 @@ impl Seek {
         match msg {
             StreamServerMessage::MatchStart {
                 match_id, token, ..
-            } => {
-                self.phase = Phase::Paired {
-                    match_id,
-                    token,
-                }
-            }
+            } => self.phase = Phase::Paired { match_id, token },
             StreamServerMessage::Error { code, message } => {
                 self.phase = Phase::Refused(format!("{message} ({code})"))
             }
@@ -231,12 +226,20 @@ mod tests {
         s.opened("k");
         s.tick(3.0);
         s.closed();
-        assert_eq!(s.phase, Phase::Retrying { at: 3.0 + RETRY_AFTER });
+        assert_eq!(
+            s.phase,
+            Phase::Retrying {
+                at: 3.0 + RETRY_AFTER
+            }
+        );
         assert!(!s.tick(RETRY_AFTER - 0.1));
         assert!(s.tick(0.2), "due again");
         assert_eq!(s.phase, Phase::Connecting);
         let [_, seek] = s.opened("k");
-        assert!(matches!(seek, StreamClientMessage::Seek { cancel: false, .. }));
+        assert!(matches!(
+            seek,
+            StreamClientMessage::Seek { cancel: false, .. }
+        ));
     }
 
     #[test]
