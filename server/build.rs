@@ -15,6 +15,10 @@
 //! the page asks for its scripts and wasm under `?v=<hash>` addresses that
 //! change with every build (so they can be cached for good).
 //!
+//! The home-screen files are made here too: the icons (`build/icon.rs`,
+//! 192 and 512 pixels), and the service worker (`web-client/js/sw.js`)
+//! with this build's cache name and file addresses filled in.
+//!
 //! The server always builds: without the wasm target, or when the client
 //! does not compile, a `cargo:warning` says what happened and what to run,
 //! and the generated file holds the reason instead, so `/` serves the API
@@ -28,6 +32,9 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
+
+#[path = "build/icon.rs"]
+mod icon;
 
 const WASM_TARGET: &str = "wasm32-unknown-unknown";
 const PROFILE: &str = "wasm-release";
@@ -53,6 +60,11 @@ enum NotBuilt {
     },
     #[error("{0}")]
     Missing(String),
+    #[error("drawing the {size} px icon: {source}")]
+    Icon {
+        size: u32,
+        source: png::EncodingError,
+    },
     #[error("{what}: {source}")]
     Io {
         what: String,
@@ -83,6 +95,8 @@ fn main() {
         "web-client/js",
         "web-client/index.html",
         "web-client/assets",
+        "web-client/manifest.webmanifest",
+        "server/build",
         "web-client/Cargo.toml",
         "engine/src",
         "engine/Cargo.toml",
@@ -167,9 +181,18 @@ fn build(workspace: &Path, out_dir: &Path) -> Result<HashMap<&'static str, Copie
             workspace.join("web-client/assets/favicon.svg"),
             "favicon.svg",
         ),
+        (
+            "manifest",
+            workspace.join("web-client/manifest.webmanifest"),
+            "manifest.webmanifest",
+        ),
     ] {
         let bytes = read(&from)?;
         files.insert(key, store(bytes, &web.join(name))?);
+    }
+    for (key, size) in [("icon_192", 192), ("icon_512", 512)] {
+        let png = icon::png(size).map_err(|source| NotBuilt::Icon { size, source })?;
+        files.insert(key, store(png, &web.join(format!("icon-{size}.png")))?);
     }
     // The page names each file with its hash, so a new build is a new address.
     let mut page =
@@ -179,13 +202,34 @@ fn build(workspace: &Path, out_dir: &Path) -> Result<HashMap<&'static str, Copie
         ("mq_js_bundle", "mq_js_bundle.js"),
         ("wasm", "chapaev.wasm"),
         ("favicon", "favicon.svg"),
+        ("manifest", "manifest.webmanifest"),
     ] {
         let versioned = format!("{name}?v={}", files[key].hash);
         page = page.replace(&format!("\"{name}\""), &format!("\"{versioned}\""));
     }
+    let page = store(page.into_bytes(), &web.join("index.html"))?;
+    // The service worker caches this build's files under their addresses.
+    let mut cached = vec!["/".to_string()];
+    for (key, name) in [
+        ("chapaev_js", "chapaev.js"),
+        ("mq_js_bundle", "mq_js_bundle.js"),
+        ("wasm", "chapaev.wasm"),
+        ("favicon", "favicon.svg"),
+        ("manifest", "manifest.webmanifest"),
+    ] {
+        cached.push(format!("/{name}?v={}", files[key].hash));
+    }
+    cached.extend(["/icon-192.png".to_string(), "/icon-512.png".to_string()]);
+    let worker = String::from_utf8_lossy(&read(&workspace.join("web-client/js/sw.js"))?)
+        .replace("__CHAPAEV_BUILD__", &page.hash)
+        .replace(
+            "__CHAPAEV_FILES__",
+            &serde_json::Value::from(cached).to_string(),
+        );
+    files.insert("index_html", page);
     files.insert(
-        "index_html",
-        store(page.into_bytes(), &web.join("index.html"))?,
+        "service_worker",
+        store(worker.into_bytes(), &web.join("sw.js"))?,
     );
     Ok(files)
 }
@@ -453,6 +497,10 @@ fn embedded(files: &HashMap<&'static str, Copied>) -> String {
         ("mq_js_bundle", "text/javascript; charset=utf-8"),
         ("wasm", "application/wasm"),
         ("favicon", "image/svg+xml"),
+        ("manifest", "application/manifest+json"),
+        ("service_worker", "text/javascript; charset=utf-8"),
+        ("icon_192", "image/png"),
+        ("icon_512", "image/png"),
     ] {
         let file = &files[key];
         let _ = writeln!(

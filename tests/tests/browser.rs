@@ -98,6 +98,183 @@ async fn a_player_opens_the_page_shoots_against_the_easy_bot_resigns_scrubs_the_
     }
 }
 
+/// Two strangers press Quick match in two browsers, each signed in to an
+/// account of its own: the first waits (the wait shows its clock and a
+/// Cancel), and the server pairs them into one match, whose page both open
+/// in opposite seats.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn two_browsers_pressing_quick_match_are_paired_into_one_match() {
+    let Some(Setup {
+        programs,
+        artifacts,
+        scratch,
+        server,
+        driver,
+    }) = setup("-quick")
+    else {
+        return;
+    };
+    let mut clients = Vec::new();
+    for who in ["a", "b"] {
+        let c = driver
+            .session(&programs, &scratch.path().join(format!("profile-{who}")))
+            .await
+            .unwrap_or_else(|e| panic!("{e}"));
+        clients.push(c);
+    }
+    let outcome = quick_match(&clients[0], &clients[1], &server, &artifacts).await;
+    if outcome.is_err() {
+        for (i, c) in clients.iter().enumerate() {
+            let _ = browser::screenshot(c, &artifacts.join(format!("quick-failure-{i}.png"))).await;
+            if let Ok(state) = browser::eval(c, STATE).await {
+                eprintln!("e2e: browser {i}'s chapaev_state at the failure: {state}");
+            }
+        }
+    }
+    for c in clients {
+        let _ = c.close().await;
+    }
+    drop(driver);
+    drop(server);
+    if let Err(e) = outcome {
+        panic!("{e}\n(screenshots and logs are in {})", artifacts.display());
+    }
+}
+
+async fn quick_match(a: &Client, b: &Client, server: &Server, artifacts: &Path) -> Result<()> {
+    for (client, name) in [(a, "Stranger_a"), (b, "Stranger_b")] {
+        sign_in_by_storage(client, server, name).await?;
+    }
+    click_button(a, "quick-match").await?;
+    let waiting = state_until(a, "the first player's wait", 15, |s| {
+        s["screen"] == "quick-match"
+            && s["seeking"] == true
+            && s["buttons"]["quick-cancel"].is_array()
+    })
+    .await?;
+    eprintln!("e2e: waiting: {}", waiting["status"]);
+    browser::screenshot(a, &artifacts.join("quick-1-waiting.png")).await?;
+    click_button(b, "quick-match").await?;
+    let on_match =
+        |s: &Value| s["screen"] == "play" && s["match_id"].is_string() && !s["seat"].is_null();
+    let first = state_until(a, "the first player's match", 20, on_match).await?;
+    let second = state_until(b, "the second player's match", 20, on_match).await?;
+    if first["match_id"] != second["match_id"] || first["seat"] == second["seat"] {
+        return Err(E2eError::Check(format!(
+            "not one match in two seats: {} {} and {} {}",
+            first["match_id"], first["seat"], second["match_id"], second["seat"]
+        )));
+    }
+    eprintln!(
+        "e2e: paired into {} ({} and {})",
+        first["match_id"], first["seat"], second["seat"]
+    );
+    browser::screenshot(b, &artifacts.join("quick-2-paired.png")).await?;
+    Ok(())
+}
+
+/// Opens the game in `client` signed in to a new account `name` (made
+/// through the API, its key put where the page keeps it).
+async fn sign_in_by_storage(client: &Client, server: &Server, name: &str) -> Result<()> {
+    let (status, made) = api::post_json(
+        &server.addr,
+        "/api/accounts",
+        &serde_json::json!({ "name": name, "bot": false }),
+    )
+    .await?;
+    let key = made["key"]
+        .as_str()
+        .filter(|_| status == 201)
+        .ok_or_else(|| E2eError::Check(format!("POST /api/accounts: {status} {made}")))?;
+    client.goto(&server.url("/")).await?;
+    browser::eval(
+        client,
+        &format!(
+            "localStorage.setItem('chapaev.account.key', {}); \
+             localStorage.setItem('chapaev.account.name', {}); return true;",
+            serde_json::json!(key),
+            serde_json::json!(name)
+        ),
+    )
+    .await?;
+    client.refresh().await?;
+    state_until(client, "the lobby, signed in", 30, |s| {
+        s["screen"] == "lobby" && s["signed_in"] == name
+    })
+    .await?;
+    Ok(())
+}
+
+/// The page can be installed: it links its web-app manifest (which names
+/// its icons), and its service worker registers, takes control of the
+/// page and caches the page and this build's wasm, so it opens offline.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_page_links_its_manifest_and_its_service_worker_caches_the_wasm() {
+    let Some(Setup {
+        programs,
+        artifacts,
+        scratch,
+        server,
+        driver,
+    }) = setup("-install")
+    else {
+        return;
+    };
+    let client = driver
+        .session(&programs, &scratch.path().join("profile"))
+        .await
+        .unwrap_or_else(|e| panic!("{e}"));
+    let outcome = installable(&client, &server).await;
+    let _ = client.close().await;
+    drop(driver);
+    drop(server);
+    if let Err(e) = outcome {
+        panic!("{e}\n(logs are in {})", artifacts.display());
+    }
+}
+
+async fn installable(client: &Client, server: &Server) -> Result<()> {
+    client.goto(&server.url("/")).await?;
+    state_until(client, "the lobby", 30, |s| s["screen"] == "lobby").await?;
+    let manifest = browser::eval(
+        client,
+        "const l = document.querySelector('link[rel=manifest]');
+         if (!l) return null;
+         return fetch(l.href).then(r => r.json());",
+    )
+    .await?;
+    let icons = manifest["icons"].as_array().map_or(0, Vec::len);
+    if manifest["start_url"] != "/" || icons < 2 {
+        return Err(E2eError::Check(format!("the manifest: {manifest}")));
+    }
+    browser::poll(
+        client,
+        "the service worker in control",
+        "return !!(navigator.serviceWorker && navigator.serviceWorker.controller);",
+        Duration::from_secs(30),
+        Duration::from_millis(200),
+        |v| v == true,
+    )
+    .await?;
+    let cached = browser::eval(
+        client,
+        "return caches.keys().then(async (keys) => {
+             const urls = [];
+             for (const k of keys) {
+                 for (const r of await (await caches.open(k)).keys()) urls.push(new URL(r.url).pathname);
+             }
+             return urls;
+         });",
+    )
+    .await?;
+    let has = |path: &str| cached.as_array().into_iter().flatten().any(|u| u == path);
+    if !(has("/") && has("/chapaev.wasm") && has("/chapaev.js")) {
+        return Err(E2eError::Check(format!("cached: {cached}")));
+    }
+    eprintln!("e2e: the service worker cached {cached}");
+    Ok(())
+}
+
 /// One window the layout scenario runs in.
 struct Window {
     name: &'static str,

@@ -1,5 +1,6 @@
 //! The lobby: your name (or, signed in, your account with its rating and
-//! whether new matches are rated), a match against the computer (easy,
+//! whether new matches are rated), a quick match against a stranger, a
+//! match against the computer (easy,
 //! medium, hard or adaptive) or a friend (a link to send), joining by id, the way to
 //! the leaderboard, and the server's open, live and finished matches — with
 //! the seats' ratings and rated matches marked — to join, watch or replay.
@@ -108,10 +109,15 @@ impl Lobby {
         let r = p.poll()?;
         self.creating = None;
         let grant = self.s.created(r)?;
-        platform::storage_set(&token_key(&grant.match_id), &grant.token);
-        Some(Route::Play {
-            match_id: grant.match_id,
-        })
+        Some(seated(&grant))
+    }
+}
+
+/// Keeps the seat's token (so a reload keeps the seat) and leads to its match.
+pub fn seated(grant: &SeatGrant) -> Route {
+    platform::storage_set(&token_key(&grant.match_id), &grant.token);
+    Route::Play {
+        match_id: grant.match_id.clone(),
     }
 }
 
@@ -346,7 +352,8 @@ impl Lobby {
             go = Some(r);
         }
         // The matches to start: one row, or a grid of two columns.
-        let choices: [(&str, &str); 7] = [
+        let choices: [(&str, &str); layout::CHOICES] = [
+            ("quick-match", "Quick match"),
             ("vs-computer-easy", "Computer: easy"),
             ("vs-computer-medium", "Computer: medium"),
             ("vs-computer-hard", "Computer: hard"),
@@ -355,15 +362,20 @@ impl Lobby {
             ("sandbox", "Physics sandbox"),
             ("leaderboard", "Leaderboard"),
         ];
-        for ((i, (name, label)), rect) in choices.iter().enumerate().zip(l.choices) {
+        for ((name, label), rect) in choices.iter().zip(l.choices) {
             if ui.button(name, label, rect) {
-                match i {
-                    0 => self.create(Opponent::Bot("easy")),
-                    1 => self.create(Opponent::Bot("medium")),
-                    2 => self.create(Opponent::Bot("hard")),
-                    3 => self.create(Opponent::Bot("adaptive")),
-                    4 => self.create(Opponent::Person),
-                    5 => go = Some(Route::Sandbox),
+                match *name {
+                    "quick-match" => {
+                        go = Some(Route::QuickMatch {
+                            rated: self.s.rated_request(),
+                        })
+                    }
+                    "vs-computer-easy" => self.create(Opponent::Bot("easy")),
+                    "vs-computer-medium" => self.create(Opponent::Bot("medium")),
+                    "vs-computer-hard" => self.create(Opponent::Bot("hard")),
+                    "vs-computer-adaptive" => self.create(Opponent::Bot("adaptive")),
+                    "vs-person" => self.create(Opponent::Person),
+                    "sandbox" => go = Some(Route::Sandbox),
                     _ => go = Some(Route::Leaderboard { bots: false }),
                 }
             }

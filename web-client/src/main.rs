@@ -13,12 +13,14 @@ mod clip;
 mod connection;
 mod draw;
 mod help;
+mod highlight;
 mod leaderboard;
 mod lobby;
 mod pace;
 mod platform;
 mod play;
 mod profile;
+mod quick_match;
 mod replay;
 mod route;
 mod sandbox;
@@ -69,6 +71,7 @@ fn open(route: &Route) -> Box<dyn Screen> {
     let name = signed_in.map_or_else(lobby::saved_name, |a| a.name);
     match route {
         Route::Lobby => Box::new(lobby::Lobby::new(api)),
+        Route::QuickMatch { rated } => Box::new(quick_match::QuickMatch::new(api, name, *rated)),
         Route::Play { match_id } => {
             Box::new(play::Play::new(api, match_id.clone(), name, false, false))
         }

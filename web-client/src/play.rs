@@ -17,6 +17,7 @@ pub mod state;
 
 use crate::api::{token_key, Api, Pending, SeatGrant};
 use crate::connection::{Connection, Link};
+use crate::highlight;
 use crate::platform;
 use crate::route::{ws_origin, Route};
 use crate::screen::Screen;
@@ -475,6 +476,15 @@ impl Screen for Play {
         if help {
             self.help = !crate::help::show(ui);
         }
+        // The instant replay of a shot worth seeing again, and its Skip.
+        if self.state.replaying {
+            let r = Rect::new(board.x + board.w - 128.0, board.y + 6.0, 120.0, ui::TOUCH);
+            let label = format!("Slow motion {}x", highlight::SLOW);
+            ui::text(&label, board.x + 10.0, board.y + 16.0, 17.0, colors::ACCENT);
+            if !help && ui.button("skip-replay", "Skip replay", r) {
+                self.state.skip_replay();
+            }
+        }
         if let Some((text, until)) = &self.state.notice {
             if self.state.now < *until {
                 let shown = ui::fit(text, 16.0, board.w - 40.0);
@@ -517,6 +527,7 @@ impl Screen for Play {
         m.insert("my_turn".into(), self.my_turn().into());
         m.insert("status".into(), self.status.clone().into());
         m.insert("animating".into(), self.state.busy().into());
+        m.insert("replaying".into(), self.state.replaying.into());
         m.insert(
             "connected".into(),
             self.conn.as_ref().is_some_and(Connection::is_open).into(),

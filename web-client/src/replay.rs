@@ -8,6 +8,7 @@
 use crate::api::{Api, Pending};
 use crate::clip::{Clip, Frame};
 use crate::draw;
+use crate::highlight;
 use crate::route::Route;
 use crate::screen::Screen;
 use crate::timeline::Timeline;
@@ -16,13 +17,17 @@ use crate::viewport::Viewport;
 use game::{MatchResult, MatchView, Replay as GameReplay, Side, WinReason};
 use macroquad::prelude::*;
 
-/// The speeds offered.
-pub const SPEEDS: [f64; 7] = [-2.0, -1.0, -0.5, 0.5, 1.0, 2.0, 4.0];
+/// The speeds offered: backwards, slow motion down to a tenth, fast.
+pub const SPEEDS: [f64; 7] = [-1.0, 0.1, 0.25, 0.5, 1.0, 2.0, 4.0];
+/// How many best shots are listed.
+const BEST: usize = 3;
 
 struct Loaded {
     replay: GameReplay,
     clips: Vec<Clip>,
     timeline: Timeline,
+    /// The best shots: each one's index and the pieces it knocked off.
+    best: Vec<(usize, usize)>,
     /// What [`game::verify`] said of the record, in words.
     fairness: String,
 }
@@ -76,6 +81,7 @@ impl Replay {
             .collect();
         let timeline = Timeline::new(clips.iter().map(Clip::duration));
         Ok(Loaded {
+            best: highlight::best_shots(clips.iter().map(|c| &c.outcome), BEST),
             fairness: fairness(replay.record()),
             replay,
             clips,
@@ -246,6 +252,22 @@ impl Screen for Replay {
             );
         }
         let mut go = ui.button("lobby", "Lobby", lobby).then_some(Route::Lobby);
+        // The best shots down the board's left edge: each jumps to its
+        // shot, in slow motion.
+        let bw = if narrow { 112.0 } else { 150.0 };
+        if !l.best.is_empty() && !narrow {
+            ui::text("Best shots", 12.0, head_h + 6.0, 15.0, colors::MUTED);
+        }
+        for (i, &(n, k)) in l.best.iter().enumerate() {
+            let top = head_h + if narrow { 6.0 } else { 28.0 };
+            let r = Rect::new(12.0, top + i as f32 * (ui::TOUCH + 6.0), bw, ui::TOUCH);
+            let label = format!("Shot {} · {k} off", n + 1);
+            if ui.button(&format!("best-{i}"), &label, r) {
+                self.t = l.timeline.start(n);
+                self.speed = highlight::SLOW;
+                self.playing = true;
+            }
+        }
         // The control bar: timeline, play/pause, shot jumps, speeds.
         let bar = Rect::new(0.0, h - bar_h, w, bar_h);
         ui::panel(bar);
@@ -345,6 +367,8 @@ impl Screen for Replay {
         if let State::Ready(l) = &self.state {
             m.insert("shots".into(), l.clips.len().into());
             m.insert("total".into(), l.timeline.total().into());
+            m.insert("best_shots".into(), serde_json::json!(l.best));
+            m.insert("speed".into(), self.speed.into());
         }
         m
     }

@@ -8,6 +8,8 @@
 pub enum Route {
     /// Create, join, watch or replay matches.
     Lobby,
+    /// Waiting to be paired with a stranger (rated or casual).
+    QuickMatch { rated: bool },
     /// Play a match with the seat token this browser holds for it.
     Play { match_id: String },
     /// Take the empty seat of a match (a shared link), then play it.
@@ -40,6 +42,8 @@ impl Route {
         let parts: Vec<&str> = frag.trim_start_matches('/').split('/').collect();
         match parts.as_slice() {
             ["sandbox"] => Route::Sandbox,
+            ["quick"] => Route::QuickMatch { rated: false },
+            ["quick", "rated"] => Route::QuickMatch { rated: true },
             ["account"] => Route::SignIn,
             ["leaderboard"] => Route::Leaderboard { bots: false },
             ["leaderboard", "bots"] => Route::Leaderboard { bots: true },
@@ -64,6 +68,8 @@ impl Route {
     pub fn hash(&self) -> String {
         match self {
             Route::Lobby => "#/".to_string(),
+            Route::QuickMatch { rated: false } => "#/quick".to_string(),
+            Route::QuickMatch { rated: true } => "#/quick/rated".to_string(),
             Route::Play { match_id } => format!("#/play/{match_id}"),
             Route::Join { match_id } => format!("#/join/{match_id}"),
             Route::Watch { match_id } => format!("#/watch/{match_id}"),
@@ -110,6 +116,8 @@ mod tests {
         let id = "ab250fa2c87606f4".to_string();
         for r in [
             Route::Lobby,
+            Route::QuickMatch { rated: false },
+            Route::QuickMatch { rated: true },
             Route::Play {
                 match_id: id.clone(),
             },

@@ -3,7 +3,11 @@
 //! miniquad plugin and the wasm, which this module serves at `/`,
 //! `/mq_js_bundle.js`, `/chapaev.js` and `/chapaev.wasm` (as
 //! `application/wasm`, or browsers refuse to stream-compile it), and the
-//! page's icon at `/favicon.svg` (and `/favicon.ico`).
+//! page's icon at `/favicon.svg` (and `/favicon.ico`). To be installed on
+//! a home screen it serves the web-app manifest (`/manifest.webmanifest`),
+//! the icons drawn at build time (`/icon-192.png`, `/icon-512.png`) and
+//! the service worker (`/sw.js`, at the root so it covers the whole page)
+//! that caches the build's files for use offline.
 //!
 //! Every file is also embedded gzipped (compressed once by `build.rs`) and
 //! sent as such, with `Content-Encoding: gzip`, to a request that accepts
@@ -42,6 +46,10 @@ pub struct Bundle {
     pub mq_js_bundle: Asset,
     pub wasm: Asset,
     pub favicon: Asset,
+    pub manifest: Asset,
+    pub service_worker: Asset,
+    pub icon_192: Asset,
+    pub icon_512: Asset,
 }
 
 /// Why the build embedded no client.
@@ -83,6 +91,22 @@ pub fn routes(cfg: &mut web::ServiceConfig) {
         .route(
             "/favicon.ico",
             web::get().to(|r: HttpRequest| file(r, |b| &b.favicon)),
+        )
+        .route(
+            "/manifest.webmanifest",
+            web::get().to(|r: HttpRequest| file(r, |b| &b.manifest)),
+        )
+        .route(
+            "/sw.js",
+            web::get().to(|r: HttpRequest| file(r, |b| &b.service_worker)),
+        )
+        .route(
+            "/icon-192.png",
+            web::get().to(|r: HttpRequest| file(r, |b| &b.icon_192)),
+        )
+        .route(
+            "/icon-512.png",
+            web::get().to(|r: HttpRequest| file(r, |b| &b.icon_512)),
         );
 }
 
@@ -380,6 +404,53 @@ mod tests {
         assert_eq!(status, 200);
         assert_eq!(header(&headers, "content-type"), "image/svg+xml");
         assert!(String::from_utf8(body).unwrap().contains("<svg"));
+    }
+
+    #[actix_web::test]
+    async fn the_page_can_be_installed_with_its_manifest_icons_and_service_worker() {
+        let bundle = match web_client() {
+            Ok(bundle) => bundle,
+            Err(why) => {
+                assert!(skipped(why), "the web client was not built: {}", why.reason);
+                return;
+            }
+        };
+        let page = String::from_utf8(bundle.index_html.bytes.to_vec()).unwrap();
+        let manifest = format!("manifest.webmanifest?v={}", bundle.manifest.hash);
+        assert!(page.contains(&format!("rel=\"manifest\" href=\"{manifest}\"")));
+        assert!(page.contains("serviceWorker.register(\"sw.js\")"));
+        let (status, headers, body) = get("/manifest.webmanifest", None).await;
+        assert_eq!(status, 200);
+        assert_eq!(
+            header(&headers, "content-type"),
+            "application/manifest+json"
+        );
+        let m: serde_json::Value = serde_json::from_slice(&body).expect("the manifest is JSON");
+        assert_eq!(m["start_url"], "/");
+        assert_eq!(m["display"], "standalone");
+        for (size, path) in [(192u32, "/icon-192.png"), (512, "/icon-512.png")] {
+            let listed = m["icons"].as_array().into_iter().flatten();
+            assert!(
+                listed.clone().any(|i| i["src"] == path[1..]),
+                "{path} listed"
+            );
+            let (status, headers, body) = get(path, None).await;
+            assert_eq!(status, 200, "{path}");
+            assert_eq!(header(&headers, "content-type"), "image/png");
+            let png = png::Decoder::new(body.as_slice())
+                .read_info()
+                .expect("a PNG");
+            assert_eq!((png.info().width, png.info().height), (size, size));
+        }
+        // The worker caches this build's files by their versioned addresses.
+        let (status, headers, body) = get("/sw.js", None).await;
+        assert_eq!(status, 200);
+        assert!(header(&headers, "content-type").starts_with("text/javascript"));
+        assert_eq!(header(&headers, "cache-control"), "no-cache");
+        let worker = String::from_utf8(body).unwrap();
+        assert!(!worker.contains("__CHAPAEV"), "every placeholder filled");
+        assert!(worker.contains(&format!("chapaev-{}", bundle.index_html.hash)));
+        assert!(worker.contains(&format!("/chapaev.wasm?v={}", bundle.wasm.hash)));
     }
 
     #[actix_web::test]

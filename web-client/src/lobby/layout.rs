@@ -11,7 +11,7 @@ use macroquad::prelude::Rect;
 /// Room between controls.
 pub const GAP: f32 = 8.0;
 /// How many matches there are to start.
-pub const CHOICES: usize = 7;
+pub const CHOICES: usize = 8;
 
 /// The lobby's places.
 #[derive(Clone, Debug)]

@@ -7,6 +7,7 @@
 //! here.
 
 use crate::clip::{Clip, Frame};
+use crate::highlight;
 use crate::platform::Sound;
 use crate::story::{self, Score};
 use game::protocol::{Players, ServerMessage};
@@ -32,6 +33,8 @@ pub struct MatchState {
     queue: VecDeque<ServerMessage>,
     /// The shot being animated and its time.
     pub playing: Option<(Clip, f64)>,
+    /// The shot playing is its instant replay, in slow motion.
+    pub replaying: bool,
     /// Whose turn the clock counts and when it runs out (on [`Self::now`]'s clock).
     pub clock: Option<(Seat, Side, f64)>,
     /// The chat, oldest first, at most [`CHAT_LINES`].
@@ -140,6 +143,7 @@ impl MatchState {
                 self.view = Some(view);
                 self.queue.clear();
                 self.playing = None;
+                self.replaying = false;
                 self.awaiting = false;
             }
             m @ (ServerMessage::ShotPlayed { .. }
@@ -209,11 +213,26 @@ impl MatchState {
     pub fn advance(&mut self, dt: f64) -> Vec<Sound> {
         let mut sounds = Vec::new();
         // Catch up faster when several shots are waiting.
-        let speed = if self.queue.len() > 1 { 3.0 } else { 1.0 };
+        let speed = if self.replaying {
+            highlight::SLOW
+        } else if self.queue.len() > 1 {
+            3.0
+        } else {
+            1.0
+        };
         let me = self.my_side();
         if let Some((clip, t)) = &mut self.playing {
             *t += dt * speed;
-            if *t >= clip.duration() {
+            // A shot worth seeing again plays once more, slowly, unless
+            // more shots wait to be shown.
+            let again = !self.replaying
+                && self.queue.len() <= 1
+                && highlight::worth_replaying(&clip.outcome);
+            if *t >= clip.duration() && again {
+                *t = 0.0;
+                self.replaying = true;
+            } else if *t >= clip.duration() {
+                self.replaying = false;
                 if let Some(v) = &self.view {
                     self.view = Some(v.after_shot(&clip.outcome, &clip.film));
                 }
@@ -270,6 +289,13 @@ impl MatchState {
             }
         }
         sounds
+    }
+
+    /// Skips the instant replay playing, if one is.
+    pub fn skip_replay(&mut self) {
+        if let (true, Some((clip, t))) = (self.replaying, &mut self.playing) {
+            *t = clip.duration();
+        }
     }
 
     /// The moment to draw: the animated shot, or the board at rest.
@@ -347,6 +373,40 @@ pub(crate) mod tests {
         assert_eq!(v.shots, 1);
         assert_eq!(s.outcomes.len(), 1);
         assert_eq!(s.log.len(), 1);
+    }
+
+    #[test]
+    fn a_shot_knocking_off_two_pieces_is_replayed_at_a_quarter_speed_and_can_be_skipped() {
+        let mut s = seated(Some(Seat::First));
+        let mut shot = white_shot();
+        if let ServerMessage::ShotPlayed { outcome, .. } = &mut shot {
+            let p = outcome.knocked_off[0];
+            outcome.knocked_off = vec![p, p];
+        }
+        s.receive(shot);
+        s.advance(0.0);
+        let duration = s.playing.as_ref().unwrap().0.duration();
+        s.advance(duration + 0.01);
+        assert!(s.replaying, "the replay follows the shot");
+        assert_eq!(s.view.as_ref().unwrap().shots, 0, "its result waits");
+        // A quarter speed: half the film's time shows an eighth of it.
+        s.advance(duration / 2.0);
+        let t = s.playing.as_ref().unwrap().1;
+        assert!((t - duration / 8.0).abs() < 1e-9, "{t}");
+        s.skip_replay();
+        s.advance(0.0);
+        assert!(!s.replaying && !s.busy());
+        assert_eq!(s.view.as_ref().unwrap().shots, 1);
+    }
+
+    #[test]
+    fn a_shot_knocking_off_one_piece_is_not_replayed() {
+        let mut s = seated(Some(Seat::First));
+        s.receive(white_shot());
+        s.advance(0.0);
+        let duration = s.playing.as_ref().unwrap().0.duration();
+        s.advance(duration + 0.01);
+        assert!(!s.replaying && !s.busy());
     }
 
     #[test]
