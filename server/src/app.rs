@@ -136,11 +136,15 @@ async fn serve(
         crate::web::ratelimit::AddressLimiter::new(config.create_per_sec, config.create_burst),
     ));
     let origins = web::Data::new(crate::web::origin::Origins::new(&config.allowed_origins));
+    let proxies = web::Data::new(crate::web::client_addr::TrustedProxies::new(
+        config.trusted_proxy.clone(),
+    ));
     let server = HttpServer::new(move || {
         App::new()
             .app_data(data.clone())
             .app_data(streams.clone())
             .app_data(origins.clone())
+            .app_data(proxies.clone())
             .wrap(actix_web::middleware::from_fn(crate::web::origin::check))
             .app_data(simulations.clone())
             .app_data(creations.clone())

@@ -119,6 +119,17 @@ pub struct Config {
     #[arg(long, env = "CHAPAEV_ALLOWED_ORIGINS", value_delimiter = ',')]
     pub allowed_origins: Vec<String>,
 
+    /// Reverse proxies in front of the server, trusted to say whom they
+    /// forward for (CIDR networks or addresses, comma-separated or the
+    /// flag repeated: `--trusted-proxy 10.0.0.0/8,::1`). A request from one
+    /// of them counts against the limits of the client address its
+    /// `Forwarded` (or else `X-Forwarded-For`) header names: the right-most
+    /// hop that is not itself a trusted proxy. Those headers are ignored
+    /// from any other peer. None by default: every limit counts by the TCP
+    /// peer, so behind a proxy all clients would share one address.
+    #[arg(long, env = "CHAPAEV_TRUSTED_PROXY", value_delimiter = ',', value_parser = parse_trusted_proxy)]
+    pub trusted_proxy: Vec<ipnet::IpNet>,
+
     /// Shots `POST /api/simulate` computes per second for one client
     /// address, sustained.
     #[arg(long, env = "CHAPAEV_SIMULATE_PER_SEC", default_value_t = 50.0)]
@@ -232,6 +243,14 @@ fn parse_node_id(s: &str) -> Result<String, String> {
     }
 }
 
+/// A `--trusted-proxy` value: a network in CIDR notation (`10.0.0.0/8`,
+/// `fd00::/8`) or a single address.
+pub fn parse_trusted_proxy(s: &str) -> Result<ipnet::IpNet, String> {
+    s.parse::<ipnet::IpNet>()
+        .or_else(|_| s.parse::<std::net::IpAddr>().map(ipnet::IpNet::from))
+        .map_err(|_| format!("{s:?} is neither a network (10.0.0.0/8) nor an address"))
+}
+
 impl Config {
     /// This node's id when it runs in a cluster (`--redis-url`); `None`
     /// for a server on its own.
@@ -313,5 +332,21 @@ mod tests {
         assert!(Config::try_parse_from(["server", "--turn-seconds", "0"]).is_err());
         assert!(Config::try_parse_from(["server", "--sync", "sometimes"]).is_err());
         Config::command().debug_assert();
+    }
+
+    #[test]
+    fn trusted_proxies_are_networks_or_addresses_listed_or_repeated() {
+        let c = Config::parse_from([
+            "server",
+            "--trusted-proxy",
+            "10.0.0.0/8,::1",
+            "--trusted-proxy",
+            "192.0.2.7",
+        ]);
+        let shown: Vec<String> = c.trusted_proxy.iter().map(|n| n.to_string()).collect();
+        assert_eq!(shown, ["10.0.0.0/8", "::1/128", "192.0.2.7/32"]);
+        assert!(Config::parse_from(["server"]).trusted_proxy.is_empty());
+        assert!(Config::try_parse_from(["server", "--trusted-proxy", "10.0.0.0/40"]).is_err());
+        assert!(Config::try_parse_from(["server", "--trusted-proxy", "proxy.example"]).is_err());
     }
 }

@@ -347,6 +347,63 @@ async fn simulate_gives_the_servers_bits_and_refuses_hostile_requests() {
 }
 
 #[tokio::test]
+async fn behind_a_trusted_proxy_each_forwarded_client_has_its_own_limit_and_spoofing_does_not_help()
+{
+    // One match creation per address, refilling only after ~1000 s.
+    let limits = ["--create-per-sec", "0.001", "--create-burst", "1"];
+    let dir = tempfile::tempdir().unwrap();
+    let mut flags = limits.to_vec();
+    flags.extend(["--trusted-proxy", "127.0.0.0/8"]);
+    let proxied = Server::start(dir.path(), &flags);
+    let create = |server: &Server, header: &str| {
+        let (addr, header) = (server.addr.clone(), header.to_string());
+        async move {
+            common::http_with(&addr, "POST", "/api/matches", &header, "{}")
+                .await
+                .0
+        }
+    };
+    // Two clients behind the proxy: one creation each.
+    assert_eq!(
+        create(&proxied, "X-Forwarded-For: 198.51.100.1\r\n").await,
+        201
+    );
+    assert_eq!(
+        create(&proxied, "Forwarded: for=198.51.100.2\r\n").await,
+        201
+    );
+    assert_eq!(
+        create(&proxied, "X-Forwarded-For: 198.51.100.1\r\n").await,
+        429
+    );
+    // A client's own spoofed entry left of the proxy's does not change who it is.
+    assert_eq!(
+        create(&proxied, "X-Forwarded-For: 203.0.113.5, 198.51.100.1\r\n").await,
+        429
+    );
+    // One IPv6 client is one /64, whatever address it picks in it.
+    assert_eq!(
+        create(&proxied, "Forwarded: for=\"[2001:db8:0:1::1]\"\r\n").await,
+        201
+    );
+    assert_eq!(
+        create(&proxied, "Forwarded: for=\"[2001:db8:0:1::2]\"\r\n").await,
+        429
+    );
+    // Without the setting the headers are not believed: one address for all.
+    let dir = tempfile::tempdir().unwrap();
+    let direct = Server::start(dir.path(), &limits);
+    assert_eq!(
+        create(&direct, "X-Forwarded-For: 198.51.100.1\r\n").await,
+        201
+    );
+    assert_eq!(
+        create(&direct, "X-Forwarded-For: 198.51.100.2\r\n").await,
+        429
+    );
+}
+
+#[tokio::test]
 async fn limits_on_matches_and_connections_hold() {
     let dir = tempfile::tempdir().unwrap();
     let server = Server::start(
