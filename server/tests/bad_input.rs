@@ -176,6 +176,56 @@ async fn a_message_fragmented_past_the_size_limit_is_refused_with_message_too_la
 }
 
 #[tokio::test]
+async fn hostile_seat_names_are_refused_and_names_are_shown_normalised() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &[]);
+    let code = |body: &str| -> String {
+        let v: serde_json::Value = serde_json::from_str(body).unwrap();
+        v["code"].as_str().unwrap_or_default().to_string()
+    };
+    for (name, want) in [
+        ("Petka\u{202E}akteP", "bad-name"),
+        ("Pet\u{200B}ka", "bad-name"),
+        ("Pet\u{2028}ka", "bad-name"),
+        ("Pet\nka", "bad-name"),
+        ("   ", "bad-name"),
+        ("bot (hard)", "reserved-name"),
+        ("computer-hard", "reserved-name"),
+        ("Computer (easy)", "reserved-name"),
+        ("ВОТ", "reserved-name"),
+    ] {
+        let body = serde_json::json!({ "name": name }).to_string();
+        let (status, text) = server.http("POST", "/api/matches", &body).await;
+        assert_eq!(
+            (status, code(&text)),
+            (400, want.to_string()),
+            "{name:?}: {text}"
+        );
+    }
+    // Full-width letters are normalised: the seat, and so the chat's
+    // author, is plain "Petka".
+    let (id, token) = server.create(r#"{"name":"Ｐｅｔｋａ"}"#).await;
+    let join = format!("/api/matches/{id}/join");
+    let (status, text) = server
+        .http("POST", &join, r#"{"name":"bot (medium)"}"#)
+        .await;
+    assert_eq!((status, code(&text)), (400, "reserved-name".to_string()));
+    let (status, _) = server.http("POST", &join, r#"{"name":"Anka"}"#).await;
+    assert_eq!(status, 200);
+    let mut white = server.ws(&id, Some(&token)).await;
+    view(white.next().await);
+    white
+        .send(&ClientMessage::Chat {
+            text: "hello".into(),
+        })
+        .await;
+    match white.next_of("chat").await {
+        game::protocol::ServerMessage::Chat { name, .. } => assert_eq!(name, "Petka"),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[tokio::test]
 async fn an_http_body_past_the_size_limit_gets_a_json_413() {
     let dir = tempfile::tempdir().unwrap();
     let server = Server::start(dir.path(), &["--max-message-bytes", "4096"]);
