@@ -4,7 +4,7 @@
 //! environment variable of the same name in capitals with a `CHAPAEV_`
 //! prefix (`--max-matches` is `CHAPAEV_MAX_MATCHES`).
 
-use clap::{Parser, ValueEnum};
+use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -13,19 +13,29 @@ use std::time::Duration;
 #[derive(Parser, Debug, Clone)]
 #[command(name = "server", version, about, long_about = None)]
 pub struct Config {
+    /// Without a command, the server runs; `backup` and `restore` copy
+    /// its store out and back in (see docs/operations.md).
+    #[command(subcommand)]
+    pub command: Option<Command>,
+
     /// Address to listen on (`host:port`; port 0 picks a free port, printed on start).
     #[arg(long, env = "CHAPAEV_ADDR", default_value = "127.0.0.1:8080")]
     pub addr: String,
 
     /// Folder of the SQLite store (`chapaev.sqlite3`), created if missing
     /// (unused with `--database-url`).
-    #[arg(long, env = "CHAPAEV_DATA_DIR", default_value = "./data")]
+    #[arg(
+        long,
+        env = "CHAPAEV_DATA_DIR",
+        default_value = "./data",
+        global = true
+    )]
     pub data_dir: PathBuf,
 
     /// Store everything in PostgreSQL instead of SQLite
     /// (`postgres://user:password@host:port/database`); its schema is
     /// created or migrated on start. Several server nodes may share one.
-    #[arg(long, env = "CHAPAEV_DATABASE_URL")]
+    #[arg(long, env = "CHAPAEV_DATABASE_URL", global = true)]
     pub database_url: Option<String>,
 
     /// Run as one node of a cluster (`redis://host:port`): nodes share the
@@ -185,6 +195,27 @@ pub struct Config {
     pub shutdown_seconds: u64,
 }
 
+/// What the `server` binary does besides serving.
+#[derive(Subcommand, Debug, Clone, PartialEq, Eq)]
+pub enum Command {
+    /// Copies the store into FILE while the server may be running and
+    /// playing: SQLite's own consistent copy (`VACUUM INTO`), or `pg_dump`
+    /// for PostgreSQL (which must then be on PATH). FILE must not exist.
+    Backup {
+        /// The file to write.
+        #[arg(long, value_name = "FILE")]
+        to: PathBuf,
+    },
+    /// Restores a backup into the store the flags name (`--data-dir`, or
+    /// `--database-url`), which must be empty; then replays every match
+    /// in it to prove it whole. Run it with no server on that store.
+    Restore {
+        /// The backup to read.
+        #[arg(long, value_name = "FILE")]
+        from: PathBuf,
+    },
+}
+
 /// One less than the cores this process may use, at least one, at most 64.
 fn default_http_workers() -> u16 {
     let cores = std::thread::available_parallelism().map_or(2, |n| n.get());
@@ -332,6 +363,23 @@ mod tests {
         assert!(Config::try_parse_from(["server", "--turn-seconds", "0"]).is_err());
         assert!(Config::try_parse_from(["server", "--sync", "sometimes"]).is_err());
         Config::command().debug_assert();
+    }
+
+    #[test]
+    fn backup_and_restore_are_commands_taking_the_stores_flags_before_or_after() {
+        assert_eq!(Config::parse_from(["server"]).command, None);
+        let c = Config::parse_from(["server", "backup", "--to", "b.sqlite3", "--data-dir", "d"]);
+        assert_eq!(
+            c.command,
+            Some(Command::Backup {
+                to: "b.sqlite3".into()
+            })
+        );
+        assert_eq!(c.data_dir, PathBuf::from("d"));
+        let c = Config::parse_from(["server", "--data-dir", "e", "restore", "--from", "b"]);
+        assert_eq!(c.command, Some(Command::Restore { from: "b".into() }));
+        assert_eq!(c.data_dir, PathBuf::from("e"));
+        assert!(Config::try_parse_from(["server", "backup"]).is_err());
     }
 
     #[test]

@@ -20,6 +20,7 @@
 //! | `play` | live matches: `hub` (the registry of rooms), `room` (one match's task), `adaptive_memory`, `cluster` (several nodes on PostgreSQL and Redis) |
 //! | `accounts` | creating accounts, their keys and passwords (names follow `game::name`) |
 //! | [`store`] | SQLite (with its read connections and checkpointer) or PostgreSQL, behind one trait |
+//! | `backup` | `server backup` and `server restore`: the store copied out while it plays, and back in, proven by replaying every match |
 //! | [`config`] | flags and limits |
 //! | [`metrics`] | the Prometheus metrics |
 //! | `limit_key` | what the per-address limits count by (an IPv6 client's /64) |
@@ -34,6 +35,7 @@
 
 mod accounts;
 pub mod app;
+mod backup;
 pub mod config;
 mod limit_key;
 pub mod metrics;

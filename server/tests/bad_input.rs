@@ -306,6 +306,29 @@ async fn a_flood_is_rate_limited_and_the_connection_survives() {
 }
 
 #[tokio::test]
+async fn a_chat_flood_sustained_above_the_rate_is_closed() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &["--rate-per-sec", "10", "--rate-burst", "10"]);
+    let (id, white_token, _) = server.two_player_match("").await;
+    let mut white = server.ws(&id, Some(&white_token)).await;
+    view(white.next().await);
+    // 20 chat messages a second against 10: half are dropped, never 200
+    // in a row, but the flood goes on.
+    let chat = ClientMessage::Chat {
+        text: "spam".into(),
+    }
+    .to_json();
+    let (close, after) = white
+        .flood_until_closed(&chat, Duration::from_millis(50), Duration::from_secs(30))
+        .await
+        .expect("a sustained flood is closed");
+    let close = close.expect("a close frame");
+    assert_eq!(u16::from(close.code), 1008, "policy violation");
+    assert_eq!(close.reason, "rate-limited");
+    assert!(after >= Duration::from_secs(9), "closed after {after:?}");
+}
+
+#[tokio::test]
 async fn legal_moves_are_never_dropped_by_the_flood_guard_but_refused_ones_pay() {
     let dir = tempfile::tempdir().unwrap();
     let server = Server::start(dir.path(), &["--rate-per-sec", "1", "--rate-burst", "2"]);

@@ -24,6 +24,9 @@ pub struct TokenBucket {
     last: Instant,
     /// Messages dropped since the bucket last had a token to spare.
     pub dropped_in_a_row: u32,
+    /// When the current run over the limit began: the first drop since the
+    /// bucket was last full.
+    over_since: Option<Instant>,
 }
 
 impl TokenBucket {
@@ -35,6 +38,7 @@ impl TokenBucket {
             tokens: burst,
             last: now,
             dropped_in_a_row: 0,
+            over_since: None,
         }
     }
 
@@ -48,14 +52,28 @@ impl TokenBucket {
         let dt = now.saturating_duration_since(self.last).as_secs_f64();
         self.last = now;
         self.tokens = (self.tokens + dt * self.rate).min(self.burst);
+        if self.tokens >= self.burst {
+            // Quiet long enough to refill in full: any run over the limit ended.
+            self.over_since = None;
+        }
         if self.tokens >= 1.0 {
             self.tokens -= 1.0;
             self.dropped_in_a_row = 0;
             true
         } else {
             self.dropped_in_a_row += 1;
+            self.over_since.get_or_insert(now);
             false
         }
+    }
+
+    /// How long the sender has kept above the sustained rate: since the
+    /// first message dropped after the bucket was last full (zero when
+    /// none was). Slowing down to the rate does not end the run; pausing
+    /// until the bucket is full again does.
+    pub fn over_limit_for(&self, now: Instant) -> Duration {
+        self.over_since
+            .map_or(Duration::ZERO, |since| now.saturating_duration_since(since))
     }
 
     /// Charges `n` messages already let through (moves the match then
