@@ -9,9 +9,10 @@
 //! from the very macroquad crate the client uses, found with `cargo
 //! metadata`) and the wasm (as `chapaev.wasm`) are copied into `OUT_DIR`,
 //! and `OUT_DIR/web_client.rs` names them with `include_bytes!` for
-//! `src/assets.rs`. Each file is also gzipped here (flate2, best
-//! compression), so the server sends the compressed copy with
-//! `Content-Encoding: gzip` without compressing anything per request, and
+//! `src/assets.rs`. Each file is also compressed here, once, with brotli
+//! (the `brotli` crate, quality 11) and with gzip (flate2, best
+//! compression), so the server sends the copy a request accepts with its
+//! `Content-Encoding` without compressing anything per request, and
 //! the page asks for its scripts and wasm under `?v=<hash>` addresses that
 //! change with every build (so they can be cached for good).
 //!
@@ -72,11 +73,12 @@ enum NotBuilt {
     },
 }
 
-/// One embedded file: where it and its gzipped copy lie in `OUT_DIR`,
-/// its content hash and its ETag.
+/// One embedded file: where it and its compressed copies lie in
+/// `OUT_DIR`, its content hash and its ETag.
 struct Copied {
     path: PathBuf,
     gzip: PathBuf,
+    brotli: PathBuf,
     hash: String,
     etag: String,
 }
@@ -454,7 +456,8 @@ fn read(from: &Path) -> Result<Vec<u8>, NotBuilt> {
     })
 }
 
-/// Writes `bytes` to `to` and their gzipped copy beside it (`.gz`).
+/// Writes `bytes` to `to` and their compressed copies beside it (`.gz`
+/// and `.br`).
 fn store(bytes: Vec<u8>, to: &Path) -> Result<Copied, NotBuilt> {
     let io = |what: String| move |source| NotBuilt::Io { what, source };
     std::fs::write(to, &bytes).map_err(io(format!("writing {}", to.display())))?;
@@ -464,15 +467,30 @@ fn store(bytes: Vec<u8>, to: &Path) -> Result<Copied, NotBuilt> {
     let packed = gz
         .finish()
         .map_err(io(format!("compressing {}", to.display())))?;
-    let gzip = to.with_extension(format!(
-        "{}.gz",
-        to.extension().and_then(|e| e.to_str()).unwrap_or("")
-    ));
+    let beside = |suffix: &str| {
+        to.with_extension(format!(
+            "{}.{suffix}",
+            to.extension().and_then(|e| e.to_str()).unwrap_or("")
+        ))
+    };
+    let gzip = beside("gz");
     std::fs::write(&gzip, &packed).map_err(io(format!("writing {}", gzip.display())))?;
+    // Brotli's best: quality 11, a 4 MiB window (the wasm is a few MiB).
+    let mut packed = Vec::new();
+    let params = brotli::enc::BrotliEncoderParams {
+        quality: 11,
+        lgwin: 22,
+        ..Default::default()
+    };
+    brotli::BrotliCompress(&mut bytes.as_slice(), &mut packed, &params)
+        .map_err(io(format!("compressing {} with brotli", to.display())))?;
+    let brotli = beside("br");
+    std::fs::write(&brotli, &packed).map_err(io(format!("writing {}", brotli.display())))?;
     let hash = format!("{:016x}", fnv1a(&bytes));
     Ok(Copied {
         path: to.to_path_buf(),
         gzip,
+        brotli,
         etag: format!("\"{hash}-{:x}\"", bytes.len()),
         hash,
     })
@@ -506,9 +524,11 @@ fn embedded(files: &HashMap<&'static str, Copied>) -> String {
         let _ = writeln!(
             code,
             "    {key}: Asset {{ bytes: include_bytes!({:?}), gzip: include_bytes!({:?}), \
-             hash: {:?}, etag: {:?}, content_type: {content_type:?} }},",
+             brotli: include_bytes!({:?}), hash: {:?}, etag: {:?}, \
+             content_type: {content_type:?} }},",
             file.path.display().to_string(),
             file.gzip.display().to_string(),
+            file.brotli.display().to_string(),
             file.hash,
             file.etag,
         );

@@ -58,8 +58,11 @@ pub enum ErrorCode {
     /// The match was played under a physics version this server cannot
     /// play; it is kept as stored, for a server that can.
     UnsupportedPhysics,
-    /// An account name that is not allowed (length, characters).
+    /// A name that is not allowed (length, characters).
     BadName,
+    /// A name that passes for one of the computer's (`bot (hard)`,
+    /// `computer-easy`, in any case or look-alike letters).
+    ReservedName,
     /// The account name is someone else's.
     NameTaken,
     /// No account has this name.
@@ -113,6 +116,7 @@ impl ErrorCode {
             ErrorCode::ForbiddenOrigin => "forbidden-origin",
             ErrorCode::UnsupportedPhysics => "unsupported-physics",
             ErrorCode::BadName => "bad-name",
+            ErrorCode::ReservedName => "reserved-name",
             ErrorCode::NameTaken => "name-taken",
             ErrorCode::NoSuchAccount => "no-such-account",
             ErrorCode::BadKey => "bad-key",

@@ -30,6 +30,8 @@ pub enum AppError {
     },
     #[error("I/O: {0}")]
     Io(#[from] std::io::Error),
+    #[error(transparent)]
+    Backup(#[from] crate::backup::BackupError),
 }
 
 /// Installs the tracing subscriber (logs go to standard error).
@@ -46,10 +48,20 @@ pub fn init_logging(config: &Config) -> Result<(), AppError> {
 }
 
 /// A binary's whole `main`: flags from the command line and environment,
-/// then [`run`]; an error is printed after `program`'s name.
+/// then [`run`] (or the command they name: `backup`, `restore`, whose
+/// one-line report goes to standard output); an error is printed after
+/// `program`'s name.
 pub fn main(program: &str) -> std::process::ExitCode {
     use clap::Parser;
-    match run(Config::parse()) {
+    let config = Config::parse();
+    let done = match &config.command {
+        Some(command) => init_logging(&config).and_then(|()| {
+            println!("{}", crate::backup::run(command, &config)?);
+            Ok(())
+        }),
+        None => run(config),
+    };
+    match done {
         Ok(()) => std::process::ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("{program}: {e}");
@@ -136,11 +148,15 @@ async fn serve(
         crate::web::ratelimit::AddressLimiter::new(config.create_per_sec, config.create_burst),
     ));
     let origins = web::Data::new(crate::web::origin::Origins::new(&config.allowed_origins));
+    let proxies = web::Data::new(crate::web::client_addr::TrustedProxies::new(
+        config.trusted_proxy.clone(),
+    ));
     let server = HttpServer::new(move || {
         App::new()
             .app_data(data.clone())
             .app_data(streams.clone())
             .app_data(origins.clone())
+            .app_data(proxies.clone())
             .wrap(actix_web::middleware::from_fn(crate::web::origin::check))
             .app_data(simulations.clone())
             .app_data(creations.clone())

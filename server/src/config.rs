@@ -4,7 +4,7 @@
 //! environment variable of the same name in capitals with a `CHAPAEV_`
 //! prefix (`--max-matches` is `CHAPAEV_MAX_MATCHES`).
 
-use clap::{Parser, ValueEnum};
+use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -13,19 +13,29 @@ use std::time::Duration;
 #[derive(Parser, Debug, Clone)]
 #[command(name = "server", version, about, long_about = None)]
 pub struct Config {
+    /// Without a command, the server runs; `backup` and `restore` copy
+    /// its store out and back in (see docs/operations.md).
+    #[command(subcommand)]
+    pub command: Option<Command>,
+
     /// Address to listen on (`host:port`; port 0 picks a free port, printed on start).
     #[arg(long, env = "CHAPAEV_ADDR", default_value = "127.0.0.1:8080")]
     pub addr: String,
 
     /// Folder of the SQLite store (`chapaev.sqlite3`), created if missing
     /// (unused with `--database-url`).
-    #[arg(long, env = "CHAPAEV_DATA_DIR", default_value = "./data")]
+    #[arg(
+        long,
+        env = "CHAPAEV_DATA_DIR",
+        default_value = "./data",
+        global = true
+    )]
     pub data_dir: PathBuf,
 
     /// Store everything in PostgreSQL instead of SQLite
     /// (`postgres://user:password@host:port/database`); its schema is
     /// created or migrated on start. Several server nodes may share one.
-    #[arg(long, env = "CHAPAEV_DATABASE_URL")]
+    #[arg(long, env = "CHAPAEV_DATABASE_URL", global = true)]
     pub database_url: Option<String>,
 
     /// Run as one node of a cluster (`redis://host:port`): nodes share the
@@ -119,6 +129,17 @@ pub struct Config {
     #[arg(long, env = "CHAPAEV_ALLOWED_ORIGINS", value_delimiter = ',')]
     pub allowed_origins: Vec<String>,
 
+    /// Reverse proxies in front of the server, trusted to say whom they
+    /// forward for (CIDR networks or addresses, comma-separated or the
+    /// flag repeated: `--trusted-proxy 10.0.0.0/8,::1`). A request from one
+    /// of them counts against the limits of the client address its
+    /// `Forwarded` (or else `X-Forwarded-For`) header names: the right-most
+    /// hop that is not itself a trusted proxy. Those headers are ignored
+    /// from any other peer. None by default: every limit counts by the TCP
+    /// peer, so behind a proxy all clients would share one address.
+    #[arg(long, env = "CHAPAEV_TRUSTED_PROXY", value_delimiter = ',', value_parser = parse_trusted_proxy)]
+    pub trusted_proxy: Vec<ipnet::IpNet>,
+
     /// Shots `POST /api/simulate` computes per second for one client
     /// address, sustained.
     #[arg(long, env = "CHAPAEV_SIMULATE_PER_SEC", default_value_t = 50.0)]
@@ -172,6 +193,27 @@ pub struct Config {
     /// Seconds to let connections and writes finish on SIGTERM or Ctrl-C.
     #[arg(long, env = "CHAPAEV_SHUTDOWN_SECONDS", default_value_t = 10)]
     pub shutdown_seconds: u64,
+}
+
+/// What the `server` binary does besides serving.
+#[derive(Subcommand, Debug, Clone, PartialEq, Eq)]
+pub enum Command {
+    /// Copies the store into FILE while the server may be running and
+    /// playing: SQLite's own consistent copy (`VACUUM INTO`), or `pg_dump`
+    /// for PostgreSQL (which must then be on PATH). FILE must not exist.
+    Backup {
+        /// The file to write.
+        #[arg(long, value_name = "FILE")]
+        to: PathBuf,
+    },
+    /// Restores a backup into the store the flags name (`--data-dir`, or
+    /// `--database-url`), which must be empty; then replays every match
+    /// in it to prove it whole. Run it with no server on that store.
+    Restore {
+        /// The backup to read.
+        #[arg(long, value_name = "FILE")]
+        from: PathBuf,
+    },
 }
 
 /// One less than the cores this process may use, at least one, at most 64.
@@ -230,6 +272,14 @@ fn parse_node_id(s: &str) -> Result<String, String> {
     } else {
         Err("a node id is 1 to 64 letters, digits, '-', '_' or '.'".into())
     }
+}
+
+/// A `--trusted-proxy` value: a network in CIDR notation (`10.0.0.0/8`,
+/// `fd00::/8`) or a single address.
+pub fn parse_trusted_proxy(s: &str) -> Result<ipnet::IpNet, String> {
+    s.parse::<ipnet::IpNet>()
+        .or_else(|_| s.parse::<std::net::IpAddr>().map(ipnet::IpNet::from))
+        .map_err(|_| format!("{s:?} is neither a network (10.0.0.0/8) nor an address"))
 }
 
 impl Config {
@@ -313,5 +363,38 @@ mod tests {
         assert!(Config::try_parse_from(["server", "--turn-seconds", "0"]).is_err());
         assert!(Config::try_parse_from(["server", "--sync", "sometimes"]).is_err());
         Config::command().debug_assert();
+    }
+
+    #[test]
+    fn backup_and_restore_are_commands_taking_the_stores_flags_before_or_after() {
+        assert_eq!(Config::parse_from(["server"]).command, None);
+        let c = Config::parse_from(["server", "backup", "--to", "b.sqlite3", "--data-dir", "d"]);
+        assert_eq!(
+            c.command,
+            Some(Command::Backup {
+                to: "b.sqlite3".into()
+            })
+        );
+        assert_eq!(c.data_dir, PathBuf::from("d"));
+        let c = Config::parse_from(["server", "--data-dir", "e", "restore", "--from", "b"]);
+        assert_eq!(c.command, Some(Command::Restore { from: "b".into() }));
+        assert_eq!(c.data_dir, PathBuf::from("e"));
+        assert!(Config::try_parse_from(["server", "backup"]).is_err());
+    }
+
+    #[test]
+    fn trusted_proxies_are_networks_or_addresses_listed_or_repeated() {
+        let c = Config::parse_from([
+            "server",
+            "--trusted-proxy",
+            "10.0.0.0/8,::1",
+            "--trusted-proxy",
+            "192.0.2.7",
+        ]);
+        let shown: Vec<String> = c.trusted_proxy.iter().map(|n| n.to_string()).collect();
+        assert_eq!(shown, ["10.0.0.0/8", "::1/128", "192.0.2.7/32"]);
+        assert!(Config::parse_from(["server"]).trusted_proxy.is_empty());
+        assert!(Config::try_parse_from(["server", "--trusted-proxy", "10.0.0.0/40"]).is_err());
+        assert!(Config::try_parse_from(["server", "--trusted-proxy", "proxy.example"]).is_err());
     }
 }

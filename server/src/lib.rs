@@ -16,12 +16,14 @@
 //! | module | what it owns |
 //! | --- | --- |
 //! | [`app`] | startup and shutdown: the runtimes, the store, the cluster, the HTTP server |
-//! | `web` | HTTP routes and the WebSocket endpoints: `matches` (the match API, `/api`, `/healthz`, `/metrics`), `accounts` (the accounts API), `auth`, `assets` (the embedded web client), `simulate`, `ws` (a match's socket), `stream` (the lobby's event stream), `reply`, `origin`, `ratelimit`, `blocking` |
+//! | `web` | HTTP routes and the WebSocket endpoints: `matches` (the match API, `/api`, `/healthz`, `/metrics`), `accounts` (the accounts API), `auth`, `assets` (the embedded web client), `simulate`, `ws` (a match's socket), `stream` (the lobby's event stream), `reply`, `origin`, `client_addr` (the client's address behind trusted proxies), `ratelimit`, `blocking` |
 //! | `play` | live matches: `hub` (the registry of rooms), `room` (one match's task), `adaptive_memory`, `cluster` (several nodes on PostgreSQL and Redis) |
 //! | `accounts` | creating accounts, their keys and passwords (names follow `game::name`) |
 //! | [`store`] | SQLite (with its read connections and checkpointer) or PostgreSQL, behind one trait |
+//! | `backup` | `server backup` and `server restore`: the store copied out while it plays, and back in, proven by replaying every match |
 //! | [`config`] | flags and limits |
 //! | [`metrics`] | the Prometheus metrics |
+//! | `limit_key` | what the per-address limits count by (an IPv6 client's /64) |
 //! | `token` | seat tokens, account keys and ids |
 //! | `refusal` | errors sent to clients, with their HTTP statuses |
 //!
@@ -33,7 +35,9 @@
 
 mod accounts;
 pub mod app;
+mod backup;
 pub mod config;
+mod limit_key;
 pub mod metrics;
 mod play;
 mod refusal;

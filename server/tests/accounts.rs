@@ -111,6 +111,8 @@ async fn bad_names_taken_names_and_wrong_keys_get_stable_codes_and_change_nothin
         (r#"{"name":"anka"}"#, (409, "name-taken")),
         (r#"{"name":"ab"}"#, (400, "bad-name")),
         (r#"{"name":"Анка"}"#, (400, "bad-name")),
+        (r#"{"name":"computer-hard"}"#, (400, "reserved-name")),
+        (r#"{"name":"B0T"}"#, (400, "reserved-name")),
         (r#"{"name":"x","admin":true}"#, (400, "bad-message")),
         (r#"{"name":"#, (400, "bad-json")),
     ] {

@@ -176,6 +176,56 @@ async fn a_message_fragmented_past_the_size_limit_is_refused_with_message_too_la
 }
 
 #[tokio::test]
+async fn hostile_seat_names_are_refused_and_names_are_shown_normalised() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &[]);
+    let code = |body: &str| -> String {
+        let v: serde_json::Value = serde_json::from_str(body).unwrap();
+        v["code"].as_str().unwrap_or_default().to_string()
+    };
+    for (name, want) in [
+        ("Petka\u{202E}akteP", "bad-name"),
+        ("Pet\u{200B}ka", "bad-name"),
+        ("Pet\u{2028}ka", "bad-name"),
+        ("Pet\nka", "bad-name"),
+        ("   ", "bad-name"),
+        ("bot (hard)", "reserved-name"),
+        ("computer-hard", "reserved-name"),
+        ("Computer (easy)", "reserved-name"),
+        ("ВОТ", "reserved-name"),
+    ] {
+        let body = serde_json::json!({ "name": name }).to_string();
+        let (status, text) = server.http("POST", "/api/matches", &body).await;
+        assert_eq!(
+            (status, code(&text)),
+            (400, want.to_string()),
+            "{name:?}: {text}"
+        );
+    }
+    // Full-width letters are normalised: the seat, and so the chat's
+    // author, is plain "Petka".
+    let (id, token) = server.create(r#"{"name":"Ｐｅｔｋａ"}"#).await;
+    let join = format!("/api/matches/{id}/join");
+    let (status, text) = server
+        .http("POST", &join, r#"{"name":"bot (medium)"}"#)
+        .await;
+    assert_eq!((status, code(&text)), (400, "reserved-name".to_string()));
+    let (status, _) = server.http("POST", &join, r#"{"name":"Anka"}"#).await;
+    assert_eq!(status, 200);
+    let mut white = server.ws(&id, Some(&token)).await;
+    view(white.next().await);
+    white
+        .send(&ClientMessage::Chat {
+            text: "hello".into(),
+        })
+        .await;
+    match white.next_of("chat").await {
+        game::protocol::ServerMessage::Chat { name, .. } => assert_eq!(name, "Petka"),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[tokio::test]
 async fn an_http_body_past_the_size_limit_gets_a_json_413() {
     let dir = tempfile::tempdir().unwrap();
     let server = Server::start(dir.path(), &["--max-message-bytes", "4096"]);
@@ -253,6 +303,29 @@ async fn a_flood_is_rate_limited_and_the_connection_survives() {
             }
         }
     }
+}
+
+#[tokio::test]
+async fn a_chat_flood_sustained_above_the_rate_is_closed() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &["--rate-per-sec", "10", "--rate-burst", "10"]);
+    let (id, white_token, _) = server.two_player_match("").await;
+    let mut white = server.ws(&id, Some(&white_token)).await;
+    view(white.next().await);
+    // 20 chat messages a second against 10: half are dropped, never 200
+    // in a row, but the flood goes on.
+    let chat = ClientMessage::Chat {
+        text: "spam".into(),
+    }
+    .to_json();
+    let (close, after) = white
+        .flood_until_closed(&chat, Duration::from_millis(50), Duration::from_secs(30))
+        .await
+        .expect("a sustained flood is closed");
+    let close = close.expect("a close frame");
+    assert_eq!(u16::from(close.code), 1008, "policy violation");
+    assert_eq!(close.reason, "rate-limited");
+    assert!(after >= Duration::from_secs(9), "closed after {after:?}");
 }
 
 #[tokio::test]
@@ -344,6 +417,63 @@ async fn simulate_gives_the_servers_bits_and_refuses_hostile_requests() {
     // The address has spent its burst: refused until it refills.
     let (s, b) = server.http("POST", "/api/simulate", "{}").await;
     assert_eq!((s, code(&b)), (429, "rate-limited".to_string()));
+}
+
+#[tokio::test]
+async fn behind_a_trusted_proxy_each_forwarded_client_has_its_own_limit_and_spoofing_does_not_help()
+{
+    // One match creation per address, refilling only after ~1000 s.
+    let limits = ["--create-per-sec", "0.001", "--create-burst", "1"];
+    let dir = tempfile::tempdir().unwrap();
+    let mut flags = limits.to_vec();
+    flags.extend(["--trusted-proxy", "127.0.0.0/8"]);
+    let proxied = Server::start(dir.path(), &flags);
+    let create = |server: &Server, header: &str| {
+        let (addr, header) = (server.addr.clone(), header.to_string());
+        async move {
+            common::http_with(&addr, "POST", "/api/matches", &header, "{}")
+                .await
+                .0
+        }
+    };
+    // Two clients behind the proxy: one creation each.
+    assert_eq!(
+        create(&proxied, "X-Forwarded-For: 198.51.100.1\r\n").await,
+        201
+    );
+    assert_eq!(
+        create(&proxied, "Forwarded: for=198.51.100.2\r\n").await,
+        201
+    );
+    assert_eq!(
+        create(&proxied, "X-Forwarded-For: 198.51.100.1\r\n").await,
+        429
+    );
+    // A client's own spoofed entry left of the proxy's does not change who it is.
+    assert_eq!(
+        create(&proxied, "X-Forwarded-For: 203.0.113.5, 198.51.100.1\r\n").await,
+        429
+    );
+    // One IPv6 client is one /64, whatever address it picks in it.
+    assert_eq!(
+        create(&proxied, "Forwarded: for=\"[2001:db8:0:1::1]\"\r\n").await,
+        201
+    );
+    assert_eq!(
+        create(&proxied, "Forwarded: for=\"[2001:db8:0:1::2]\"\r\n").await,
+        429
+    );
+    // Without the setting the headers are not believed: one address for all.
+    let dir = tempfile::tempdir().unwrap();
+    let direct = Server::start(dir.path(), &limits);
+    assert_eq!(
+        create(&direct, "X-Forwarded-For: 198.51.100.1\r\n").await,
+        201
+    );
+    assert_eq!(
+        create(&direct, "X-Forwarded-For: 198.51.100.2\r\n").await,
+        429
+    );
 }
 
 #[tokio::test]

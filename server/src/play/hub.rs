@@ -12,6 +12,7 @@
 //! and a creation that fails gives its slot back ([`Slot`]).
 
 use crate::config::Limits;
+use crate::limit_key::LimitKey;
 use crate::metrics::Metrics;
 use crate::play::cluster::{Cluster, Lease, LocalRooms};
 use crate::play::room::{Claim, Command, Connected, FinishedMatch, MatchListener, Room, RoomHost};
@@ -28,7 +29,6 @@ use prometheus_client::metrics::gauge::ConstGauge;
 use prometheus_client::registry::Registry;
 use std::collections::HashMap;
 use std::future::Future;
-use std::net::IpAddr;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
@@ -124,8 +124,8 @@ struct Inner {
     /// under the lock of `rooms`, so `rooms + reserved` never passes the
     /// limit.
     reserved: AtomicUsize,
-    /// Open WebSocket connections per client address.
-    addresses: Mutex<HashMap<IpAddr, usize>>,
+    /// Open WebSocket connections per client address (an IPv6 client's /64).
+    addresses: Mutex<HashMap<LimitKey, usize>>,
     /// Serialises loads so that one match never gets two rooms.
     load_lock: tokio::sync::Mutex<()>,
     next_conn: AtomicU64,
@@ -366,7 +366,7 @@ impl Hub {
     /// Counts one more WebSocket connection from `addr`; `None` when the
     /// address already holds as many as allowed. The count drops with the
     /// guard.
-    pub fn admit_address(&self, addr: IpAddr) -> Option<AddressGuard> {
+    pub fn admit_address(&self, addr: LimitKey) -> Option<AddressGuard> {
         let mut addresses = self
             .inner
             .addresses
@@ -971,7 +971,7 @@ impl Drop for Slot {
 /// One WebSocket connection counted against its client address.
 pub struct AddressGuard {
     hub: Hub,
-    addr: IpAddr,
+    addr: LimitKey,
 }
 
 impl Drop for AddressGuard {

@@ -415,6 +415,11 @@ pub trait Store: Send + Sync {
     /// on start; open ones are loaded when someone comes for them).
     fn live(&self) -> Result<Vec<String>, StoreError>;
 
+    /// Ids of every match, in byte order, the first `limit` after `after`
+    /// (from the first without): a walk over the whole store in pages of
+    /// bounded size (what a restored store is checked with).
+    fn match_ids(&self, after: Option<&str>, limit: usize) -> Result<Vec<String>, StoreError>;
+
     /// Deletes the open matches (never joined, so without moves) untouched
     /// for `older_than` seconds, except those `keep` names (in memory, so
     /// still waited for); their ids. One transaction.

@@ -396,6 +396,16 @@ impl Store for PostgresStore {
         Ok(rows.iter().map(|r| r.get(0)).collect())
     }
 
+    fn match_ids(&self, after: Option<&str>, limit: usize) -> Result<Vec<String>, StoreError> {
+        let limit = i64::try_from(limit).unwrap_or(i64::MAX);
+        let rows = self.conn()?.query(
+            "SELECT id FROM matches WHERE $1::text IS NULL OR id COLLATE \"C\" > $1
+             ORDER BY id COLLATE \"C\" LIMIT $2",
+            &[&after, &limit],
+        )?;
+        Ok(rows.iter().map(|r| r.get(0)).collect())
+    }
+
     fn expire_open(
         &self,
         older_than: u64,

@@ -224,6 +224,9 @@ fn migrate(conn: &Connection) -> Result<(), StoreError> {
     Ok(())
 }
 
+/// The store's file in its data folder.
+pub const FILE_NAME: &str = "chapaev.sqlite3";
+
 impl SqliteStore {
     /// Opens (creating if needed) `DIR/chapaev.sqlite3`.
     pub fn open(dir: &Path, sync: SyncMode) -> Result<SqliteStore, StoreError> {
@@ -241,7 +244,7 @@ impl SqliteStore {
             path: dir.display().to_string(),
             source,
         })?;
-        let path = dir.join("chapaev.sqlite3");
+        let path = dir.join(FILE_NAME);
         let conn = Connection::open(&path)?;
         // In log mode before the checkpointer's connection opens the file.
         conn.pragma_update(None, "journal_mode", "WAL")?;
@@ -480,6 +483,17 @@ impl Store for SqliteStore {
             .prepare("SELECT id FROM matches WHERE status = 'live' ORDER BY updated_at DESC, id")?;
         let ids = stmt
             .query_map([], |r| r.get::<_, String>(0))?
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(ids)
+    }
+
+    fn match_ids(&self, after: Option<&str>, limit: usize) -> Result<Vec<String>, StoreError> {
+        let conn = self.read()?;
+        let mut stmt = conn
+            .prepare("SELECT id FROM matches WHERE ?1 IS NULL OR id > ?1 ORDER BY id LIMIT ?2")?;
+        let limit = i64::try_from(limit).unwrap_or(i64::MAX);
+        let ids = stmt
+            .query_map(params![after, limit], |r| r.get::<_, String>(0))?
             .collect::<Result<Vec<_>, _>>()?;
         Ok(ids)
     }

@@ -85,6 +85,7 @@ on_both_backends!(
     the_last_move_of_a_rated_match_moves_both_ratings_once,
     a_casual_match_or_a_seat_without_an_account_rates_nothing,
     the_computer_levels_have_bot_accounts_nobody_can_register,
+    every_match_id_is_walked_in_pages_in_byte_order,
 );
 
 pub(super) fn stored(id: &str) -> StoredMatch {
@@ -212,6 +213,25 @@ fn a_move_index_is_written_once_and_a_failed_move_changes_nothing(b: Backend) {
     assert!(store.append_move("nope", 0, &resign, &LIVE).is_err());
     assert!(store.moves("nope").unwrap().is_empty());
     assert_eq!(store.moves("m1").unwrap(), vec![resign]);
+}
+
+fn every_match_id_is_walked_in_pages_in_byte_order(b: Backend) {
+    let store = b.store;
+    for id in ["b", "a", "C", "a2", "a10"] {
+        store.create(&stored(id)).unwrap();
+    }
+    let mut walked = Vec::new();
+    let mut after: Option<String> = None;
+    loop {
+        let page = store.match_ids(after.as_deref(), 2).unwrap();
+        assert!(page.len() <= 2);
+        let Some(last) = page.last().cloned() else {
+            break;
+        };
+        walked.extend(page);
+        after = Some(last);
+    }
+    assert_eq!(walked, ["C", "a", "a10", "a2", "b"]);
 }
 
 fn the_second_seat_is_taken_once_and_listing_filters_by_status(b: Backend) {

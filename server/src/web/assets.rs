@@ -9,10 +9,12 @@
 //! the service worker (`/sw.js`, at the root so it covers the whole page)
 //! that caches the build's files for use offline.
 //!
-//! Every file is also embedded gzipped (compressed once by `build.rs`) and
-//! sent as such, with `Content-Encoding: gzip`, to a request that accepts
-//! it; `Vary: Accept-Encoding` keeps caches apart. Each answer carries an
-//! ETag computed at build time. The page is `Cache-Control: no-cache`
+//! Every file is also embedded compressed with brotli and with gzip (once,
+//! by `build.rs`), and each request gets the best its `Accept-Encoding`
+//! takes ([`Coding::negotiate`]): brotli, else gzip, else the plain bytes,
+//! with the matching `Content-Encoding`; `Vary: Accept-Encoding` keeps
+//! caches apart. Each answer carries an ETag computed at build time (one
+//! per encoding). The page is `Cache-Control: no-cache`
 //! (revalidated, a `304` when nothing changed); it names its files with
 //! their build's hash (`chapaev.wasm?v=<hash>`), and a file asked for under
 //! its own hash is cached for a year as immutable, so a returning player
@@ -31,6 +33,8 @@ pub struct Asset {
     pub bytes: &'static [u8],
     /// The same bytes, gzipped.
     pub gzip: &'static [u8],
+    /// The same bytes, compressed with brotli.
+    pub brotli: &'static [u8],
     /// The content hash the page's addresses carry (`?v=`).
     pub hash: &'static str,
     /// A quoted entity tag, unique to this build of the file.
@@ -132,33 +136,75 @@ async fn file(req: HttpRequest, pick: fn(&'static Bundle) -> &'static Asset) -> 
 /// How long a file asked for under its own hash may be cached.
 pub const IMMUTABLE: &str = "public, max-age=31536000, immutable";
 
-/// Whether the request's `Accept-Encoding` takes gzip (`gzip` or `*`,
-/// without `q=0`).
-pub fn accepts_gzip(req: &HttpRequest) -> bool {
-    req.headers()
-        .get_all(header::ACCEPT_ENCODING)
-        .filter_map(|v| v.to_str().ok())
-        .flat_map(|v| v.split(','))
-        .any(|item| {
-            let mut parts = item.split(';');
-            let coding = parts.next().unwrap_or("").trim();
-            let refused = parts.any(|p| {
-                p.trim()
-                    .strip_prefix("q=")
-                    .and_then(|q| q.trim().parse::<f32>().ok())
-                    .is_some_and(|q| q <= 0.0)
-            });
-            (coding.eq_ignore_ascii_case("gzip") || coding == "*") && !refused
-        })
+/// A content coding the embedded files come in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Coding {
+    Brotli,
+    Gzip,
+    Identity,
+}
+
+impl Coding {
+    /// The coding to answer `req` with: brotli if its `Accept-Encoding`
+    /// takes it (`br` or `*`, without `q=0`), else gzip likewise, else the
+    /// plain bytes (always acceptable).
+    pub fn negotiate(req: &HttpRequest) -> Coding {
+        let accepted: Vec<(String, bool)> = req
+            .headers()
+            .get_all(header::ACCEPT_ENCODING)
+            .filter_map(|v| v.to_str().ok())
+            .flat_map(|v| v.split(','))
+            .map(|item| {
+                let mut parts = item.split(';');
+                let coding = parts.next().unwrap_or("").trim().to_ascii_lowercase();
+                let refused = parts.any(|p| {
+                    p.trim()
+                        .strip_prefix("q=")
+                        .and_then(|q| q.trim().parse::<f32>().ok())
+                        .is_some_and(|q| q <= 0.0)
+                });
+                (coding, !refused)
+            })
+            .collect();
+        // An explicit entry for a coding overrides `*`.
+        let takes = |name: &str| match accepted.iter().find(|(c, _)| c == name) {
+            Some(&(_, ok)) => ok,
+            None => accepted.iter().any(|(c, ok)| c == "*" && *ok),
+        };
+        if takes("br") {
+            Coding::Brotli
+        } else if takes("gzip") {
+            Coding::Gzip
+        } else {
+            Coding::Identity
+        }
+    }
+
+    /// The `Content-Encoding` value, and the ETag suffix of the representation.
+    fn name(self) -> Option<(&'static str, &'static str)> {
+        match self {
+            Coding::Brotli => Some(("br", "-br")),
+            Coding::Gzip => Some(("gzip", "-gz")),
+            Coding::Identity => None,
+        }
+    }
+
+    /// `asset`'s bytes in this coding.
+    fn bytes(self, asset: &Asset) -> &'static [u8] {
+        match self {
+            Coding::Brotli => asset.brotli,
+            Coding::Gzip => asset.gzip,
+            Coding::Identity => asset.bytes,
+        }
+    }
 }
 
 fn serve(req: &HttpRequest, asset: &Asset) -> HttpResponse {
-    let gzip = accepts_gzip(req);
-    // The compressed answer is another representation: its own ETag.
-    let etag = if gzip {
-        format!("{}-gz\"", asset.etag.trim_end_matches('"'))
-    } else {
-        asset.etag.to_string()
+    let coding = Coding::negotiate(req);
+    // A compressed answer is another representation: its own ETag.
+    let etag = match coding.name() {
+        Some((_, suffix)) => format!("{}{suffix}\"", asset.etag.trim_end_matches('"')),
+        None => asset.etag.to_string(),
     };
     let unchanged = req
         .headers()
@@ -183,15 +229,14 @@ fn serve(req: &HttpRequest, asset: &Asset) -> HttpResponse {
             if versioned { IMMUTABLE } else { "no-cache" },
         ));
     if unchanged {
-        answer.finish()
-    } else if gzip {
-        answer
-            .insert_header((header::CONTENT_ENCODING, "gzip"))
-            .content_type(asset.content_type)
-            .body(asset.gzip)
-    } else {
-        answer.content_type(asset.content_type).body(asset.bytes)
+        return answer.finish();
     }
+    if let Some((encoding, _)) = coding.name() {
+        answer.insert_header((header::CONTENT_ENCODING, encoding));
+    }
+    answer
+        .content_type(asset.content_type)
+        .body(coding.bytes(asset))
 }
 
 /// The API page, headed by a note saying why the game is not here.
@@ -339,7 +384,7 @@ mod tests {
                 return;
             }
         };
-        let accept = [("accept-encoding", "gzip, deflate, br")];
+        let accept = [("accept-encoding", "gzip, deflate")];
         let versioned = format!("/chapaev.wasm?v={}", bundle.wasm.hash);
         let (status, headers, body) = get_with(&versioned, None, &accept).await;
         assert_eq!(status, 200);
@@ -365,8 +410,8 @@ mod tests {
         assert_ne!(etag, bundle.wasm.etag);
         assert_eq!(get_with(&versioned, Some(&etag), &accept).await.0, 304);
 
-        // Without gzip in Accept-Encoding (or with q=0): the plain bytes.
-        for refusing in [None, Some("gzip;q=0, identity")] {
+        // Without gzip or brotli in Accept-Encoding (or with q=0): the plain bytes.
+        for refusing in [None, Some("gzip;q=0, identity"), Some("br;q=0, gzip;q=0")] {
             let extra: Vec<(&str, &str)> = refusing
                 .map(|v| vec![("accept-encoding", v)])
                 .unwrap_or_default();
@@ -379,6 +424,74 @@ mod tests {
             // Not under its hash: revalidated every time.
             assert_eq!(header(&headers, "cache-control"), "no-cache");
         }
+    }
+
+    fn unbrotli(bytes: &[u8]) -> Vec<u8> {
+        use std::io::Read as _;
+        let mut out = Vec::new();
+        brotli::Decompressor::new(bytes, 4096)
+            .read_to_end(&mut out)
+            .expect("a brotli stream");
+        out
+    }
+
+    #[actix_web::test]
+    async fn brotli_is_preferred_then_gzip_and_both_unpack_to_the_same_wasm_and_scripts() {
+        let bundle = match web_client() {
+            Ok(bundle) => bundle,
+            Err(why) => {
+                assert!(skipped(why), "the web client was not built: {}", why.reason);
+                return;
+            }
+        };
+        let mut wire = Vec::new();
+        for (path, asset) in [
+            ("/chapaev.wasm", &bundle.wasm),
+            ("/chapaev.js", &bundle.chapaev_js),
+            ("/mq_js_bundle.js", &bundle.mq_js_bundle),
+        ] {
+            let mut etags = Vec::new();
+            for (accept, encoding) in [
+                ("gzip, deflate, br", "br"),
+                ("br;q=0.5, gzip;q=1", "br"),
+                ("*", "br"),
+                ("gzip, br;q=0", "gzip"),
+                ("*, br;q=0", "gzip"),
+            ] {
+                let (status, headers, body) =
+                    get_with(path, None, &[("accept-encoding", accept)]).await;
+                assert_eq!(status, 200, "{path} {accept}");
+                assert_eq!(
+                    header(&headers, "content-encoding"),
+                    encoding,
+                    "{path} {accept}"
+                );
+                assert_eq!(header(&headers, "vary"), "Accept-Encoding");
+                assert_eq!(header(&headers, "content-type"), asset.content_type);
+                let unpacked = match encoding {
+                    "br" => unbrotli(&body),
+                    _ => gunzip(&body),
+                };
+                assert_eq!(
+                    unpacked, asset.bytes,
+                    "{path} {accept}: the same bytes, unpacked"
+                );
+                etags.push(header(&headers, "etag").to_string());
+                if path == "/chapaev.wasm" && matches!(accept, "*" | "gzip, br;q=0") {
+                    wire.push((encoding, body.len()));
+                }
+            }
+            // Each representation has its own ETag, and revalidates with it.
+            assert_ne!(etags[0], etags[3]);
+            let br = [("accept-encoding", "br")];
+            assert_eq!(get_with(path, Some(&etags[0]), &br).await.0, 304);
+        }
+        let (br, gz) = (wire[0].1, wire[1].1);
+        assert!(br < gz, "brotli is smaller than gzip: {br} against {gz}");
+        println!(
+            "web client wasm on the wire: {} bytes plain, {gz} gzip, {br} brotli",
+            bundle.wasm.bytes.len()
+        );
     }
 
     #[actix_web::test]

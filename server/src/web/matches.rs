@@ -23,21 +23,12 @@ use game::Config;
 use prometheus_client::registry::Registry;
 use serde::{Deserialize, Serialize};
 
-/// Longest player name, in characters.
-pub const MAX_NAME_CHARS: usize = 40;
 /// Most matches one listing returns.
 pub const MAX_LIST: usize = 100;
 
 fn name(n: Option<String>, default: &str) -> Result<String, Refusal> {
     let n = n.unwrap_or_else(|| default.to_string());
-    let n = n.trim().to_string();
-    if n.is_empty() || n.chars().count() > MAX_NAME_CHARS || n.chars().any(char::is_control) {
-        return Err(Refusal::new(
-            ErrorCode::BadMessage,
-            format!("a name is 1 to {MAX_NAME_CHARS} printable characters"),
-        ));
-    }
-    Ok(n)
+    Ok(game::name::seat_name(&n)?)
 }
 
 async fn blocking<T: Send + 'static>(

@@ -9,13 +9,15 @@
 //! - [`ws`]: a match's WebSocket; [`stream`]: the lobby's event stream;
 //!   [`pump`]: the WebSocket loop both run on;
 //! - [`reply`]: the shapes every answer shares; [`origin`]: cross-site
-//!   requests refused; [`ratelimit`]: token buckets per connection and per
+//!   requests refused; [`client_addr`]: who a request comes from, behind
+//!   trusted proxies; [`ratelimit`]: token buckets per connection and per
 //!   address; [`blocking`]: store work off the async threads.
 
 pub(crate) mod accounts;
 pub(crate) mod assets;
 pub(crate) mod auth;
 pub(crate) mod blocking;
+pub(crate) mod client_addr;
 pub(crate) mod matches;
 pub(crate) mod origin;
 pub(crate) mod pump;

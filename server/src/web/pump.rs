@@ -6,8 +6,9 @@
 //! frame is refused with `bad-message`), the opening `hello` within
 //! [`HELLO_WITHIN`], pings every [`PING_EVERY`] and the close of a
 //! connection silent for [`SILENT_FOR`], the per-connection token bucket
-//! (a dropped message is answered `rate-limited` once per run of drops,
-//! and [`FLOOD_CLOSE_AFTER`] drops in a row close the connection), every
+//! (a dropped message is answered `rate-limited` once per run of drops;
+//! [`FLOOD_CLOSE_AFTER`] drops in a row, or a drop after
+//! [`FLOOD_SUSTAINED_FOR`] above the rate, close the connection), every
 //! write under the write timeout (one that cannot finish ends the session
 //! as stuck), the outbound queue, JSON decoding with a typed refusal, the
 //! close codes and reasons, and the counting of refused messages.
@@ -35,6 +36,12 @@ pub(crate) const PING_EVERY: Duration = Duration::from_secs(15);
 pub(crate) const SILENT_FOR: Duration = Duration::from_secs(45);
 /// Dropped messages in a row after which a flooding connection is closed.
 pub(crate) const FLOOD_CLOSE_AFTER: u32 = 200;
+/// How long a connection may keep sending above the sustained rate (from
+/// its first dropped message, until it pauses long enough for its bucket
+/// to refill in full): a message dropped after that closes it. A flood
+/// just over the rate drops too few messages in a row to be closed by
+/// [`FLOOD_CLOSE_AFTER`], and is closed by this instead.
+pub(crate) const FLOOD_SUSTAINED_FOR: Duration = Duration::from_secs(10);
 /// How long a new connection has to say hello.
 pub(crate) const HELLO_WITHIN: Duration = Duration::from_secs(10);
 
@@ -227,8 +234,9 @@ enum Admission {
 
 /// The flood guard's decision on one message at `now`, after the debt was
 /// charged: messages that pay later pass unless the bucket is bankrupt;
-/// others take a token or are dropped, and a long enough run of drops
-/// closes the connection.
+/// others take a token or are dropped, and a long enough run of drops, or
+/// a drop after [`FLOOD_SUSTAINED_FOR`] over the limit, closes the
+/// connection.
 fn admit(bucket: &mut TokenBucket, pays_later: bool, now: Instant) -> Admission {
     if pays_later {
         return if bucket.bankrupt() {
@@ -239,7 +247,9 @@ fn admit(bucket: &mut TokenBucket, pays_later: bool, now: Instant) -> Admission 
     }
     if bucket.take(now) {
         Admission::Pass
-    } else if bucket.dropped_in_a_row >= FLOOD_CLOSE_AFTER {
+    } else if bucket.dropped_in_a_row >= FLOOD_CLOSE_AFTER
+        || bucket.over_limit_for(now) >= FLOOD_SUSTAINED_FOR
+    {
         Admission::Flooded
     } else {
         Admission::Drop {
@@ -491,6 +501,52 @@ mod tests {
             );
         }
         assert_eq!(admit(&mut bucket, false, t0), Admission::Flooded);
+    }
+
+    /// Sends at `per_sec` for `seconds` (simulated time); when the
+    /// connection is closed, how long after the start.
+    fn flood(per_sec: u32, seconds: u32, pause_every: Option<(u32, u32)>) -> Option<Duration> {
+        let t0 = Instant::now();
+        let mut bucket = TokenBucket::new(10.0, 10.0, t0);
+        let step = Duration::from_secs(1) / per_sec;
+        let mut at = Duration::ZERO;
+        for k in 0..per_sec * seconds {
+            if let Some((every, pause)) = pause_every {
+                if k > 0 && k % every == 0 {
+                    at += Duration::from_secs(pause.into());
+                }
+            }
+            if admit(&mut bucket, false, t0 + at) == Admission::Flooded {
+                return Some(at);
+            }
+            at += step;
+        }
+        None
+    }
+
+    #[test]
+    fn a_flood_sustained_just_above_the_rate_is_closed_after_the_grace() {
+        // 12 messages a second against 10: two dropped a second, never
+        // 200 in a row, but over the limit for good.
+        // The burst of 10 drains at 2 a second: the first drop comes at
+        // about 5 s, the close 10 s later.
+        let closed = flood(12, 30, None).expect("closed");
+        assert!(
+            closed >= FLOOD_SUSTAINED_FOR + Duration::from_secs(4),
+            "{closed:?}"
+        );
+        assert!(
+            closed < FLOOD_SUSTAINED_FOR + Duration::from_secs(7),
+            "{closed:?}"
+        );
+        // Exactly at the rate: nothing is dropped, nothing closed.
+        assert_eq!(flood(10, 30, None), None);
+    }
+
+    #[test]
+    fn bursts_over_the_limit_with_pauses_between_are_never_closed() {
+        // 20 at 40 a second (half dropped), then 2 s of silence, for 60 s.
+        assert_eq!(flood(40, 60, Some((20, 2))), None);
     }
 
     #[test]

@@ -186,7 +186,7 @@ pub(crate) fn admit(req: &HttpRequest, hub: &Hub) -> Result<Admitted, Refusal> {
             "the server holds as many connections as it can; try later",
         ));
     }
-    let addr = crate::web::ratelimit::client_ip(req);
+    let addr = crate::web::client_addr::limit_key(req);
     let Some(address_guard) = hub.admit_address(addr) else {
         return Err(Refusal::new(
             ErrorCode::ServerBusy,

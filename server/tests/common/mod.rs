@@ -223,6 +223,40 @@ impl Client {
         self.ws.send(Message::Text(text)).await.unwrap();
     }
 
+    /// Sends `text` every `every` while reading what comes, until the
+    /// server closes the connection (then its close frame, if one came, and
+    /// how long the flood lasted) or `within` passes (`None`).
+    pub async fn flood_until_closed(
+        &mut self,
+        text: &str,
+        every: Duration,
+        within: Duration,
+    ) -> Option<(
+        Option<tokio_tungstenite::tungstenite::protocol::CloseFrame<'static>>,
+        Duration,
+    )> {
+        let start = tokio::time::Instant::now();
+        let mut tick = tokio::time::interval(every);
+        loop {
+            tokio::select! {
+                _ = tick.tick() => {
+                    if start.elapsed() > within {
+                        return None;
+                    }
+                    // A send may fail once the server has closed: the read says so.
+                    let _ = self.ws.send(Message::Text(text.to_string())).await;
+                }
+                frame = self.ws.next() => match frame {
+                    Some(Ok(Message::Close(close))) => {
+                        return Some((close.map(|c| c.into_owned()), start.elapsed()))
+                    }
+                    None | Some(Err(_)) => return Some((None, start.elapsed())),
+                    Some(Ok(_)) => {}
+                },
+            }
+        }
+    }
+
     /// Sends `text` as one message fragmented into frames of `chunk` bytes.
     pub async fn send_fragmented(&mut self, text: &str, chunk: usize) {
         use tokio_tungstenite::tungstenite::protocol::frame::coding::{Data, OpCode};
