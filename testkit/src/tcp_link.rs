@@ -181,7 +181,11 @@ mod tests {
         link.cut();
         assert_eq!(round_trip(&mut before, "two"), None, "the open one broke");
         let mut during = TcpStream::connect(("127.0.0.1", link.port())).unwrap();
-        assert_eq!(round_trip(&mut during, "three"), None, "a new one is closed");
+        assert_eq!(
+            round_trip(&mut during, "three"),
+            None,
+            "a new one is closed"
+        );
         link.restore();
         let mut after = TcpStream::connect(("127.0.0.1", link.port())).unwrap();
         assert_eq!(round_trip(&mut after, "four").as_deref(), Some("four"));

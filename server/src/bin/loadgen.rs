@@ -644,9 +644,8 @@ async fn run(args: Args) -> Result<(), LoadError> {
         {
             // The gauges as they stood with every client connected.
             let held = &held_metrics[k];
-            let gauge = |name: &str| {
-                metric_value(held, name).map_or("?".into(), |v| format!("{v:.0}"))
-            };
+            let gauge =
+                |name: &str| metric_value(held, name).map_or("?".into(), |v| format!("{v:.0}"));
             let cpu = metric_value(before, "process_cpu_seconds_total")
                 .zip(metric_value(after, "process_cpu_seconds_total"))
                 .map_or("?".into(), |(a, b)| format!("{:.2}", b - a));

@@ -776,10 +776,7 @@ fn write_move(
 ) -> Result<(), StoreError> {
     sp.execute(insert_move, &[&m.id, &m.index, &m.body])?;
     let at = now() as i64;
-    let n = sp.execute(
-        update_match,
-        &[&m.id, &m.status, &m.shots, &m.result, &at],
-    )?;
+    let n = sp.execute(update_match, &[&m.id, &m.status, &m.shots, &m.result, &at])?;
     if n != 1 {
         return Err(StoreError::Corrupt(format!("no match {}", m.id)));
     }
