@@ -10,47 +10,10 @@
 
 mod common;
 
-use common::{shot, view, Client, Server};
+use common::cluster::{node, reconnect, services, until_shots, LEASE};
+use common::{shot, view, Client};
 use game::protocol::{ClientMessage, ServerMessage};
 use std::time::{Duration, Instant};
-
-/// Seconds a lease lasts in these tests.
-const LEASE: u64 = 2;
-
-/// A node of a fresh cluster on `db`, named `node`.
-fn node(dir: &std::path::Path, db: &str, redis: &str, node: &str) -> Server {
-    let lease = LEASE.to_string();
-    Server::start(
-        dir,
-        &[
-            "--database-url",
-            db,
-            "--redis-url",
-            redis,
-            "--node-id",
-            node,
-            "--lease-seconds",
-            &lease,
-        ],
-    )
-}
-
-/// A fresh database and the shared Redis, or `None` (skipped). (They
-/// block: off the runtime's thread.)
-fn services(test: &str) -> Option<(String, String)> {
-    tokio::task::block_in_place(|| {
-        let db = local_services::local_postgres::shared_database(test)?;
-        let redis = local_services::local_redis::shared(test)?.url();
-        Some((db, redis))
-    })
-}
-
-/// Reads `client` until it has seen `n` `shot-played` messages.
-async fn until_shots(client: &mut Client, n: usize) {
-    for _ in 0..n {
-        client.next_of("shot-played").await;
-    }
-}
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_match_created_on_one_node_is_joined_played_and_watched_from_another_in_the_same_order() {
@@ -148,21 +111,6 @@ async fn a_match_created_on_one_node_is_joined_played_and_watched_from_another_i
         let (status, body) = n.http("GET", &format!("/api/matches/{id}"), "").await;
         assert_eq!(status, 200, "{body}");
         assert!(body.contains("\"shots\":3"), "{body}");
-    }
-}
-
-/// Connects to `id` on `server` until the match answers with its state
-/// (while it moves between nodes the node may refuse or close).
-async fn reconnect(server: &Server, id: &str, token: &str) -> (Client, game::MatchView) {
-    let deadline = Instant::now() + Duration::from_secs(30);
-    loop {
-        assert!(Instant::now() < deadline, "the match did not come back");
-        if let Ok(mut c) = Client::try_connect(&server.addr, id, Some(token)).await {
-            if let Some(ServerMessage::MatchState { view, .. }) = c.try_next().await {
-                return (c, view);
-            }
-        }
-        tokio::time::sleep(Duration::from_millis(100)).await;
     }
 }
 

@@ -13,6 +13,7 @@
 //! | [`skip`] | the rule for a test whose service is missing: skipped with a line on stderr, or failed when required |
 //! | [`local_postgres`] | [`LocalPostgres`]: `initdb` and `postgres` in a temporary folder; fresh databases on a shared one |
 //! | [`local_redis`] | [`LocalRedis`]: `redis-server` without persistence |
+//! | [`tcp_link`] | [`TcpLink`]: a forwarder to a service's port that a test can cut (one client losing a service) |
 //!
 //! A test asks for the shared server by its own name, and returns early
 //! when it gets `None` (the skip line is already printed):
@@ -30,6 +31,8 @@ pub mod local_postgres;
 pub mod local_redis;
 pub mod process;
 pub mod skip;
+pub mod tcp_link;
 
 pub use local_postgres::{LocalPostgres, LocalPostgresError};
 pub use local_redis::{LocalRedis, LocalRedisError};
+pub use tcp_link::TcpLink;

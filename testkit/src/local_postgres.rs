@@ -7,6 +7,9 @@
 //! PostgreSQL refuses root. It stops (and its folder goes) when the
 //! [`LocalPostgres`] is dropped, and, should the process that started it
 //! die first, when that process ends (the kernel's parent-death signal).
+//! A test of what survives a database restart stops it and starts it
+//! again on the same folder and port ([`LocalPostgres::stop`],
+//! [`LocalPostgres::start_again`]).
 
 use crate::process::{command, free_port, start_for_process};
 use crate::skip::{self, Service};
@@ -35,7 +38,12 @@ pub enum LocalPostgresError {
 /// documentation).
 pub struct LocalPostgres {
     child: Child,
+    /// Whether `child` was stopped ([`LocalPostgres::stop`]).
+    stopped: bool,
     port: u16,
+    /// Where its programs are, and whom it runs as.
+    bin: PathBuf,
+    user: Option<(u32, u32)>,
     /// Removed on drop.
     dir: tempfile::TempDir,
 }
@@ -123,29 +131,49 @@ impl LocalPostgres {
             ));
         }
         let port = free_port().map_err(|e| LocalPostgresError::Io("finding a free port", e))?;
-        let log_path = dir.path().join("postgres.log");
-        let log = std::fs::File::create(&log_path)
-            .map_err(|e| LocalPostgresError::Io("opening its log", e))?;
-        if let Some((uid, gid)) = user {
-            let _ = std::os::unix::fs::chown(&log_path, Some(uid), Some(gid));
-        }
-        let err = log
-            .try_clone()
-            .map_err(|e| LocalPostgresError::Io("opening its log", e))?;
-        let child = command(bin.join("postgres"), user)
-            .arg("-D")
-            .arg(&data)
-            .args(["-p", &port.to_string(), "-c", "listen_addresses=127.0.0.1"])
-            .args(["-c", "max_connections=200", "-k"])
-            .arg(dir.path())
-            .stdin(Stdio::null())
-            .stdout(log)
-            .stderr(err)
-            .spawn()
-            .map_err(|e| LocalPostgresError::Io("starting postgres", e))?;
-        let mut pg = LocalPostgres { child, port, dir };
+        let child = spawn(&bin, user, dir.path(), port)?;
+        let mut pg = LocalPostgres {
+            child,
+            stopped: false,
+            port,
+            bin,
+            user,
+            dir,
+        };
         pg.wait_ready(Duration::from_secs(60))?;
         Ok(pg)
+    }
+
+    /// A fast shutdown (SIGINT: open transactions are rolled back, every
+    /// client's connection ends); returns once it has exited.
+    pub fn stop(&mut self) {
+        if self.stopped {
+            return;
+        }
+        self.stopped = true;
+        // SAFETY: signalling our own child by its id.
+        unsafe {
+            libc::kill(self.child.id() as libc::pid_t, libc::SIGINT);
+        }
+        let deadline = Instant::now() + Duration::from_secs(10);
+        while Instant::now() < deadline {
+            if let Ok(Some(_)) = self.child.try_wait() {
+                return;
+            }
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+
+    /// Starts it again on the same folder (every database kept) and port,
+    /// after [`LocalPostgres::stop`] (a running server is stopped first);
+    /// returns once it accepts connections.
+    pub fn start_again(&mut self) -> Result<(), LocalPostgresError> {
+        self.stop();
+        self.child = spawn(&self.bin, self.user, self.dir.path(), self.port)?;
+        self.stopped = false;
+        self.wait_ready(Duration::from_secs(60))
     }
 
     fn wait_ready(&mut self, within: Duration) -> Result<(), LocalPostgresError> {
@@ -188,23 +216,43 @@ impl LocalPostgres {
 }
 
 impl Drop for LocalPostgres {
-    /// A fast shutdown (SIGINT: open transactions are rolled back), then
-    /// the folder goes.
+    /// A fast shutdown, then the folder goes.
     fn drop(&mut self) {
-        // SAFETY: signalling our own child by its id.
-        unsafe {
-            libc::kill(self.child.id() as libc::pid_t, libc::SIGINT);
-        }
-        let deadline = Instant::now() + Duration::from_secs(10);
-        while Instant::now() < deadline {
-            if let Ok(Some(_)) = self.child.try_wait() {
-                return;
-            }
-            std::thread::sleep(Duration::from_millis(50));
-        }
-        let _ = self.child.kill();
-        let _ = self.child.wait();
+        self.stop();
     }
+}
+
+/// Starts `postgres` on the data folder in `dir` (its log and socket
+/// there too), on loopback `port`.
+fn spawn(
+    bin: &Path,
+    user: Option<(u32, u32)>,
+    dir: &Path,
+    port: u16,
+) -> Result<Child, LocalPostgresError> {
+    let log_path = dir.join("postgres.log");
+    let log = std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(&log_path)
+        .map_err(|e| LocalPostgresError::Io("opening its log", e))?;
+    if let Some((uid, gid)) = user {
+        let _ = std::os::unix::fs::chown(&log_path, Some(uid), Some(gid));
+    }
+    let err = log
+        .try_clone()
+        .map_err(|e| LocalPostgresError::Io("opening its log", e))?;
+    command(bin.join("postgres"), user)
+        .arg("-D")
+        .arg(dir.join("data"))
+        .args(["-p", &port.to_string(), "-c", "listen_addresses=127.0.0.1"])
+        .args(["-c", "max_connections=200", "-k"])
+        .arg(dir)
+        .stdin(Stdio::null())
+        .stdout(log)
+        .stderr(err)
+        .spawn()
+        .map_err(|e| LocalPostgresError::Io("starting postgres", e))
 }
 
 /// The process-wide local PostgreSQL the tests share, started on first

@@ -1,7 +1,9 @@
 //! A throwaway Redis server on loopback, for the tests of several server
 //! nodes: `redis-server` (from the machine's packages) on a free port,
 //! keeping nothing on disk. It stops when dropped, or when the process
-//! that started it ends ([`crate::process`]).
+//! that started it ends ([`crate::process`]). A test of what survives a
+//! Redis restart stops it and starts it again on the same port
+//! ([`LocalRedis::stop`], [`LocalRedis::start_again`]).
 
 use crate::process::{command, free_port, start_for_process};
 use crate::skip::{self, Service};
@@ -24,7 +26,8 @@ pub enum LocalRedisError {
 
 /// A Redis server this process started.
 pub struct LocalRedis {
-    child: Child,
+    /// `None` while stopped.
+    child: Option<Child>,
     port: u16,
 }
 
@@ -39,26 +42,28 @@ impl LocalRedis {
     /// Starts `redis-server` on a free loopback port; returns once it
     /// answers.
     pub fn start() -> Result<LocalRedis, LocalRedisError> {
-        let bin = redis_server().ok_or(LocalRedisError::NotInstalled)?;
         let port = free_port().map_err(LocalRedisError::Port)?;
-        let child = command(bin, None)
-            .args(["--port", &port.to_string(), "--bind", "127.0.0.1"])
-            .args(["--save", "", "--appendonly", "no", "--daemonize", "no"])
-            .stdin(Stdio::null())
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .map_err(LocalRedisError::Io)?;
-        let redis = LocalRedis { child, port };
-        let started = Instant::now();
-        let within = Duration::from_secs(20);
-        while started.elapsed() < within {
-            if std::net::TcpStream::connect(("127.0.0.1", port)).is_ok() {
-                return Ok(redis);
-            }
-            std::thread::sleep(Duration::from_millis(50));
+        Ok(LocalRedis {
+            child: Some(spawn(port)?),
+            port,
+        })
+    }
+
+    /// Stops it at once (SIGKILL: it keeps nothing, so a clean stop is no
+    /// different); every client's connection breaks.
+    pub fn stop(&mut self) {
+        if let Some(mut child) = self.child.take() {
+            let _ = child.kill();
+            let _ = child.wait();
         }
-        Err(LocalRedisError::NotReady(within))
+    }
+
+    /// Starts it again, empty, on the same port (after [`LocalRedis::stop`];
+    /// a running server is stopped first); returns once it answers.
+    pub fn start_again(&mut self) -> Result<(), LocalRedisError> {
+        self.stop();
+        self.child = Some(spawn(self.port)?);
+        Ok(())
     }
 
     /// Its URL.
@@ -67,10 +72,33 @@ impl LocalRedis {
     }
 }
 
+/// Starts `redis-server` on `port`; returns once it answers.
+fn spawn(port: u16) -> Result<Child, LocalRedisError> {
+    let bin = redis_server().ok_or(LocalRedisError::NotInstalled)?;
+    let mut child = command(bin, None)
+        .args(["--port", &port.to_string(), "--bind", "127.0.0.1"])
+        .args(["--save", "", "--appendonly", "no", "--daemonize", "no"])
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .map_err(LocalRedisError::Io)?;
+    let started = Instant::now();
+    let within = Duration::from_secs(20);
+    while started.elapsed() < within {
+        if std::net::TcpStream::connect(("127.0.0.1", port)).is_ok() {
+            return Ok(child);
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let _ = child.kill();
+    let _ = child.wait();
+    Err(LocalRedisError::NotReady(within))
+}
+
 impl Drop for LocalRedis {
     fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
+        self.stop();
     }
 }
 

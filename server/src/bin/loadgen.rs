@@ -16,7 +16,12 @@
 //! player to the next one, and its spectators round-robin from the node
 //! after the creating one, so that a match's messages cross between nodes.
 //! The server-side figures (connections, CPU, memory, histograms) are then
-//! the sums over the nodes.
+//! the sums over the nodes, and each node's own share is listed too: the
+//! connections it holds, those it relays to another node or serves for
+//! one, and its CPU seconds. With `--placement local` every client of a
+//! match connects to the node that created (and plays) it instead, so
+//! nothing is relayed: the two runs side by side give the cost of relayed
+//! connections against local ones.
 //!
 //! ```sh
 //! cargo run --release -p server -- --data-dir /tmp/chapaev-load \
@@ -65,11 +70,24 @@ struct Args {
     #[arg(long, default_value_t = 0)]
     think_ms: u64,
 
+    /// Where the clients of a match connect over several nodes: `spread`
+    /// (its second player and spectators on the other nodes, relayed to
+    /// the node that plays it) or `local` (all on that node).
+    #[arg(long, value_enum, default_value_t = Placement::Spread)]
+    placement: Placement,
+
     /// Threads of the load generator's own runtime. It shares the machine
     /// with the server it measures; one thread drives 10,000 connections and
     /// leaves the other cores to the server.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=64))]
     threads: u16,
+}
+
+/// Where the clients of a match connect (see `--placement`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum Placement {
+    Spread,
+    Local,
 }
 
 /// Failures that end the run.
@@ -428,6 +446,11 @@ async fn run(args: Args) -> Result<(), LoadError> {
     }
     // Node `k` round-robin.
     let node = |k: usize| addrs[k % nodes].as_str();
+    // The node of a client of match `m` that would be on node `k`.
+    let client_node = |m: usize, k: usize| match args.placement {
+        Placement::Spread => node(k),
+        Placement::Local => node(m),
+    };
     let matches = args.matches.max(1);
     let clients = args.clients.max(2 * matches);
     let rss_before = resident_bytes(addrs).await;
@@ -457,22 +480,24 @@ async fn run(args: Args) -> Result<(), LoadError> {
     for (m, (id, a, b)) in seats.iter().enumerate() {
         // The first player on the creating node, the second on the next one.
         players.push(connect(node(m), id, Some(a)).await?);
-        players.push(connect(node(m + 1), id, Some(b)).await?);
+        players.push(connect(client_node(m, m + 1), id, Some(b)).await?);
     }
     for k in 0..clients - 2 * matches {
         // Spectator k watches match k % matches, as its (k / matches)-th
         // spectator: round-robin over the nodes from the one after the
         // creating node.
         let m = k % matches;
-        watchers.push(connect(node(m + 1 + k / matches), &seats[m].0, None).await?);
+        watchers.push(connect(client_node(m, m + 1 + k / matches), &seats[m].0, None).await?);
     }
     let connect_time = started.elapsed();
     // Let the servers settle, then weigh them.
     tokio::time::sleep(Duration::from_millis(500)).await;
     let rss_held = resident_bytes(addrs).await;
     let mut gauges = Vec::new();
+    let mut held_metrics = Vec::new();
     for addr in addrs {
         let metrics = http(addr, "GET", "/metrics", "").await?;
+        held_metrics.push(metrics.clone());
         gauges.push(
             metrics
                 .lines()
@@ -496,7 +521,8 @@ async fn run(args: Args) -> Result<(), LoadError> {
     let until = Instant::now() + Duration::from_secs(args.seconds);
     let stalls = tokio::spawn(own_stalls(until));
     let cpu_before = cpu_times();
-    let server_cpu_before = server_metric(addrs, "process_cpu_seconds_total").await;
+    let metrics_before = all_metrics(addrs).await;
+    let server_cpu_before = metric_sum(&metrics_before, "process_cpu_seconds_total");
     let own_cpu_before = server::metrics::cpu_seconds();
     let play_start = Instant::now();
     let think = Duration::from_millis(args.think_ms);
@@ -541,8 +567,12 @@ async fn run(args: Args) -> Result<(), LoadError> {
     let shots = totals.shots.load(Ordering::Relaxed);
     if nodes > 1 {
         println!(
-            "nodes:                  {nodes} ({}); matches created round-robin, each one's players on two nodes, spectators spread",
-            addrs.join(", ")
+            "nodes:                  {nodes} ({}); matches created round-robin, {}",
+            addrs.join(", "),
+            match args.placement {
+                Placement::Spread => "each one's players on two nodes, spectators spread",
+                Placement::Local => "all of each one's clients on its node",
+            }
         );
     } else {
         println!("nodes:                  1 ({})", addrs[0]);
@@ -599,6 +629,36 @@ async fn run(args: Args) -> Result<(), LoadError> {
             per_shot(server),
             per_shot(own)
         );
+    }
+    if let Some(server) = server_cpu {
+        println!(
+            "shots per server CPU-s: {:.1} (the servers' utime + stime, /proc/PID/stat)",
+            shots as f64 / server.max(1e-9)
+        );
+    }
+    if nodes > 1 {
+        for (k, (addr, (before, after))) in addrs
+            .iter()
+            .zip(metrics_before.iter().zip(&metrics))
+            .enumerate()
+        {
+            // The gauges as they stood with every client connected.
+            let held = &held_metrics[k];
+            let gauge =
+                |name: &str| metric_value(held, name).map_or("?".into(), |v| format!("{v:.0}"));
+            let cpu = metric_value(before, "process_cpu_seconds_total")
+                .zip(metric_value(after, "process_cpu_seconds_total"))
+                .map_or("?".into(), |(a, b)| format!("{:.2}", b - a));
+            println!(
+                "  node {} ({addr}): CPU {cpu} s; connections {}; matches played {}, relayed {}; connections relayed {}, served for other nodes {}",
+                k + 1,
+                gauge("chapaev_connections"),
+                gauge("chapaev_cluster_matches_owned"),
+                gauge("chapaev_cluster_matches_relayed"),
+                gauge("chapaev_cluster_connections_relayed"),
+                gauge("chapaev_cluster_connections_served"),
+            );
+        }
     }
     if let Some((busy, steal)) = cpu {
         println!(

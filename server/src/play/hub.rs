@@ -532,6 +532,9 @@ impl Hub {
         let store = self.inner.store.clone();
         let row = stored.clone();
         let cluster = self.cluster().cloned();
+        if let Some(c) = &cluster {
+            c.ensure_reachable()?;
+        }
         tokio::task::spawn_blocking(move || {
             store.create(&row)?;
             // A node of a cluster holds the new match's lease from the start.
@@ -583,6 +586,9 @@ impl Hub {
             let _ = h.tx.send(Command::Shutdown { done }).await;
         }
         if let Some(cluster) = self.cluster().cloned() {
+            // Cut off from the other nodes, this node can neither play nor
+            // relay: its client goes to another node.
+            cluster.ensure_reachable()?;
             let key = id.to_string();
             let lease = tokio::task::spawn_blocking(move || cluster.acquire(&key))
                 .await

@@ -30,6 +30,7 @@ use game::token::TokenHash;
 use game::RecordedMove;
 use prometheus_client::registry::Registry;
 use r2d2_postgres::PostgresConnectionManager;
+use std::collections::HashSet;
 use std::time::Duration;
 
 /// Connections in the read pool.
@@ -132,11 +133,24 @@ pub struct PostgresStore {
     pool: Pool,
 }
 
-/// The condition a move's match row update adds on a node of a cluster:
-/// the node holds the match's lease, unexpired (`$6`: the node's id). A
-/// node that lost a lease can write nothing more to that match.
-const FENCE: &str = " AND EXISTS (SELECT 1 FROM match_leases l
-    WHERE l.match_id = $1 AND l.owner = $6 AND l.expires_at > now())";
+/// On a node of a cluster, the first statement of every group commit:
+/// locks the leases of the batch's matches that the node (`$2`) holds and
+/// that have not expired by the clock now (`clock_timestamp()`, not the
+/// transaction's start), in one order (so that it never deadlocks with
+/// [`crate::play::cluster`]'s renewals). Only those matches' moves are
+/// written. The lock holds until the commit: another node taking an
+/// expired lease over waits for it, and so loads the match with these
+/// moves in it. A node that lost a lease writes nothing more to its match.
+const LOCK_LEASES: &str = "SELECT match_id FROM match_leases
+    WHERE match_id = ANY($1) AND owner = $2 AND expires_at > clock_timestamp()
+    ORDER BY match_id FOR SHARE";
+
+/// How long PostgreSQL lets a node's writer sit idle inside a transaction
+/// before it ends the session (rolling back): a group commit takes
+/// milliseconds, so an idle one belongs to a node that stalled (paused,
+/// frozen) while holding its leases' locks, and the nodes taking those
+/// matches over wait at most this long.
+const WRITER_IDLE_IN_TRANSACTION: &str = "3s";
 
 /// The columns of a match row, in the order [`stored_match`] reads them.
 const MATCH_COLUMNS: &str = super::sqlite::MATCH_COLUMNS;
@@ -596,11 +610,13 @@ impl Store for PostgresStore {
     }
 }
 
-/// The writer's connection and the two statements every move runs.
+/// The writer's connection and the statements every batch runs.
 struct WriterConn {
     client: Client,
     insert_move: Statement,
     update_match: Statement,
+    /// [`LOCK_LEASES`], on a node of a cluster.
+    lock_leases: Option<Statement>,
 }
 
 impl WriterConn {
@@ -609,16 +625,24 @@ impl WriterConn {
     fn prepare(mut client: Client, node: Option<&str>) -> Result<WriterConn, StoreError> {
         let insert_move =
             client.prepare("INSERT INTO moves (match_id, idx, body) VALUES ($1, $2, $3)")?;
-        let update = "UPDATE matches SET status = $2, shots = $3, result = $4, updated_at = $5 \
-                      WHERE id = $1";
-        let update_match = match node {
-            None => client.prepare(update)?,
-            Some(_) => client.prepare(&format!("{update}{FENCE}"))?,
+        let update_match = client.prepare(
+            "UPDATE matches SET status = $2, shots = $3, result = $4, updated_at = $5 \
+             WHERE id = $1",
+        )?;
+        let lock_leases = match node {
+            None => None,
+            Some(_) => {
+                client.batch_execute(&format!(
+                    "SET idle_in_transaction_session_timeout = '{WRITER_IDLE_IN_TRANSACTION}'"
+                ))?;
+                Some(client.prepare(LOCK_LEASES)?)
+            }
         };
         Ok(WriterConn {
             client,
             insert_move,
             update_match,
+            lock_leases,
         })
     }
 }
@@ -630,6 +654,44 @@ struct Writer {
     conn: Option<WriterConn>,
     /// The node's id, on a node of a cluster (its moves are fenced).
     node: Option<String>,
+}
+
+/// The matches of a batch whose moves may be written: all of them (not a
+/// node of a cluster), or those whose lease [`LOCK_LEASES`] locked.
+enum Fence {
+    Open,
+    Held(HashSet<String>),
+}
+
+impl Fence {
+    /// Locks the leases of `batch`'s matches (on a node of a cluster) in
+    /// transaction `tx`.
+    fn lock(
+        tx: &mut ::postgres::Transaction<'_>,
+        lock_leases: Option<&Statement>,
+        node: Option<&str>,
+        batch: &[QueuedMove],
+    ) -> Result<Fence, StoreError> {
+        let (Some(statement), Some(node)) = (lock_leases, node) else {
+            return Ok(Fence::Open);
+        };
+        let mut ids: Vec<&str> = batch.iter().map(|m| m.id.as_str()).collect();
+        ids.sort_unstable();
+        ids.dedup();
+        let rows = tx.query(statement, &[&ids, &node])?;
+        Ok(Fence::Held(rows.iter().map(|r| r.get(0)).collect()))
+    }
+
+    /// Whether `m` may be written; if not, why.
+    fn check(&self, m: &QueuedMove, node: Option<&str>) -> Result<(), StoreError> {
+        match self {
+            Fence::Held(held) if !held.contains(&m.id) => Err(StoreError::LeaseLost {
+                match_id: m.id.clone(),
+                node: node.unwrap_or_default().to_string(),
+            }),
+            _ => Ok(()),
+        }
+    }
 }
 
 impl Writer {
@@ -652,18 +714,17 @@ impl Writer {
         batch: &[QueuedMove],
     ) -> Result<Vec<Result<(), StoreError>>, StoreError> {
         let node = self.node.clone();
+        let node = node.as_deref();
         let conn = self.conn()?;
-        let update = || Update {
-            statement: &conn.update_match,
-            node: node.as_deref(),
-        };
         // First the whole batch without savepoints (two round trips a move
         // fewer): moves almost never fail.
         {
             let mut tx = conn.client.transaction()?;
-            let all = batch
-                .iter()
-                .all(|m| write_move(&mut tx, &conn.insert_move, update(), m).is_ok());
+            let fence = Fence::lock(&mut tx, conn.lock_leases.as_ref(), node, batch)?;
+            let all = batch.iter().all(|m| {
+                fence.check(m, node).is_ok()
+                    && write_move(&mut tx, &conn.insert_move, &conn.update_match, m).is_ok()
+            });
             if all {
                 tx.commit()?;
                 return Ok(batch.iter().map(|_| Ok(())).collect());
@@ -673,9 +734,14 @@ impl Writer {
         // A move failed: again, each in a savepoint of its own, so that it
         // fails alone.
         let mut tx = conn.client.transaction()?;
+        let fence = Fence::lock(&mut tx, conn.lock_leases.as_ref(), node, batch)?;
         let mut results = Vec::with_capacity(batch.len());
         for m in batch {
-            results.push(write_one(&mut tx, &conn.insert_move, update(), m));
+            results.push(
+                fence
+                    .check(m, node)
+                    .and_then(|()| write_one(&mut tx, &conn.insert_move, &conn.update_match, m)),
+            );
         }
         tx.commit()?;
         Ok(results)
@@ -699,22 +765,16 @@ impl BatchWriter for Writer {
     }
 }
 
-/// The match row's update, and the node whose lease fences it.
-struct Update<'a> {
-    statement: &'a Statement,
-    node: Option<&'a str>,
-}
-
 /// One move in a savepoint of its own ([`write_move`]): undone alone if
 /// anything fails.
 fn write_one(
     tx: &mut ::postgres::Transaction<'_>,
     insert_move: &Statement,
-    update: Update<'_>,
+    update_match: &Statement,
     m: &QueuedMove,
 ) -> Result<(), StoreError> {
     let mut sp = tx.savepoint("move")?;
-    write_move(&mut sp, insert_move, update, m)?;
+    write_move(&mut sp, insert_move, update_match, m)?;
     sp.commit()?;
     Ok(())
 }
@@ -724,29 +784,14 @@ fn write_one(
 fn write_move(
     sp: &mut impl GenericClient,
     insert_move: &Statement,
-    update: Update<'_>,
+    update_match: &Statement,
     m: &QueuedMove,
 ) -> Result<(), StoreError> {
     sp.execute(insert_move, &[&m.id, &m.index, &m.body])?;
     let at = now() as i64;
-    let n = match update.node {
-        None => sp.execute(
-            update.statement,
-            &[&m.id, &m.status, &m.shots, &m.result, &at],
-        )?,
-        Some(node) => sp.execute(
-            update.statement,
-            &[&m.id, &m.status, &m.shots, &m.result, &at, &node],
-        )?,
-    };
+    let n = sp.execute(update_match, &[&m.id, &m.status, &m.shots, &m.result, &at])?;
     if n != 1 {
-        return Err(match update.node {
-            Some(node) => StoreError::LeaseLost {
-                match_id: m.id.clone(),
-                node: node.to_string(),
-            },
-            None => StoreError::Corrupt(format!("no match {}", m.id)),
-        });
+        return Err(StoreError::Corrupt(format!("no match {}", m.id)));
     }
     if let Some(score) = m.score {
         rate_finished(sp, &m.id, score)?;

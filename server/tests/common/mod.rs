@@ -6,6 +6,8 @@
 #[path = "../../tools/loopback.rs"]
 mod loopback;
 
+pub mod cluster;
+
 use futures_util::{SinkExt, StreamExt};
 use game::protocol::{ClientMessage, ServerMessage};
 use std::io::{BufRead, BufReader};
@@ -70,6 +72,21 @@ impl Server {
             addr,
             dir: dir.to_path_buf(),
         }
+    }
+
+    /// Sends the process `signal` (a name `kill` knows: `STOP`, `CONT`).
+    pub fn signal(&self, signal: &str) {
+        let pid = self.child.id().to_string();
+        let sent = Command::new("kill")
+            .args([&format!("-{signal}"), &pid])
+            .status()
+            .unwrap();
+        assert!(sent.success(), "kill -{signal} {pid}");
+    }
+
+    /// Whether the process still runs.
+    pub fn running(&mut self) -> bool {
+        matches!(self.child.try_wait(), Ok(None))
     }
 
     /// SIGKILL: no chance to clean up.

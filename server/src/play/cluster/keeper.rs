@@ -3,6 +3,11 @@
 //! lost (or of all, once it can no longer be sure it holds any); the other
 //! takes over the live matches whose node died. When to do what is
 //! [`super::leases`]; this module only runs it.
+//!
+//! A node renews only while it reaches Redis as well as PostgreSQL: a node
+//! cut off from Redis can relay nothing to the other nodes' clients, so it
+//! lets its leases run out (its rooms stop, as after any failed renewal)
+//! and other nodes, which reach both, take its matches over.
 
 use super::leases::{self, Renewal};
 use super::node::Cluster;
@@ -21,7 +26,12 @@ pub(super) async fn keep_leases<R: LocalRooms>(cluster: Arc<Cluster>, rooms: R) 
         tick.tick().await;
         let owned = rooms.owned_matches();
         let ids = owned.clone();
-        match cluster.blocking(move |c| c.renew(&ids)).await {
+        let renewed = if cluster.check_redis().await {
+            cluster.blocking(move |c| c.renew(&ids)).await
+        } else {
+            Err(super::node::ClusterError::NoRedis)
+        };
+        match renewed {
             Ok(lost) => {
                 renewal.renewed(Instant::now());
                 for id in lost {

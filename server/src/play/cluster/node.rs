@@ -1,7 +1,9 @@
 //! One node of the cluster: its connections to PostgreSQL (the leases and
-//! the nodes' heartbeats) and Redis (publishing to the other nodes), and
-//! the tables of what it relays and serves. The queries here only ask and
-//! record; what their answers mean is [`super::leases`].
+//! the nodes' heartbeats) and Redis (publishing to the other nodes, on a
+//! connection that reconnects by itself after Redis restarts), whether it
+//! reaches Redis now, and the tables of what it relays and serves. The
+//! queries here only ask and record; what their answers mean is
+//! [`super::leases`].
 
 use super::leases::{self, Lease};
 use super::relay::{LinkEnd, Links};
@@ -14,7 +16,7 @@ use game::Seat;
 use r2d2_postgres::PostgresConnectionManager;
 use redis::AsyncCommands;
 use std::collections::{HashMap, HashSet};
-use std::sync::atomic::AtomicU64;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 use tokio::sync::oneshot;
@@ -29,6 +31,8 @@ pub enum ClusterError {
     Postgres(#[from] postgres::Error),
     #[error("no PostgreSQL connection: {0}")]
     Pool(#[from] r2d2::Error),
+    #[error("this node cannot reach Redis")]
+    NoRedis,
 }
 
 impl From<ClusterError> for StoreError {
@@ -37,6 +41,7 @@ impl From<ClusterError> for StoreError {
             ClusterError::Postgres(e) => StoreError::Postgres(e),
             ClusterError::Pool(e) => StoreError::Pool(e),
             ClusterError::Redis(e) => StoreError::Corrupt(format!("redis: {e}")),
+            ClusterError::NoRedis => StoreError::Corrupt("this node cannot reach Redis".into()),
         }
     }
 }
@@ -46,8 +51,12 @@ pub struct Cluster {
     pub(super) node: String,
     pub(super) lease: Duration,
     pool: r2d2::Pool<PostgresConnectionManager<postgres::NoTls>>,
-    publisher: redis::aio::MultiplexedConnection,
+    /// Reconnects after Redis restarts (meanwhile, publishing fails).
+    publisher: redis::aio::ConnectionManager,
     pub(super) redis: redis::Client,
+    /// Whether the last check reached Redis ([`Cluster::check_redis`]): a
+    /// node that cannot reach it takes no lease.
+    reaches_redis: AtomicBool,
     /// Numbers links, join requests and proxies.
     pub(super) next: AtomicU64,
     /// Relayed connections of this node's clients (proxy side), by link.
@@ -94,6 +103,19 @@ pub(super) fn moved() -> Refusal {
     )
 }
 
+/// The refusal of a node that cannot reach Redis, and so the other nodes:
+/// its client should connect to another node.
+fn cut_off() -> Refusal {
+    Refusal::new(
+        ErrorCode::ServerBusy,
+        "this server node cannot reach the other nodes; connect to another node",
+    )
+}
+
+/// How long a publish or a check of Redis may take before it counts as
+/// failed.
+const REDIS_TIMEOUT: Duration = Duration::from_secs(1);
+
 /// Locks `m`, even if a thread panicked holding it.
 pub(super) fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
     m.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
@@ -116,13 +138,25 @@ impl Cluster {
             .connection_timeout(Duration::from_secs(10))
             .build(PostgresConnectionManager::new(config, postgres::NoTls))?;
         let redis = redis::Client::open(redis_url)?;
-        let publisher = rt.block_on(redis.get_multiplexed_async_connection())?;
+        // After a failure, trying again about twice a second (a constant
+        // delay, with jitter) for as long as it takes.
+        let reconnect = redis::aio::ConnectionManagerConfig::new()
+            .set_factor(1)
+            .set_max_delay(500)
+            .set_number_of_retries(1_000_000)
+            .set_connection_timeout(REDIS_TIMEOUT)
+            .set_response_timeout(REDIS_TIMEOUT);
+        let publisher = rt.block_on(redis::aio::ConnectionManager::new_with_config(
+            redis.clone(),
+            reconnect,
+        ))?;
         let cluster = Arc::new(Cluster {
             node,
             lease,
             pool,
             publisher,
             redis,
+            reaches_redis: AtomicBool::new(true),
             next: AtomicU64::new(1),
             links: Mutex::default(),
             pending_connects: Mutex::default(),
@@ -143,6 +177,34 @@ impl Cluster {
     /// serves for them.
     pub fn connection_counts(&self) -> (usize, usize) {
         (lock(&self.links).len(), lock(&self.served).len())
+    }
+
+    /// Checks that this node reaches Redis now (a `PING` answered within a
+    /// second), and remembers the answer for [`Cluster::ensure_reachable`].
+    pub(super) async fn check_redis(&self) -> bool {
+        let mut conn = self.publisher.clone();
+        let cmd = redis::cmd("PING");
+        let ping = cmd.query_async::<String>(&mut conn);
+        let ok = matches!(tokio::time::timeout(REDIS_TIMEOUT, ping).await, Ok(Ok(_)));
+        if self.reaches_redis.swap(ok, Ordering::Relaxed) != ok {
+            if ok {
+                tracing::info!(node = %self.node, "this node reaches Redis again");
+            } else {
+                warn!(node = %self.node, "this node cannot reach Redis: it takes no match and lets its leases go");
+            }
+        }
+        ok
+    }
+
+    /// Refuses (`server-busy`) while this node cannot reach Redis: it
+    /// could neither relay to the other nodes nor keep its leases, so its
+    /// clients are better served by another node.
+    pub fn ensure_reachable(&self) -> Result<(), Refusal> {
+        if self.reaches_redis.load(Ordering::Relaxed) {
+            Ok(())
+        } else {
+            Err(cut_off())
+        }
     }
 
     /// Runs `f` on a blocking thread with this cluster.
@@ -242,9 +304,14 @@ impl Cluster {
         if ids.is_empty() {
             return Ok(Vec::new());
         }
+        // The rows locked in the order the store's writer locks them (by
+        // id), so that a renewal never deadlocks with a group commit.
         let rows = self.db()?.query(
             "UPDATE match_leases SET expires_at = now() + $3 * interval '1 millisecond'
-             WHERE owner = $1 AND match_id = ANY($2) RETURNING match_id",
+             WHERE match_id IN (SELECT match_id FROM match_leases
+                                WHERE owner = $1 AND match_id = ANY($2)
+                                ORDER BY match_id FOR UPDATE)
+             RETURNING match_id",
             &[&self.node, &ids, &self.lease_ms()],
         )?;
         let kept: HashSet<String> = rows.iter().map(|r| r.get(0)).collect();
@@ -283,8 +350,11 @@ impl Cluster {
             return;
         };
         let mut conn = self.publisher.clone();
-        if let Err(err) = conn.publish::<_, _, ()>(channel(node), text).await {
-            warn!(error = %err, node, "publishing to another node failed");
+        let publish = conn.publish::<_, _, ()>(channel(node), text);
+        match tokio::time::timeout(REDIS_TIMEOUT, publish).await {
+            Ok(Ok(())) => {}
+            Ok(Err(err)) => warn!(error = %err, node, "publishing to another node failed"),
+            Err(_) => warn!(node, "publishing to another node timed out"),
         }
     }
 }
