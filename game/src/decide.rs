@@ -73,16 +73,18 @@ impl DecideRequest {
     }
 }
 
-/// The message that carries `decision` (what a bot answers).
-pub fn answer_message(decision: &BotDecision) -> ClientMessage {
-    match *decision {
+/// The message that carries `decision` (what a bot answers; `None` for
+/// [`BotDecision::NoAnswer`], which has none).
+pub fn answer_message(decision: &BotDecision) -> Option<ClientMessage> {
+    Some(match *decision {
         BotDecision::Shot(shot) => ClientMessage::Shot {
             piece: shot.piece(),
             velocity: shot.velocity(),
         },
         BotDecision::Pie { swap } => ClientMessage::PieDecision { swap },
         BotDecision::Resign => ClientMessage::Resign,
-    }
+        BotDecision::NoAnswer => return None,
+    })
 }
 
 #[cfg(test)]
@@ -120,9 +122,10 @@ mod tests {
             BotDecision::Pie { swap: true },
             BotDecision::Resign,
         ] {
-            let text = serde_json::to_vec(&answer_message(&d)).unwrap();
+            let text = serde_json::to_vec(&answer_message(&d).unwrap()).unwrap();
             assert_eq!(r.answer(&text).unwrap(), d);
         }
+        assert_eq!(answer_message(&BotDecision::NoAnswer), None);
     }
 
     #[test]
