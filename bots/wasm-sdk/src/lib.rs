@@ -199,8 +199,8 @@ impl Context {
         _count: usize,
     ) -> Result<Vec<f64>, SimulateError> {
         let config = &self.request.view.config;
-        let board =
-            game::batch::board_from_positions(config, board).map_err(|_| SimulateError::BadBoard)?;
+        let board = game::batch::board_from_positions(config, board)
+            .map_err(|_| SimulateError::BadBoard)?;
         Ok(game::batch::play_many(config, &board, shots))
     }
 }
