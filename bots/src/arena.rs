@@ -177,12 +177,15 @@ pub fn play_match(
                 };
                 let decision = seats.bots[k].decide(&Context::new(&view, side, limits.think));
                 now = now + limits.virtual_think;
-                let input = Input::Message {
-                    conn: seats.conns[k],
-                    msg: message(decision),
-                };
-                let effects = session.handle(input, now);
-                seats.deliver(effects);
+                // No answer: nothing is sent, and the clock passes the turn.
+                if let Some(msg) = message(decision) {
+                    let input = Input::Message {
+                        conn: seats.conns[k],
+                        msg,
+                    };
+                    let effects = session.handle(input, now);
+                    seats.deliver(effects);
+                }
             }
             None => {
                 // Nobody has anything to decide (a refused move): the

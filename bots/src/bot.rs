@@ -6,6 +6,7 @@
 //! hooks tell it what happened; each has a no-op default, so a bot
 //! implements only [`Bot::decide`].
 
+use game::session::BotDecision;
 use game::{
     Config, MatchRecord, MatchResult, MatchView, NoiseConfig, Phase, Shot, ShotOutcome, Side,
 };
@@ -78,6 +79,21 @@ pub enum Decision {
     Pie { swap: bool },
     /// Give up the match.
     Resign,
+    /// No answer this turn (a hosted bot that ran out of fuel or failed):
+    /// nothing is sent, and the turn runs out on the match's clock.
+    NoAnswer,
+}
+
+/// A decision as the session and the JSON answers carry it.
+impl From<BotDecision> for Decision {
+    fn from(d: BotDecision) -> Decision {
+        match d {
+            BotDecision::Shot(shot) => Decision::Shot(shot),
+            BotDecision::Pie { swap } => Decision::Pie { swap },
+            BotDecision::Resign => Decision::Resign,
+            BotDecision::NoAnswer => Decision::NoAnswer,
+        }
+    }
 }
 
 /// A Chapaev bot. One required method; the hooks default to doing nothing.

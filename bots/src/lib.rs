@@ -27,7 +27,9 @@
 //! measured), [`arena`] (one match in process), [`remote`] (one match on a
 //! server), [`stats`] (Elo, LOS, SPRT), [`tournament`],
 //! [`follow`] (a seat's view kept from the server's messages), [`runner`]
-//! (a bot on a server: create or join, play, reconnect).
+//! (a bot on a server: create or join, play, reconnect), [`hosted_bot`] (a
+//! WebAssembly bot as a [`Bot`]), [`program`] (any program speaking JSON
+//! lines as a [`Bot`]).
 
 /// The README's example, compiled and run as a doctest.
 #[doc = include_str!("../README.md")]
@@ -43,11 +45,13 @@ pub mod follow;
 pub mod greedy;
 pub mod hand;
 pub mod handed;
+pub mod hosted_bot;
 pub mod level;
 pub mod misses;
 pub mod online;
 pub mod pie;
 pub mod planner;
+pub mod program;
 pub mod random;
 pub mod remote;
 pub mod runner;

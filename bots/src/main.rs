@@ -36,6 +36,11 @@ enum Command {
     /// the commitment published before the first shot, every shot was
     /// played with the secret's draw, and the match replays exactly.
     Verify(VerifyArgs),
+    /// One seeded match between two bots in this process, each a built-in
+    /// bot, a WebAssembly module (`*.wasm`, run as the server hosts it) or
+    /// a program speaking JSON lines on stdin and stdout (quote it with its
+    /// arguments: "python3 bot.py").
+    Match(MatchArgs),
     /// How the computer levels miss: each plays matches against itself
     /// with its throws logged; prints the sideways miss at the target
     /// (binned), angular misses by shot length and cut, and full power.
@@ -51,6 +56,27 @@ struct VerifyArgs {
     /// Print each verdict as one JSON line instead of text.
     #[arg(long)]
     json: bool,
+}
+
+#[derive(Parser, Debug)]
+struct MatchArgs {
+    /// The two bots, first seat first: a built-in name (random, greedy,
+    /// search, easy, medium, hard, adaptive), a `.wasm` file, or a command.
+    #[arg(long, required = true, num_args = 1)]
+    bot: Vec<String>,
+    /// The match's seed: its noise, the built-in bots' choices and the
+    /// WebAssembly bots' random streams all follow from it.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// The rules: `standard` or `casual`.
+    #[arg(long, default_value = "standard", value_parser = parse_rules)]
+    rules: Preset,
+    /// Write the match record (JSON, replayable) here.
+    #[arg(long)]
+    record: Option<PathBuf>,
+    /// Milliseconds a program may take to answer.
+    #[arg(long, default_value_t = 5000)]
+    think_ms: u64,
 }
 
 #[derive(Parser, Debug)]
@@ -233,6 +259,7 @@ fn main() -> ExitCode {
         Command::Throughput(args) => throughput_command(args),
         Command::Verify(args) => verify_command(args),
         Command::Misses(args) => misses_command(args),
+        Command::Match(args) => match_command(args),
     };
     match done {
         Ok(()) => ExitCode::SUCCESS,
@@ -506,5 +533,91 @@ fn tournament_command(args: TournamentArgs) -> Result<(), Box<dyn std::error::Er
         }
         println!("records: {}", dir.display());
     }
+    Ok(())
+}
+
+/// A bot of `bots match`, kept by kind so a hosted one reports its fuel.
+enum Contestant {
+    Boxed(Box<dyn bots::Bot>),
+    Hosted(bots::hosted_bot::HostedBot),
+}
+
+impl Contestant {
+    fn new(spec: &str, seed: u64) -> Result<Contestant, Box<dyn std::error::Error>> {
+        if let Some(bot) = by_name(spec, seed) {
+            return Ok(Contestant::Boxed(bot));
+        }
+        if spec.ends_with(".wasm") {
+            let bytes = std::fs::read(spec).map_err(|e| format!("{spec}: {e}"))?;
+            let module = hosted::BotModule::load(&bytes, &hosted::Limits::default())?;
+            // The secret the arena's match is keyed by (Game::new with the seed).
+            let secret = game::NoiseSecret::from_seed(seed);
+            return Ok(Contestant::Hosted(bots::hosted_bot::HostedBot::new(
+                std::sync::Arc::new(module),
+                secret,
+            )));
+        }
+        Ok(Contestant::Boxed(Box::new(
+            bots::program::ProgramBot::spawn(spec)?,
+        )))
+    }
+
+    fn bot(&mut self) -> &mut dyn bots::Bot {
+        match self {
+            Contestant::Boxed(b) => b.as_mut(),
+            Contestant::Hosted(h) => h,
+        }
+    }
+}
+
+fn match_command(args: MatchArgs) -> Result<(), Box<dyn std::error::Error>> {
+    let [a, b] = args.bot.as_slice() else {
+        return Err("give exactly two --bot".into());
+    };
+    let mut first = Contestant::new(a, args.seed)?;
+    let mut second = Contestant::new(b, args.seed.wrapping_add(1))?;
+    let limits = ArenaLimits {
+        think: std::time::Duration::from_millis(args.think_ms),
+        ..ArenaLimits::default()
+    };
+    let clock = cpu_time::ProcessTime::now();
+    let report = bots::play_match(
+        args.rules.config(),
+        args.seed,
+        first.bot(),
+        second.bot(),
+        &limits,
+    )?;
+    let cpu = clock.elapsed().as_secs_f64();
+    if let Some(path) = &args.record {
+        std::fs::write(path, serde_json::to_string(&report.record)?)?;
+    }
+    let usage = |c: &Contestant| match c {
+        Contestant::Hosted(h) => {
+            let u = h.usage();
+            serde_json::json!({
+                "decisions": u.decisions,
+                "fuel": u.fuel,
+                "fuel_per_decision": u.fuel.checked_div(u.decisions),
+                "shots_simulated": u.shots,
+                "failures": u.failures,
+            })
+        }
+        Contestant::Boxed(_) => serde_json::Value::Null,
+    };
+    println!(
+        "{}",
+        serde_json::json!({
+            "result": report.result,
+            "shots": report.shots,
+            "swapped": report.swapped,
+            "refusals": report.refusals,
+            "timeouts": report.timeouts,
+            "first": {"bot": a, "score": report.score(game::Seat::First), "hosted": usage(&first)},
+            "second": {"bot": b, "score": report.score(game::Seat::Second), "hosted": usage(&second)},
+            "cpu_seconds": cpu,
+            "record": args.record.as_ref().map(|p| p.display().to_string()),
+        })
+    );
     Ok(())
 }

@@ -627,15 +627,16 @@ async fn sleep_until(at: Option<Instant>) {
 }
 
 /// The message that sends `decision`.
-pub fn message(decision: Decision) -> ClientMessage {
-    match decision {
+pub fn message(decision: Decision) -> Option<ClientMessage> {
+    Some(match decision {
         Decision::Shot(shot) => ClientMessage::Shot {
             piece: shot.piece(),
             velocity: shot.velocity(),
         },
         Decision::Pie { swap } => ClientMessage::PieDecision { swap },
         Decision::Resign => ClientMessage::Resign,
-    }
+        Decision::NoAnswer => return None,
+    })
 }
 
 impl<B: Bot + 'static> Play<B> {
@@ -700,8 +701,12 @@ impl<B: Bot + 'static> Play<B> {
                     self.bot = Some(bot);
                     self.deliver_hooks();
                     // Sent only if nothing changed while the bot thought.
-                    if version == Some(self.follower.version()) && self.follower.ask().is_some() {
-                        match self.send(ws, &message(decision)).await {
+                    let msg = message(decision);
+                    if let (Some(msg), true) = (
+                        msg,
+                        version == Some(self.follower.version()) && self.follower.ask().is_some(),
+                    ) {
+                        match self.send(ws, &msg).await {
                             Ok(()) => {
                                 self.sent += 1;
                                 None

@@ -24,7 +24,7 @@ fn views(seed: u64, shots: u32) -> Vec<game::MatchView> {
                 game.play(side, s).unwrap();
             }
             Decision::Pie { swap } => game.decide_pie(side, swap).unwrap(),
-            Decision::Resign => break,
+            Decision::Resign | Decision::NoAnswer => break,
         }
         out.push(game.view());
     }

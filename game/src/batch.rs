@@ -96,6 +96,44 @@ fn play_one(config: &Config, board: &Board, shot: &[f64]) -> Result<Simulation, 
     simulate::play(config, board, &shot, played, false).map_err(|e| e.code())
 }
 
+/// Numbers in a board given as positions: `x, y` of piece id `k` at `2k`,
+/// NaN when it is not on the board (the layout of an answer's resting
+/// positions, so a bot can play on from a simulated board).
+pub const BOARD_FIELDS: usize = 32;
+
+/// `board` as [`BOARD_FIELDS`] numbers.
+pub fn positions(board: &Board) -> [f64; BOARD_FIELDS] {
+    let mut out = [f64::NAN; BOARD_FIELDS];
+    for p in board.pieces() {
+        let k = 2 * usize::from(u8::from(p.id));
+        out[k] = p.pos.x;
+        out[k + 1] = p.pos.y;
+    }
+    out
+}
+
+/// The board of [`BOARD_FIELDS`] numbers, checked as hostile input (a
+/// piece with one coordinate NaN is off the board; see
+/// [`simulate::check_board`]).
+pub fn board_from_positions(
+    config: &Config,
+    numbers: &[f64; BOARD_FIELDS],
+) -> Result<Board, simulate::SimulateError> {
+    let mut pieces = Vec::new();
+    for id in PieceId::all() {
+        let k = 2 * usize::from(u8::from(id));
+        let (x, y) = (numbers[k], numbers[k + 1]);
+        if x.is_nan() && y.is_nan() {
+            continue;
+        }
+        pieces.push(crate::Piece {
+            id,
+            pos: DVec2::new(x, y),
+        });
+    }
+    simulate::check_board(config, &pieces)
+}
+
 fn write(sim: &Simulation, row: &mut [f64]) {
     row[0] = 0.0;
     row[1] = match sim.verdict {
@@ -128,5 +166,25 @@ fn write(sim: &Simulation, row: &mut [f64]) {
         let k = POSITIONS + 2 * usize::from(u8::from(p.id));
         row[k] = p.pos.x;
         row[k + 1] = p.pos.y;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_board_round_trips_through_positions_and_a_hostile_one_is_refused() {
+        let config = Config::standard();
+        let board = crate::Game::new(config.clone(), 1).unwrap().board().clone();
+        let numbers = positions(&board);
+        assert_eq!(board_from_positions(&config, &numbers).unwrap(), board);
+        let mut overlapping = numbers;
+        overlapping[2] = overlapping[0];
+        overlapping[3] = overlapping[1];
+        assert!(board_from_positions(&config, &overlapping).is_err());
+        let mut half = numbers;
+        half[0] = f64::NAN;
+        assert!(board_from_positions(&config, &half).is_err());
     }
 }

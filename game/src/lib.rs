@@ -58,6 +58,7 @@
 pub mod batch;
 pub mod board;
 pub mod config;
+pub mod decide;
 pub mod film;
 pub mod game;
 pub mod golden;

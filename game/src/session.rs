@@ -304,6 +304,9 @@ pub enum BotDecision {
     },
     /// Give up (the bot found nothing to do).
     Resign,
+    /// No answer (a hosted bot that ran out of fuel or failed): the turn
+    /// times out at once, as a refused bot move does.
+    NoAnswer,
 }
 
 /// What happens to a session.
@@ -1166,6 +1169,7 @@ impl Session {
             BotDecision::Shot(shot) => Action::Shot(side, shot),
             BotDecision::Pie { swap } => Action::Pie(side, swap),
             BotDecision::Resign => Action::Resign(side),
+            BotDecision::NoAnswer => return self.timed_out(seat, now),
         };
         if let Err(refusal) = self.apply(action, Vec::new(), now) {
             self.refuse(Request::Bot(seat), refusal);

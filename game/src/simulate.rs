@@ -157,40 +157,48 @@ impl SimulateError {
     }
 }
 
+/// The board of `pieces`, checked as hostile input under `config`: each
+/// piece named once, at a finite point on the board, no two overlapping
+/// by more than [`OVERLAP_TOLERANCE`].
+pub fn check_board(config: &Config, pieces: &[Piece]) -> Result<Board, SimulateError> {
+    let r = config.piece_radius;
+    for (k, p) in pieces.iter().enumerate() {
+        if !is_on_board(config, p.pos) {
+            return Err(SimulateError::OffBoard {
+                piece: p.id,
+                x: p.pos.x,
+                y: p.pos.y,
+            });
+        }
+        for q in &pieces[..k] {
+            if q.id == p.id {
+                return Err(SimulateError::DuplicatePiece(p.id));
+            }
+            let overlap = 2.0 * r - p.pos.distance(q.pos);
+            if overlap > OVERLAP_TOLERANCE {
+                return Err(SimulateError::Overlap {
+                    a: q.id,
+                    b: p.id,
+                    overlap,
+                });
+            }
+        }
+    }
+    Ok(Board::from_pieces(pieces.iter().copied()))
+}
+
 impl SimulateRequest {
     /// Checks the request and returns the board and the shot it describes.
     pub fn validate(&self) -> Result<(Board, Shot), SimulateError> {
         self.config.validate()?;
-        let r = self.config.piece_radius;
-        for (k, p) in self.board.iter().enumerate() {
-            if !is_on_board(&self.config, p.pos) {
-                return Err(SimulateError::OffBoard {
-                    piece: p.id,
-                    x: p.pos.x,
-                    y: p.pos.y,
-                });
-            }
-            for q in &self.board[..k] {
-                if q.id == p.id {
-                    return Err(SimulateError::DuplicatePiece(p.id));
-                }
-                let overlap = 2.0 * r - p.pos.distance(q.pos);
-                if overlap > OVERLAP_TOLERANCE {
-                    return Err(SimulateError::Overlap {
-                        a: q.id,
-                        b: p.id,
-                        overlap,
-                    });
-                }
-            }
-        }
+        let board = check_board(&self.config, &self.board)?;
         if let Some(n) = &self.noise {
             if !n.angle.is_finite() || !n.speed.is_finite() {
                 return Err(SimulateError::NoiseNotFinite);
             }
         }
         let shot = Shot::new(self.piece, self.velocity, &self.config)?;
-        Ok((Board::from_pieces(self.board.iter().copied()), shot))
+        Ok((board, shot))
     }
 
     /// The velocity `shot` is played at: the request's noise draw applied

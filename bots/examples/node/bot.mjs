@@ -5,6 +5,7 @@
 //   node bot.mjs [--server http://127.0.0.1:8080] [--level easy]
 //                [--rules standard] [--match ID] [--name NodeBot]
 //                [--samples 4] [--seed 1] [--quiet]
+//   node bot.mjs --stdio     (local games: bots match --bot "node bot.mjs --stdio")
 //
 // Without --match it creates a match against a built-in level; with it, it
 // joins that match's empty seat. It prints what happens, and at the end
@@ -124,6 +125,25 @@ async function post(path, body) {
   const json = await r.json();
   if (!r.ok) throw new Error(`POST ${path}: ${r.status} ${JSON.stringify(json)}`);
   return json;
+}
+
+// Local games (`bots match --bot "node bot.mjs --stdio"`): one request
+// per line on stdin ({"me": side, "view": the match view}), one decision
+// per line on stdout, the same messages as on the socket; no server.
+if (args.includes("--stdio")) {
+  const { createInterface } = await import("node:readline");
+  for await (const line of createInterface({ input: process.stdin })) {
+    const { me, view: v } = JSON.parse(line);
+    let answer;
+    if (v.phase.phase === "pie-decision") {
+      answer = { type: "pie-decision", swap: pieSwap(v.board) };
+    } else {
+      const { best } = bestShot(v.config, v.board, me);
+      answer = { type: "shot", piece: best.piece, velocity: best.velocity };
+    }
+    console.log(JSON.stringify(answer));
+  }
+  process.exit(0);
 }
 
 const grant = joinId

@@ -9,6 +9,7 @@ its own, and the best average score is sent.
 
     python bots/examples/python/bot.py --server http://127.0.0.1:8080
     python bots/examples/python/bot.py --server http://127.0.0.1:8080 --join MATCH_ID
+    bots match --bot "python bots/examples/python/bot.py --stdio" --bot greedy --seed 1
 
 Install first (from the repository root):
     pip install -r bots/examples/python/requirements.txt
@@ -234,6 +235,22 @@ def play(server: str, grant: Message, brain: Brain) -> Message:
     return m.result
 
 
+def stdio(brain: Brain) -> int:
+    """Local games (`bots match --bot "python bot.py --stdio"`): one request
+    per line on stdin ({"me": side, "view": the match view}), one decision
+    per line on stdout, the same messages as on the socket; no server."""
+    for line in sys.stdin:
+        request = json.loads(line)
+        me, view = request["me"], request["view"]
+        if view["phase"]["phase"] == "pie-decision":
+            answer: Message = {"type": "pie-decision", "swap": brain.pie(view["board"], view["turn"])}
+        else:
+            piece, velocity = brain.shot(view["config"], view["board"], me)
+            answer = {"type": "shot", "piece": piece, "velocity": velocity}
+        print(json.dumps(answer), flush=True)
+    return 0
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description="A Chapaev bot in Python: plays one whole match.")
     ap.add_argument("--server", default="http://127.0.0.1:8080", help="the server's base URL")
@@ -244,7 +261,11 @@ def main() -> int:
     ap.add_argument("--seed", type=int, default=1, help="the seed of the bot's own noise draws")
     ap.add_argument("--draws", type=int, default=4, help="noise draws per candidate")
     ap.add_argument("--budget", type=float, default=2.0, help="seconds of search per shot at most")
+    ap.add_argument("--stdio", action="store_true",
+                    help="answer requests on stdin instead of playing on a server (bots match)")
     args = ap.parse_args()
+    if args.stdio:
+        return stdio(Brain(args.seed, args.draws, args.budget))
 
     if args.join:
         grant = post(args.server, f"/api/matches/{args.join}/join", {"name": "python-example"})

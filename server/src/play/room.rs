@@ -713,6 +713,7 @@ impl<H: RoomHost> Room<H> {
                 Decision::Shot(shot) => BotDecision::Shot(shot),
                 Decision::Pie { swap } => BotDecision::Pie { swap },
                 Decision::Resign => BotDecision::Resign,
+                Decision::NoAnswer => BotDecision::NoAnswer,
             };
             // The room may have stopped meanwhile.
             let _ = tx.blocking_send(BotAnswer {
