@@ -624,8 +624,30 @@ impl World {
             return;
         }
         let taken = self.collapse_chain(recent, t)
-            || (self.config.revision.at_least_r2() && self.collapse_cluster(recent, t));
+            || (self.config.revision.at_least_r2() && self.collapse_cluster(recent, t))
+            || (self.config.revision.at_least_r7() && self.collapse_recent(recent, t));
         self.stats.collapses += taken as u64;
+    }
+
+    /// From the seventh revision, where the plastic limit of the whole
+    /// touching cluster has no answer the projection finds (a plastic
+    /// disc hit again and again between a line and a disc of a packed
+    /// pile, whose contacts are too many and redundant for the exact
+    /// solve), the limit of the hits that repeat: the plastic impact of
+    /// the contacts among the discs of `recent` (slots; `usize::MAX` for an
+    /// obstacle) alone and of the lines and points they touch. `true` if
+    /// any velocity changed.
+    fn collapse_recent(&mut self, recent: &[usize], t: f64) -> bool {
+        let members: Vec<usize> = recent
+            .iter()
+            .copied()
+            .filter(|&c| c != usize::MAX)
+            .collect();
+        if members.is_empty() {
+            return false;
+        }
+        let contacts = self.contacts_among(&members, t);
+        self.collapse_contacts(&members, contacts, t)
     }
 
     /// Whether the discs of `recent` (slots; `usize::MAX` for an obstacle)
@@ -639,9 +661,7 @@ impl World {
             .filter(|&c| c != usize::MAX)
             .collect();
         let (members, _) = self.touching_cluster(seed, t);
-        members
-            .iter()
-            .all(|&c| self.material[c].restitution >= 1.0)
+        members.iter().all(|&c| self.material[c].restitution >= 1.0)
     }
 
     /// From the fifth revision, an instant at which one inelastic pair has

@@ -31,8 +31,14 @@ fn pinned_cradle(d: DVec2) -> Scene {
     let bodies = (0..3)
         .map(|k| {
             let vel = if k == 1 { d * 1.5 } else { DVec2::ZERO };
-            BodySpec::new(k as u64 + 1, d * (r + 2.0 * r * k as f64), r, masses[k], 0.0)
-                .with_velocity(vel)
+            BodySpec::new(
+                k as u64 + 1,
+                d * (r + 2.0 * r * k as f64),
+                r,
+                masses[k],
+                0.0,
+            )
+            .with_velocity(vel)
         })
         .collect();
     let (side, front) = (d.perp(), d * 6.0 * r);
@@ -50,7 +56,9 @@ fn pinned_cradle(d: DVec2) -> Scene {
 
 #[test]
 fn an_elastic_chain_pinned_between_two_walls_ends_stuck_with_all_its_energy() {
-    for d in [DVec2::X, DVec2::new(0.6, 0.8)] {
+    // Along an axis the energy is kept to 1e-12; in an oblique frame the
+    // rounding of the normals over some 20,000 hits leaves 2.7e-12.
+    for (d, kept) in [(DVec2::X, 1e-12), (DVec2::new(0.6, 0.8), 1e-11)] {
         let scene = pinned_cradle(d);
         let mut w = world(&scene, Revision::LATEST);
         let before = energy(&w, 0.0);
@@ -59,7 +67,7 @@ fn an_elastic_chain_pinned_between_two_walls_ends_stuck_with_all_its_energy() {
         assert_eq!(w.stats().collapses, 0);
         let after = energy(&w, end.t);
         assert!(
-            (after - before).abs() <= 1e-12 * before,
+            (after - before).abs() <= kept * before,
             "{d}: energy {before} -> {after}"
         );
         // The definition: something moves, and the next event comes before
@@ -69,7 +77,9 @@ fn an_elastic_chain_pinned_between_two_walls_ends_stuck_with_all_its_energy() {
             .map(|b| b.trajectory.velocity(end.t).length())
             .fold(0.0, f64::max);
         assert!(fastest > 1.0, "{fastest}");
-        let next = w.step(f64::INFINITY, &mut ()).expect("events still pending");
+        let next = w
+            .step(f64::INFINITY, &mut ())
+            .expect("events still pending");
         assert!((next.t - end.t) * fastest <= 1e-9 * 0.02, "{next:?}");
     }
 }
@@ -91,8 +101,7 @@ fn a_run_whose_next_event_is_past_1e150_s_with_a_disc_past_1e154_m_ends_out_of_r
     // the origin by then).
     let bodies = vec![
         BodySpec::new(1, DVec2::ZERO, 0.5, 1.0, 0.0).with_velocity(DVec2::new(1e-150, 0.0)),
-        BodySpec::new(2, DVec2::new(0.0, 10.0), 0.5, 1.0, 0.0)
-            .with_velocity(DVec2::new(0.0, 1e5)),
+        BodySpec::new(2, DVec2::new(0.0, 10.0), 0.5, 1.0, 0.0).with_velocity(DVec2::new(0.0, 1e5)),
     ];
     let scene = Scene {
         g: engine::scene::DEFAULT_G,
@@ -119,10 +128,9 @@ fn a_run_whose_next_event_is_past_1e150_s_with_a_disc_past_1e154_m_ends_out_of_r
 }
 
 #[test]
-fn the_same_disc_without_the_fast_one_creeps_to_its_hit_and_is_not_out_of_range() {
-    let bodies = vec![
-        BodySpec::new(1, DVec2::ZERO, 0.5, 1.0, 0.0).with_velocity(DVec2::new(1e-150, 0.0)),
-    ];
+fn the_same_disc_without_the_fast_one_creeps_to_its_hit_and_then_is_free() {
+    let bodies =
+        vec![BodySpec::new(1, DVec2::ZERO, 0.5, 1.0, 0.0).with_velocity(DVec2::new(1e-150, 0.0))];
     let scene = Scene {
         g: engine::scene::DEFAULT_G,
         t: 0.0,
@@ -135,13 +143,9 @@ fn the_same_disc_without_the_fast_one_creeps_to_its_hit_and_is_not_out_of_range(
         )],
     };
     let mut w = world(&scene, Revision::LATEST);
-    let end = w.run(
-        &Limits {
-            max_collisions: 1,
-            ..Limits::default()
-        },
-        &mut (),
-    );
-    assert_eq!(end.reason, EndReason::MaxCollisions);
+    let end = w.run(&Limits::default(), &mut ());
+    // It hits the wall at 2e150 s and creeps away for ever.
+    assert_eq!(end.reason, EndReason::Free);
+    assert_eq!(w.stats().collisions(), 1);
     assert!((end.t - 2e150).abs() <= 1e-12 * 2e150, "{end:?}");
 }
