@@ -99,6 +99,14 @@ pub enum Revision {
     /// while no disc moves beyond the rounding of a position between them
     /// (`World::instant_tick`), not whenever their times share the
     /// rounding of the time.
+    ///
+    /// It also changes the collapse rule: a run of events that looks like an
+    /// inelastic collapse (`limits::COLLAPSE_EVENTS` at one instant, or
+    /// blocks of `limits::CRAWL_EVENTS` that move nothing) among discs
+    /// that are all elastic (restitution 1, and so every contact between
+    /// them and with obstacles) is not taken to a plastic limit: an
+    /// elastic chain loses no energy, and one pinned between two walls,
+    /// which has no finite answer, ends `stuck` with its energy.
     #[default]
     R7,
 }
@@ -144,7 +152,7 @@ impl Revision {
     }
 
     /// Whether this revision has the seventh revision's rules (its fine
-    /// clock: the only place they are asked is the world's event loop).
+    /// clock and its collapse rule for elastic clusters).
     pub fn at_least_r7(self) -> bool {
         self >= Revision::R7
     }

@@ -42,6 +42,18 @@ pub const MAX_EVENTS: u64 = 100_000;
 /// A run slower than this is a failure (pathological slowness).
 pub const SLOW: Duration = Duration::from_secs(1);
 
+/// Rounding allowed in kinetic energy and momentum, as a fraction of the
+/// largest kinetic energy (or sum of `m |v|`) seen: an event may add no
+/// more, and an elastic, frictionless run may lose no more in all.
+pub const ENERGY: f64 = 1e-10;
+
+/// Kinetic energy an event of the approximated pressing contact may add,
+/// as a fraction of the largest kinetic energy seen: `m w^2 / 2` of the
+/// pair's reduced mass `m` with `w <= 0.05 (|v_i| + |v_j|)` (docs/model.md)
+/// is at most 0.005 of the pair's energy; a kick over a cluster gives the
+/// bounce speed to several pairs at once (0.0089 is the most measured).
+pub const PRESS_GAIN: f64 = 2e-2;
+
 /// The families of hostile scenes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Kind {
@@ -58,11 +70,14 @@ pub enum Kind {
     BetweenWalls,
     Galperin,
     GameLike,
+    WalledCradle,
+    MixedBox,
+    PlasticLines,
 }
 
 impl Kind {
     /// Every kind, in report order.
-    pub const ALL: [Kind; 13] = [
+    pub const ALL: [Kind; 16] = [
         Kind::PushChain,
         Kind::PinnedChain,
         Kind::Cradle,
@@ -76,6 +91,9 @@ impl Kind {
         Kind::BetweenWalls,
         Kind::Galperin,
         Kind::GameLike,
+        Kind::WalledCradle,
+        Kind::MixedBox,
+        Kind::PlasticLines,
     ];
 
     /// The kind's name in reports and on the command line.
@@ -94,10 +112,14 @@ impl Kind {
             Kind::BetweenWalls => "between-walls",
             Kind::Galperin => "galperin",
             Kind::GameLike => "game-like",
+            Kind::WalledCradle => "walled-cradle",
+            Kind::MixedBox => "mixed-box",
+            Kind::PlasticLines => "plastic-lines",
         }
     }
 
-    /// Whether `stuck` (no finite answer in the model) is a correct end.
+    /// Whether `stuck` (no finite answer in the model) is a correct end for
+    /// every scene of the kind.
     fn may_be_stuck(self) -> bool {
         matches!(self, Kind::PinnedChain)
     }
@@ -128,11 +150,20 @@ pub enum Failure {
     Slow,
     /// The engine panicked.
     Panic,
+    /// Kinetic energy grew at an event beyond rounding ([`ENERGY`]).
+    EnergyGained,
+    /// Kinetic energy fell where every disc is elastic and frictionless.
+    EnergyLost,
+    /// Momentum changed where no wall, point or friction acts.
+    Momentum,
+    /// The end reason does not hold of the final state (see
+    /// `Checker::check_end`).
+    EndReason,
 }
 
 impl Failure {
     /// Every failure, in report order.
-    pub const ALL: [Failure; 11] = [
+    pub const ALL: [Failure; 15] = [
         Failure::Refused,
         Failure::NotFinite,
         Failure::Overlap,
@@ -144,6 +175,10 @@ impl Failure {
         Failure::Count,
         Failure::Slow,
         Failure::Panic,
+        Failure::EnergyGained,
+        Failure::EnergyLost,
+        Failure::Momentum,
+        Failure::EndReason,
     ];
 
     /// The failure's name in reports.
@@ -160,6 +195,10 @@ impl Failure {
             Failure::Count => "count",
             Failure::Slow => "slow",
             Failure::Panic => "panic",
+            Failure::EnergyGained => "energy-gained",
+            Failure::EnergyLost => "energy-lost",
+            Failure::Momentum => "momentum",
+            Failure::EndReason => "end-reason",
         }
     }
 }
@@ -178,6 +217,9 @@ pub struct Hostile {
     pub collisions: Option<u64>,
     /// Discs whose centre leaves a sensor are removed (the game's rule).
     pub remove_on_exit: bool,
+    /// `stuck` is a correct end: the scene has no finite answer (a chain
+    /// pressed between two walls).
+    pub may_be_stuck: bool,
 }
 
 /// What one run showed.
@@ -188,6 +230,12 @@ pub struct Report {
     pub end: Option<EndReason>,
     /// Largest overlap seen, as a fraction of the contact distance.
     pub worst_overlap: f64,
+    /// Largest gain of kinetic energy at one event, as a fraction of the
+    /// largest kinetic energy seen.
+    pub worst_gain: f64,
+    /// The same at events of the approximated pressing contact (bounded by
+    /// [`PRESS_GAIN`]).
+    pub worst_press_gain: f64,
     /// CPU time of the run.
     pub elapsed: Duration,
 }
@@ -197,10 +245,12 @@ impl fmt::Display for Report {
         let names: Vec<&str> = self.failures.iter().map(|x| x.name()).collect();
         write!(
             f,
-            "{} events, end {:?}, worst overlap {:.3e}, {:.1} ms, failures [{}]",
+            "{} events, end {:?}, worst overlap {:.3e}, worst energy gain {:.3e} ({:.3e} pressing), {:.1} ms, failures [{}]",
             self.events,
             self.end,
             self.worst_overlap,
+            self.worst_gain,
+            self.worst_press_gain,
             self.elapsed.as_secs_f64() * 1e3,
             names.join(", ")
         )
@@ -264,6 +314,7 @@ impl Hostile {
             must_hit: false,
             collisions: None,
             remove_on_exit: false,
+            may_be_stuck: kind.may_be_stuck(),
         }
     }
 
@@ -285,6 +336,9 @@ impl Hostile {
             Kind::BetweenWalls => between_walls(r, seed),
             Kind::Galperin => galperin(r, seed),
             Kind::GameLike => game_like(r, seed),
+            Kind::WalledCradle => walled_cradle(r, seed),
+            Kind::MixedBox => mixed_box(r, seed),
+            Kind::PlasticLines => plastic_lines(r, seed),
         }
     }
 }
@@ -747,6 +801,177 @@ fn game_like(r: &mut Rng, seed: u64) -> Hostile {
     h
 }
 
+/// A Newton's cradle on a line between two walls: elastic, frictionless
+/// discs of mixed masses and radii, some touching, one or two moving. Where
+/// every disc touches its neighbours and both walls (pinned) a moving disc
+/// has no finite answer (`stuck`); with a gap anywhere the cradle rings
+/// for ever and its energy must be kept to rounding.
+fn walled_cradle(r: &mut Rng, seed: u64) -> Hostile {
+    let n = 2 + r.below(7) as usize;
+    let d = if r.chance(0.5) {
+        DVec2::X
+    } else {
+        r.direction()
+    };
+    let base = r.range(0.01, 0.05);
+    let equal = r.chance(0.5);
+    let pinned = r.chance(0.4);
+    let gap = |r: &mut Rng| {
+        if pinned || r.chance(0.6) {
+            0.0
+        } else {
+            r.log_range(1e-4, 1.0) * base
+        }
+    };
+    let back_gap = gap(r);
+    let mut bodies = Vec::new();
+    let mut x = back_gap;
+    let mut gaps = vec![back_gap];
+    for k in 0..n {
+        let rad = if equal { base } else { r.range(0.01, 0.05) };
+        if k > 0 {
+            let g = gap(r);
+            gaps.push(g);
+            x += g + rad;
+        } else {
+            x += rad;
+        }
+        let mass = if r.chance(0.5) {
+            0.01
+        } else {
+            r.log_range(1e-3, 1.0)
+        };
+        bodies.push(disc(k as u64 + 1, d * x, DVec2::ZERO, rad, mass, 0.0, 1.0));
+        x += rad;
+    }
+    let front_gap = gap(r);
+    gaps.push(front_gap);
+    let side = d.perp();
+    let front = d * (x + front_gap);
+    let lines = vec![
+        Line::new(-side, side, LineKind::Line),
+        Line::new(front + side, front - side, LineKind::Line),
+    ];
+    let mut fastest: f64 = 0.0;
+    for _ in 0..1 + r.below(2) {
+        let k = r.below(n as u64) as usize;
+        let speed = r.log_range(0.05, 5.0);
+        fastest = fastest.max(speed);
+        bodies[k].vel = d * if r.chance(0.5) { speed } else { -speed };
+    }
+    let mut h = Hostile::plain(Kind::WalledCradle, seed, scene(bodies, Vec::new(), lines));
+    // A ring through the cradle takes at least its narrowest gap at the
+    // fastest speed: about 5,000 events in all.
+    let narrowest = gaps
+        .iter()
+        .copied()
+        .filter(|&g| g > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    h.until = if narrowest.is_finite() {
+        5_000.0 * narrowest / (fastest * (n + 2) as f64)
+    } else {
+        1.0
+    };
+    h.may_be_stuck = gaps.iter().all(|&g| g == 0.0);
+    h
+}
+
+/// Discs of restitution exactly 0 or 1 (so plastic and elastic contacts
+/// meet in one cluster) in a box: a hexagonal cluster in a corner touching
+/// both walls, loose discs around it, the first one shot.
+fn mixed_box(r: &mut Rng, seed: u64) -> Hostile {
+    let half = 0.3;
+    let rad = r.range(0.01, 0.03);
+    let corner = DVec2::new(-half + rad, -half + rad);
+    let e = |r: &mut Rng| if r.chance(0.5) { 0.0 } else { 1.0 };
+    let mu = |r: &mut Rng| if r.chance(0.2) { 0.0 } else { r.mu() };
+    let mut bodies: Vec<BodySpec> = Vec::new();
+    for p in hex(2 + r.below(10) as usize, rad) {
+        let m = r.log_range(1e-3, 1.0);
+        let (mu, e) = (mu(r), e(r));
+        bodies.push(disc(
+            bodies.len() as u64 + 1,
+            corner + p,
+            DVec2::ZERO,
+            rad,
+            m,
+            mu,
+            e,
+        ));
+    }
+    let mut tries = 0;
+    while bodies.len() < 14 && tries < 20 {
+        tries += 1;
+        let rad = r.range(0.01, 0.03);
+        let lim = half - rad;
+        let p = DVec2::new(r.range(-lim, lim), r.range(-lim, lim));
+        if bodies.iter().any(|b| (b.pos - p).length() < b.radius + rad) {
+            continue;
+        }
+        let vel = if r.chance(0.3) {
+            r.direction() * r.log_range(0.01, 5.0)
+        } else {
+            DVec2::ZERO
+        };
+        let m = r.log_range(1e-3, 1.0);
+        let (mu, e) = (mu(r), e(r));
+        bodies.push(disc(bodies.len() as u64 + 1, p, vel, rad, m, mu, e));
+    }
+    // The shot: the last disc (loose if any) aimed at the cluster.
+    let aim = corner + DVec2::new(r.range(0.0, 4.0), r.range(0.0, 3.0)) * rad;
+    if let Some(b) = bodies.last_mut() {
+        let dir = (aim - b.pos).normalize_or_zero();
+        b.vel = dir * r.log_range(0.1, 5.0);
+    }
+    let mut h = Hostile::plain(
+        Kind::MixedBox,
+        seed,
+        scene(bodies, Vec::new(), box_walls(half)),
+    );
+    h.until = 100.0;
+    h
+}
+
+/// A large hexagonal cluster of plastic discs (restitution 0) resting on
+/// a solid line, often against a second one at its side, struck from
+/// above.
+fn plastic_lines(r: &mut Rng, seed: u64) -> Hostile {
+    let n = 3 + r.below(38) as usize;
+    let rad = r.range(0.01, 0.03);
+    let mu = |r: &mut Rng| if r.chance(0.5) { 0.3 } else { r.mu() };
+    let mut bodies: Vec<BodySpec> = hex(n, rad)
+        .into_iter()
+        .enumerate()
+        .map(|(k, p)| {
+            let m = if r.chance(0.5) {
+                0.01
+            } else {
+                r.log_range(1e-3, 1.0)
+            };
+            disc(k as u64 + 1, p, DVec2::ZERO, rad, m, mu(r), 0.0)
+        })
+        .collect();
+    let mut lines = vec![Line::new(
+        DVec2::new(1.0, -rad),
+        DVec2::new(-1.0, -rad),
+        LineKind::Line,
+    )];
+    if r.chance(0.5) {
+        lines.push(Line::new(
+            DVec2::new(-rad, -1.0),
+            DVec2::new(-rad, 1.0),
+            LineKind::Line,
+        ));
+    }
+    let top = bodies.iter().map(|b| b.pos.y).fold(0.0, f64::max);
+    let from = DVec2::new(r.range(1.0, 8.0) * rad, top + r.range(3.0, 10.0) * rad);
+    let aim = DVec2::new(r.range(0.0, 7.0) * rad, r.range(0.0, top));
+    let vel = (aim - from).normalize() * r.log_range(0.1, 5.0);
+    let e = if r.chance(0.5) { 0.0 } else { r.restitution() };
+    bodies.push(disc(n as u64 + 1, from, vel, rad, 0.01, mu(r), e));
+    Hostile::plain(Kind::PlasticLines, seed, scene(bodies, Vec::new(), lines))
+}
+
 /// Checks every event as it happens.
 struct Checker {
     last: f64,
@@ -758,6 +983,20 @@ struct Checker {
     failures: Vec<Failure>,
     worst: f64,
     collisions: u64,
+    /// Kinetic energy at the latest event, and the largest seen.
+    energy: f64,
+    energy_scale: f64,
+    /// Every disc elastic and frictionless: the energy at the start.
+    elastic: Option<f64>,
+    /// No wall, point, friction or removal: the momentum at the start and
+    /// the sum of `m |v|` (its scale).
+    isolated: Option<(DVec2, f64)>,
+    /// Largest gain of energy at one event, of the largest energy seen:
+    /// at an event of the pressing approximation, and at any other.
+    worst_gain: f64,
+    worst_press_gain: f64,
+    /// Hits of the pressing approximation so far.
+    pressed: u64,
 }
 
 impl Checker {
@@ -811,6 +1050,95 @@ impl Checker {
         }
     }
 
+    /// Checks the energy (and momentum, where nothing outside acts) of the
+    /// world at `t`, the time of its latest event.
+    fn check_energy(&mut self, world: &World, t: f64) {
+        let (mut energy, mut momentum, mut scale) = (0.0, DVec2::ZERO, 0.0);
+        for b in world.bodies() {
+            let v = b.trajectory.velocity(t);
+            let m = b.material.mass;
+            energy += 0.5 * m * v.length_squared();
+            momentum += m * v;
+            scale += m * v.length();
+        }
+        let gain = (energy - self.energy) / self.energy_scale.max(f64::MIN_POSITIVE);
+        // The approximated pressing contact parts a pressed pair at its
+        // bounce speed whatever it hit at: a gain, bounded in docs/model.md.
+        let pressed = world.stats().pressed;
+        let allowed = if pressed > self.pressed {
+            self.worst_press_gain = self.worst_press_gain.max(gain);
+            PRESS_GAIN
+        } else {
+            self.worst_gain = self.worst_gain.max(gain);
+            ENERGY
+        };
+        self.pressed = pressed;
+        if energy > self.energy + allowed * self.energy_scale {
+            self.fail(Failure::EnergyGained);
+        }
+        self.energy = energy;
+        self.energy_scale = self.energy_scale.max(energy);
+        if let Some(start) = self.elastic {
+            if energy < start - ENERGY * start {
+                self.fail(Failure::EnergyLost);
+            }
+        }
+        if let Some((start, start_scale)) = self.isolated {
+            if (momentum - start).length() > ENERGY * start_scale.max(scale) {
+                self.fail(Failure::Momentum);
+            }
+        }
+    }
+
+    /// Checks that the end reason holds of the final state, by the model's
+    /// definitions (docs/model.md), then runs `world` one event further to
+    /// see what was pending: `rest`: nothing moves; `free`: something moves
+    /// without friction and no event follows; `until`: it ended at the
+    /// horizon; `stuck`: something moves and the next event comes before
+    /// the fastest disc moves [`engine::limits`]' crawl (1e-9 of the
+    /// smallest radius); `out-of-range`: the next event lies beyond 1e150 s
+    /// and a disc is then beyond 1e154 m.
+    fn check_end(&mut self, world: &mut World, end: &engine::End, until: f64) {
+        let t = end.t;
+        let moving = |w: &World| {
+            w.bodies()
+                // The largest coordinate: squares of tiny speeds underflow.
+                .map(|b| b.trajectory.velocity(t).abs().max_element())
+                .fold(0.0, f64::max)
+        };
+        let fastest = moving(world);
+        let smallest = world
+            .bodies()
+            .map(|b| b.material.radius)
+            .fold(f64::INFINITY, f64::min);
+        let frictionless = world
+            .bodies()
+            .all(|b| b.trajectory.velocity(t) == DVec2::ZERO || b.trajectory.alpha() == 0.0);
+        let holds = match end.reason {
+            EndReason::Rest => fastest == 0.0,
+            EndReason::Free => {
+                fastest > 0.0 && frictionless && world.step(f64::INFINITY, &mut ()).is_none()
+            }
+            EndReason::Until => t == until,
+            EndReason::Stuck => {
+                fastest > 0.0
+                    && world
+                        .step(f64::INFINITY, &mut ())
+                        .is_some_and(|next| (next.t - t) * fastest <= 1e-9 * smallest)
+            }
+            EndReason::OutOfRange => world.step(f64::INFINITY, &mut ()).is_some_and(|next| {
+                next.t > 1e150
+                    && world
+                        .bodies()
+                        .any(|b| b.trajectory.position(next.t).abs().max_element() > 1e154)
+            }),
+            EndReason::MaxEvents | EndReason::MaxCollisions => true,
+        };
+        if !holds {
+            self.fail(Failure::EndReason);
+        }
+    }
+
     /// Contact distance `s`, centre distance `d`, coordinate magnitude `mag`.
     fn overlap(&mut self, s: f64, d: f64, mag: f64) {
         let depth = (s - d) / s;
@@ -838,6 +1166,7 @@ impl EventHandler for Checker {
         for id in event.kind.bodies() {
             self.check_body(world, id, event.t);
         }
+        self.check_energy(world, event.t);
     }
 
     fn on_region_exit(&mut self, _t: f64, _body: BodyId, _line: LineId) -> ExitResponse {
@@ -862,6 +1191,8 @@ pub fn run_under(h: &Hostile, revision: Revision) -> Report {
         events: 0,
         end: None,
         worst_overlap: 0.0,
+        worst_gain: 0.0,
+        worst_press_gain: 0.0,
         elapsed: Duration::ZERO,
     };
     let config = WorldConfig {
@@ -902,7 +1233,31 @@ pub fn run_under(h: &Hostile, revision: Revision) -> Report {
         failures: Vec::new(),
         worst: 0.0,
         collisions: 0,
+        energy: 0.0,
+        energy_scale: 0.0,
+        elastic: None,
+        isolated: None,
+        worst_gain: 0.0,
+        worst_press_gain: 0.0,
+        pressed: 0,
     };
+    let bodies = &h.scene.bodies;
+    let energy: f64 = bodies
+        .iter()
+        .map(|b| 0.5 * b.mass * b.vel.length_squared())
+        .sum();
+    (checker.energy, checker.energy_scale) = (energy, energy);
+    let frictionless = bodies.iter().all(|b| b.mu == 0.0);
+    if frictionless && bodies.iter().all(|b| b.restitution == 1.0) {
+        checker.elastic = Some(energy);
+    }
+    let walls = h.scene.lines.iter().any(|l| !l.sensor) || !h.scene.points.is_empty();
+    if frictionless && !walls && !h.remove_on_exit {
+        checker.isolated = Some((
+            bodies.iter().map(|b| b.mass * b.vel).sum(),
+            bodies.iter().map(|b| b.mass * b.vel.length()).sum(),
+        ));
+    }
     let limits = Limits {
         until: h.until,
         max_collisions: u64::MAX,
@@ -911,6 +1266,7 @@ pub fn run_under(h: &Hostile, revision: Revision) -> Report {
     let end = world.run(&limits, &mut checker);
     report.events = world.stats().events;
     report.end = Some(end.reason);
+
     // Every pair at the end.
     let t = end.t;
     if !t.is_finite() {
@@ -921,9 +1277,10 @@ pub fn run_under(h: &Hostile, revision: Revision) -> Report {
             checker.check_body(&world, id, t);
         }
     }
+    checker.check_end(&mut world, &end, h.until);
     match end.reason {
         EndReason::MaxEvents => checker.fail(Failure::Livelock),
-        EndReason::Stuck if !h.kind.may_be_stuck() => checker.fail(Failure::Stuck),
+        EndReason::Stuck if !h.may_be_stuck => checker.fail(Failure::Stuck),
         _ => {}
     }
     if h.must_hit && checker.collisions == 0 {
@@ -940,6 +1297,8 @@ pub fn run_under(h: &Hostile, revision: Revision) -> Report {
     }
     report.failures = checker.failures;
     report.worst_overlap = checker.worst;
+    report.worst_gain = checker.worst_gain;
+    report.worst_press_gain = checker.worst_press_gain;
     report
 }
 
@@ -952,6 +1311,8 @@ pub fn run_caught(h: &Hostile, revision: Revision) -> Report {
             events: 0,
             end: None,
             worst_overlap: 0.0,
+            worst_gain: 0.0,
+            worst_press_gain: 0.0,
             elapsed: Duration::ZERO,
         },
     }
@@ -984,10 +1345,21 @@ mod tests {
     }
 
     /// Scenes among the first 40 seeds of each kind that still fail (none
-    /// since revision 3; the last, cluster 38, ran its pressed bounces into
-    /// the event cap). A fix shrinks this list; any other failure is a
-    /// regression.
-    const KNOWN_OPEN: &[(Kind, &[u64])] = &[];
+    /// of the first thirteen kinds since revision 3; the last, cluster 38,
+    /// ran its pressed bounces into the event cap): mixed-box 36 runs a
+    /// plastic pair against an elastic neighbour in a corner into the cap.
+    /// A fix shrinks this list; any other failure is a regression.
+    const KNOWN_OPEN: &[(Kind, &[u64])] = &[(Kind::MixedBox, &[36])];
+
+    /// Seeds run of each kind: plastic piles of up to 40 discs cost about
+    /// a second of CPU each (the `hostile` binary runs many more).
+    fn seeds(kind: Kind) -> u64 {
+        if kind == Kind::PlasticLines {
+            10
+        } else {
+            40
+        }
+    }
 
     fn known_open(kind: Kind, seed: u64) -> bool {
         KNOWN_OPEN
@@ -1000,7 +1372,7 @@ mod tests {
         let mut failed = Vec::new();
         let mut run = 0;
         for kind in Kind::ALL {
-            for seed in 0..40 {
+            for seed in 0..seeds(kind) {
                 let h = Hostile::generate(kind, seed);
                 let mut report = run_caught(&h, Revision::LATEST);
                 run += 1;
@@ -1011,7 +1383,7 @@ mod tests {
                 }
             }
         }
-        assert_eq!(run, 13 * 40);
+        assert_eq!(run, 15 * 40 + 10);
         assert!(failed.is_empty(), "{}", failed.join("\n"));
     }
 }

@@ -71,6 +71,8 @@ fn main() -> ExitCode {
     let mut table: BTreeMap<(Kind, Failure), u64> = BTreeMap::new();
     let mut slowest = (0.0f64, Kind::PushChain, 0u64);
     let mut worst = (0.0f64, Kind::PushChain, 0u64);
+    let mut gain = (0.0f64, Kind::PushChain, 0u64);
+    let mut press_gain = (0.0f64, Kind::PushChain, 0u64);
     if let Some(bad) = args
         .tolerate
         .iter()
@@ -118,6 +120,12 @@ fn main() -> ExitCode {
             if report.worst_overlap > worst.0 {
                 worst = (report.worst_overlap, kind, seed);
             }
+            if report.worst_gain > gain.0 {
+                gain = (report.worst_gain, kind, seed);
+            }
+            if report.worst_press_gain > press_gain.0 {
+                press_gain = (report.worst_press_gain, kind, seed);
+            }
             if report.failures.is_empty() {
                 continue;
             }
@@ -152,6 +160,16 @@ fn main() -> ExitCode {
         worst.0,
         worst.1.name(),
         worst.2
+    );
+    println!(
+        "largest energy gain at one event {:.3e} of the energy ({} seed {}); \
+         at a pressing hit {:.3e} ({} seed {})",
+        gain.0,
+        gain.1.name(),
+        gain.2,
+        press_gain.0,
+        press_gain.1.name(),
+        press_gain.2
     );
     if !table.is_empty() {
         println!("| kind | failure | scenes |\n| --- | --- | ---: |");
