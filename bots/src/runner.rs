@@ -940,9 +940,13 @@ mod tests {
     #[test]
     fn decisions_become_the_protocols_messages() {
         assert_eq!(
-            message(Decision::Pie { swap: true }).to_json(),
-            r#"{"type":"pie-decision","swap":true}"#
+            message(Decision::Pie { swap: true }).map(|m| m.to_json()),
+            Some(r#"{"type":"pie-decision","swap":true}"#.to_string())
         );
-        assert_eq!(message(Decision::Resign).to_json(), r#"{"type":"resign"}"#);
+        assert_eq!(
+            message(Decision::Resign).map(|m| m.to_json()),
+            Some(r#"{"type":"resign"}"#.to_string())
+        );
+        assert!(message(Decision::NoAnswer).is_none());
     }
 }

@@ -1111,7 +1111,7 @@ fn critical_value_is_settled(d: &Coeffs, y: f64, f: f64) -> bool {
 #[inline(never)]
 fn certified_critical_point(p: &Coeffs, d: &Coeffs, bracket: (f64, f64), g_lo: f64, y: f64) -> f64 {
     let dg = horner_d::<3>(d, y).1;
-    if !(y > bracket.0 && y < bracket.1) || !(dg.is_finite() && dg != 0.0) {
+    if !(y > bracket.0 && y < bracket.1 && dg.is_finite() && dg != 0.0) {
         return y;
     }
     polish_with(
