@@ -18,11 +18,11 @@ fn text(bytes: &[u8]) -> String {
 
 #[test]
 fn a_clean_run_of_every_kind_passes_and_counts_its_scenes() {
-    let out = hostile(&["--count", "26", "--seed", "0", "--jobs", "2"]);
+    let out = hostile(&["--count", "32", "--seed", "0", "--jobs", "2"]);
     let stdout = text(&out.stdout);
     assert!(out.status.success(), "{stdout}{}", text(&out.stderr));
     assert!(
-        stdout.contains("26 scenes (2 per kind), 0 failed"),
+        stdout.contains("32 scenes (2 per kind), 0 failed"),
         "{stdout}"
     );
 }
