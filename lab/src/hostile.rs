@@ -587,6 +587,8 @@ fn wedge(r: &mut Rng, seed: u64) -> Hostile {
 
 fn mixed(r: &mut Rng, seed: u64) -> Hostile {
     let half = 0.5;
+    // A fixed point in a corner of the box; no disc may start on it.
+    let post = DVec2::new(0.9 * half, 0.9 * half);
     let n = 2 + r.below(10) as usize;
     let mut bodies: Vec<BodySpec> = Vec::new();
     let mut tries = 0;
@@ -594,7 +596,9 @@ fn mixed(r: &mut Rng, seed: u64) -> Hostile {
         tries += 1;
         let rad = r.log_range(0.005, 0.08);
         let p = DVec2::new(r.range(-half, half), r.range(-half, half)) * (1.0 - 0.2);
-        if bodies.iter().any(|b| (b.pos - p).length() < b.radius + rad) {
+        if (post - p).length() <= rad
+            || bodies.iter().any(|b| (b.pos - p).length() < b.radius + rad)
+        {
             continue;
         }
         let vel = if r.chance(0.5) {
@@ -615,9 +619,7 @@ fn mixed(r: &mut Rng, seed: u64) -> Hostile {
     if let Some(b) = bodies.first_mut() {
         b.vel = r.direction() * r.log_range(0.1, 5.0);
     }
-    let points = vec![Point {
-        pos: DVec2::new(0.9 * half, 0.9 * half),
-    }];
+    let points = vec![Point { pos: post }];
     Hostile::plain(Kind::Mixed, seed, scene(bodies, points, box_walls(half)))
 }
 
@@ -1342,6 +1344,14 @@ mod tests {
         let a = Hostile::generate(Kind::Cluster, 7);
         let b = Hostile::generate(Kind::Cluster, 7);
         assert_eq!(a.scene, b.scene);
+    }
+
+    #[test]
+    fn a_mixed_scene_never_starts_a_disc_on_its_fixed_point() {
+        // Seed 1,009,932 once put a disc over the corner point, and the
+        // engine refused the scene.
+        let h = Hostile::generate(Kind::Mixed, 1_009_932);
+        assert!(World::new(&h.scene, WorldConfig::default()).is_ok());
     }
 
     /// Scenes among the first 40 seeds of each kind that still fail (none
