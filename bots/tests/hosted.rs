@@ -40,10 +40,38 @@ fn starter() -> Arc<BotModule> {
     Arc::new(BotModule::load(&bytes, &Limits::default()).expect("the starter bot loads"))
 }
 
-#[test]
-fn the_starter_bot_plays_a_whole_match_and_its_seed_replays_it_bit_for_bit() {
-    let module = starter();
-    let seed = 5;
+/// The AssemblyScript starter's module, built with npm as its author
+/// would (`npm ci && npm run build`), or `None` (said out loud) where npm
+/// is not installed.
+fn assemblyscript_starter() -> Option<Arc<BotModule>> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("wasm-starter-as");
+    if Command::new("npm").arg("--version").output().is_err() {
+        eprintln!("skipped: npm is not installed, so the AssemblyScript starter cannot be built");
+        return None;
+    }
+    let npm = |args: &[&str]| {
+        let status = Command::new("npm")
+            .args(args)
+            .current_dir(&dir)
+            .status()
+            .expect("npm runs");
+        assert!(status.success(), "npm {args:?} failed in {}", dir.display());
+    };
+    if !dir.join("node_modules/.bin/asc").exists() {
+        npm(&["ci", "--no-audit", "--no-fund"]);
+    }
+    npm(&["run", "build"]);
+    let bytes =
+        std::fs::read(dir.join("build/starter.wasm")).expect("the starter's wasm was built");
+    Some(Arc::new(
+        BotModule::load(&bytes, &Limits::default()).expect("the AssemblyScript starter loads"),
+    ))
+}
+
+/// Plays `module` as White against the greedy bot from `seed`, twice, and
+/// checks the match ends, the bot never failed, and the second match is
+/// the first bit for bit.
+fn plays_a_whole_match_reproducibly(module: Arc<BotModule>, seed: u64) {
     let play = || {
         let mut hosted = HostedBot::new(module.clone(), NoiseSecret::from_seed(seed));
         let mut greedy = by_name("greedy", 1).unwrap();
@@ -71,6 +99,18 @@ fn the_starter_bot_plays_a_whole_match_and_its_seed_replays_it_bit_for_bit() {
         serde_json::to_string(&first.record).unwrap()
     );
     assert_eq!(usage_again, usage);
+}
+
+#[test]
+fn the_starter_bot_plays_a_whole_match_and_its_seed_replays_it_bit_for_bit() {
+    plays_a_whole_match_reproducibly(starter(), 5);
+}
+
+#[test]
+fn the_assemblyscript_starter_plays_a_whole_match_and_its_seed_replays_it_bit_for_bit() {
+    if let Some(module) = assemblyscript_starter() {
+        plays_a_whole_match_reproducibly(module, 6);
+    }
 }
 
 #[test]
