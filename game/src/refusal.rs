@@ -80,6 +80,8 @@ pub enum ErrorCode {
     /// A bot's key was sent from a web page (a browser's request carries
     /// an `Origin`): bot keys are for bot processes only.
     BotKeyInBrowser,
+    /// No file of this name is served here (`/sdk/`: none, or not that one).
+    NoSuchFile,
 }
 
 impl ErrorCode {
@@ -124,6 +126,7 @@ impl ErrorCode {
             ErrorCode::NoSuchChallenge => "no-such-challenge",
             ErrorCode::BadPassword => "bad-password",
             ErrorCode::BotKeyInBrowser => "bot-key-in-browser",
+            ErrorCode::NoSuchFile => "no-such-file",
         }
     }
 }

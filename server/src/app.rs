@@ -32,6 +32,8 @@ pub enum AppError {
     Io(#[from] std::io::Error),
     #[error(transparent)]
     Backup(#[from] crate::backup::BackupError),
+    #[error("--sdk-dir: {0}")]
+    Sdk(#[from] crate::web::sdk::SdkError),
 }
 
 /// Installs the tracing subscriber (logs go to standard error).
@@ -148,6 +150,14 @@ async fn serve(
         crate::web::ratelimit::AddressLimiter::new(config.create_per_sec, config.create_burst),
     ));
     let origins = web::Data::new(crate::web::origin::Origins::new(&config.allowed_origins));
+    let sdk = web::Data::new(crate::web::sdk::Served(match &config.sdk_dir {
+        Some(dir) => {
+            let sdk = crate::web::sdk::Sdk::load(dir)?;
+            info!(dir = %dir.display(), files = ?sdk.names().collect::<Vec<_>>(), "serving the SDK at /sdk/");
+            Some(Arc::new(sdk))
+        }
+        None => None,
+    }));
     let proxies = web::Data::new(crate::web::client_addr::TrustedProxies::new(
         config.trusted_proxy.clone(),
     ));
@@ -157,6 +167,7 @@ async fn serve(
             .app_data(streams.clone())
             .app_data(origins.clone())
             .app_data(proxies.clone())
+            .app_data(sdk.clone())
             .wrap(actix_web::middleware::from_fn(crate::web::origin::check))
             .app_data(simulations.clone())
             .app_data(creations.clone())

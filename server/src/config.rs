@@ -190,6 +190,12 @@ pub struct Config {
     #[arg(long, env = "CHAPAEV_SYNC", value_enum, default_value_t = SyncMode::Full)]
     pub sync: SyncMode,
 
+    /// A folder built by `scripts/build-sdk` (the Python wheel and the npm
+    /// tarball of the simulator, with their manifest) to hand out at
+    /// `/sdk/`; it must match this server's physics version.
+    #[arg(long, env = "CHAPAEV_SDK_DIR", value_name = "DIR")]
+    pub sdk_dir: Option<PathBuf>,
+
     /// Seconds to let connections and writes finish on SIGTERM or Ctrl-C.
     #[arg(long, env = "CHAPAEV_SHUTDOWN_SECONDS", default_value_t = 10)]
     pub shutdown_seconds: u64,

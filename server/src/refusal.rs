@@ -16,7 +16,10 @@ pub trait HttpStatus {
 impl HttpStatus for Refusal {
     fn http_status(&self) -> u16 {
         match self.code {
-            ErrorCode::NoSuchMatch | ErrorCode::NoSuchAccount | ErrorCode::NoSuchChallenge => 404,
+            ErrorCode::NoSuchMatch
+            | ErrorCode::NoSuchAccount
+            | ErrorCode::NoSuchChallenge
+            | ErrorCode::NoSuchFile => 404,
             ErrorCode::BadKey | ErrorCode::BadPassword => 401,
             ErrorCode::MatchFull
             | ErrorCode::NameTaken

@@ -5,7 +5,8 @@
 //!   `/api`, `/healthz`, `/metrics` and the protocol's schema;
 //! - [`accounts`]: the accounts API; [`auth`]: who a request proves to be;
 //! - [`assets`]: the embedded web client at `/`;
-//! - [`simulate`]: `POST /api/simulate`;
+//! - [`simulate`]: `POST /api/simulate`; [`sdk`]: the bot-author packages
+//!   at `/sdk/`;
 //! - [`ws`]: a match's WebSocket; [`stream`]: the lobby's event stream;
 //!   [`pump`]: the WebSocket loop both run on;
 //! - [`reply`]: the shapes every answer shares; [`origin`]: cross-site
@@ -23,6 +24,7 @@ pub(crate) mod origin;
 pub(crate) mod pump;
 pub(crate) mod ratelimit;
 pub(crate) mod reply;
+pub(crate) mod sdk;
 pub(crate) mod simulate;
 pub(crate) mod stream;
 pub(crate) mod ws;
@@ -33,6 +35,7 @@ use actix_web::web;
 pub fn routes(cfg: &mut web::ServiceConfig) {
     crate::web::assets::routes(cfg);
     crate::web::accounts::routes(cfg);
+    crate::web::sdk::routes(cfg);
     cfg.route("/api", web::get().to(matches::api_page))
         .route("/healthz", web::get().to(matches::healthz))
         .route("/metrics", web::get().to(matches::metrics))
