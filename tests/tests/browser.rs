@@ -1347,3 +1347,93 @@ async fn the_panels_buttons_keep_their_places_and_resigns_confirmation_stands_el
     })
     .await;
 }
+
+/// What the page's synthesiser was asked to play so far, by kind.
+async fn sounds_heard(client: &Client) -> Result<Vec<(String, f64)>> {
+    let heard = browser::eval(client, "return window.chapaevSounds || [];").await?;
+    Ok(heard
+        .as_array()
+        .into_iter()
+        .flatten()
+        .map(|s| {
+            (
+                s["kind"].as_str().unwrap_or_default().to_string(),
+                s["loudness"].as_f64().unwrap_or(0.0),
+            )
+        })
+        .collect())
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn shots_clack_as_their_pieces_meet_and_the_sound_button_silences_them_for_good() {
+    in_player_windows("-sound", |client, _server, _artifacts, _window| {
+        Box::pin(async move {
+            let play = against_the_computer(client).await?;
+            if play["sound"] != true {
+                return Err(E2eError::Check(format!(
+                    "sound is not on by default: {play}"
+                )));
+            }
+            // Our shot, then the computer's, until a collision is heard.
+            shoot(client, &play).await?;
+            let start = Instant::now();
+            let heard = loop {
+                let heard = sounds_heard(client).await?;
+                if heard.iter().any(|(k, _)| k == "clack") {
+                    break heard;
+                }
+                if start.elapsed() > Duration::from_secs(60) {
+                    return Err(E2eError::Check(format!(
+                        "no clack within 60 s of shots: {heard:?}"
+                    )));
+                }
+                let s = browser::eval(client, STATE).await?;
+                if s["my_turn"] == true && s["animating"] == false {
+                    shoot(client, &s).await?;
+                }
+                tokio::time::sleep(Duration::from_millis(200)).await;
+            };
+            let flicks = heard.iter().filter(|(k, _)| k == "flick").count();
+            let clacks: Vec<f64> = heard
+                .iter()
+                .filter(|(k, _)| k == "clack")
+                .map(|(_, l)| *l)
+                .collect();
+            if flicks == 0 || clacks.iter().any(|l| !(0.05..=1.0).contains(l)) {
+                return Err(E2eError::Check(format!(
+                    "flicks and clacks as loud as the hits: {heard:?}"
+                )));
+            }
+            // Muted: the next shots are silent, and it stays so after a reload.
+            click_button(client, "sound").await?;
+            state_until(client, "sound off", 10, |s| s["sound"] == false).await?;
+            client.refresh().await?;
+            let back = state_until(client, "the page again after the reload", 30, |s| {
+                s["screen"] == "lobby"
+                    || (s["screen"] == "play" && s["my_turn"] == true && s["animating"] == false)
+            })
+            .await?;
+            let muted = if back["screen"] == "lobby" {
+                against_the_computer(client).await?
+            } else {
+                back
+            };
+            if muted["sound"] != false {
+                return Err(E2eError::Check(format!("the mute was forgotten: {muted}")));
+            }
+            browser::eval(client, "window.chapaevSounds.length = 0; return null;").await?;
+            let shots = muted["shots"].as_u64().unwrap_or(0);
+            shoot(client, &muted).await?;
+            state_until(client, "our shot played and shown", 60, |s| {
+                s["shots"].as_u64().unwrap_or(0) > shots && s["animating"] == false
+            })
+            .await?;
+            let after = sounds_heard(client).await?;
+            if !after.is_empty() {
+                return Err(E2eError::Check(format!("muted, yet heard {after:?}")));
+            }
+            Ok(())
+        })
+    })
+    .await;
+}

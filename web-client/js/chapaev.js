@@ -213,22 +213,81 @@
         pasted = null;
         return n;
     }
-    // Three short synthesised sounds: flick, fall, your turn.
+    // Wood on wood, synthesised (no sound files to download): a flick is a
+    // dry tick, a collision a clack (a burst of noise through a resonant
+    // band-pass, louder and brighter the harder the pieces met), a piece
+    // landing on the table below a low thud, your turn a soft tone. On a
+    // phone a firm hit also buzzes (navigator.vibrate, where allowed).
+    // Every sound asked for is noted in window.chapaevSounds (the last
+    // 500), which the browser test reads.
     let audio = null;
-    function beep(kind) {
+    let noise = null;
+    const heard = [];
+    window.chapaevSounds = heard;
+    function context() {
+        audio = audio || new (window.AudioContext || window.webkitAudioContext)();
+        if (audio.state === "suspended") audio.resume().catch(() => {});
+        return audio;
+    }
+    function noiseBuffer(a) {
+        if (!noise) {
+            noise = a.createBuffer(1, Math.round(a.sampleRate * 0.2), a.sampleRate);
+            const d = noise.getChannelData(0);
+            for (let i = 0; i < d.length; i++) d[i] = Math.random() * 2 - 1;
+        }
+        return noise;
+    }
+    function knock(a, t, freq, q, seconds, gain) {
+        const src = a.createBufferSource();
+        src.buffer = noiseBuffer(a);
+        const band = a.createBiquadFilter();
+        band.type = "bandpass";
+        band.frequency.value = freq;
+        band.Q.value = q;
+        const g = a.createGain();
+        g.gain.setValueAtTime(gain, t);
+        g.gain.exponentialRampToValueAtTime(0.0001, t + seconds);
+        src.connect(band).connect(g).connect(a.destination);
+        src.start(t);
+        src.stop(t + seconds + 0.01);
+    }
+    function tone(a, t, from, to, seconds, gain) {
+        const osc = a.createOscillator();
+        const g = a.createGain();
+        osc.type = "sine";
+        osc.frequency.setValueAtTime(from, t);
+        osc.frequency.exponentialRampToValueAtTime(to, t + seconds);
+        g.gain.setValueAtTime(gain, t);
+        g.gain.exponentialRampToValueAtTime(0.0001, t + seconds);
+        osc.connect(g).connect(a.destination);
+        osc.start(t);
+        osc.stop(t + seconds + 0.02);
+    }
+    function sound(kind, loudness) {
+        const name = ["flick", "fall", "turn", "clack"][kind] || "other";
+        heard.push({ kind: name, loudness });
+        if (heard.length > 500) heard.shift();
+        if (name === "clack" && loudness > 0.3 && navigator.vibrate) {
+            const ms = Math.round(8 + 22 * loudness);
+            try {
+                if (navigator.vibrate(ms)) heard.push({ kind: "vibrate", loudness: ms });
+            } catch (e) { /* not allowed here */ }
+        }
         try {
-            audio = audio || new (window.AudioContext || window.webkitAudioContext)();
-            const [freq, ms, type] = [[520, 60, "triangle"], [180, 140, "sine"], [880, 120, "sine"]][kind] || [440, 80, "sine"];
-            const osc = audio.createOscillator();
-            const gain = audio.createGain();
-            osc.type = type;
-            osc.frequency.value = freq;
-            const t = audio.currentTime;
-            gain.gain.setValueAtTime(0.12, t);
-            gain.gain.exponentialRampToValueAtTime(0.001, t + ms / 1000);
-            osc.connect(gain).connect(audio.destination);
-            osc.start(t);
-            osc.stop(t + ms / 1000 + 0.02);
+            const a = context();
+            const t = a.currentTime;
+            if (name === "flick") {
+                knock(a, t, 3400, 1.2, 0.03, 0.12);
+            } else if (name === "clack") {
+                const l = Math.min(Math.max(loudness, 0), 1);
+                knock(a, t, 1500 + 900 * l + 200 * Math.random(), 9, 0.06 + 0.05 * l, 0.05 + 0.55 * l);
+                tone(a, t, 1150 + 150 * l, 1050, 0.05, 0.04 * l);
+            } else if (name === "fall") {
+                tone(a, t, 170, 55, 0.22, 0.35);
+                knock(a, t, 420, 1.5, 0.14, 0.25);
+            } else {
+                tone(a, t, 880, 880, 0.12, 0.12);
+            }
         } catch (e) { /* no audio here */ }
     }
 
@@ -289,7 +348,7 @@
         env.chapaev_set_ready = set_ready;
         env.chapaev_report = report;
         env.chapaev_pasted_len = pasted_len;
-        env.chapaev_beep = beep;
+        env.chapaev_sound = sound;
         env.chapaev_coarse_pointer = coarse_pointer;
         env.chapaev_prompt = ask;
         env.chapaev_prompted_len = prompted_len;

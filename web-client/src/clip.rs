@@ -3,8 +3,12 @@
 //! pieces hit something (a ring), and how each knocked-off piece left the
 //! board (it keeps sliding over the edge, shrinking and fading as it
 //! drops). Every frame is a pure function of the time, so playing, pausing
-//! and scrubbing backwards all draw the same thing for the same `t`.
+//! and scrubbing backwards all draw the same thing for the same `t`. The
+//! shot's sounds ([`Clip::sounds`]) come from the same events: a clack at
+//! each collision, as loud as the pieces met hard, and a thud when a
+//! knocked-off piece lands.
 
+use crate::platform::Sound;
 use ::glam::DVec2;
 use engine::{EventKind, Scene};
 use game::{Film, PieceId, ShotOutcome};
@@ -13,12 +17,23 @@ use game::{Film, PieceId, ShotOutcome};
 pub const HIT_SECONDS: f64 = 0.25;
 /// How long a piece takes to drop off the edge, in seconds of shot time.
 pub const FALL_SECONDS: f64 = 0.6;
+/// The closing speed (m/s) of a collision that clacks at full loudness.
+pub const LOUDEST_HIT: f64 = 2.0;
+/// Collisions closing slower than this (m/s) make no sound: pieces that
+/// barely touch, or rest against each other.
+pub const SILENT_HIT: f64 = 0.005;
+/// The most clacks one call of [`Clip::sounds`] gives (the loudest): a
+/// cluster of pieces can touch dozens of times in a frame.
+pub const MOST_CLACKS: usize = 4;
 
-/// A collision to flash.
+/// A collision to flash (and hear).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
     pub t: f64,
     pub at: DVec2,
+    /// How fast the two pieces closed along the line of their centres just
+    /// before they met, m/s.
+    pub speed: f64,
 }
 
 /// A piece leaving the board.
@@ -71,11 +86,14 @@ impl Clip {
         for e in &outcome.events {
             match e.kind {
                 EventKind::BodyBody { a, b } => {
-                    let s = film.scene_at(e.t);
+                    // Positions at the contact, velocities from just before.
+                    let s = film.snapshot_at(just_before(e.t)).scene_at(e.t);
                     if let (Some(a), Some(b)) = (body_in(&s, a), body_in(&s, b)) {
+                        let normal = (b.pos - a.pos).normalize_or_zero();
                         hits.push(Hit {
                             t: e.t,
                             at: (a.pos + b.pos) / 2.0,
+                            speed: (a.vel - b.vel).dot(normal).max(0.0),
                         });
                     }
                 }
@@ -114,6 +132,36 @@ impl Clip {
     pub fn duration(&self) -> f64 {
         let last_fall = self.falls.iter().map(|f| f.t + FALL_SECONDS);
         last_fall.fold(self.film.end, f64::max)
+    }
+
+    /// The sounds of the moments after `from` up to `to` (shot time): a
+    /// clack for each collision (louder the harder the pieces met; the
+    /// [`MOST_CLACKS`] loudest), then a thud for each piece that lands
+    /// after dropping off the edge. Nothing when `to <= from`, so a paused
+    /// or rewound shot is silent.
+    pub fn sounds(&self, from: f64, to: f64) -> Vec<Sound> {
+        let within = |t: f64| t > from && t <= to;
+        let mut clacks: Vec<f64> = self
+            .hits
+            .iter()
+            .filter(|h| within(h.t) && h.speed >= SILENT_HIT)
+            .map(|h| h.speed)
+            .collect();
+        clacks.sort_by(|a, b| b.total_cmp(a));
+        clacks.truncate(MOST_CLACKS);
+        let mut sounds: Vec<Sound> = clacks
+            .into_iter()
+            .map(|v| Sound::Clack {
+                loudness: (v / LOUDEST_HIT).sqrt().clamp(0.05, 1.0) as f32,
+            })
+            .collect();
+        sounds.extend(
+            self.falls
+                .iter()
+                .filter(|f| within(f.t + FALL_SECONDS))
+                .map(|_| Sound::Fall),
+        );
+        sounds
     }
 
     /// Everything to draw at time `t` of the shot (clamped to the shot).
@@ -210,6 +258,54 @@ mod tests {
             assert!(!fr.pieces.iter().any(|(p, _)| *p == f.piece));
         }
         assert!(clip.duration() > clip.film.end);
+    }
+
+    #[test]
+    fn each_collision_clacks_once_as_loud_as_it_was_hard_and_each_fall_thuds_on_landing() {
+        let (_, clip) = knock_off();
+        let end = clip.duration();
+        // Played in small steps, every moment is heard once.
+        let mut heard = Vec::new();
+        let mut t = 0.0;
+        while t < end {
+            heard.extend(clip.sounds(t, t + 1.0 / 240.0));
+            t += 1.0 / 240.0;
+        }
+        let audible = clip.hits.iter().filter(|h| h.speed >= SILENT_HIT).count();
+        let clacks: Vec<f32> = heard
+            .iter()
+            .filter_map(|s| match s {
+                Sound::Clack { loudness } => Some(*loudness),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(clacks.len(), audible);
+        assert!(clacks.iter().all(|l| (0.05..=1.0).contains(l)));
+        let falls = heard.iter().filter(|s| **s == Sound::Fall).count();
+        assert_eq!(falls, clip.outcome.knocked_off.len());
+        // The first hit of a 2 m/s shot is hard: loud.
+        assert!(clacks[0] > 0.5, "{clacks:?}");
+        // Paused or rewound: silent.
+        assert!(clip.sounds(end, end).is_empty());
+        assert!(clip.sounds(end, 0.0).is_empty());
+    }
+
+    #[test]
+    fn a_harder_hit_clacks_louder() {
+        let config = Config::default();
+        let loudness = |speed: f64| {
+            let mut g = Game::new(config.clone(), 7).unwrap();
+            let piece = PieceId::new(Side::White, 0).unwrap();
+            let shot = Shot::new(piece, DVec2::new(0.0, speed), &config).unwrap();
+            let p = g.play(Side::White, shot).unwrap();
+            let clip = Clip::new(p.outcome, p.film);
+            let first = clip.hits.first().expect("the shot hits").t;
+            match clip.sounds(0.0, first).as_slice() {
+                [Sound::Clack { loudness }] => *loudness,
+                other => panic!("{other:?}"),
+            }
+        };
+        assert!(loudness(1.9) > loudness(1.5));
     }
 
     #[test]

@@ -28,15 +28,31 @@ pub enum HttpReply {
     Failed(String),
 }
 
-/// The game's few short sounds (synthesised by the browser, off by default).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// The game's short sounds, synthesised by the browser (no sound files):
+/// wood on wood. On by default; the player's choice is remembered.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Sound {
-    /// A piece was flicked.
-    Flick = 0,
-    /// A piece fell off the board.
-    Fall = 1,
+    /// A finger flicked a piece.
+    Flick,
+    /// Two pieces met; `loudness` 0..1 grows with how hard. On a phone a
+    /// firm hit also buzzes briefly, where the browser allows it.
+    Clack { loudness: f32 },
+    /// A knocked-off piece landed on the table below.
+    Fall,
     /// It is your turn.
-    YourTurn = 2,
+    YourTurn,
+}
+
+impl Sound {
+    /// The kind number and loudness the page's synthesiser takes.
+    fn code(self) -> (i32, f32) {
+        match self {
+            Sound::Flick => (0, 0.5),
+            Sound::Fall => (1, 0.8),
+            Sound::YourTurn => (2, 0.5),
+            Sound::Clack { loudness } => (3, loudness.clamp(0.0, 1.0)),
+        }
+    }
 }
 
 #[cfg(target_arch = "wasm32")]
@@ -75,7 +91,7 @@ mod imp {
         fn chapaev_set_ready();
         fn chapaev_report(ptr: *const u8, len: usize);
         fn chapaev_pasted_len() -> i32;
-        fn chapaev_beep(kind: i32);
+        fn chapaev_sound(kind: i32, loudness: f32);
         fn chapaev_coarse_pointer() -> i32;
         fn chapaev_prompt(l: *const u8, ll: usize, v: *const u8, vl: usize);
         fn chapaev_prompted_len() -> i32;
@@ -208,8 +224,9 @@ mod imp {
         (len >= 0).then(|| take(len, |p, c| unsafe { chapaev_staged_take(p, c) }))
     }
 
-    pub fn beep(sound: super::Sound) {
-        unsafe { chapaev_beep(sound as i32) }
+    pub fn play_sound(sound: super::Sound) {
+        let (kind, loudness) = sound.code();
+        unsafe { chapaev_sound(kind, loudness) }
     }
 
     pub fn coarse_pointer() -> bool {
@@ -410,7 +427,9 @@ mod imp {
     }
 
     /// On the desktop the game is silent.
-    pub fn beep(_sound: super::Sound) {}
+    pub fn play_sound(sound: super::Sound) {
+        let _ = sound.code();
+    }
 
     /// The desktop has a mouse and a keyboard.
     pub fn coarse_pointer() -> bool {
@@ -425,6 +444,6 @@ mod imp {
 }
 
 pub use imp::{
-    beep, coarse_pointer, copy_text, location, pasted, picked_file, prompt, prompted, report,
+    coarse_pointer, copy_text, location, pasted, picked_file, play_sound, prompt, prompted, report,
     request_file, save_file, set_hash, set_ready, storage_get, storage_set, Request, Socket,
 };

@@ -69,7 +69,8 @@ pub struct Play {
     viewport: Option<Viewport>,
     /// The end-of-match screen was closed.
     end_closed: bool,
-    /// Short sounds on (off by default; remembered by the browser).
+    /// Sounds (and a phone's buzz on a hit) on: on by default, the
+    /// player's choice remembered by the browser.
     sound: bool,
     /// Whether it was the player's turn last frame, and since when it is.
     was_my_turn: bool,
@@ -77,6 +78,11 @@ pub struct Play {
 }
 
 const SOUND_KEY: &str = "chapaev.sound";
+
+/// Whether the player has sound on (the default) or turned it off.
+pub(crate) fn sound_on() -> bool {
+    platform::storage_get(SOUND_KEY).as_deref() != Some("off")
+}
 const NAME_KEY: &str = "chapaev.name";
 /// The match this browser left while it was on (the lobby offers the way back).
 pub const LEFT_KEY: &str = "chapaev.left-match";
@@ -118,7 +124,7 @@ impl Play {
             viewport: None,
             aiming: None,
             end_closed: false,
-            sound: platform::storage_get(SOUND_KEY).as_deref() == Some("on"),
+            sound: sound_on(),
             was_my_turn: false,
             turn_since: 0.0,
         };
@@ -165,7 +171,7 @@ impl Play {
     fn advance(&mut self, dt: f64) {
         for s in self.state.advance(dt) {
             if self.sound {
-                platform::beep(s);
+                platform::play_sound(s);
             }
         }
     }
@@ -300,7 +306,7 @@ impl Play {
                 self.sound = !self.sound;
                 platform::storage_set(SOUND_KEY, if self.sound { "on" } else { "off" });
                 if self.sound {
-                    platform::beep(platform::Sound::YourTurn);
+                    platform::play_sound(platform::Sound::YourTurn);
                 }
             }
             "end-close" => self.end_closed = true,
@@ -447,7 +453,7 @@ impl Screen for Play {
         if my_turn && !self.was_my_turn {
             self.turn_since = self.state.now;
             if self.sound {
-                platform::beep(platform::Sound::YourTurn);
+                platform::play_sound(platform::Sound::YourTurn);
             }
         }
         self.was_my_turn = my_turn;
@@ -527,6 +533,7 @@ impl Screen for Play {
         m.insert("my_turn".into(), self.my_turn().into());
         m.insert("status".into(), self.status.clone().into());
         m.insert("animating".into(), self.state.busy().into());
+        m.insert("sound".into(), self.sound.into());
         m.insert("replaying".into(), self.state.replaying.into());
         m.insert(
             "connected".into(),

@@ -3,12 +3,15 @@
 //! forwards or backwards at -2x to 4x, and jumped shot by shot. Every
 //! moment is computed from the exact films, so scrubbing is instant. The
 //! heading says whether the match's noise verifies against the commitment
-//! published before its first shot ([`game::verify`]).
+//! published before its first shot ([`game::verify`]). Played forwards,
+//! the shots sound as they did live ([`sounds_between`]); scrubbed or
+//! played backwards, they are silent.
 
 use crate::api::{Api, Pending};
 use crate::clip::{Clip, Frame};
 use crate::draw;
 use crate::highlight;
+use crate::platform::{self, Sound};
 use crate::route::Route;
 use crate::screen::Screen;
 use crate::timeline::Timeline;
@@ -91,6 +94,27 @@ impl Replay {
 }
 
 /// What to show at match time `t`: the view of the match then and the frame.
+/// The sounds of the match between times `from` and `to` of `timeline`
+/// (the shots of `clips`): each shot's flick as the time reaches its start,
+/// then its clacks and falls ([`Clip::sounds`]). Nothing unless `to` is
+/// after `from`.
+fn sounds_between(clips: &[Clip], timeline: &Timeline, from: f64, to: f64) -> Vec<Sound> {
+    let mut sounds = Vec::new();
+    if to <= from {
+        return sounds;
+    }
+    let first = timeline.locate(from).map_or(0, |(n, _)| n);
+    let last = timeline.locate(to).map_or(0, |(n, _)| n);
+    for (n, clip) in clips.iter().enumerate().take(last + 1).skip(first) {
+        let start = timeline.start(n);
+        if (from..to).contains(&start) {
+            sounds.push(Sound::Flick);
+        }
+        sounds.extend(clip.sounds(from - start, to - start));
+    }
+    sounds
+}
+
 fn at(l: &Loaded, t: f64) -> (MatchView, Frame, Option<usize>) {
     match l.timeline.locate(t) {
         Some((n, within)) => {
@@ -167,7 +191,13 @@ impl Screen for Replay {
             }
         };
         if self.playing && !self.scrubbing {
+            let before = self.t;
             self.t = l.timeline.step(self.t, dt, self.speed);
+            if crate::play::sound_on() {
+                for s in sounds_between(&l.clips, &l.timeline, before, self.t) {
+                    platform::play_sound(s);
+                }
+            }
             let at_end = self.speed > 0.0 && self.t >= l.timeline.total();
             let at_start = self.speed < 0.0 && self.t <= 0.0;
             if at_end || at_start {
@@ -371,5 +401,53 @@ impl Screen for Replay {
             m.insert("speed".into(), self.speed.into());
         }
         m
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ::glam::DVec2;
+    use game::{Config, Game, PieceId, Shot};
+
+    /// Two shots of White straight up the board, each knocking a piece
+    /// off, as clips on their timeline.
+    fn two_shots() -> (Vec<Clip>, Timeline) {
+        let config = Config::default();
+        let mut g = Game::new(config.clone(), 7).unwrap();
+        let clips: Vec<Clip> = [0, 1]
+            .into_iter()
+            .map(|k| {
+                let piece = PieceId::new(Side::White, k).unwrap();
+                let shot = Shot::new(piece, DVec2::new(0.0, 2.0), &config).unwrap();
+                let p = g.play(Side::White, shot).unwrap();
+                Clip::new(p.outcome, p.film)
+            })
+            .collect();
+        let timeline = Timeline::new(clips.iter().map(Clip::duration));
+        (clips, timeline)
+    }
+
+    #[test]
+    fn a_replay_played_forwards_sounds_every_shot_once_and_backwards_is_silent() {
+        let (clips, timeline) = two_shots();
+        let mut heard = Vec::new();
+        let mut t = 0.0;
+        while t < timeline.total() {
+            let next = timeline.step(t, 1.0 / 60.0, 1.0);
+            heard.extend(sounds_between(&clips, &timeline, t, next));
+            t = next;
+        }
+        let flicks = heard.iter().filter(|s| **s == Sound::Flick).count();
+        assert_eq!(flicks, 2);
+        let falls = heard.iter().filter(|s| **s == Sound::Fall).count();
+        let knocked: usize = clips.iter().map(|c| c.outcome.knocked_off.len()).sum();
+        assert_eq!(falls, knocked);
+        assert!(heard.iter().any(|s| matches!(s, Sound::Clack { .. })));
+        // One big step across both shots hears both flicks too.
+        let all = sounds_between(&clips, &timeline, 0.0, timeline.total());
+        assert_eq!(all.iter().filter(|s| **s == Sound::Flick).count(), 2);
+        // Backwards: nothing.
+        assert!(sounds_between(&clips, &timeline, timeline.total(), 0.0).is_empty());
     }
 }

@@ -222,7 +222,9 @@ impl MatchState {
         };
         let me = self.my_side();
         if let Some((clip, t)) = &mut self.playing {
+            let before = *t;
             *t += dt * speed;
+            sounds.extend(clip.sounds(before, *t));
             // A shot worth seeing again plays once more, slowly, unless
             // more shots wait to be shown.
             let again = !self.replaying
@@ -251,10 +253,8 @@ impl MatchState {
             };
             match m {
                 ServerMessage::ShotPlayed { outcome, film, .. } => {
+                    // The clacks and falls come as the film reaches them.
                     sounds.push(Sound::Flick);
-                    if !outcome.knocked_off.is_empty() {
-                        sounds.push(Sound::Fall);
-                    }
                     self.outcomes.push(outcome.clone());
                     self.playing = Some((Clip::new(outcome, film), 0.0));
                 }
@@ -355,7 +355,7 @@ pub(crate) mod tests {
         assert_eq!(s.queued(), 2);
         // The shot is taken up first and plays; the pass waits behind it.
         let sounds = s.advance(0.0);
-        assert_eq!(sounds, vec![Sound::Flick, Sound::Fall]);
+        assert_eq!(sounds, vec![Sound::Flick]);
         assert!(s.playing.is_some());
         assert_eq!(s.queued(), 1);
         // The shot is told once its film has shown it.
@@ -364,10 +364,19 @@ pub(crate) mod tests {
         // Once the film has run (at normal speed: only one announcement
         // waits behind it), its result shows, then the pass.
         let duration = s.playing.as_ref().unwrap().0.duration();
-        assert!(s.advance(duration * 0.9).is_empty());
+        let knocked = s.playing.as_ref().unwrap().0.outcome.knocked_off.len();
+        let mut sounds = s.advance(duration * 0.9);
         assert!(s.playing.is_some());
-        let sounds = s.advance(duration * 0.1 + 0.01);
-        assert!(sounds.is_empty());
+        sounds.extend(s.advance(duration * 0.1 + 0.01));
+        // Heard as the film showed them: its collisions, then its falls.
+        assert!(
+            matches!(sounds.first(), Some(Sound::Clack { .. })),
+            "{sounds:?}"
+        );
+        assert_eq!(
+            sounds.iter().filter(|s| **s == Sound::Fall).count(),
+            knocked
+        );
         assert!(!s.busy());
         let v = s.view.as_ref().unwrap();
         assert_eq!(v.shots, 1);
