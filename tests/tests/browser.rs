@@ -1437,3 +1437,88 @@ async fn shots_clack_as_their_pieces_meet_and_the_sound_button_silences_them_for
     })
     .await;
 }
+
+/// The rectangle of the native input laid over the text field `name`, in
+/// CSS pixels, once there is one (`None` after `secs` without one).
+async fn native_input(client: &Client, name: &str, secs: u64) -> Result<Option<Value>> {
+    let script = format!(
+        r#"const el = document.querySelector('input[data-chapaev-field="{name}"]');
+           if (!el) return null;
+           const r = el.getBoundingClientRect();
+           return [r.x, r.y, r.width, r.height];"#
+    );
+    let start = Instant::now();
+    loop {
+        let found = browser::eval(client, &script).await?;
+        if !found.is_null() {
+            return Ok(Some(found));
+        }
+        if start.elapsed() > Duration::from_secs(secs) {
+            return Ok(None);
+        }
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn on_a_touch_screen_a_text_field_is_a_real_input_that_takes_the_phones_typing() {
+    in_player_windows("-input", |client, _server, _artifacts, window| {
+        Box::pin(async move {
+            state_until(client, "the lobby's name field", 30, |s| {
+                s["screen"] == "lobby" && s["buttons"]["name"].is_array()
+            })
+            .await?;
+            if window.name != "phone" {
+                // A mouse and a keyboard: the canvas is typed into, no input.
+                if let Some(r) = native_input(client, "name", 2).await? {
+                    return Err(E2eError::Check(format!("a native input on a desktop: {r}")));
+                }
+                return Ok(());
+            }
+            // Headless Chromium has a fine pointer: make it a touch screen,
+            // and note any use of the browser's prompt.
+            browser::eval(
+                client,
+                r#"const real = window.matchMedia.bind(window);
+                   window.matchMedia = (q) => q.includes("pointer: coarse") ? { matches: true } : real(q);
+                   window.prompt = () => { window.chapaevPrompted = true; return null; };
+                   return null;"#,
+            )
+            .await?;
+            let rect = native_input(client, "name", 10)
+                .await?
+                .ok_or_else(|| E2eError::Check("no native input over the name field".into()))?;
+            let s = browser::eval(client, STATE).await?;
+            let field = &s["buttons"]["name"];
+            let off = (0..4)
+                .map(|i| (rect[i].as_f64().unwrap_or(f64::NAN) - field[i].as_f64().unwrap_or(0.0)).abs())
+                .fold(0.0, f64::max);
+            if off.is_nan() || off >= 1.5 {
+                return Err(E2eError::Check(format!(
+                    "the input {rect} is not over the field {field}"
+                )));
+            }
+            let input = client
+                .find(fantoccini::Locator::Css(r#"input[data-chapaev-field="name"]"#))
+                .await?;
+            input.click().await?;
+            input.clear().await?;
+            input.send_keys("Анка-2").await?;
+            state_until(client, "the typed name in the client", 10, |s| s["name"] == "Анка-2")
+                .await?;
+            let focused = browser::eval(
+                client,
+                "return document.activeElement && document.activeElement.dataset.chapaevField;",
+            )
+            .await?;
+            let prompted = browser::eval(client, "return window.chapaevPrompted || false;").await?;
+            if focused != "name" || prompted != false {
+                return Err(E2eError::Check(format!(
+                    "focus {focused}, the browser's prompt used: {prompted}"
+                )));
+            }
+            Ok(())
+        })
+    })
+    .await;
+}

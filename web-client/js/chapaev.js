@@ -1,8 +1,8 @@
 // The web client's miniquad plugin: what the wasm needs from the browser
 // beyond macroquad's own bundle. WebSockets, HTTP requests, the page
 // address, localStorage, file download and upload, pasted text, short
-// sounds, and the readiness flag and state report that the end-to-end test
-// reads.
+// sounds, native text inputs over the canvas on touch screens, and the
+// readiness flag and state report that the end-to-end test reads.
 //
 // Strings and bytes cross the boundary by copy: Rust passes (pointer,
 // length) into its memory; JS results are queued and Rust asks for their
@@ -36,7 +36,7 @@
     // In the browser the app draws only while something changes
     // (web-client/src/pace.rs) and miniquad's loop then waits for an
     // event. Whatever the app would poll for next (a message, a reply,
-    // pasted text, a picked file, a prompt's answer, an edited address)
+    // pasted text, a picked file, what was typed in a text input, an edited address)
     // wakes a frame at once; a heartbeat wakes one twice a second for
     // clocks and polls.
     let schedule_update = null;
@@ -292,26 +292,84 @@
     }
 
     // ---- Text on touch screens ------------------------------------------
-    // A canvas never raises a phone's keyboard: a text field tapped there
-    // asks with the browser's own prompt, after the frame (it blocks).
+    // A canvas never raises a phone's keyboard. On a touch screen each text
+    // field the client draws gets a real <input> laid exactly over it (same
+    // place, size and colours), so a tap reaches the input itself and the
+    // keyboard opens, with the browser's own editing, autocorrect and input
+    // methods. The wasm places the inputs every frame (field_place), takes
+    // what was typed (field_take_len) and learns of focus and Enter
+    // (field_flags); an input not placed in the last frame is removed
+    // (field_sweep, at the start of each frame).
     function coarse_pointer() {
         return window.matchMedia && window.matchMedia("(pointer: coarse)").matches ? 1 : 0;
     }
-    let prompted = null;
-    function ask(lptr, llen, vptr, vlen) {
-        const label = str(lptr, llen);
-        const value = str(vptr, vlen);
-        setTimeout(() => {
-            const answer = window.prompt(label, value);
-            if (answer !== null) prompted = answer;
-            wake();
-        }, 0);
+    const fields = new Map();
+    let field_frame = 0;
+    function field_sweep() {
+        field_frame += 1;
+        for (const [name, f] of fields) {
+            if (f.placed < field_frame - 1) {
+                f.el.remove();
+                fields.delete(name);
+            }
+        }
     }
-    function prompted_len() {
-        if (prompted === null) return -1;
-        const n = stage(prompted);
-        prompted = null;
+    function field_place(nptr, nlen, x, y, w, h, vptr, vlen, pptr, plen, max) {
+        const name = str(nptr, nlen);
+        let f = fields.get(name);
+        if (!f) {
+            const el = document.createElement("input");
+            el.type = "text";
+            el.autocomplete = "off";
+            el.spellcheck = false;
+            el.enterKeyHint = "done";
+            el.setAttribute("data-chapaev-field", name);
+            Object.assign(el.style, {
+                position: "absolute", boxSizing: "border-box", margin: "0",
+                padding: "0 8px", border: "1.5px solid #e0a040", borderRadius: "0",
+                outline: "none", background: "#1a140f", color: "#f0e6d2",
+                fontFamily: "sans-serif", zIndex: "2",
+            });
+            f = { el, placed: 0, changed: null, entered: false };
+            el.addEventListener("input", () => { f.changed = el.value; wake(); });
+            el.addEventListener("keydown", (e) => {
+                if (e.key === "Enter") { f.entered = true; wake(); }
+            });
+            el.addEventListener("focus", wake);
+            el.addEventListener("blur", wake);
+            // Pasting is the input's own: keep it from macroquad's page-wide
+            // handler, which would cancel it.
+            el.addEventListener("paste", (e) => e.stopPropagation());
+            document.body.appendChild(el);
+            fields.set(name, f);
+        }
+        f.placed = field_frame;
+        const el = f.el;
+        Object.assign(el.style, {
+            left: x + "px", top: y + "px", width: w + "px", height: h + "px",
+            fontSize: Math.max(12, Math.min(20, h * 0.45)) + "px",
+        });
+        el.placeholder = str(pptr, plen);
+        el.maxLength = max;
+        const value = str(vptr, vlen);
+        if (f.changed === null && el.value !== value) el.value = value;
+    }
+    function field_take_len(nptr, nlen) {
+        const f = fields.get(str(nptr, nlen));
+        if (!f || f.changed === null) return -1;
+        const n = stage(f.changed);
+        f.changed = null;
         return n;
+    }
+    function field_flags(nptr, nlen) {
+        const f = fields.get(str(nptr, nlen));
+        if (!f) return 0;
+        let flags = document.activeElement === f.el ? 1 : 0;
+        if (f.entered) {
+            flags |= 2;
+            f.entered = false;
+        }
+        return flags;
     }
 
     // ---- Test hooks ------------------------------------------------------
@@ -350,8 +408,10 @@
         env.chapaev_pasted_len = pasted_len;
         env.chapaev_sound = sound;
         env.chapaev_coarse_pointer = coarse_pointer;
-        env.chapaev_prompt = ask;
-        env.chapaev_prompted_len = prompted_len;
+        env.chapaev_field_sweep = field_sweep;
+        env.chapaev_field_place = field_place;
+        env.chapaev_field_take_len = field_take_len;
+        env.chapaev_field_flags = field_flags;
     }
     // macroquad listens for the mouse on the canvas only: a slingshot pulled
     // past the page's edge would never be released. Forward what happens

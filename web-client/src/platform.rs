@@ -1,8 +1,9 @@
 //! The outside world as the client sees it, one API on both targets: a
 //! WebSocket, HTTP requests (with an optional `Authorization` header), the page address, persistent key-value
-//! storage, saving and opening files, pasted text, short sounds, the
-//! browser's own text prompt (a phone's keyboard never opens for a
-//! canvas), and the readiness flag and state report that the browser test reads.
+//! storage, saving and opening files, pasted text, short sounds, native
+//! text inputs laid over the canvas's text fields on touch screens (a
+//! phone's keyboard never opens for a canvas), and the readiness flag and
+//! state report that the browser test reads.
 //!
 //! In the browser every call goes to the small miniquad plugin in
 //! `js/chapaev.js` (loaded after macroquad's `mq_js_bundle.js`); on the
@@ -55,6 +56,15 @@ impl Sound {
     }
 }
 
+/// What a native text input reports (see [`field_flags`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FieldFlags {
+    /// It has the keyboard focus.
+    pub focused: bool,
+    /// Enter was pressed in it since the last call.
+    pub entered: bool,
+}
+
 #[cfg(target_arch = "wasm32")]
 mod imp {
     use super::{HttpReply, SocketState};
@@ -93,8 +103,23 @@ mod imp {
         fn chapaev_pasted_len() -> i32;
         fn chapaev_sound(kind: i32, loudness: f32);
         fn chapaev_coarse_pointer() -> i32;
-        fn chapaev_prompt(l: *const u8, ll: usize, v: *const u8, vl: usize);
-        fn chapaev_prompted_len() -> i32;
+        fn chapaev_field_sweep();
+        #[allow(clippy::too_many_arguments)]
+        fn chapaev_field_place(
+            n: *const u8,
+            nl: usize,
+            x: f32,
+            y: f32,
+            w: f32,
+            h: f32,
+            v: *const u8,
+            vl: usize,
+            p: *const u8,
+            pl: usize,
+            max: u32,
+        );
+        fn chapaev_field_take_len(n: *const u8, nl: usize) -> i32;
+        fn chapaev_field_flags(n: *const u8, nl: usize) -> i32;
     }
 
     /// The plugin's version, checked by miniquad's loader against `chapaev.js`.
@@ -233,13 +258,41 @@ mod imp {
         unsafe { chapaev_coarse_pointer() == 1 }
     }
 
-    pub fn prompt(label: &str, value: &str) {
-        unsafe { chapaev_prompt(label.as_ptr(), label.len(), value.as_ptr(), value.len()) }
+    pub fn field_sweep() {
+        unsafe { chapaev_field_sweep() }
     }
 
-    pub fn prompted() -> Option<String> {
-        let len = unsafe { chapaev_prompted_len() };
+    pub fn field_place(name: &str, css: [f32; 4], value: &str, placeholder: &str, max: usize) {
+        let [x, y, w, h] = css;
+        let max = u32::try_from(max).unwrap_or(u32::MAX);
+        unsafe {
+            chapaev_field_place(
+                name.as_ptr(),
+                name.len(),
+                x,
+                y,
+                w,
+                h,
+                value.as_ptr(),
+                value.len(),
+                placeholder.as_ptr(),
+                placeholder.len(),
+                max,
+            )
+        }
+    }
+
+    pub fn field_take(name: &str) -> Option<String> {
+        let len = unsafe { chapaev_field_take_len(name.as_ptr(), name.len()) };
         (len >= 0).then(|| take(len, |p, c| unsafe { chapaev_staged_take(p, c) }))
+    }
+
+    pub fn field_flags(name: &str) -> super::FieldFlags {
+        let bits = unsafe { chapaev_field_flags(name.as_ptr(), name.len()) };
+        super::FieldFlags {
+            focused: bits & 1 != 0,
+            entered: bits & 2 != 0,
+        }
     }
 }
 
@@ -436,14 +489,23 @@ mod imp {
         false
     }
 
-    pub fn prompt(_label: &str, _value: &str) {}
+    /// The desktop types into the canvas: no native inputs.
+    pub fn field_sweep() {}
 
-    pub fn prompted() -> Option<String> {
+    pub fn field_place(_name: &str, _css: [f32; 4], _value: &str, _placeholder: &str, _max: usize) {
+    }
+
+    pub fn field_take(_name: &str) -> Option<String> {
         None
+    }
+
+    pub fn field_flags(_name: &str) -> super::FieldFlags {
+        super::FieldFlags::default()
     }
 }
 
 pub use imp::{
-    coarse_pointer, copy_text, location, pasted, picked_file, play_sound, prompt, prompted, report,
-    request_file, save_file, set_hash, set_ready, storage_get, storage_set, Request, Socket,
+    coarse_pointer, copy_text, field_flags, field_place, field_sweep, field_take, location, pasted,
+    picked_file, play_sound, report, request_file, save_file, set_hash, set_ready, storage_get,
+    storage_set, Request, Socket,
 };

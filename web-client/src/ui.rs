@@ -211,8 +211,9 @@ pub struct Ui {
     focus: Option<String>,
     /// Whether a widget took this frame's press.
     captured: bool,
-    /// The text field whose text the browser's prompt is asking for.
-    prompting: Option<String>,
+    /// Inside [`Ui::without_input`]: a modal covers what is drawn, so no
+    /// native text input may be laid over it.
+    covered: bool,
 }
 
 /// Draws `text` with its top-left corner near `(x, y)` at `size` pixels.
@@ -268,6 +269,8 @@ impl Ui {
         self.input = input;
         self.buttons.clear();
         self.captured = false;
+        // Native inputs not laid over a field last frame go away.
+        platform::field_sweep();
     }
 
     /// Ends the frame (forgets a finished press).
@@ -285,7 +288,9 @@ impl Ui {
     pub fn without_input<R>(&mut self, f: impl FnOnce(&mut Ui) -> R) -> R {
         let input = std::mem::take(&mut self.input);
         self.input.pointer = vec2(f32::NEG_INFINITY, f32::NEG_INFINITY);
+        let covered = std::mem::replace(&mut self.covered, true);
         let r = f(self);
+        self.covered = covered;
         self.input = input;
         r
     }
@@ -352,7 +357,9 @@ impl Ui {
     }
 
     /// A one-line text field editing `value` (at most `max` characters);
-    /// `true` when Enter is pressed in it.
+    /// `true` when Enter is pressed in it. On a touch screen a native input
+    /// is laid over it ([`platform::field_place`]): a tap opens the phone's
+    /// keyboard, and what is typed there comes back here.
     pub fn text_field(
         &mut self,
         name: &str,
@@ -362,28 +369,31 @@ impl Ui {
         max: usize,
     ) -> bool {
         self.buttons.insert(name.to_string(), r);
-        if self.input.pressed && r.contains(self.input.pointer) {
-            self.focus = Some(name.to_string());
-            self.captured = true;
-            // A phone opens no keyboard for a canvas: ask the browser.
-            if platform::coarse_pointer() {
-                platform::prompt(placeholder, value);
-                self.prompting = Some(name.to_string());
-            }
-        }
-        if self.prompting.as_deref() == Some(name) {
-            if let Some(answer) = platform::prompted() {
-                *value = answer
+        let native = !self.covered && platform::coarse_pointer();
+        let mut entered = false;
+        if native {
+            let c = scale::css(r);
+            platform::field_place(name, [c.x, c.y, c.w, c.h], value, placeholder, max);
+            if let Some(typed) = platform::field_take(name) {
+                *value = typed
                     .chars()
                     .filter(|c| !c.is_control())
                     .take(max)
                     .collect();
-                self.prompting = None;
             }
+            let flags = platform::field_flags(name);
+            if flags.focused {
+                self.focus = Some(name.to_string());
+            } else if self.focus.as_deref() == Some(name) {
+                self.focus = None;
+            }
+            entered = flags.entered;
+        } else if self.input.pressed && r.contains(self.input.pointer) {
+            self.focus = Some(name.to_string());
+            self.captured = true;
         }
         let focused = self.focus.as_deref() == Some(name);
-        let mut entered = false;
-        if focused {
+        if focused && !native {
             edit(value, &self.input.typed, max);
             if let Some(pasted) = &self.input.paste {
                 let room = max.saturating_sub(value.chars().count());
