@@ -80,6 +80,16 @@ pub enum ErrorCode {
     /// A bot's key was sent from a web page (a browser's request carries
     /// an `Origin`): bot keys are for bot processes only.
     BotKeyInBrowser,
+    /// An uploaded bot module the server cannot host: not WebAssembly,
+    /// an import other than the host's (WASI), the documented exports
+    /// missing or of the wrong type (the message says which).
+    BadModule,
+    /// Only a bot's account can host a module.
+    NotABot,
+    /// The account has no uploaded module version with this hash.
+    NoSuchVersion,
+    /// The account keeps as many module versions as it may.
+    TooManyVersions,
 }
 
 impl ErrorCode {
@@ -124,6 +134,10 @@ impl ErrorCode {
             ErrorCode::NoSuchChallenge => "no-such-challenge",
             ErrorCode::BadPassword => "bad-password",
             ErrorCode::BotKeyInBrowser => "bot-key-in-browser",
+            ErrorCode::BadModule => "bad-module",
+            ErrorCode::NotABot => "not-a-bot",
+            ErrorCode::NoSuchVersion => "no-such-version",
+            ErrorCode::TooManyVersions => "too-many-versions",
         }
     }
 }

@@ -16,15 +16,22 @@ pub trait HttpStatus {
 impl HttpStatus for Refusal {
     fn http_status(&self) -> u16 {
         match self.code {
-            ErrorCode::NoSuchMatch | ErrorCode::NoSuchAccount | ErrorCode::NoSuchChallenge => 404,
+            ErrorCode::NoSuchMatch
+            | ErrorCode::NoSuchAccount
+            | ErrorCode::NoSuchChallenge
+            | ErrorCode::NoSuchVersion => 404,
             ErrorCode::BadKey | ErrorCode::BadPassword => 401,
             ErrorCode::MatchFull
             | ErrorCode::NameTaken
             | ErrorCode::MatchOver
             | ErrorCode::MatchNotOver
             | ErrorCode::SameAccount
-            | ErrorCode::UnsupportedPhysics => 409,
-            ErrorCode::BadToken | ErrorCode::ForbiddenOrigin | ErrorCode::BotKeyInBrowser => 403,
+            | ErrorCode::UnsupportedPhysics
+            | ErrorCode::TooManyVersions => 409,
+            ErrorCode::BadToken
+            | ErrorCode::ForbiddenOrigin
+            | ErrorCode::BotKeyInBrowser
+            | ErrorCode::NotABot => 403,
             ErrorCode::RateLimited => 429,
             ErrorCode::MessageTooLarge => 413,
             ErrorCode::ServerBusy => 503,
