@@ -4,12 +4,15 @@
 //! makes an earlier one active; hostile uploads (too large, not
 //! WebAssembly, importing WASI, a wrong key, a person's account, a page's
 //! script, another account's version) get a stable code and change
-//! nothing; the versions outlive a restart.
+//! nothing; the versions outlive a restart. The starter bot, built for
+//! wasm32 as its author would, is accepted as it is.
 
 mod common;
 
 use common::{http_with, Server};
 use serde_json::Value;
+use std::path::Path;
+use std::process::Command;
 
 fn json(text: &str) -> Value {
     serde_json::from_str(text).unwrap_or_else(|e| panic!("{e}: {text}"))
@@ -223,4 +226,38 @@ async fn on_postgresql_a_bot_uploads_lists_and_activates_versions_and_hostile_up
         return;
     };
     uploads_and_versions(&[&format!("--database-url={url}")]).await;
+}
+
+/// The starter bot (`bots/wasm-starter`) built for wasm32 in release, as
+/// its author would, into this workspace's target folder.
+fn starter() -> Vec<u8> {
+    let target = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .parent()
+        .expect("the temporary folder is inside the target folder")
+        .to_path_buf();
+    let status = Command::new(env!("CARGO"))
+        .args(["build", "-p", "chapaev-starter-bot", "--release"])
+        .args(["--target", "wasm32-unknown-unknown", "--target-dir"])
+        .arg(&target)
+        .current_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join(".."))
+        .status()
+        .expect("cargo runs");
+    assert!(
+        status.success(),
+        "building the starter bot failed (it needs `rustup target add wasm32-unknown-unknown`)"
+    );
+    std::fs::read(target.join("wasm32-unknown-unknown/release/chapaev_starter_bot.wasm"))
+        .expect("the starter's wasm was built")
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_starter_bot_built_for_wasm32_is_accepted_as_the_active_version() {
+    let bytes = tokio::task::block_in_place(starter);
+    let dir = tempfile::tempdir().unwrap();
+    let s = Server::start(dir.path(), &[]);
+    let key = account(&s, "Starter", true).await;
+    let (status, text) = upload(&s, &key, bytes.clone()).await;
+    assert_eq!(status, 201, "{text}");
+    assert_eq!(json(&text)["size"], bytes.len());
+    assert_eq!(versions(&s, &key).await, [(hash_of(&bytes), true)]);
 }
