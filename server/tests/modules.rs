@@ -160,6 +160,7 @@ async fn uploads_and_versions(extra: &[&str]) {
     assert!(json(&text)["message"].as_str().unwrap().contains("no WASI"), "{text}");
     let (status, text) = upload(&s, &key, b"#!/bin/sh\necho hi\n".to_vec()).await;
     assert_eq!((status, code(&text)), (400, "bad-module".into()));
+    assert!(json(&text)["message"].as_str().unwrap().contains("does not start with"), "{text}");
     let (status, text) = upload(&s, &key, Vec::new()).await;
     assert_eq!((status, code(&text)), (400, "bad-module".into()));
     let mut huge = module(3);

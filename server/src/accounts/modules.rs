@@ -14,6 +14,9 @@ use hosted::{BotModule, LoadError, Limits};
 /// Largest module accepted, in bytes (4 MiB).
 pub const MAX_MODULE_BYTES: usize = 4 << 20;
 
+/// The first bytes of every WebAssembly module.
+const WASM_MAGIC: &[u8] = b"\0asm";
+
 /// Most versions one account keeps.
 pub const MAX_VERSIONS: usize = 32;
 
@@ -75,6 +78,12 @@ impl dyn Store {
         bytes: &[u8],
     ) -> Result<(bool, ModuleVersion), AccountError> {
         must_be_bot(account)?;
+        if !bytes.starts_with(WASM_MAGIC) {
+            return Err(refused(
+                ErrorCode::BadModule,
+                "not a WebAssembly module: it does not start with \\0asm",
+            ));
+        }
         let module = BotModule::load(bytes, &limits()).map_err(load_refusal)?;
         match self.insert_module(&account.name, &module.hash_hex(), bytes, MAX_VERSIONS)? {
             ModuleStored::New(v) => Ok((true, v)),
