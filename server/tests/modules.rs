@@ -37,7 +37,12 @@ fn module(k: u32) -> Vec<u8> {
 }
 
 /// `PUT`s `bytes` as the body, with extra headers; the status and body.
-async fn put_bytes(s: &Server, path: &str, headers: &[(&str, &str)], bytes: Vec<u8>) -> (u16, String) {
+async fn put_bytes(
+    s: &Server,
+    path: &str,
+    headers: &[(&str, &str)],
+    bytes: Vec<u8>,
+) -> (u16, String) {
     let url = format!("http://{}{path}", s.addr);
     let headers: Vec<(String, String)> = headers
         .iter()
@@ -61,7 +66,13 @@ async fn put_bytes(s: &Server, path: &str, headers: &[(&str, &str)], bytes: Vec<
 
 async fn upload(s: &Server, key: &str, bytes: Vec<u8>) -> (u16, String) {
     let auth = format!("Bearer {key}");
-    put_bytes(s, "/api/accounts/me/module", &[("Authorization", &auth)], bytes).await
+    put_bytes(
+        s,
+        "/api/accounts/me/module",
+        &[("Authorization", &auth)],
+        bytes,
+    )
+    .await
 }
 
 async fn as_key(s: &Server, method: &str, path: &str, key: &str, body: &str) -> (u16, String) {
@@ -142,7 +153,10 @@ async fn uploads_and_versions(extra: &[&str]) {
         &format!(r#"{{"hash":"{h1}"}}"#),
     )
     .await;
-    assert_eq!((status, json(&text)["hash"].clone()), (200, h1.as_str().into()));
+    assert_eq!(
+        (status, json(&text)["hash"].clone()),
+        (200, h1.as_str().into())
+    );
     let settled = vec![(h2.clone(), false), (h1.clone(), true)];
     assert_eq!(versions(&s, &key).await, settled);
 
@@ -157,17 +171,29 @@ async fn uploads_and_versions(extra: &[&str]) {
     .unwrap();
     let (status, text) = upload(&s, &key, wasi).await;
     assert_eq!((status, code(&text)), (400, "bad-module".into()));
-    assert!(json(&text)["message"].as_str().unwrap().contains("no WASI"), "{text}");
+    assert!(
+        json(&text)["message"].as_str().unwrap().contains("no WASI"),
+        "{text}"
+    );
     let (status, text) = upload(&s, &key, b"#!/bin/sh\necho hi\n".to_vec()).await;
     assert_eq!((status, code(&text)), (400, "bad-module".into()));
-    assert!(json(&text)["message"].as_str().unwrap().contains("does not start with"), "{text}");
+    assert!(
+        json(&text)["message"]
+            .as_str()
+            .unwrap()
+            .contains("does not start with"),
+        "{text}"
+    );
     let (status, text) = upload(&s, &key, Vec::new()).await;
     assert_eq!((status, code(&text)), (400, "bad-module".into()));
     let mut huge = module(3);
     huge.resize((4 << 20) + 1, 0);
     let (status, text) = upload(&s, &key, huge).await;
     assert_eq!((status, code(&text)), (413, "message-too-large".into()));
-    assert!(json(&text)["message"].as_str().unwrap().contains("4194304"), "{text}");
+    assert!(
+        json(&text)["message"].as_str().unwrap().contains("4194304"),
+        "{text}"
+    );
     let (status, text) = upload(&s, &"0".repeat(32), module(4)).await;
     assert_eq!((status, code(&text)), (401, "bad-key".into()));
     let (status, text) = put_bytes(&s, "/api/accounts/me/module", &[], module(4)).await;
@@ -200,9 +226,13 @@ async fn uploads_and_versions(extra: &[&str]) {
     .await;
     assert_eq!((status, code(&text)), (404, "no-such-version".into()));
     assert!(versions(&s, &other).await.is_empty());
-    for body in [r#"{"hash":"abc"}"#, r#"{"hash":1}"#, "{", r#"{"hash":"x","more":1}"#] {
-        let (status, text) =
-            as_key(&s, "PUT", "/api/accounts/me/modules/active", &key, body).await;
+    for body in [
+        r#"{"hash":"abc"}"#,
+        r#"{"hash":1}"#,
+        "{",
+        r#"{"hash":"x","more":1}"#,
+    ] {
+        let (status, text) = as_key(&s, "PUT", "/api/accounts/me/modules/active", &key, body).await;
         assert!(status == 400 || status == 404, "{body}: {status} {text}");
     }
     assert_eq!(versions(&s, &key).await, settled);

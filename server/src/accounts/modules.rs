@@ -9,7 +9,7 @@
 use crate::accounts::AccountError;
 use crate::store::{ModuleStored, ModuleVersion, Profile, Store};
 use game::protocol::{ErrorCode, Refusal};
-use hosted::{BotModule, LoadError, Limits};
+use hosted::{BotModule, Limits, LoadError};
 
 /// Largest module accepted, in bytes (4 MiB).
 pub const MAX_MODULE_BYTES: usize = 4 << 20;

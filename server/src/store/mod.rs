@@ -149,7 +149,12 @@ pub struct ModuleVersion {
 
 impl ModuleVersion {
     /// A version from its row's columns.
-    pub(crate) fn from_row(hash: String, size: i64, uploaded_at: i64, active: bool) -> ModuleVersion {
+    pub(crate) fn from_row(
+        hash: String,
+        size: i64,
+        uploaded_at: i64,
+        active: bool,
+    ) -> ModuleVersion {
         ModuleVersion {
             hash,
             size: size.max(0) as u64,
@@ -542,12 +547,14 @@ pub trait Store: Send + Sync {
 
     /// Makes `account`'s version `hash` the active one; `None` (and nothing
     /// changed) if the account has no such version.
-    fn activate_module(&self, account: &str, hash: &str)
-        -> Result<Option<ModuleVersion>, StoreError>;
+    fn activate_module(
+        &self,
+        account: &str,
+        hash: &str,
+    ) -> Result<Option<ModuleVersion>, StoreError>;
 
     /// `account`'s active version and its bytes, if it has one.
-    fn active_module(&self, account: &str)
-        -> Result<Option<(ModuleVersion, Vec<u8>)>, StoreError>;
+    fn active_module(&self, account: &str) -> Result<Option<(ModuleVersion, Vec<u8>)>, StoreError>;
 
     // --- operations ---
 

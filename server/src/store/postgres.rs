@@ -694,10 +694,7 @@ impl Store for PostgresStore {
         }))
     }
 
-    fn active_module(
-        &self,
-        account: &str,
-    ) -> Result<Option<(ModuleVersion, Vec<u8>)>, StoreError> {
+    fn active_module(&self, account: &str) -> Result<Option<(ModuleVersion, Vec<u8>)>, StoreError> {
         let row = self.conn()?.query_opt(
             &format!(
                 "SELECT {MODULE_COLUMNS}, module FROM bot_modules

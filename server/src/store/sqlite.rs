@@ -10,11 +10,11 @@
 //! (token hashes, the physics column, the account columns).
 
 use super::group_commit::{BatchWriter, GroupCommit, QueuedMove};
-use super::{ModuleStored, ModuleVersion, Profile};
 use super::{
     now, physics_of, seat_rating, status_of, token_of, AfterMove, MoveWrite, Status, Store,
     StoreError, StoredMatch, StoredSeat, Summary,
 };
+use super::{ModuleStored, ModuleVersion, Profile};
 use crate::config::SyncMode;
 use crate::store::checkpointer::{Checkpointer, Nudge};
 use crate::store::readers::{Readers, READERS};
@@ -834,10 +834,7 @@ impl Store for SqliteStore {
         }))
     }
 
-    fn active_module(
-        &self,
-        account: &str,
-    ) -> Result<Option<(ModuleVersion, Vec<u8>)>, StoreError> {
+    fn active_module(&self, account: &str) -> Result<Option<(ModuleVersion, Vec<u8>)>, StoreError> {
         Ok(self
             .read()?
             .query_row(

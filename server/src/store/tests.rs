@@ -586,8 +586,14 @@ fn module_versions_are_kept_by_hash_with_one_active_and_a_refused_change_writes_
     assert_eq!(before.len(), 3);
     assert_eq!(before[0], (hash(3), true));
     // Any version made active again; its bytes are what plays.
-    let made = store.activate_module("FURMANOV", &hash(2)).unwrap().unwrap();
-    assert_eq!((made.hash.as_str(), made.size, made.active), (hash(2).as_str(), 4, true));
+    let made = store
+        .activate_module("FURMANOV", &hash(2))
+        .unwrap()
+        .unwrap();
+    assert_eq!(
+        (made.hash.as_str(), made.size, made.active),
+        (hash(2).as_str(), 4, true)
+    );
     let (active, bytes) = store.active_module("Furmanov").unwrap().unwrap();
     assert_eq!((active.hash, bytes), (hash(2), b"two!".to_vec()));
     // A version the account lacks (another's, or none at all) changes nothing.
@@ -644,7 +650,10 @@ fn only_a_bots_account_uploads_a_module_and_one_the_runtime_refuses_is_not_store
     assert!(new);
     assert_eq!(version.hash, expected.hash_hex());
     assert_eq!(version.size, good.len() as u64);
-    assert!(!store.upload_module(&bot, &good).unwrap().0, "the same bytes again");
+    assert!(
+        !store.upload_module(&bot, &good).unwrap().0,
+        "the same bytes again"
+    );
     assert_eq!(
         code(store.activate_version(&bot, "not a hash").unwrap_err()),
         ErrorCode::NoSuchVersion
