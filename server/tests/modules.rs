@@ -4,7 +4,8 @@
 //! makes an earlier one active; hostile uploads (too large, not
 //! WebAssembly, importing WASI, a wrong key, a person's account, a page's
 //! script, another account's version) get a stable code and change
-//! nothing; the versions outlive a restart. The starter bot, built for
+//! nothing; the versions outlive a restart, and one not active can be
+//! deleted. The starter bot, built for
 //! wasm32 as its author would, is accepted as it is.
 
 mod common;
@@ -236,11 +237,41 @@ async fn uploads_and_versions(extra: &[&str]) {
         assert!(status == 400 || status == 404, "{body}: {status} {text}");
     }
     assert_eq!(versions(&s, &key).await, settled);
+    // The active version cannot be deleted, nor another account's.
+    let (status, text) = as_key(
+        &s,
+        "DELETE",
+        &format!("/api/accounts/me/modules/{h1}"),
+        &key,
+        "",
+    )
+    .await;
+    assert_eq!((status, code(&text)), (400, "bad-message".into()));
+    let (status, text) = as_key(
+        &s,
+        "DELETE",
+        &format!("/api/accounts/me/modules/{h2}"),
+        &other,
+        "",
+    )
+    .await;
+    assert_eq!((status, code(&text)), (404, "no-such-version".into()));
+    assert_eq!(versions(&s, &key).await, settled);
 
-    // The versions outlive a restart.
+    // The versions outlive a restart; a version not active can be deleted.
     s.kill();
     let s = Server::start(dir.path(), extra);
     assert_eq!(versions(&s, &key).await, settled);
+    let (status, text) = as_key(
+        &s,
+        "DELETE",
+        &format!("/api/accounts/me/modules/{h2}"),
+        &key,
+        "",
+    )
+    .await;
+    assert_eq!(status, 204, "{text}");
+    assert_eq!(versions(&s, &key).await, [(h1, true)]);
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

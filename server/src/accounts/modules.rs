@@ -3,11 +3,12 @@
 //! WebAssembly, no import but the host's two, the documented exports) and
 //! keeps it as a version named by its SHA-256, with its upload time. The
 //! newest upload is the active version; the author lists the versions and
-//! may make any earlier one active again. A module refused, or a version
-//! the account does not have, changes nothing.
+//! may make any earlier one active again, or delete one that is not
+//! active (an account keeps at most [`MAX_VERSIONS`]). A module refused,
+//! or a version the account does not have, changes nothing.
 
 use crate::accounts::AccountError;
-use crate::store::{ModuleStored, ModuleVersion, Profile, Store};
+use crate::store::{ModuleDeleted, ModuleStored, ModuleVersion, Profile, Store};
 use game::protocol::{ErrorCode, Refusal};
 use hosted::{BotModule, Limits, LoadError};
 
@@ -115,5 +116,22 @@ impl dyn Store {
                 format!("this account has no module version {hash}"),
             )
         })
+    }
+
+    /// Deletes `account`'s version `hash`, which must not be the active one.
+    pub fn delete_version(&self, account: &Profile, hash: &str) -> Result<(), AccountError> {
+        must_be_bot(account)?;
+        let hash = parse_hash(hash)?;
+        match self.delete_module(&account.name, &hash)? {
+            ModuleDeleted::Deleted => Ok(()),
+            ModuleDeleted::Active => Err(refused(
+                ErrorCode::BadMessage,
+                "the active version cannot be deleted: make another one active first",
+            )),
+            ModuleDeleted::Missing => Err(refused(
+                ErrorCode::NoSuchVersion,
+                format!("this account has no module version {hash}"),
+            )),
+        }
     }
 }

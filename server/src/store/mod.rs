@@ -164,6 +164,17 @@ impl ModuleVersion {
     }
 }
 
+/// What deleting a module version did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModuleDeleted {
+    /// The version is gone.
+    Deleted,
+    /// It is the active version: kept (make another one active first).
+    Active,
+    /// The account has no such version.
+    Missing,
+}
+
 /// What storing an uploaded module did.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum ModuleStored {
@@ -552,6 +563,9 @@ pub trait Store: Send + Sync {
         account: &str,
         hash: &str,
     ) -> Result<Option<ModuleVersion>, StoreError>;
+
+    /// Deletes `account`'s version `hash` unless it is the active one.
+    fn delete_module(&self, account: &str, hash: &str) -> Result<ModuleDeleted, StoreError>;
 
     /// `account`'s active version and its bytes, if it has one.
     fn active_module(&self, account: &str) -> Result<Option<(ModuleVersion, Vec<u8>)>, StoreError>;

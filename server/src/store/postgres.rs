@@ -21,7 +21,7 @@ use super::{
     now, physics_of, seat_rating, status_of, token_of, AfterMove, MoveWrite, Status, Store,
     StoreError, StoredMatch, StoredSeat, Summary,
 };
-use crate::store::{ModuleStored, ModuleVersion, Profile, MAX_LEADERBOARD};
+use crate::store::{ModuleDeleted, ModuleStored, ModuleVersion, Profile, MAX_LEADERBOARD};
 use crate::store::{RatingPoint, MAX_LISTED};
 use ::postgres::{Client, GenericClient, NoTls, Row, Statement};
 use game::name::AccountName;
@@ -692,6 +692,24 @@ impl Store for PostgresStore {
             active: true,
             ..version
         }))
+    }
+
+    fn delete_module(&self, account: &str, hash: &str) -> Result<ModuleDeleted, StoreError> {
+        let mut conn = self.conn()?;
+        let mut tx = conn.transaction()?;
+        let deleted = match lock_account_module(&mut tx, account, hash)? {
+            None => ModuleDeleted::Missing,
+            Some(v) if v.active => ModuleDeleted::Active,
+            Some(_) => {
+                tx.execute(
+                    "DELETE FROM bot_modules WHERE account_key = lower($1) AND hash = $2",
+                    &[&account, &hash],
+                )?;
+                ModuleDeleted::Deleted
+            }
+        };
+        tx.commit()?;
+        Ok(deleted)
     }
 
     fn active_module(&self, account: &str) -> Result<Option<(ModuleVersion, Vec<u8>)>, StoreError> {

@@ -14,7 +14,7 @@ use super::{
     now, physics_of, seat_rating, status_of, token_of, AfterMove, MoveWrite, Status, Store,
     StoreError, StoredMatch, StoredSeat, Summary,
 };
-use super::{ModuleStored, ModuleVersion, Profile};
+use super::{ModuleDeleted, ModuleStored, ModuleVersion, Profile};
 use crate::config::SyncMode;
 use crate::store::checkpointer::{Checkpointer, Nudge};
 use crate::store::readers::{Readers, READERS};
@@ -832,6 +832,25 @@ impl Store for SqliteStore {
             active: true,
             ..version
         }))
+    }
+
+    fn delete_module(&self, account: &str, hash: &str) -> Result<ModuleDeleted, StoreError> {
+        let mut conn = self.lock()?;
+        let tx = conn.transaction()?;
+        let deleted = match module_version(&tx, account, hash)? {
+            None => ModuleDeleted::Missing,
+            Some(v) if v.active => ModuleDeleted::Active,
+            Some(_) => {
+                tx.execute(
+                    "DELETE FROM bot_modules WHERE account = ?1 AND hash = ?2",
+                    params![account, hash],
+                )?;
+                ModuleDeleted::Deleted
+            }
+        };
+        tx.commit()?;
+        self.log_grew();
+        Ok(deleted)
     }
 
     fn active_module(&self, account: &str) -> Result<Option<(ModuleVersion, Vec<u8>)>, StoreError> {

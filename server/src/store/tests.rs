@@ -603,6 +603,22 @@ fn module_versions_are_kept_by_hash_with_one_active_and_a_refused_change_writes_
     assert_eq!(listed("Furmanov"), after);
     assert!(listed("Anka").is_empty());
     assert_eq!(store.active_module("Anka").unwrap(), None);
+    // The active version stays; another is deleted, which frees its place.
+    assert_eq!(
+        store.delete_module("Furmanov", &hash(2)).unwrap(),
+        ModuleDeleted::Active
+    );
+    assert_eq!(
+        store.delete_module("Anka", &hash(1)).unwrap(),
+        ModuleDeleted::Missing
+    );
+    assert_eq!(listed("Furmanov"), after);
+    assert_eq!(
+        store.delete_module("furmanov", &hash(1)).unwrap(),
+        ModuleDeleted::Deleted
+    );
+    assert_eq!(listed("Furmanov"), [(hash(3), false), (hash(2), true)]);
+    assert!(matches!(new(4, b"four", 3).unwrap(), ModuleStored::New(_)));
 }
 
 /// A module the runtime loads, answering `{"type":"resign"}` (`k` makes

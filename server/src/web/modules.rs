@@ -3,9 +3,10 @@
 //! WebAssembly bytes as the body, at most
 //! [`MAX_MODULE_BYTES`](crate::accounts::modules::MAX_MODULE_BYTES)), lists
 //! its versions (`GET /api/accounts/me/modules`) and makes one active
-//! (`PUT /api/accounts/me/modules/active`, `{"hash": "…"}`). The body of
-//! an upload is read here with its own limit, above the JSON bodies' one,
-//! and refused as soon as it passes it.
+//! (`PUT /api/accounts/me/modules/active`, `{"hash": "…"}`) or deletes
+//! one that is not active (`DELETE /api/accounts/me/modules/{hash}`). The
+//! body of an upload is read here with its own limit, above the JSON
+//! bodies' one, and refused as soon as it passes it.
 
 use crate::accounts::modules::MAX_MODULE_BYTES;
 use crate::play::hub::Hub;
@@ -22,7 +23,8 @@ use serde::Deserialize;
 pub fn routes(cfg: &mut web::ServiceConfig) {
     cfg.route("/api/accounts/me/module", web::put().to(upload))
         .route("/api/accounts/me/modules", web::get().to(list))
-        .route("/api/accounts/me/modules/active", web::put().to(activate));
+        .route("/api/accounts/me/modules/active", web::put().to(activate))
+        .route("/api/accounts/me/modules/{hash}", web::delete().to(delete));
 }
 
 fn too_large() -> Refusal {
@@ -109,6 +111,23 @@ async fn activate(req: HttpRequest, hub: web::Data<Hub>, bytes: web::Bytes) -> H
     };
     match made.await {
         Ok(v) => json(StatusCode::OK, &v),
+        Err(r) => refused(&r),
+    }
+}
+
+async fn delete(req: HttpRequest, hub: web::Data<Hub>, hash: web::Path<String>) -> HttpResponse {
+    let done = async {
+        let (_, account) = proven(&req, &hub).await?;
+        let store = hub.store().clone();
+        let name = account.name.clone();
+        let hash = hash.into_inner();
+        let gone = hash.clone();
+        run_account(move || store.delete_version(&account, &hash)).await?;
+        tracing::info!(account = %name, hash = %gone, "bot module version deleted");
+        Ok(())
+    };
+    match done.await {
+        Ok(()) => HttpResponse::NoContent().finish(),
         Err(r) => refused(&r),
     }
 }
