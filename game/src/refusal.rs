@@ -82,6 +82,16 @@ pub enum ErrorCode {
     BotKeyInBrowser,
     /// No file of this name is served here (`/sdk/`: none, or not that one).
     NoSuchFile,
+    /// An uploaded bot module the server cannot host: not WebAssembly,
+    /// an import other than the host's (WASI), the documented exports
+    /// missing or of the wrong type (the message says which).
+    BadModule,
+    /// Only a bot's account can host a module.
+    NotABot,
+    /// The account has no uploaded module version with this hash.
+    NoSuchVersion,
+    /// The account keeps as many module versions as it may.
+    TooManyVersions,
 }
 
 impl ErrorCode {
@@ -127,6 +137,10 @@ impl ErrorCode {
             ErrorCode::BadPassword => "bad-password",
             ErrorCode::BotKeyInBrowser => "bot-key-in-browser",
             ErrorCode::NoSuchFile => "no-such-file",
+            ErrorCode::BadModule => "bad-module",
+            ErrorCode::NotABot => "not-a-bot",
+            ErrorCode::NoSuchVersion => "no-such-version",
+            ErrorCode::TooManyVersions => "too-many-versions",
         }
     }
 }

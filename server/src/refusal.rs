@@ -19,15 +19,20 @@ impl HttpStatus for Refusal {
             ErrorCode::NoSuchMatch
             | ErrorCode::NoSuchAccount
             | ErrorCode::NoSuchChallenge
-            | ErrorCode::NoSuchFile => 404,
+            | ErrorCode::NoSuchFile
+            | ErrorCode::NoSuchVersion => 404,
             ErrorCode::BadKey | ErrorCode::BadPassword => 401,
             ErrorCode::MatchFull
             | ErrorCode::NameTaken
             | ErrorCode::MatchOver
             | ErrorCode::MatchNotOver
             | ErrorCode::SameAccount
-            | ErrorCode::UnsupportedPhysics => 409,
-            ErrorCode::BadToken | ErrorCode::ForbiddenOrigin | ErrorCode::BotKeyInBrowser => 403,
+            | ErrorCode::UnsupportedPhysics
+            | ErrorCode::TooManyVersions => 409,
+            ErrorCode::BadToken
+            | ErrorCode::ForbiddenOrigin
+            | ErrorCode::BotKeyInBrowser
+            | ErrorCode::NotABot => 403,
             ErrorCode::RateLimited => 429,
             ErrorCode::MessageTooLarge => 413,
             ErrorCode::ServerBusy => 503,

@@ -7,7 +7,10 @@
 //! [`game::name`]'s rule and are unique without regard to
 //! case. The tables live in the match store (either backend), so a
 //! match's result and the ratings it moves can be written in one
-//! transaction.
+//! transaction. A bot account may also upload the module the server hosts
+//! it with ([`modules`]).
+
+pub mod modules;
 
 use crate::store::{Profile, Store, StoreError};
 use crate::token::{seat_token, RandomError, SeatToken, TokenHash};

@@ -132,6 +132,61 @@ impl RatingPoint {
     }
 }
 
+/// One uploaded version of a bot account's hosted module (its bytes are
+/// kept beside it, read only to play it).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct ModuleVersion {
+    /// The SHA-256 of the module's bytes, 64 lowercase hex digits: the
+    /// version's name.
+    pub hash: String,
+    /// The module's size in bytes.
+    pub size: u64,
+    /// When it was first uploaded (seconds since 1970).
+    pub uploaded_at: u64,
+    /// Whether it is the version the account plays with.
+    pub active: bool,
+}
+
+impl ModuleVersion {
+    /// A version from its row's columns.
+    pub(crate) fn from_row(
+        hash: String,
+        size: i64,
+        uploaded_at: i64,
+        active: bool,
+    ) -> ModuleVersion {
+        ModuleVersion {
+            hash,
+            size: size.max(0) as u64,
+            uploaded_at: uploaded_at.max(0) as u64,
+            active,
+        }
+    }
+}
+
+/// What deleting a module version did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModuleDeleted {
+    /// The version is gone.
+    Deleted,
+    /// It is the active version: kept (make another one active first).
+    Active,
+    /// The account has no such version.
+    Missing,
+}
+
+/// What storing an uploaded module did.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ModuleStored {
+    /// A new version, now the active one.
+    New(ModuleVersion),
+    /// The account had this version already (same hash): it is now the
+    /// active one, its first upload time kept.
+    Existing(ModuleVersion),
+    /// The account keeps `limit` versions already: nothing was written.
+    TooMany { limit: usize },
+}
+
 pub use group_commit::MoveWrite;
 pub use postgres::PostgresStore;
 pub use sqlite::SqliteStore;
@@ -483,6 +538,37 @@ pub trait Store: Send + Sync {
     /// The rating of `account` after each of its rated matches, oldest
     /// first (at most the last `limit`).
     fn rating_history(&self, account: &str, limit: usize) -> Result<Vec<RatingPoint>, StoreError>;
+
+    // --- hosted bots' modules (the rules are in [`crate::accounts::modules`]) ---
+
+    /// Stores `bytes` (whose SHA-256 is `hash`) as a version of
+    /// `account`'s module and makes it the active one, in one transaction;
+    /// an account holding `max_versions` others already gets
+    /// [`ModuleStored::TooMany`] and nothing is written.
+    fn insert_module(
+        &self,
+        account: &str,
+        hash: &str,
+        bytes: &[u8],
+        max_versions: usize,
+    ) -> Result<ModuleStored, StoreError>;
+
+    /// The versions of `account`'s module, newest first.
+    fn modules(&self, account: &str) -> Result<Vec<ModuleVersion>, StoreError>;
+
+    /// Makes `account`'s version `hash` the active one; `None` (and nothing
+    /// changed) if the account has no such version.
+    fn activate_module(
+        &self,
+        account: &str,
+        hash: &str,
+    ) -> Result<Option<ModuleVersion>, StoreError>;
+
+    /// Deletes `account`'s version `hash` unless it is the active one.
+    fn delete_module(&self, account: &str, hash: &str) -> Result<ModuleDeleted, StoreError>;
+
+    /// `account`'s active version and its bytes, if it has one.
+    fn active_module(&self, account: &str) -> Result<Option<(ModuleVersion, Vec<u8>)>, StoreError>;
 
     // --- operations ---
 

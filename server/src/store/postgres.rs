@@ -21,7 +21,7 @@ use super::{
     now, physics_of, seat_rating, status_of, token_of, AfterMove, MoveWrite, Status, Store,
     StoreError, StoredMatch, StoredSeat, Summary,
 };
-use crate::store::{Profile, MAX_LEADERBOARD};
+use crate::store::{ModuleDeleted, ModuleStored, ModuleVersion, Profile, MAX_LEADERBOARD};
 use crate::store::{RatingPoint, MAX_LISTED};
 use ::postgres::{Client, GenericClient, NoTls, Row, Statement};
 use game::name::AccountName;
@@ -123,6 +123,20 @@ CREATE TABLE cluster_nodes (
 ",
     // A match's noise secret (NULL: a match keyed by its seed, from before).
     "ALTER TABLE matches ADD COLUMN noise_secret TEXT;",
+    // The versions of hosted bots' modules (at most one active per account).
+    "
+CREATE TABLE bot_modules (
+    seq BIGSERIAL PRIMARY KEY,
+    account_key TEXT NOT NULL REFERENCES accounts (name_key),
+    hash TEXT NOT NULL,
+    size BIGINT NOT NULL,
+    uploaded_at BIGINT NOT NULL,
+    active BOOLEAN NOT NULL DEFAULT FALSE,
+    module BYTEA NOT NULL,
+    UNIQUE (account_key, hash)
+);
+CREATE UNIQUE INDEX bot_modules_one_active ON bot_modules (account_key) WHERE active;
+",
 ];
 
 type Pool = r2d2::Pool<PostgresConnectionManager<NoTls>>;
@@ -221,6 +235,47 @@ fn summary(r: &Row) -> Result<Summary, StoreError> {
         second_rating: seat_rating((r.get(14), r.get(15))),
         match_id: id,
     })
+}
+
+/// A module version's columns, in the order [`module_version`] reads them.
+const MODULE_COLUMNS: &str = "hash, size, uploaded_at, active";
+
+fn module_version(r: &Row) -> ModuleVersion {
+    ModuleVersion::from_row(r.get(0), r.get(1), r.get(2), r.get(3))
+}
+
+/// Makes `account`'s version `hash` its only active one (two statements:
+/// the one-active index is checked row by row).
+fn set_active(tx: &mut impl GenericClient, account: &str, hash: &str) -> Result<(), StoreError> {
+    tx.execute(
+        "UPDATE bot_modules SET active = FALSE WHERE account_key = lower($1) AND active",
+        &[&account],
+    )?;
+    tx.execute(
+        "UPDATE bot_modules SET active = TRUE WHERE account_key = lower($1) AND hash = $2",
+        &[&account, &hash],
+    )?;
+    Ok(())
+}
+
+/// Locks `account`'s row until the transaction ends, so that one
+/// account's module changes run one at a time; then its version `hash`.
+fn lock_account_module(
+    tx: &mut impl GenericClient,
+    account: &str,
+    hash: &str,
+) -> Result<Option<ModuleVersion>, StoreError> {
+    tx.query_opt(
+        "SELECT 1 FROM accounts WHERE name_key = lower($1) FOR UPDATE",
+        &[&account],
+    )?;
+    let row = tx.query_opt(
+        &format!(
+            "SELECT {MODULE_COLUMNS} FROM bot_modules WHERE account_key = lower($1) AND hash = $2"
+        ),
+        &[&account, &hash],
+    )?;
+    Ok(row.as_ref().map(module_version))
 }
 
 /// Applies the migrations `client`'s database lacks, each in its own
@@ -571,6 +626,101 @@ impl Store for PostgresStore {
             &[&name],
         )?;
         Ok(row.map(|r| (r.get(0), r.get(1))))
+    }
+
+    fn insert_module(
+        &self,
+        account: &str,
+        hash: &str,
+        bytes: &[u8],
+        max_versions: usize,
+    ) -> Result<ModuleStored, StoreError> {
+        let mut conn = self.conn()?;
+        let mut tx = conn.transaction()?;
+        let stored = match lock_account_module(&mut tx, account, hash)? {
+            Some(v) => ModuleStored::Existing(ModuleVersion { active: true, ..v }),
+            None => {
+                let held: i64 = tx
+                    .query_one(
+                        "SELECT count(*) FROM bot_modules WHERE account_key = lower($1)",
+                        &[&account],
+                    )?
+                    .get(0);
+                if held >= max_versions as i64 {
+                    return Ok(ModuleStored::TooMany {
+                        limit: max_versions,
+                    });
+                }
+                let (size, at) = (bytes.len() as i64, now() as i64);
+                tx.execute(
+                    "INSERT INTO bot_modules (account_key, hash, size, uploaded_at, module)
+                     VALUES (lower($1), $2, $3, $4, $5)",
+                    &[&account, &hash, &size, &at, &bytes],
+                )?;
+                ModuleStored::New(ModuleVersion::from_row(hash.to_string(), size, at, true))
+            }
+        };
+        set_active(&mut tx, account, hash)?;
+        tx.commit()?;
+        Ok(stored)
+    }
+
+    fn modules(&self, account: &str) -> Result<Vec<ModuleVersion>, StoreError> {
+        let rows = self.conn()?.query(
+            &format!(
+                "SELECT {MODULE_COLUMNS} FROM bot_modules WHERE account_key = lower($1)
+                 ORDER BY uploaded_at DESC, seq DESC"
+            ),
+            &[&account],
+        )?;
+        Ok(rows.iter().map(module_version).collect())
+    }
+
+    fn activate_module(
+        &self,
+        account: &str,
+        hash: &str,
+    ) -> Result<Option<ModuleVersion>, StoreError> {
+        let mut conn = self.conn()?;
+        let mut tx = conn.transaction()?;
+        let Some(version) = lock_account_module(&mut tx, account, hash)? else {
+            return Ok(None);
+        };
+        set_active(&mut tx, account, hash)?;
+        tx.commit()?;
+        Ok(Some(ModuleVersion {
+            active: true,
+            ..version
+        }))
+    }
+
+    fn delete_module(&self, account: &str, hash: &str) -> Result<ModuleDeleted, StoreError> {
+        let mut conn = self.conn()?;
+        let mut tx = conn.transaction()?;
+        let deleted = match lock_account_module(&mut tx, account, hash)? {
+            None => ModuleDeleted::Missing,
+            Some(v) if v.active => ModuleDeleted::Active,
+            Some(_) => {
+                tx.execute(
+                    "DELETE FROM bot_modules WHERE account_key = lower($1) AND hash = $2",
+                    &[&account, &hash],
+                )?;
+                ModuleDeleted::Deleted
+            }
+        };
+        tx.commit()?;
+        Ok(deleted)
+    }
+
+    fn active_module(&self, account: &str) -> Result<Option<(ModuleVersion, Vec<u8>)>, StoreError> {
+        let row = self.conn()?.query_opt(
+            &format!(
+                "SELECT {MODULE_COLUMNS}, module FROM bot_modules
+                 WHERE account_key = lower($1) AND active"
+            ),
+            &[&account],
+        )?;
+        Ok(row.map(|r| (module_version(&r), r.get(4))))
     }
 
     fn leaderboard(&self, bots: bool, limit: usize) -> Result<Vec<Profile>, StoreError> {

@@ -10,11 +10,11 @@
 //! (token hashes, the physics column, the account columns).
 
 use super::group_commit::{BatchWriter, GroupCommit, QueuedMove};
-use super::Profile;
 use super::{
     now, physics_of, seat_rating, status_of, token_of, AfterMove, MoveWrite, Status, Store,
     StoreError, StoredMatch, StoredSeat, Summary,
 };
+use super::{ModuleDeleted, ModuleStored, ModuleVersion, Profile};
 use crate::config::SyncMode;
 use crate::store::checkpointer::{Checkpointer, Nudge};
 use crate::store::readers::{Readers, READERS};
@@ -133,6 +133,51 @@ CREATE INDEX IF NOT EXISTS matches_by_first_account ON matches (first_account CO
 CREATE INDEX IF NOT EXISTS matches_by_second_account ON matches (second_account COLLATE NOCASE, updated_at);
 ";
 
+/// The versions of hosted bots' modules: their bytes, the SHA-256 that
+/// names each, when it was first uploaded, and which one the account
+/// plays with (at most one per account).
+const MODULE_TABLES: &str = "
+CREATE TABLE IF NOT EXISTS bot_modules (
+    account TEXT NOT NULL COLLATE NOCASE REFERENCES accounts (name),
+    hash TEXT NOT NULL,
+    size INTEGER NOT NULL,
+    uploaded_at INTEGER NOT NULL,
+    active INTEGER NOT NULL DEFAULT 0,
+    module BLOB NOT NULL,
+    PRIMARY KEY (account, hash)
+);
+CREATE UNIQUE INDEX IF NOT EXISTS bot_modules_one_active ON bot_modules (account) WHERE active;
+";
+
+/// Makes `account`'s version `hash` its only active one (two statements:
+/// the one-active index is checked row by row).
+fn set_active(tx: &rusqlite::Transaction<'_>, account: &str, hash: &str) -> Result<(), StoreError> {
+    tx.execute(
+        "UPDATE bot_modules SET active = 0 WHERE account = ?1 AND active",
+        params![account],
+    )?;
+    tx.execute(
+        "UPDATE bot_modules SET active = 1 WHERE account = ?1 AND hash = ?2",
+        params![account, hash],
+    )?;
+    Ok(())
+}
+
+/// The version `hash` of `account`'s module, if it has one.
+fn module_version(
+    conn: &Connection,
+    account: &str,
+    hash: &str,
+) -> Result<Option<ModuleVersion>, StoreError> {
+    Ok(conn
+        .query_row(
+            "SELECT hash, size, uploaded_at, active FROM bot_modules WHERE account = ?1 AND hash = ?2",
+            params![account, hash],
+            |r| Ok(ModuleVersion::from_row(r.get(0)?, r.get(1)?, r.get(2)?, r.get(3)?)),
+        )
+        .optional()?)
+}
+
 /// Brings a store written before tokens were hashed up to date, in one
 /// transaction: each plain seat token is replaced by its hash (so its
 /// owner can still play) and the columns take their new names.
@@ -207,6 +252,7 @@ fn migrate(conn: &Connection) -> Result<(), StoreError> {
     add_account_columns(conn)?;
     conn.execute_batch(ACCOUNT_TABLES)?;
     conn.execute_batch(RATING_TABLES)?;
+    conn.execute_batch(MODULE_TABLES)?;
     let start = RatingSystem::default().start;
     for name in crate::store::computer_accounts() {
         conn.execute(
@@ -706,6 +752,122 @@ impl Store for SqliteStore {
             })?
             .collect::<Result<Vec<_>, _>>()?;
         Ok(points)
+    }
+
+    fn insert_module(
+        &self,
+        account: &str,
+        hash: &str,
+        bytes: &[u8],
+        max_versions: usize,
+    ) -> Result<ModuleStored, StoreError> {
+        let mut conn = self.lock()?;
+        let tx = conn.transaction()?;
+        let stored = match module_version(&tx, account, hash)? {
+            Some(v) => ModuleStored::Existing(ModuleVersion { active: true, ..v }),
+            None => {
+                let held: i64 = tx.query_row(
+                    "SELECT count(*) FROM bot_modules WHERE account = ?1",
+                    params![account],
+                    |r| r.get(0),
+                )?;
+                if held >= max_versions as i64 {
+                    return Ok(ModuleStored::TooMany {
+                        limit: max_versions,
+                    });
+                }
+                let at = now() as i64;
+                tx.execute(
+                    "INSERT INTO bot_modules (account, hash, size, uploaded_at, module)
+                     VALUES (?1, ?2, ?3, ?4, ?5)",
+                    params![account, hash, bytes.len() as i64, at, bytes],
+                )?;
+                ModuleStored::New(ModuleVersion::from_row(
+                    hash.to_string(),
+                    bytes.len() as i64,
+                    at,
+                    true,
+                ))
+            }
+        };
+        set_active(&tx, account, hash)?;
+        tx.commit()?;
+        self.log_grew();
+        Ok(stored)
+    }
+
+    fn modules(&self, account: &str) -> Result<Vec<ModuleVersion>, StoreError> {
+        let conn = self.read()?;
+        let mut stmt = conn.prepare(
+            "SELECT hash, size, uploaded_at, active FROM bot_modules WHERE account = ?1
+             ORDER BY uploaded_at DESC, rowid DESC",
+        )?;
+        let rows = stmt
+            .query_map(params![account], |r| {
+                Ok(ModuleVersion::from_row(
+                    r.get(0)?,
+                    r.get(1)?,
+                    r.get(2)?,
+                    r.get(3)?,
+                ))
+            })?
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(rows)
+    }
+
+    fn activate_module(
+        &self,
+        account: &str,
+        hash: &str,
+    ) -> Result<Option<ModuleVersion>, StoreError> {
+        let mut conn = self.lock()?;
+        let tx = conn.transaction()?;
+        let Some(version) = module_version(&tx, account, hash)? else {
+            return Ok(None);
+        };
+        set_active(&tx, account, hash)?;
+        tx.commit()?;
+        self.log_grew();
+        Ok(Some(ModuleVersion {
+            active: true,
+            ..version
+        }))
+    }
+
+    fn delete_module(&self, account: &str, hash: &str) -> Result<ModuleDeleted, StoreError> {
+        let mut conn = self.lock()?;
+        let tx = conn.transaction()?;
+        let deleted = match module_version(&tx, account, hash)? {
+            None => ModuleDeleted::Missing,
+            Some(v) if v.active => ModuleDeleted::Active,
+            Some(_) => {
+                tx.execute(
+                    "DELETE FROM bot_modules WHERE account = ?1 AND hash = ?2",
+                    params![account, hash],
+                )?;
+                ModuleDeleted::Deleted
+            }
+        };
+        tx.commit()?;
+        self.log_grew();
+        Ok(deleted)
+    }
+
+    fn active_module(&self, account: &str) -> Result<Option<(ModuleVersion, Vec<u8>)>, StoreError> {
+        Ok(self
+            .read()?
+            .query_row(
+                "SELECT hash, size, uploaded_at, active, module FROM bot_modules
+                 WHERE account = ?1 AND active",
+                params![account],
+                |r| {
+                    Ok((
+                        ModuleVersion::from_row(r.get(0)?, r.get(1)?, r.get(2)?, r.get(3)?),
+                        r.get(4)?,
+                    ))
+                },
+            )
+            .optional()?)
     }
 
     fn register_metrics(&self, registry: &mut Registry) {

@@ -86,6 +86,8 @@ on_both_backends!(
     a_casual_match_or_a_seat_without_an_account_rates_nothing,
     the_computer_levels_have_bot_accounts_nobody_can_register,
     every_match_id_is_walked_in_pages_in_byte_order,
+    module_versions_are_kept_by_hash_with_one_active_and_a_refused_change_writes_nothing,
+    only_a_bots_account_uploads_a_module_and_one_the_runtime_refuses_is_not_stored,
 );
 
 pub(super) fn stored(id: &str) -> StoredMatch {
@@ -540,4 +542,142 @@ fn the_computer_levels_have_bot_accounts_nobody_can_register(b: Backend) {
     }
     let taken = AccountName::parse("Computer-Hard").unwrap_err();
     assert_eq!(taken, game::name::NameError::Reserved);
+}
+
+/// 64 hex digits naming a made-up version.
+fn hash(k: u8) -> String {
+    format!("{k:02x}").repeat(32)
+}
+
+fn module_versions_are_kept_by_hash_with_one_active_and_a_refused_change_writes_nothing(
+    b: Backend,
+) {
+    let store = b.store;
+    store.create_account(&name("Furmanov"), true).unwrap();
+    store.create_account(&name("Anka"), true).unwrap();
+    let new = |k: u8, bytes: &[u8], max| store.insert_module("Furmanov", &hash(k), bytes, max);
+    let ModuleStored::New(first) = new(1, b"one", 3).unwrap() else {
+        panic!("a new version")
+    };
+    assert_eq!((first.size, first.active), (3, true));
+    assert!(matches!(new(2, b"two!", 3).unwrap(), ModuleStored::New(_)));
+    let listed = |account: &str| -> Vec<(String, bool)> {
+        store
+            .modules(account)
+            .unwrap()
+            .into_iter()
+            .map(|v| (v.hash, v.active))
+            .collect()
+    };
+    assert_eq!(listed("Furmanov"), [(hash(2), true), (hash(1), false)]);
+    // The same bytes again: the version it was, its upload time kept, active.
+    let ModuleStored::Existing(again) = new(1, b"one", 3).unwrap() else {
+        panic!("an existing version")
+    };
+    assert_eq!(again, first);
+    assert_eq!(listed("furmanov"), [(hash(2), false), (hash(1), true)]);
+    assert!(matches!(new(3, b"three", 3).unwrap(), ModuleStored::New(_)));
+    // A fourth past a limit of three: nothing written, nothing made active.
+    assert_eq!(
+        new(4, b"four", 3).unwrap(),
+        ModuleStored::TooMany { limit: 3 }
+    );
+    let before = listed("Furmanov");
+    assert_eq!(before.len(), 3);
+    assert_eq!(before[0], (hash(3), true));
+    // Any version made active again; its bytes are what plays.
+    let made = store
+        .activate_module("FURMANOV", &hash(2))
+        .unwrap()
+        .unwrap();
+    assert_eq!(
+        (made.hash.as_str(), made.size, made.active),
+        (hash(2).as_str(), 4, true)
+    );
+    let (active, bytes) = store.active_module("Furmanov").unwrap().unwrap();
+    assert_eq!((active.hash, bytes), (hash(2), b"two!".to_vec()));
+    // A version the account lacks (another's, or none at all) changes nothing.
+    let after = listed("Furmanov");
+    assert_eq!(store.activate_module("Furmanov", &hash(9)).unwrap(), None);
+    assert_eq!(store.activate_module("Anka", &hash(2)).unwrap(), None);
+    assert_eq!(listed("Furmanov"), after);
+    assert!(listed("Anka").is_empty());
+    assert_eq!(store.active_module("Anka").unwrap(), None);
+    // The active version stays; another is deleted, which frees its place.
+    assert_eq!(
+        store.delete_module("Furmanov", &hash(2)).unwrap(),
+        ModuleDeleted::Active
+    );
+    assert_eq!(
+        store.delete_module("Anka", &hash(1)).unwrap(),
+        ModuleDeleted::Missing
+    );
+    assert_eq!(listed("Furmanov"), after);
+    assert_eq!(
+        store.delete_module("furmanov", &hash(1)).unwrap(),
+        ModuleDeleted::Deleted
+    );
+    assert_eq!(listed("Furmanov"), [(hash(3), false), (hash(2), true)]);
+    assert!(matches!(new(4, b"four", 3).unwrap(), ModuleStored::New(_)));
+}
+
+/// A module the runtime loads, answering `{"type":"resign"}` (`k` makes
+/// each one's bytes, so its hash, its own).
+fn resigning_module(k: u32) -> Vec<u8> {
+    wat::parse_str(format!(
+        r#"(module
+            (memory (export "memory") 1)
+            (data (i32.const 0) "{{\"type\":\"resign\"}}")
+            (global i32 (i32.const {k}))
+            (func (export "chapaev_alloc") (param i32) (result i32) i32.const 1024)
+            (func (export "chapaev_decide") (param i32 i32) (result i64) i64.const 17))"#
+    ))
+    .unwrap()
+}
+
+fn only_a_bots_account_uploads_a_module_and_one_the_runtime_refuses_is_not_stored(b: Backend) {
+    let store = b.store;
+    let (person, _) = store.create_account(&name("Anka"), false).unwrap();
+    let (bot, _) = store.create_account(&name("Furmanov"), true).unwrap();
+    let good = resigning_module(1);
+    assert_eq!(
+        code(store.upload_module(&person, &good).unwrap_err()),
+        ErrorCode::NotABot
+    );
+    assert!(store.modules("Anka").unwrap().is_empty());
+    let wasi = wat::parse_str(
+        r#"(module
+            (import "wasi_snapshot_preview1" "fd_write" (func (param i32 i32 i32 i32) (result i32)))
+            (memory (export "memory") 1)
+            (func (export "chapaev_alloc") (param i32) (result i32) i32.const 0)
+            (func (export "chapaev_decide") (param i32 i32) (result i64) i64.const 0))"#,
+    )
+    .unwrap();
+    let no_decide = wat::parse_str(r#"(module (memory (export "memory") 1))"#).unwrap();
+    for bad in [&b"not webassembly"[..], &wasi, &no_decide] {
+        assert_eq!(
+            code(store.upload_module(&bot, bad).unwrap_err()),
+            ErrorCode::BadModule
+        );
+    }
+    assert!(store.modules("Furmanov").unwrap().is_empty());
+    let (new, version) = store.upload_module(&bot, &good).unwrap();
+    let expected = hosted::BotModule::load(&good, &crate::accounts::modules::limits()).unwrap();
+    assert!(new);
+    assert_eq!(version.hash, expected.hash_hex());
+    assert_eq!(version.size, good.len() as u64);
+    assert!(
+        !store.upload_module(&bot, &good).unwrap().0,
+        "the same bytes again"
+    );
+    assert_eq!(
+        code(store.activate_version(&bot, "not a hash").unwrap_err()),
+        ErrorCode::NoSuchVersion
+    );
+    assert_eq!(
+        store
+            .activate_version(&bot, &version.hash.to_uppercase())
+            .unwrap(),
+        version
+    );
 }

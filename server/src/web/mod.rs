@@ -4,6 +4,7 @@
 //! - [`matches`]: the match API (`/api/matches`, exhibitions, records),
 //!   `/api`, `/healthz`, `/metrics` and the protocol's schema;
 //! - [`accounts`]: the accounts API; [`auth`]: who a request proves to be;
+//! - [`modules`]: a bot account's hosted module and its versions;
 //! - [`assets`]: the embedded web client at `/`;
 //! - [`simulate`]: `POST /api/simulate`; [`sdk`]: the bot-author packages
 //!   at `/sdk/`;
@@ -20,6 +21,7 @@ pub(crate) mod auth;
 pub(crate) mod blocking;
 pub(crate) mod client_addr;
 pub(crate) mod matches;
+pub(crate) mod modules;
 pub(crate) mod origin;
 pub(crate) mod pump;
 pub(crate) mod ratelimit;
@@ -36,6 +38,7 @@ pub fn routes(cfg: &mut web::ServiceConfig) {
     crate::web::assets::routes(cfg);
     crate::web::accounts::routes(cfg);
     crate::web::sdk::routes(cfg);
+    crate::web::modules::routes(cfg);
     cfg.route("/api", web::get().to(matches::api_page))
         .route("/healthz", web::get().to(matches::healthz))
         .route("/metrics", web::get().to(matches::metrics))
