@@ -238,6 +238,14 @@
     function coarse_pointer() {
         return window.matchMedia && window.matchMedia("(pointer: coarse)").matches ? 1 : 0;
     }
+    function languages_len() {
+        const list = navigator.languages && navigator.languages.length
+            ? navigator.languages : [navigator.language || ""];
+        return stage(list.join(","));
+    }
+    function set_document_lang(ptr, len) {
+        document.documentElement.lang = str(ptr, len);
+    }
     let prompted = null;
     function ask(lptr, llen, vptr, vlen) {
         const label = str(lptr, llen);
@@ -293,6 +301,8 @@
         env.chapaev_coarse_pointer = coarse_pointer;
         env.chapaev_prompt = ask;
         env.chapaev_prompted_len = prompted_len;
+        env.chapaev_languages_len = languages_len;
+        env.chapaev_set_document_lang = set_document_lang;
     }
     // macroquad listens for the mouse on the canvas only: a slingshot pulled
     // past the page's edge would never be released. Forward what happens

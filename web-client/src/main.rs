@@ -13,6 +13,7 @@ mod clip;
 mod connection;
 mod draw;
 mod help;
+mod i18n;
 mod highlight;
 mod leaderboard;
 mod lobby;
@@ -42,7 +43,7 @@ use ui::{Input, Ui};
 fn conf() -> macroquad::conf::Conf {
     macroquad::conf::Conf {
         miniquad_conf: Conf {
-            window_title: "Chapaev online".to_owned(),
+            window_title: i18n::text("app-title", &[]),
             window_width: 1024,
             window_height: 720,
             high_dpi: true,

@@ -79,6 +79,8 @@ mod imp {
         fn chapaev_coarse_pointer() -> i32;
         fn chapaev_prompt(l: *const u8, ll: usize, v: *const u8, vl: usize);
         fn chapaev_prompted_len() -> i32;
+        fn chapaev_languages_len() -> i32;
+        fn chapaev_set_document_lang(ptr: *const u8, len: usize);
     }
 
     /// The plugin's version, checked by miniquad's loader against `chapaev.js`.
@@ -179,7 +181,7 @@ mod imp {
 
     pub fn save_file(name: &str, contents: &str) -> Result<String, String> {
         unsafe { chapaev_download(name.as_ptr(), name.len(), contents.as_ptr(), contents.len()) }
-        Ok(format!("downloaded {name}"))
+        Ok(crate::i18n::t!("file-downloaded", name = name))
     }
 
     pub fn request_file() {
@@ -223,6 +225,18 @@ mod imp {
     pub fn prompted() -> Option<String> {
         let len = unsafe { chapaev_prompted_len() };
         (len >= 0).then(|| take(len, |p, c| unsafe { chapaev_staged_take(p, c) }))
+    }
+
+    /// The browser's preferred languages, best first, comma-separated
+    /// (`navigator.languages`).
+    pub fn languages() -> String {
+        let len = unsafe { chapaev_languages_len() };
+        take(len, |p, c| unsafe { chapaev_staged_take(p, c) })
+    }
+
+    /// Sets the page's `<html lang>`.
+    pub fn set_document_lang(code: &str) {
+        unsafe { chapaev_set_document_lang(code.as_ptr(), code.len()) }
     }
 }
 
@@ -381,8 +395,8 @@ mod imp {
 
     pub fn save_file(name: &str, contents: &str) -> Result<String, String> {
         std::fs::write(name, contents)
-            .map(|()| format!("saved {name}"))
-            .map_err(|e| format!("could not save {name}: {e}"))
+            .map(|()| crate::i18n::t!("file-saved", name = name))
+            .map_err(|e| crate::i18n::t!("file-save-failed", name = name, error = e.to_string()))
     }
 
     /// On the desktop "opening" reads `scene.json` from the working folder.
@@ -422,9 +436,19 @@ mod imp {
     pub fn prompted() -> Option<String> {
         None
     }
+
+    /// On the desktop the locale's variables say the language.
+    pub fn languages() -> String {
+        ["LC_ALL", "LC_MESSAGES", "LANG"]
+            .iter()
+            .find_map(|v| std::env::var(v).ok().filter(|s| !s.is_empty()))
+            .unwrap_or_default()
+    }
+
+    pub fn set_document_lang(_code: &str) {}
 }
 
 pub use imp::{
-    beep, coarse_pointer, copy_text, location, pasted, picked_file, prompt, prompted, report,
-    request_file, save_file, set_hash, set_ready, storage_get, storage_set, Request, Socket,
+    beep, coarse_pointer, copy_text, languages, location, pasted, picked_file, prompt, prompted, report,
+    request_file, save_file, set_document_lang, set_hash, set_ready, storage_get, storage_set, Request, Socket,
 };

@@ -10,6 +10,7 @@
 
 pub mod seek;
 
+use crate::i18n::t;
 use crate::api::{Api, Opponent, Pending, SeatGrant};
 use crate::platform::{Socket, SocketState};
 use crate::route::{ws_origin, Route};
@@ -38,7 +39,7 @@ impl QuickMatch {
         let socket = if api.key.is_some() {
             Some(Socket::open(&stream_url(&api)))
         } else {
-            seek.refuse("sign in to be paired with a stranger");
+            seek.refuse(t!("quick-sign-in-first"));
             None
         };
         QuickMatch {
@@ -146,7 +147,7 @@ impl Screen for QuickMatch {
         let p = places(w, h);
         ui::panel(p.panel);
         let (x, tw) = (p.panel.x + 16.0, p.panel.w - 32.0);
-        ui::text("Quick match", x, p.panel.y + 14.0, 26.0, colors::ACCENT);
+        ui::text(&ui::fit(&t!("lobby-quick-match"), 26.0, tw), x, p.panel.y + 14.0, 26.0, colors::ACCENT);
         ui::text(
             &ui::fit(&self.seek.status(), 17.0, tw),
             x,
@@ -156,10 +157,8 @@ impl Screen for QuickMatch {
         );
         let hint = match &self.message {
             Some(m) => m.clone(),
-            None if self.seek.offer_computer() => {
-                "Nobody yet? The adaptive computer plays at your level.".to_string()
-            }
-            None => "You will play the next person who presses Quick match.".to_string(),
+            None if self.seek.offer_computer() => t!("quick-nobody-yet"),
+            None => t!("quick-next-person"),
         };
         ui::text(
             &ui::fit(&hint, 15.0, tw),
@@ -169,18 +168,18 @@ impl Screen for QuickMatch {
             colors::MUTED,
         );
         let mut go = None;
-        if ui.button("quick-cancel", "Cancel", p.cancel) {
+        if ui.button("quick-cancel", &t!("cancel"), p.cancel) {
             self.stop();
             go = Some(Route::Lobby);
         }
         if self.seek.offer_computer() {
             let label = if self.creating.is_some() {
-                "Starting..."
+                t!("quick-starting")
             } else {
-                "Play the computer (adaptive)"
+                t!("quick-play-computer")
             };
             let enabled = self.creating.is_none();
-            if ui.button_styled("quick-computer", label, p.computer, enabled, false) {
+            if ui.button_styled("quick-computer", &label, p.computer, enabled, false) {
                 self.creating = Some(self.api.create(
                     &self.name,
                     Opponent::Bot("adaptive"),
@@ -188,7 +187,7 @@ impl Screen for QuickMatch {
                 ));
             }
         }
-        if self.api.key.is_none() && ui.button("sign-in", "Sign in", p.sign_in) {
+        if self.api.key.is_none() && ui.button("sign-in", &t!("sign-in"), p.sign_in) {
             go = Some(Route::SignIn);
         }
         go
