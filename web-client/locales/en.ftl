@@ -408,3 +408,6 @@ galperin-collisions = collisions
 galperin-pi = pi to { $n } digits: { $pi }
 galperin-ratio = mass ratio 100^{ $power }
 galperin-done = all done
+sandbox-speed = { $v } m/s
+sandbox-grid = grid { $step } m
+chart-no-games = no rated games yet

@@ -193,7 +193,7 @@ impl Lobby {
         let row = ui::TOUCH;
         let gap = 8.0;
         let Some(a) = self.s.account.clone() else {
-            ui::text(&ui::fit(&t!("lobby-your-name"), 17.0, label_w - 4.0), x0, y + 12.0, 17.0, colors::TEXT);
+            ui::text_in(&t!("lobby-your-name"), x0, y + 12.0, 17.0, label_w - 6.0, colors::TEXT);
             let sign_w = if narrow { 84.0 } else { 110.0 };
             let field_w = (col - label_w - gap - sign_w).min(260.0);
             let field = Rect::new(x0 + label_w, y, field_w, row);
@@ -209,7 +209,7 @@ impl Lobby {
         let (x, w) = if narrow {
             (x0, col)
         } else {
-            ui::text(&ui::fit(&t!("lobby-signed-in"), 17.0, label_w - 4.0), x0, y + 12.0, 17.0, colors::TEXT);
+            ui::text_in(&t!("lobby-signed-in"), x0, y + 12.0, 17.0, label_w - 6.0, colors::TEXT);
             (x0 + label_w, (col - label_w).min(560.0))
         };
         let name_w = (w - 2.0 * gap) * 0.46;
@@ -321,17 +321,14 @@ impl Lobby {
             title -= 1.0;
         }
         ui::text(&name, tx, y, title, colors::ACCENT);
-        ui::text(
-            &ui::fit(
-                &t!("lobby-tagline"),
-                if narrow { 13.0 } else { 18.0 },
-                room,
-            ),
-            tx + 2.0,
-            y + title + 4.0,
-            if narrow { 13.0 } else { 18.0 },
-            colors::MUTED,
-        );
+        // The tagline: one line, or two on a phone, under the title.
+        let size = if narrow { 13.0 } else { 18.0 };
+        let lines = if narrow { 2 } else { 1 };
+        let tagline = crate::help::wrap_lines(&t!("lobby-tagline"), size, room, lines);
+        for (i, line) in tagline.iter().enumerate() {
+            let ly = y + title + 4.0 + i as f32 * (size + 2.0);
+            ui::text(line, tx + 2.0, ly, size, colors::MUTED);
+        }
         let rules = if narrow {
             t!("rules-short")
         } else {
@@ -375,7 +372,7 @@ impl Lobby {
             }
         }
         let field = l.join_field;
-        ui::text(&ui::fit(&t!("lobby-join-by-id"), 17.0, label_w - 4.0), x0, field.y + 12.0, 17.0, colors::TEXT);
+        ui::text_in(&t!("lobby-join-by-id"), x0, field.y + 12.0, 17.0, label_w - 6.0, colors::TEXT);
         let entered = ui.text_field("join-id-field", &mut self.s.join_id, field, &t!("lobby-match-id"), 64);
         let target = self.s.join_target();
         let pressed = ui.button_styled("join-id", &t!("join"), l.join, target.is_some(), false);

@@ -114,6 +114,9 @@ async fn main() {
         let mut state = screen.report();
         state.insert("screen".into(), screen.name().into());
         state.insert("buttons".into(), ui.layout());
+        state.insert("labels".into(), ui.labels());
+        state.insert("cut".into(), ui.cut());
+        state.insert("lang".into(), i18n::current().code().into());
         state
             .entry("animating")
             .or_insert_with(|| screen.animating().into());

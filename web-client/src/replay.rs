@@ -226,8 +226,12 @@ impl Screen for Replay {
         );
         // The heading in one line, or two where the window is narrow.
         let parts: Vec<&str> = head.splitn(3, " · ").collect();
-        if narrow && parts.len() == 3 {
-            let first = format!("{} · {}", parts[0], parts[1]);
+        if narrow && parts.len() >= 2 {
+            let (first, rest) = match parts[..] {
+                [a, b, c] => (format!("{a} · {b}"), c),
+                [a, b, ..] => (a.to_string(), b),
+                _ => (head.clone(), ""),
+            };
             ui::text(
                 &ui::fit(&first, 14.0, text_w),
                 12.0,
@@ -236,15 +240,16 @@ impl Screen for Replay {
                 colors::TEXT,
             );
             ui::text(
-                &ui::fit(parts[2], 14.0, w - 24.0),
+                &ui::fit(rest, 14.0, w - 24.0),
                 12.0,
                 50.0,
                 14.0,
                 colors::TEXT,
             );
         } else {
+            // Beside the buttons, so it stops before them.
             ui::text(
-                &ui::fit(&head, 15.0, w - 24.0),
+                &ui::fit(&head, 15.0, text_w),
                 12.0,
                 34.0,
                 15.0,
