@@ -67,7 +67,9 @@ async fn a_russian_browser_gets_russian_the_switch_turns_it_to_english_and_a_rel
             format!("--window-size={},{}", window.width, window.height),
             format!("--force-device-scale-factor={}", window.dpr),
         ];
-        let profile = scratch.path().join(format!("profile-languages{}", window.suffix));
+        let profile = scratch
+            .path()
+            .join(format!("profile-languages{}", window.suffix));
         let client = driver
             .session_with(&programs, &profile, &extra)
             .await
@@ -110,7 +112,11 @@ async fn both_languages(
     eprintln!("e2e: the browser prefers {preferred}");
     let lobby = lobby_in(client, "ru").await?;
     expect_label(&lobby, "vs-computer-easy", "Компьютер: лёгкий")?;
-    expect_label(&lobby, "lang", if window.width < 600 { "EN" } else { "English" })?;
+    expect_label(
+        &lobby,
+        "lang",
+        if window.width < 600 { "EN" } else { "English" },
+    )?;
     expect_html_lang(client, "ru").await?;
     tour(client, artifacts, window, "ru").await?;
 
@@ -122,7 +128,15 @@ async fn both_languages(
     client.refresh().await?;
     let lobby = lobby_in(client, "en").await?;
     expect_label(&lobby, "vs-computer-easy", "Computer: easy")?;
-    expect_label(&lobby, "lang", if window.width < 600 { "RU" } else { "Русский" })?;
+    expect_label(
+        &lobby,
+        "lang",
+        if window.width < 600 {
+            "RU"
+        } else {
+            "Русский"
+        },
+    )?;
     tour(client, artifacts, window, "en").await
 }
 
@@ -157,14 +171,20 @@ async fn tour(client: &Client, artifacts: &Path, window: &Window, lang: &str) ->
     click_button(client, "lobby").await?;
 
     click_button(client, "sign-in").await?;
-    state_until(client, "the account screen", 15, |s| s["screen"] == "account").await?;
+    state_until(client, "the account screen", 15, |s| {
+        s["screen"] == "account"
+    })
+    .await?;
     snap("sign-in").await?;
     click_button(client, "lobby").await?;
 
     click_button(client, "vs-computer-easy").await?;
-    state_until(client, "the match against the computer, on our turn", 30, |s| {
-        s["screen"] == "play" && s["my_turn"] == true && s["animating"] == false
-    })
+    state_until(
+        client,
+        "the match against the computer, on our turn",
+        30,
+        |s| s["screen"] == "play" && s["my_turn"] == true && s["animating"] == false,
+    )
     .await?;
     snap("play").await?;
     click_button(client, "resign").await?;

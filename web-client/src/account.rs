@@ -4,8 +4,8 @@
 //! screen ("1500?" while a rating is provisional). Without a key the
 //! player is anonymous and plays under a free-form name.
 
-use crate::i18n::t;
 use crate::api::{Profile, SeatRating};
+use crate::i18n::t;
 use crate::platform;
 pub use game::name::{MAX_NAME, MIN_NAME};
 

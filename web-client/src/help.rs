@@ -88,6 +88,6 @@ pub fn show(ui: &mut Ui) -> bool {
         ui::TOUCH,
     );
     let lang = Rect::new(r.x + 20.0, close.y, 120.0, ui::TOUCH);
-    crate::lobby::language_switch(ui, lang, false);
+    crate::i18n::switch(ui, lang, false);
     ui.button("help-close", &t!("help-close"), close) || is_key_pressed(KeyCode::Escape)
 }

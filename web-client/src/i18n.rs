@@ -7,10 +7,12 @@
 //! English, and one missing from both shows its id; nothing panics. The
 //! first visit picks the browser's language (`navigator.languages`);
 //! [`set`] switches it, remembers the choice in `localStorage` and sets the
-//! page's `<html lang>`.
+//! page's `<html lang>`; [`switch`] is the button that does it on screen.
 
 use crate::platform;
+use crate::ui::{Ui, TOUCH};
 use fluent_bundle::{FluentArgs, FluentBundle, FluentResource};
+use macroquad::prelude::Rect;
 use std::cell::Cell;
 use unic_langid::LanguageIdentifier;
 
@@ -125,7 +127,11 @@ fn format_in(lang: Lang, id: &str, args: Option<&FluentArgs>) -> Option<String> 
         let bundle = &b[lang as usize];
         let pattern = bundle.get_message(id)?.value()?;
         let mut errors = Vec::new();
-        Some(bundle.format_pattern(pattern, args, &mut errors).into_owned())
+        Some(
+            bundle
+                .format_pattern(pattern, args, &mut errors)
+                .into_owned(),
+        )
     })
 }
 
@@ -159,6 +165,29 @@ macro_rules! t {
     };
 }
 pub(crate) use t;
+
+/// The language switch: one button that turns the interface to the other
+/// language (named in that language: "English" or "Русский"; on a narrow
+/// screen its code), remembered in this browser.
+pub fn switch(ui: &mut Ui, r: Rect, narrow: bool) {
+    let other = current().other();
+    let label = if narrow {
+        other.code().to_uppercase()
+    } else {
+        other.own_name().to_string()
+    };
+    if ui.button("lang", &label, r) {
+        set(other);
+    }
+}
+
+/// The language switch at the right end of a screen's top row: `right`
+/// is the row's right edge, `y` its top.
+pub fn switch_top(ui: &mut Ui, right: f32, y: f32) {
+    let narrow = crate::scale::size().x < 600.0;
+    let w = if narrow { 48.0 } else { 110.0 };
+    switch(ui, Rect::new(right - w, y, w, TOUCH), narrow);
+}
 
 #[cfg(test)]
 mod tests {
@@ -209,7 +238,10 @@ mod tests {
         let en = ids(Lang::En);
         let mut missing = Vec::new();
         let mut used = 0;
-        let mut stack = vec![std::path::PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/src"))];
+        let mut stack = vec![std::path::PathBuf::from(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/src"
+        ))];
         while let Some(dir) = stack.pop() {
             for entry in std::fs::read_dir(&dir).expect("src is readable") {
                 let path = entry.expect("a directory entry").path();

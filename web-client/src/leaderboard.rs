@@ -2,9 +2,9 @@
 //! (`GET /api/leaderboard`), in two tabs; each name opens the account's
 //! page. As many rows as the window holds, each a finger-sized button.
 
-use crate::i18n::t;
 use crate::account;
 use crate::api::{Api, Pending, Profile};
+use crate::i18n::t;
 use crate::route::Route;
 use crate::screen::Screen;
 use crate::ui::{self, colors, Ui};
@@ -60,17 +60,22 @@ impl Screen for Leaderboard {
         if ui.button("lobby", &t!("lobby"), Rect::new(x0, y, 96.0, ui::TOUCH)) {
             go = Some(Route::Lobby);
         }
-        ui::text(&t!("leaderboard"), x0 + 112.0, y + 9.0, 24.0, colors::ACCENT);
-        crate::lobby::language_switch_top(ui, x0 + col, y);
+        ui::text(
+            &t!("leaderboard"),
+            x0 + 112.0,
+            y + 9.0,
+            24.0,
+            colors::ACCENT,
+        );
+        crate::i18n::switch_top(ui, x0 + col, y);
         y += ui::TOUCH + 12.0;
         let tab_w = (col - gap) / 2.0;
-        for (k, (name, label, bots)) in
-            [
-                ("tab-people", t!("leaderboard-people"), false),
-                ("tab-bots", t!("leaderboard-bots"), true),
-            ]
-                .into_iter()
-                .enumerate()
+        for (k, (name, label, bots)) in [
+            ("tab-people", t!("leaderboard-people"), false),
+            ("tab-bots", t!("leaderboard-bots"), true),
+        ]
+        .into_iter()
+        .enumerate()
         {
             let r = Rect::new(x0 + k as f32 * (tab_w + gap), y, tab_w, ui::TOUCH);
             if ui.button_styled(name, &label, r, true, self.bots == bots) && self.bots != bots {

@@ -16,8 +16,8 @@ mod layout;
 pub mod state;
 
 use crate::account;
-use crate::i18n::{self, t};
 use crate::api::{token_key, Api, Opponent, Pending, Profile, SeatGrant, Summary};
+use crate::i18n::{self, t};
 use crate::route::Route;
 use crate::screen::Screen;
 use crate::ui::{self, colors, Ui};
@@ -193,13 +193,28 @@ impl Lobby {
         let row = ui::TOUCH;
         let gap = 8.0;
         let Some(a) = self.s.account.clone() else {
-            ui::text_in(&t!("lobby-your-name"), x0, y + 12.0, 17.0, label_w - 6.0, colors::TEXT);
+            ui::text_in(
+                &t!("lobby-your-name"),
+                x0,
+                y + 12.0,
+                17.0,
+                label_w - 6.0,
+                colors::TEXT,
+            );
             let sign_w = if narrow { 84.0 } else { 110.0 };
             let field_w = (col - label_w - gap - sign_w).min(260.0);
             let field = Rect::new(x0 + label_w, y, field_w, row);
-            ui.text_field("name", &mut self.s.name, field, &t!("player-default-name"), 40);
+            ui.text_field(
+                "name",
+                &mut self.s.name,
+                field,
+                &t!("player-default-name"),
+                40,
+            );
             let b = Rect::new(field.x + field.w + gap, y, sign_w, row);
-            return ui.button("sign-in", &t!("sign-in"), b).then_some(Route::SignIn);
+            return ui
+                .button("sign-in", &t!("sign-in"), b)
+                .then_some(Route::SignIn);
         };
         let rating = self
             .s
@@ -209,7 +224,14 @@ impl Lobby {
         let (x, w) = if narrow {
             (x0, col)
         } else {
-            ui::text_in(&t!("lobby-signed-in"), x0, y + 12.0, 17.0, label_w - 6.0, colors::TEXT);
+            ui::text_in(
+                &t!("lobby-signed-in"),
+                x0,
+                y + 12.0,
+                17.0,
+                label_w - 6.0,
+                colors::TEXT,
+            );
             (x0 + label_w, (col - label_w).min(560.0))
         };
         let name_w = (w - 2.0 * gap) * 0.46;
@@ -247,7 +269,13 @@ impl Lobby {
         let box_ = dialog(crate::scale::size(), h);
         ui::panel(box_);
         let (x, w) = (box_.x + 16.0, box_.w - 32.0);
-        ui::text(&ui::fit(&title, 21.0, w), x, box_.y + 14.0, 21.0, colors::ACCENT);
+        ui::text(
+            &ui::fit(&title, 21.0, w),
+            x,
+            box_.y + 14.0,
+            21.0,
+            colors::ACCENT,
+        );
         let lines = crate::help::wrap_lines(&body, 16.0, w, lines);
         for (i, l) in lines.iter().enumerate() {
             let y = box_.y + 50.0 + i as f32 * 22.0;
@@ -337,7 +365,7 @@ impl Lobby {
         if ui.button("help", &rules, help) {
             self.s.help = true;
         }
-        language_switch(ui, l.lang, narrow);
+        i18n::switch(ui, l.lang, narrow);
         let label_w = l.label_w;
         if let Some(r) = self.account_row(ui, x0, l.account_y, col, label_w, narrow) {
             go = Some(r);
@@ -372,8 +400,21 @@ impl Lobby {
             }
         }
         let field = l.join_field;
-        ui::text_in(&t!("lobby-join-by-id"), x0, field.y + 12.0, 17.0, label_w - 6.0, colors::TEXT);
-        let entered = ui.text_field("join-id-field", &mut self.s.join_id, field, &t!("lobby-match-id"), 64);
+        ui::text_in(
+            &t!("lobby-join-by-id"),
+            x0,
+            field.y + 12.0,
+            17.0,
+            label_w - 6.0,
+            colors::TEXT,
+        );
+        let entered = ui.text_field(
+            "join-id-field",
+            &mut self.s.join_id,
+            field,
+            &t!("lobby-match-id"),
+            64,
+        );
         let target = self.s.join_target();
         let pressed = ui.button_styled("join-id", &t!("join"), l.join, target.is_some(), false);
         if let Some(id) = target.filter(|_| pressed || entered) {
@@ -389,7 +430,13 @@ impl Lobby {
         } else {
             t!("lobby-footer")
         };
-        ui::text(&ui::fit(&footer, 14.0, col), x0, l.footer_y, 14.0, colors::MUTED);
+        ui::text(
+            &ui::fit(&footer, 14.0, col),
+            x0,
+            l.footer_y,
+            14.0,
+            colors::MUTED,
+        );
         for (list_, area) in self.s.lists.iter().zip(l.lists) {
             if let Some(r) = list(ui, list_, area) {
                 go = Some(r);
@@ -407,7 +454,13 @@ impl Lobby {
 fn list(ui: &mut Ui, l: &MatchList, area: Rect) -> Option<Route> {
     let mut go = None;
     ui::panel(area);
-    ui::text(&ui::fit(&i18n::text(l.title, &[]), 19.0, area.w - 20.0), area.x + 10.0, area.y + 8.0, 19.0, colors::ACCENT);
+    ui::text(
+        &ui::fit(&i18n::text(l.title, &[]), 19.0, area.w - 20.0),
+        area.x + 10.0,
+        area.y + 8.0,
+        19.0,
+        colors::ACCENT,
+    );
     let mut y = area.y + 34.0;
     if l.items.is_empty() {
         ui::text(&t!("lobby-none-yet"), area.x + 10.0, y, 16.0, colors::MUTED);
@@ -447,27 +500,4 @@ fn list(ui: &mut Ui, l: &MatchList, area: Rect) -> Option<Route> {
         y += ui::TOUCH + 6.0;
     }
     go
-}
-
-/// The language switch: one button that turns the interface to the other
-/// language (named in that language: "English" or "Русский"; on a narrow
-/// screen its code), remembered in this browser.
-pub fn language_switch(ui: &mut Ui, r: Rect, narrow: bool) {
-    let other = i18n::current().other();
-    let label = if narrow {
-        other.code().to_uppercase()
-    } else {
-        other.own_name().to_string()
-    };
-    if ui.button("lang", &label, r) {
-        i18n::set(other);
-    }
-}
-
-/// The language switch at the right end of a screen's top row: `right`
-/// is the row's right edge, `y` its top.
-pub fn language_switch_top(ui: &mut Ui, right: f32, y: f32) {
-    let narrow = crate::scale::size().x < 600.0;
-    let w = if narrow { 48.0 } else { 110.0 };
-    language_switch(ui, Rect::new(right - w, y, w, ui::TOUCH), narrow);
 }

@@ -449,6 +449,7 @@ mod imp {
 }
 
 pub use imp::{
-    beep, coarse_pointer, copy_text, languages, location, pasted, picked_file, prompt, prompted, report,
-    request_file, save_file, set_document_lang, set_hash, set_ready, storage_get, storage_set, Request, Socket,
+    beep, coarse_pointer, copy_text, languages, location, pasted, picked_file, prompt, prompted,
+    report, request_file, save_file, set_document_lang, set_hash, set_ready, storage_get,
+    storage_set, Request, Socket,
 };

@@ -326,7 +326,13 @@ impl Play {
         let box_ = layout::dialog(crate::scale::size(), 190.0);
         ui::panel(box_);
         let (x, w) = (box_.x + 16.0, box_.w - 32.0);
-        ui::text(&ui::fit(&t!("play-leave-title"), 21.0, w), x, box_.y + 14.0, 21.0, colors::ACCENT);
+        ui::text(
+            &ui::fit(&t!("play-leave-title"), 21.0, w),
+            x,
+            box_.y + 14.0,
+            21.0,
+            colors::ACCENT,
+        );
         for (i, l) in crate::help::wrap_lines(&t!("play-leave-body"), 16.0, w, 2)
             .iter()
             .enumerate()

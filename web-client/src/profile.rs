@@ -3,9 +3,9 @@
 //! matches (`.../matches`), each finished one with a Replay button. What
 //! the server does not answer shows as "—".
 
-use crate::i18n::t;
 use crate::account;
 use crate::api::{Api, HistoryPoint, Pending, Profile as Account, Summary};
+use crate::i18n::t;
 use crate::route::Route;
 use crate::screen::Screen;
 use crate::ui::{self, colors, Ui};
@@ -83,7 +83,7 @@ impl Screen for Profile {
                 bots: self.account.got().is_some_and(|a| a.bot),
             });
         }
-        crate::lobby::language_switch_top(ui, x0 + col, y);
+        crate::i18n::switch_top(ui, x0 + col, y);
         y += ui::TOUCH + 16.0;
         ui::text(&ui::fit(&self.name, 26.0, col), x0, y, 26.0, colors::ACCENT);
         y += 34.0;

@@ -10,8 +10,8 @@
 
 pub mod seek;
 
-use crate::i18n::t;
 use crate::api::{Api, Opponent, Pending, SeatGrant};
+use crate::i18n::t;
 use crate::platform::{Socket, SocketState};
 use crate::route::{ws_origin, Route};
 use crate::screen::Screen;
@@ -147,7 +147,13 @@ impl Screen for QuickMatch {
         let p = places(w, h);
         ui::panel(p.panel);
         let (x, tw) = (p.panel.x + 16.0, p.panel.w - 32.0);
-        ui::text(&ui::fit(&t!("lobby-quick-match"), 26.0, tw), x, p.panel.y + 14.0, 26.0, colors::ACCENT);
+        ui::text(
+            &ui::fit(&t!("lobby-quick-match"), 26.0, tw),
+            x,
+            p.panel.y + 14.0,
+            26.0,
+            colors::ACCENT,
+        );
         ui::text(
             &ui::fit(&self.seek.status(), 17.0, tw),
             x,

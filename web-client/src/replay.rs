@@ -5,11 +5,11 @@
 //! heading says whether the match's noise verifies against the commitment
 //! published before its first shot ([`game::verify`]).
 
-use crate::i18n::t;
 use crate::api::{Api, Pending};
 use crate::clip::{Clip, Frame};
 use crate::draw;
 use crate::highlight;
+use crate::i18n::t;
 use crate::route::Route;
 use crate::screen::Screen;
 use crate::timeline::Timeline;
@@ -71,7 +71,8 @@ impl Replay {
 
     /// Replays a record's JSON text.
     fn load(text: &str) -> Result<Loaded, String> {
-        let replay = GameReplay::from_json(text).map_err(|e| t!("replay-cannot", error = e.to_string()))?;
+        let replay =
+            GameReplay::from_json(text).map_err(|e| t!("replay-cannot", error = e.to_string()))?;
         let clips: Vec<Clip> = (0..replay.shot_count())
             .filter_map(|n| {
                 Some(Clip::new(
@@ -125,7 +126,11 @@ fn result_line(r: MatchResult) -> String {
                 WinReason::Timeouts => "timeouts",
                 WinReason::Abandoned => "abandoned",
             };
-            t!("replay-result-won", side = crate::story::side_key(side), how = how)
+            t!(
+                "replay-result-won",
+                side = crate::story::side_key(side),
+                how = how
+            )
         }
     }
 }
@@ -155,7 +160,9 @@ impl Screen for Replay {
                     24.0,
                     colors::MUTED,
                 );
-                return ui.button("lobby", &t!("lobby"), lobby).then_some(Route::Lobby);
+                return ui
+                    .button("lobby", &t!("lobby"), lobby)
+                    .then_some(Route::Lobby);
             }
             State::Failed(e) => {
                 ui::text_centred(
@@ -164,7 +171,9 @@ impl Screen for Replay {
                     20.0,
                     colors::DANGER,
                 );
-                return ui.button("lobby", &t!("lobby"), lobby).then_some(Route::Lobby);
+                return ui
+                    .button("lobby", &t!("lobby"), lobby)
+                    .then_some(Route::Lobby);
             }
         };
         if self.playing && !self.scrubbing {
@@ -211,11 +220,15 @@ impl Screen for Replay {
         draw_rectangle(0.0, 0.0, w, head_h, colors::BACKGROUND);
         let lang_w = if narrow { 48.0 } else { 110.0 };
         let lang = Rect::new(lobby.x - 8.0 - lang_w, lobby.y, lang_w, ui::TOUCH);
-        crate::lobby::language_switch(ui, lang, narrow);
+        crate::i18n::switch(ui, lang, narrow);
         let text_w = lang.x - 20.0;
         ui::text(
             &ui::fit(
-                &t!("replay-title", id = self.match_id.as_str(), fairness = l.fairness.as_str()),
+                &t!(
+                    "replay-title",
+                    id = self.match_id.as_str(),
+                    fairness = l.fairness.as_str()
+                ),
                 19.0,
                 text_w,
             ),
@@ -256,12 +269,20 @@ impl Screen for Replay {
                 colors::TEXT,
             );
         }
-        let mut go = ui.button("lobby", &t!("lobby"), lobby).then_some(Route::Lobby);
+        let mut go = ui
+            .button("lobby", &t!("lobby"), lobby)
+            .then_some(Route::Lobby);
         // The best shots down the board's left edge: each jumps to its
         // shot, in slow motion.
         let bw = if narrow { 112.0 } else { 150.0 };
         if !l.best.is_empty() && !narrow {
-            ui::text(&t!("replay-best-shots"), 12.0, head_h + 6.0, 15.0, colors::MUTED);
+            ui::text(
+                &t!("replay-best-shots"),
+                12.0,
+                head_h + 6.0,
+                15.0,
+                colors::MUTED,
+            );
         }
         for (i, &(n, k)) in l.best.iter().enumerate() {
             let top = head_h + if narrow { 6.0 } else { 28.0 };

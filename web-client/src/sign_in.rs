@@ -4,9 +4,9 @@
 //! it shows the name and rating, exports the key (copied to the clipboard
 //! and shown to copy by hand) and signs out.
 
-use crate::i18n::t;
 use crate::account::{self, Account};
 use crate::api::{Api, Created, Pending, Profile};
+use crate::i18n::t;
 use crate::platform;
 use crate::route::Route;
 use crate::screen::Screen;
@@ -110,7 +110,13 @@ impl SignIn {
     fn signed_out(&mut self, ui: &mut Ui, x0: f32, col: f32, mut y: f32) {
         let gap = 8.0;
         let bw = 112.0;
-        ui::text(&ui::fit(&t!("account-new"), 19.0, col), x0, y, 19.0, colors::ACCENT);
+        ui::text(
+            &ui::fit(&t!("account-new"), 19.0, col),
+            x0,
+            y,
+            19.0,
+            colors::ACCENT,
+        );
         y += 26.0;
         ui::text(
             &ui::fit(&account::name_hint(), 14.0, col),
@@ -130,17 +136,33 @@ impl SignIn {
         );
         let ok = account::valid_name(self.name.trim());
         let b = Rect::new(x0 + col - bw, y, bw, ui::TOUCH);
-        if (ui.button_styled("account-create", &t!("account-create"), b, ok, false) || entered) && ok {
+        if (ui.button_styled("account-create", &t!("account-create"), b, ok, false) || entered)
+            && ok
+        {
             self.create();
         }
         y += ui::TOUCH + 28.0;
-        ui::text(&ui::fit(&t!("account-key-heading"), 19.0, col), x0, y, 19.0, colors::ACCENT);
+        ui::text(
+            &ui::fit(&t!("account-key-heading"), 19.0, col),
+            x0,
+            y,
+            19.0,
+            colors::ACCENT,
+        );
         y += 30.0;
         let field = Rect::new(x0, y, col - bw - gap, ui::TOUCH);
-        let entered = ui.text_field("account-key", &mut self.key, field, &t!("account-key-placeholder"), 200);
+        let entered = ui.text_field(
+            "account-key",
+            &mut self.key,
+            field,
+            &t!("account-key-placeholder"),
+            200,
+        );
         let ok = !self.key.trim().is_empty();
         let b = Rect::new(x0 + col - bw, y, bw, ui::TOUCH);
-        if (ui.button_styled("account-use-key", &t!("account-use-key"), b, ok, false) || entered) && ok {
+        if (ui.button_styled("account-use-key", &t!("account-use-key"), b, ok, false) || entered)
+            && ok
+        {
             self.use_key();
         }
     }
@@ -156,7 +178,11 @@ impl SignIn {
     ) -> Option<Route> {
         let gap = 8.0;
         ui::text(
-            &ui::fit(&t!("account-signed-in-as", name = a.name.as_str()), 19.0, col),
+            &ui::fit(
+                &t!("account-signed-in-as", name = a.name.as_str()),
+                19.0,
+                col,
+            ),
             x0,
             y,
             19.0,
@@ -175,7 +201,11 @@ impl SignIn {
         y += 30.0;
         let bw = (col - 2.0 * gap) / 3.0;
         let mut go = None;
-        if ui.button("account-page", &t!("account-my-page"), Rect::new(x0, y, bw, ui::TOUCH)) {
+        if ui.button(
+            "account-page",
+            &t!("account-my-page"),
+            Rect::new(x0, y, bw, ui::TOUCH),
+        ) {
             go = Some(Route::Account {
                 name: a.name.clone(),
             });
@@ -232,8 +262,14 @@ impl Screen for SignIn {
         if ui.button("lobby", &t!("lobby"), Rect::new(x0, y, 96.0, ui::TOUCH)) {
             go = Some(Route::Lobby);
         }
-        ui::text(&t!("account-title"), x0 + 112.0, y + 9.0, 24.0, colors::ACCENT);
-        crate::lobby::language_switch_top(ui, x0 + col, y);
+        ui::text(
+            &t!("account-title"),
+            x0 + 112.0,
+            y + 9.0,
+            24.0,
+            colors::ACCENT,
+        );
+        crate::i18n::switch_top(ui, x0 + col, y);
         y += ui::TOUCH + 24.0;
         match self.account.clone() {
             Some(a) => {

@@ -212,7 +212,10 @@ pub fn describe(s: &Summary) -> (String, String) {
         None => {}
     }
     facts.push(t!("shots-count", count = s.shots));
-    (t!("lobby-versus", first = first, second = second), facts.join(" · "))
+    (
+        t!("lobby-versus", first = first, second = second),
+        facts.join(" · "),
+    )
 }
 
 /// The computer's level (`easy`, `medium`, `hard`, `adaptive`) in words;

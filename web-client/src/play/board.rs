@@ -4,11 +4,11 @@
 //! shown, the "your turn" cue, and the drag from one of the player's
 //! pieces with its arrow and power meter that ends in a shot.
 
-use crate::i18n::t;
 use super::layout::meter_rect;
 use crate::aim::{self, Aim, Slingshot};
 use crate::clip::Frame;
 use crate::draw;
+use crate::i18n::t;
 use crate::ui::{self, colors, Ui};
 use crate::viewport::Viewport;
 use ::glam::DVec2;
@@ -103,7 +103,12 @@ pub fn show(
             msg.h,
             Color::new(0.0, 0.0, 0.0, 0.6 * k),
         );
-        ui::text_centred(&t!("board-your-turn"), msg, 24.0, Color::new(0.55, 0.95, 0.5, k));
+        ui::text_centred(
+            &t!("board-your-turn"),
+            msg,
+            24.0,
+            Color::new(0.55, 0.95, 0.5, k),
+        );
     }
     Shown {
         viewport: vp,

@@ -283,14 +283,29 @@ pub fn content(s: &MatchState, cx: &Context) -> Content {
         buttons.push(button(Slot::Resign, "resign", label, !cx.confirm_resign));
     }
     if over {
-        buttons.push(button(Slot::Resign, "replay", t!("play-watch-replay"), true));
+        buttons.push(button(
+            Slot::Resign,
+            "replay",
+            t!("play-watch-replay"),
+            true,
+        ));
     }
     if over && s.you.is_some() {
         let (label, enabled) = s.rematch_label();
         buttons.push(button(Slot::Second, "rematch", label, enabled));
     } else if s.you.is_some() && cx.confirm_resign {
-        buttons.push(button(Slot::First, "resign-yes", t!("play-resign-yes"), true));
-        buttons.push(button(Slot::Second, "resign-no", t!("play-resign-no"), true));
+        buttons.push(button(
+            Slot::First,
+            "resign-yes",
+            t!("play-resign-yes"),
+            true,
+        ));
+        buttons.push(button(
+            Slot::Second,
+            "resign-no",
+            t!("play-resign-no"),
+            true,
+        ));
     } else if v.phase == Phase::PieDecision && s.my_side() == Some(Side::Black) {
         // Pie rule: Black's seat decides.
         buttons.push(button(Slot::First, "pie-swap", t!("play-pie-swap"), true));
@@ -298,12 +313,7 @@ pub fn content(s: &MatchState, cx: &Context) -> Content {
     } else if waiting {
         // Invite: a seat is empty.
         hint = t!("play-invite-hint", id = cx.match_id);
-        buttons.push(button(
-            Slot::First,
-            "copy-link",
-            t!("play-copy-link"),
-            true,
-        ));
+        buttons.push(button(Slot::First, "copy-link", t!("play-copy-link"), true));
     }
     buttons.sort_by_key(|b| b.slot);
     Content {
@@ -415,7 +425,13 @@ pub fn show(ui: &mut Ui, area: Rect, c: &Content, chat: &[&String], draft: &mut 
         ui::text(&ui::fit(s, 14.0, r.w), r.x, r.y, 14.0, colors::TEXT);
     }
     if let Some((field, send)) = l.chat_field {
-        let entered = ui.text_field("chat", draft, field, &t!("play-chat-placeholder"), MAX_CHAT_CHARS);
+        let entered = ui.text_field(
+            "chat",
+            draft,
+            field,
+            &t!("play-chat-placeholder"),
+            MAX_CHAT_CHARS,
+        );
         let send = ui.button("chat-send", &t!("play-chat-send"), send);
         if (entered || send) && !draft.trim().is_empty() {
             pressed.chat = Some(std::mem::take(draft));

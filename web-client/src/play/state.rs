@@ -182,11 +182,7 @@ impl MatchState {
             }
             ServerMessage::PlayerLeft { seat, grace_ms } => {
                 let n = self.name_of(seat);
-                self.notify(t!(
-                    "play-notice-left",
-                    name = n,
-                    seconds = grace_ms / 1000
-                ));
+                self.notify(t!("play-notice-left", name = n, seconds = grace_ms / 1000));
             }
             ServerMessage::PlayerBack { seat } => {
                 let n = self.name_of(seat);

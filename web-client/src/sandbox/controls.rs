@@ -82,7 +82,12 @@ fn new_disc_controls(s: &mut State, ui: &mut Ui, x: f32, d: NewDiscs) {
     if let Some(f) = stepper(ui, "new-radius", &radius, d.radius) {
         s.template.radius = (t.radius * f).clamp(1e-4, 1e3);
     }
-    if let Some(f) = stepper(ui, "new-mass", &t!("sandbox-mass", value = num(t.mass)), d.mass) {
+    if let Some(f) = stepper(
+        ui,
+        "new-mass",
+        &t!("sandbox-mass", value = num(t.mass)),
+        d.mass,
+    ) {
         s.template.mass = (t.mass * f * f).clamp(1e-6, 1e12);
     }
     s.template.mu = unit_slider(ui, "new-mu", "mu", t.mu, d.mu);
@@ -128,7 +133,12 @@ pub fn side_panel(s: &mut State, ui: &mut Ui, r: Rect, scene: &Scene) {
             top.brownian,
             Kind::Brownian,
         ),
-        ("preset-break", t!("sandbox-break"), top.chapaev, Kind::Break),
+        (
+            "preset-break",
+            t!("sandbox-break"),
+            top.chapaev,
+            Kind::Break,
+        ),
         ("preset-empty", t!("sandbox-empty"), top.empty, Kind::Empty),
     ];
     for (name, label, rect, kind) in presets {
@@ -177,7 +187,12 @@ pub fn side_panel(s: &mut State, ui: &mut Ui, r: Rect, scene: &Scene) {
             if let Some(f) = stepper(ui, "body-radius", &radius, c.radius) {
                 s.update_selected(scene, |b| b.radius *= f);
             }
-            if let Some(f) = stepper(ui, "body-mass", &t!("sandbox-mass", value = num(b.mass)), c.mass) {
+            if let Some(f) = stepper(
+                ui,
+                "body-mass",
+                &t!("sandbox-mass", value = num(b.mass)),
+                c.mass,
+            ) {
                 s.update_selected(scene, |b| b.mass *= f * f);
             }
             if let Some(f) = stepper(ui, "body-mu", &format!("mu {:.2}", b.mu), c.mu) {

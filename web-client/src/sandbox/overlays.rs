@@ -22,7 +22,13 @@ pub fn stats(s: &State, area: Rect, scene: &Scene) {
     ui::panel(r);
     let mut y = r.y + 8.0;
     let mut row = |label: String, value: String, color: Color| {
-        ui::text(&ui::fit(&label, 16.0, 114.0), r.x + 10.0, y, 16.0, colors::MUTED);
+        ui::text(
+            &ui::fit(&label, 16.0, 114.0),
+            r.x + 10.0,
+            y,
+            16.0,
+            colors::MUTED,
+        );
         ui::text(&value, r.x + 128.0, y, 16.0, color);
         y += 19.0;
     };
@@ -32,17 +38,41 @@ pub fn stats(s: &State, area: Rect, scene: &Scene) {
         _ => t!("stats-seconds", t = num(s.sim.computed_to())),
     };
     let sub = |id: &str| format!("  {}", crate::i18n::text(id, &[]));
-    row(t!("stats-time"), t!("stats-seconds", t = num(s.sim.t)), colors::TEXT);
+    row(
+        t!("stats-time"),
+        t!("stats-seconds", t = num(s.sim.t)),
+        colors::TEXT,
+    );
     row(t!("stats-speed"), speed_label(s.sim.speed), colors::TEXT);
     row(t!("stats-computed-to"), end, colors::TEXT);
-    row(t!("stats-events"), tally.physical().to_string(), colors::TEXT);
-    row(sub("stats-body-body"), tally.body_body.to_string(), colors::TEXT);
-    row(sub("stats-body-line"), tally.body_line.to_string(), colors::TEXT);
-    row(sub("stats-body-point"), tally.body_point.to_string(), colors::TEXT);
+    row(
+        t!("stats-events"),
+        tally.physical().to_string(),
+        colors::TEXT,
+    );
+    row(
+        sub("stats-body-body"),
+        tally.body_body.to_string(),
+        colors::TEXT,
+    );
+    row(
+        sub("stats-body-line"),
+        tally.body_line.to_string(),
+        colors::TEXT,
+    );
+    row(
+        sub("stats-body-point"),
+        tally.body_point.to_string(),
+        colors::TEXT,
+    );
     row(sub("stats-stops"), tally.stops.to_string(), colors::TEXT);
     row(sub("stats-fell-off"), tally.exits.to_string(), colors::TEXT);
     row(t!("stats-edits"), tally.actions.to_string(), colors::TEXT);
-    row(t!("stats-bodies"), scene.bodies.len().to_string(), colors::TEXT);
+    row(
+        t!("stats-bodies"),
+        scene.bodies.len().to_string(),
+        colors::TEXT,
+    );
     row(
         t!("stats-lines-points"),
         format!("{}, {}", scene.lines.len(), scene.points.len()),
@@ -68,7 +98,13 @@ pub fn galperin(s: &State, area: Rect, n: u32) {
     let target = engine::presets::pi_digits(n);
     let r = layout::galperin_counter(area);
     ui::panel(r);
-    ui::text(&t!("galperin-collisions"), r.x + 12.0, r.y + 8.0, 16.0, colors::MUTED);
+    ui::text(
+        &t!("galperin-collisions"),
+        r.x + 12.0,
+        r.y + 8.0,
+        16.0,
+        colors::MUTED,
+    );
     let done = count == target && s.sim.end().is_some_and(|e| e.reason == EndReason::Free);
     let color = if done { colors::GOOD } else { colors::ACCENT };
     ui::text(&count.to_string(), r.x + 12.0, r.y + 26.0, 44.0, color);

@@ -7,10 +7,10 @@
 //! the screen reads the rest back to draw it.
 
 use super::layout::fit;
-use crate::i18n::t;
 use super::presets::{self, DiscTemplate, Kind};
 use super::sim::{Sim, Tally};
 use super::tools::{self, Button, Gesture, Make, Tool};
+use crate::i18n::t;
 use crate::viewport::Viewport;
 use ::glam::DVec2;
 use engine::{Action, BodyId, BodySpec, Scene};
