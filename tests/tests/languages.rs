@@ -3,11 +3,11 @@
 //! opens the game in Russian (the client's report says `lang: "ru"`, the
 //! page's `<html lang>` follows, the lobby's buttons read in Russian); the
 //! language switch turns it to English and the choice survives a reload.
-//! Every main screen (lobby, rules, leaderboard, account, play against the
-//! computer, the end of the match, the replay, the sandbox) is visited in
-//! both languages, at a laptop's and a phone's size, and on each the client
-//! reports no button whose label had to be cut; each is saved as a
-//! screenshot (`lobby-ru.png`, `lobby-en.png`, `lobby-ru-phone.png`, ...)
+//! Every main screen (lobby, rules, leaderboard, account, quick match, play
+//! against the computer, the end of the match, the replay, the sandbox) is
+//! visited in both languages, at a laptop's and a phone's size, and on each
+//! the client reports no button whose label had to be cut; each is saved as
+//! a screenshot (`lobby-ru.png`, `lobby-en.png`, `lobby-ru-phone.png`, ...)
 //! in the artifacts folder (`target/e2e-artifacts` or
 //! `$CHAPAEV_E2E_ARTIFACTS`).
 
@@ -177,6 +177,15 @@ async fn tour(client: &Client, artifacts: &Path, window: &Window, lang: &str) ->
     .await?;
     snap("sign-in").await?;
     click_button(client, "lobby").await?;
+
+    // Without an account the quick match offers the computer at once.
+    click_button(client, "quick-match").await?;
+    state_until(client, "the quick match's offer of the computer", 15, |s| {
+        s["screen"] == "quick-match" && s["buttons"]["quick-computer"].is_array()
+    })
+    .await?;
+    snap("quick-match").await?;
+    click_button(client, "quick-cancel").await?;
 
     click_button(client, "vs-computer-easy").await?;
     state_until(

@@ -275,6 +275,7 @@ leaderboard-empty = no rated accounts yet
 api-unexpected-answer = unexpected answer from the server: { $error }
 api-unreachable = cannot reach the server ({ $error })
 api-status = the server answered { $status }
+api-unreadable-message = unreadable message from the server: { $error }
 
 ## Quick match
 

@@ -286,6 +286,7 @@ leaderboard-empty = рейтинговых аккаунтов пока нет
 api-unexpected-answer = непонятный ответ сервера: { $error }
 api-unreachable = сервер недоступен ({ $error })
 api-status = сервер ответил { $status }
+api-unreadable-message = непонятное сообщение сервера: { $error }
 
 ## Быстрая игра
 
