@@ -143,7 +143,10 @@ play-notice-left = { $name } lost the connection; the seat is kept for { $second
 play-notice-back = { $name } is back
 play-notice-timeout = { $name } ran out of time ({ $strikes } of 3)
 play-notice-forfeited = { $name } forfeited
-play-you-play = You play { $side }
+play-you-play = { $side ->
+    [white] You play White
+   *[black] You play Black
+}
 play-watching = Watching
 play-heading = Chapaev
 play-role-match = { $role } · match { $id }

@@ -151,7 +151,10 @@ play-notice-left = { $name }: связь потеряна; место держи
 play-notice-back = { $name } снова здесь
 play-notice-timeout = { $name }: время вышло ({ $strikes } из 3)
 play-notice-forfeited = { $name }: техническое поражение
-play-you-play = Вы играете: { $side }
+play-you-play = { $side ->
+    [white] Вы играете белыми
+   *[black] Вы играете чёрными
+}
 play-watching = Вы зритель
 play-heading = Чапаев
 play-role-match = { $role } · партия { $id }

@@ -107,10 +107,11 @@ struct Places {
 
 fn places(w: f32, h: f32) -> Places {
     let pw = (w - 24.0).min(520.0);
-    let ph = 300.0f32.min(h - 24.0);
+    let ph = 340.0f32.min(h - 24.0);
     let panel = Rect::new((w - pw) / 2.0, ((h - ph) / 2.0).min(120.0), pw, ph);
     let (x, bw) = (panel.x + 16.0, pw - 32.0);
-    let row = |i: f32| Rect::new(x, panel.y + 104.0 + i * (ui::TOUCH + 12.0), bw, ui::TOUCH);
+    // The status and the hint take up to two lines each above the buttons.
+    let row = |i: f32| Rect::new(x, panel.y + 144.0 + i * (ui::TOUCH + 12.0), bw, ui::TOUCH);
     Places {
         panel,
         status_y: panel.y + 54.0,
@@ -154,25 +155,22 @@ impl Screen for QuickMatch {
             26.0,
             colors::ACCENT,
         );
-        ui::text(
-            &ui::fit(&self.seek.status(), 17.0, tw),
-            x,
-            p.status_y,
-            17.0,
-            colors::TEXT,
-        );
+        let status = crate::help::wrap_lines(&self.seek.status(), 17.0, tw, 2);
+        for (i, line) in status.iter().enumerate() {
+            ui::text(line, x, p.status_y + i as f32 * 20.0, 17.0, colors::TEXT);
+        }
         let hint = match &self.message {
             Some(m) => m.clone(),
             None if self.seek.offer_computer() => t!("quick-nobody-yet"),
             None => t!("quick-next-person"),
         };
-        ui::text(
-            &ui::fit(&hint, 15.0, tw),
-            x,
-            p.status_y + 24.0,
-            15.0,
-            colors::MUTED,
-        );
+        let hint_y = p.status_y + 20.0 * status.len() as f32 + 4.0;
+        for (i, line) in crate::help::wrap_lines(&hint, 15.0, tw, 2)
+            .iter()
+            .enumerate()
+        {
+            ui::text(line, x, hint_y + i as f32 * 18.0, 15.0, colors::MUTED);
+        }
         let mut go = None;
         if ui.button("quick-cancel", &t!("cancel"), p.cancel) {
             self.stop();
@@ -236,7 +234,10 @@ mod tests {
             for (i, b) in buttons.iter().enumerate() {
                 assert!(inside(*b, p.panel) && inside(*b, window), "{w}x{h}: {b:?}");
                 assert!(b.h >= ui::TOUCH);
-                assert!(b.y > p.status_y + 40.0, "below the status and the hint");
+                assert!(
+                    b.y > p.status_y + 80.0,
+                    "below two lines of status and of hint"
+                );
                 for c in &buttons[i + 1..] {
                     assert!(!overlap(*b, *c), "{w}x{h}: {b:?} overlaps {c:?}");
                 }

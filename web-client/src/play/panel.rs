@@ -149,7 +149,7 @@ impl Content {
 pub fn content(s: &MatchState, cx: &Context) -> Content {
     let compact = cx.compact;
     let role = match s.my_side() {
-        Some(side) => t!("play-you-play", side = side_name(side)),
+        Some(side) => t!("play-you-play", side = side_key(side)),
         None => t!("play-watching"),
     };
     let mut head = Vec::new();
