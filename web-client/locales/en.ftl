@@ -14,7 +14,6 @@ join = Join
 watch = Watch
 replay = Replay
 lobby = Lobby
-back = Back
 leaderboard = Leaderboard
 how-to-play = How to play
 rules-short = Rules
@@ -39,14 +38,6 @@ rounds-count = { $count ->
 games-count = { $count ->
     [one] 1 game
    *[other] { $count } games
-}
-rated-games-count = { $count ->
-    [one] 1 rated game
-   *[other] { $count } rated games
-}
-checkers-count = { $count ->
-    [one] 1 checker
-   *[other] { $count } checkers
 }
 
 ## Lobby

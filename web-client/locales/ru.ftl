@@ -14,7 +14,6 @@ join = Играть
 watch = Смотреть
 replay = Повтор
 lobby = Главная
-back = Назад
 leaderboard = Рейтинг
 how-to-play = Как играть
 rules-short = Правила
@@ -42,16 +41,6 @@ games-count = { $count ->
     [one] { $count } партия
     [few] { $count } партии
    *[many] { $count } партий
-}
-rated-games-count = { $count ->
-    [one] { $count } рейтинговая партия
-    [few] { $count } рейтинговые партии
-   *[many] { $count } рейтинговых партий
-}
-checkers-count = { $count ->
-    [one] { $count } шашка
-    [few] { $count } шашки
-   *[many] { $count } шашек
 }
 
 ## Главная

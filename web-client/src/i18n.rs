@@ -233,11 +233,9 @@ mod tests {
         }
     }
 
-    #[test]
-    fn every_message_the_code_asks_for_exists() {
-        let en = ids(Lang::En);
-        let mut missing = Vec::new();
-        let mut used = 0;
+    /// Every source file of the client, by path.
+    fn sources() -> Vec<(std::path::PathBuf, String)> {
+        let mut out = Vec::new();
         let mut stack = vec![std::path::PathBuf::from(concat!(
             env!("CARGO_MANIFEST_DIR"),
             "/src"
@@ -247,23 +245,44 @@ mod tests {
                 let path = entry.expect("a directory entry").path();
                 if path.is_dir() {
                     stack.push(path);
-                    continue;
+                } else {
+                    let code = std::fs::read_to_string(&path).expect("a source file");
+                    out.push((path, code));
                 }
-                let code = std::fs::read_to_string(&path).expect("a source file");
-                // The macro's calls, not the ends of other macros' names.
-                let calls = code.match_indices("t!(\"").filter(|(at, _)| {
-                    !code[..*at]
-                        .chars()
-                        .next_back()
-                        .is_some_and(|c| c.is_alphanumeric() || c == '_')
-                });
-                for (at, _) in calls {
-                    let rest = &code[at + 4..];
-                    let id = rest.split('"').next().unwrap_or_default();
-                    used += 1;
-                    if id != "id" && !en.contains(id) {
-                        missing.push(format!("{}: {id}", path.display()));
-                    }
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn every_message_is_asked_for_somewhere_in_the_code() {
+        let code: String = sources().into_iter().map(|(_, c)| c).collect();
+        let unused: Vec<String> = ids(Lang::En)
+            .into_iter()
+            .filter(|id| !code.contains(&format!("\"{id}\"")))
+            .collect();
+        assert!(unused.is_empty(), "messages no code asks for: {unused:?}");
+    }
+
+    #[test]
+    fn every_message_the_code_asks_for_exists() {
+        let en = ids(Lang::En);
+        let mut missing = Vec::new();
+        let mut used = 0;
+        for (path, code) in sources() {
+            // The macro's calls, not the ends of other macros' names.
+            let calls = code.match_indices("t!(\"").filter(|(at, _)| {
+                !code[..*at]
+                    .chars()
+                    .next_back()
+                    .is_some_and(|c| c.is_alphanumeric() || c == '_')
+            });
+            for (at, _) in calls {
+                let rest = &code[at + 4..];
+                let id = rest.split('"').next().unwrap_or_default();
+                used += 1;
+                if id != "id" && !en.contains(id) {
+                    missing.push(format!("{}: {id}", path.display()));
                 }
             }
         }
@@ -272,16 +291,23 @@ mod tests {
     }
 
     #[test]
-    fn russian_counts_take_one_few_and_many_forms() {
-        let n = |k: i64| in_lang(Lang::Ru, "checkers-count", &[("count", k.into())]);
-        assert_eq!(n(1), "1 шашка");
-        assert_eq!(n(2), "2 шашки");
-        assert_eq!(n(5), "5 шашек");
-        assert_eq!(n(21), "21 шашка");
-        assert_eq!(n(12), "12 шашек");
-        let e = |k: i64| in_lang(Lang::En, "checkers-count", &[("count", k.into())]);
-        assert_eq!(e(1), "1 checker");
-        assert_eq!(e(5), "5 checkers");
+    fn russian_counts_take_their_one_few_and_many_forms() {
+        let n = |k: i64| in_lang(Lang::Ru, "shots-count", &[("count", k.into())]);
+        assert_eq!(n(1), "1 щелчок");
+        assert_eq!(n(2), "2 щелчка");
+        assert_eq!(n(5), "5 щелчков");
+        assert_eq!(n(21), "21 щелчок");
+        assert_eq!(n(12), "12 щелчков");
+        let knocked = |k: i64| {
+            let args = [("who", "Вы".into()), ("taken", k.into())];
+            in_lang(Lang::Ru, "shot-knocked", &args)
+        };
+        assert_eq!(knocked(1), "Вы сбили 1 шашку");
+        assert_eq!(knocked(3), "Вы сбили 3 шашки");
+        assert_eq!(knocked(5), "Вы сбили 5 шашек");
+        let e = |k: i64| in_lang(Lang::En, "shots-count", &[("count", k.into())]);
+        assert_eq!(e(1), "1 shot");
+        assert_eq!(e(5), "5 shots");
     }
 
     #[test]
