@@ -107,11 +107,21 @@ pub fn current() -> Lang {
         let l = platform::storage_get(LANG_KEY)
             .as_deref()
             .and_then(Lang::from_tag)
-            .unwrap_or_else(|| Lang::from_preferences(&platform::languages()));
+            .unwrap_or_else(|| Lang::from_preferences(&preferences()));
         platform::set_document_lang(l.code());
         c.set(Some(l));
         l
     })
+}
+
+/// The browser's preferred languages (on the desktop, the locale's). The
+/// unit tests, whose expectations are written in English, have none.
+fn preferences() -> String {
+    if cfg!(test) {
+        String::new()
+    } else {
+        platform::languages()
+    }
 }
 
 /// Switches the interface to `lang` and remembers the choice.
