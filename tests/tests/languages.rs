@@ -216,7 +216,13 @@ async fn tour(client: &Client, artifacts: &Path, window: &Window, lang: &str) ->
         s["screen"] == "sandbox" && s["bodies"].as_u64().is_some_and(|n| n > 0)
     })
     .await?;
-    snap("sandbox").await?;
+    let sandbox = snap("sandbox").await?;
+    if !sandbox["buttons"]["lang"].is_array() {
+        return Err(E2eError::Check(format!(
+            "no language switch in the sandbox's toolbar: {}",
+            sandbox["buttons"]
+        )));
+    }
     click_button(client, "lobby").await?;
     lobby_in(client, lang).await?;
     Ok(())

@@ -1,6 +1,7 @@
 //! The sandbox's controls, drawn where [`layout`] puts them and applied to
 //! the [`State`]: the toolbar (the lobby, the tools, walls or edges, the
-//! side panel's button on a phone, export and import), the side panel
+//! side panel's button on a phone, export and import, and the language
+//! switch where the row has room for it), the side panel
 //! (the presets, gravity, what new discs are made of, the selected body)
 //! and the playback bar (rewind, play, the speeds and the time slider).
 //! Every control is finger-sized.
@@ -47,6 +48,9 @@ pub fn toolbar(s: &mut State, ui: &mut Ui, w: f32, compact: bool) -> Option<Rout
     }
     items.push(("export".into(), t!("sandbox-export"), false));
     items.push(("import".into(), t!("sandbox-import"), false));
+    if let Some(r) = layout::language(w, compact) {
+        crate::i18n::switch(ui, r, true);
+    }
     let mut go = None;
     for ((name, label, selected), r) in items.iter().zip(layout::toolbar(w, compact)) {
         if !ui.button_styled(name, label, r, true, *selected) {
