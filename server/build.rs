@@ -97,6 +97,7 @@ fn main() {
         "web-client/js",
         "web-client/index.html",
         "web-client/assets",
+        "web-client/locales",
         "web-client/manifest.webmanifest",
         "server/build",
         "web-client/Cargo.toml",

@@ -303,6 +303,14 @@
     function coarse_pointer() {
         return window.matchMedia && window.matchMedia("(pointer: coarse)").matches ? 1 : 0;
     }
+    function languages_len() {
+        const list = navigator.languages && navigator.languages.length
+            ? navigator.languages : [navigator.language || ""];
+        return stage(list.join(","));
+    }
+    function set_document_lang(ptr, len) {
+        document.documentElement.lang = str(ptr, len);
+    }
     const fields = new Map();
     let field_frame = 0;
     function field_sweep() {
@@ -412,6 +420,8 @@
         env.chapaev_field_place = field_place;
         env.chapaev_field_take_len = field_take_len;
         env.chapaev_field_flags = field_flags;
+        env.chapaev_languages_len = languages_len;
+        env.chapaev_set_document_lang = set_document_lang;
     }
     // macroquad listens for the mouse on the canvas only: a slingshot pulled
     // past the page's edge would never be released. Forward what happens

@@ -5,6 +5,7 @@
 //! player is anonymous and plays under a free-form name.
 
 use crate::api::{Profile, SeatRating};
+use crate::i18n::t;
 use crate::platform;
 pub use game::name::{MAX_NAME, MIN_NAME};
 
@@ -47,13 +48,13 @@ pub fn valid_name(name: &str) -> bool {
 /// The rule as the account screen's hint says it, from the shared limits:
 /// "a name of 3 to 20 letters, digits, _ or -".
 pub fn name_hint() -> String {
-    format!("a name of {MIN_NAME} to {MAX_NAME} letters, digits, _ or -")
+    t!("account-name-hint", min = MIN_NAME, max = MAX_NAME)
 }
 
 /// The rule as the account screen says it when a name breaks it:
 /// "a name is 3 to 20 letters, digits, _ or -".
 pub fn name_rule() -> String {
-    format!("a name is {MIN_NAME} to {MAX_NAME} letters, digits, _ or -")
+    t!("account-name-rule", min = MIN_NAME, max = MAX_NAME)
 }
 
 /// A rating as shown: rounded, with a `?` while provisional ("1500?").

@@ -6,6 +6,7 @@
 //! call is a [`Pending`] the screen polls every frame until it yields a
 //! typed answer or the server's error message.
 
+use crate::i18n::t;
 use crate::platform::{HttpReply, Request};
 use game::protocol::ServerMessage;
 use game::MatchResult;
@@ -116,7 +117,7 @@ pub struct Pending<T> {
 }
 
 fn json<T: DeserializeOwned>(body: &str) -> Result<T, String> {
-    serde_json::from_str(body).map_err(|e| format!("unexpected answer from the server: {e}"))
+    serde_json::from_str(body).map_err(|e| t!("api-unexpected-answer", error = e.to_string()))
 }
 
 fn listing(body: &str) -> Result<Vec<Summary>, String> {
@@ -153,7 +154,7 @@ impl<T> Pending<T> {
                 self.status = Some(status);
                 Err(error_text(status, &body))
             }
-            HttpReply::Failed(e) => Err(format!("cannot reach the server ({e})")),
+            HttpReply::Failed(e) => Err(t!("api-unreachable", error = e)),
         })
     }
 
@@ -168,7 +169,7 @@ impl<T> Pending<T> {
 fn error_text(status: u16, body: &str) -> String {
     match ServerMessage::from_json(body) {
         Ok(ServerMessage::Error { code, message }) => format!("{message} ({code})"),
-        _ => format!("the server answered {status}"),
+        _ => t!("api-status", status = status),
     }
 }
 

@@ -50,7 +50,7 @@ pub fn draw(values: &[f64], area: Rect) {
     let finite: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
     if finite.is_empty() {
         ui::text(
-            "no rated games yet",
+            &crate::i18n::t!("chart-no-games"),
             area.x + 12.0,
             area.y + area.h / 2.0 - 8.0,
             15.0,

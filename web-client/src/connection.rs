@@ -92,7 +92,7 @@ impl Connection {
                 Ok(m) => out.push(m),
                 Err(e) => out.push(ServerMessage::Error {
                     code: ErrorCode::BadMessage,
-                    message: format!("unreadable message from the server: {e}"),
+                    message: crate::i18n::t!("api-unreadable-message", error = e.to_string()),
                 }),
             }
         }

@@ -4,6 +4,7 @@
 
 use crate::account;
 use crate::api::{Api, Pending, Profile};
+use crate::i18n::t;
 use crate::route::Route;
 use crate::screen::Screen;
 use crate::ui::{self, colors, Ui};
@@ -56,19 +57,28 @@ impl Screen for Leaderboard {
         let x0 = (w - col) / 2.0;
         let gap = 8.0;
         let mut y = 12.0;
-        if ui.button("lobby", "Lobby", Rect::new(x0, y, 96.0, ui::TOUCH)) {
+        if ui.button("lobby", &t!("lobby"), Rect::new(x0, y, 96.0, ui::TOUCH)) {
             go = Some(Route::Lobby);
         }
-        ui::text("Leaderboard", x0 + 112.0, y + 9.0, 24.0, colors::ACCENT);
+        ui::text(
+            &t!("leaderboard"),
+            x0 + 112.0,
+            y + 9.0,
+            24.0,
+            colors::ACCENT,
+        );
+        crate::i18n::switch_top(ui, x0 + col, y);
         y += ui::TOUCH + 12.0;
         let tab_w = (col - gap) / 2.0;
-        for (k, (name, label, bots)) in
-            [("tab-people", "People", false), ("tab-bots", "Bots", true)]
-                .into_iter()
-                .enumerate()
+        for (k, (name, label, bots)) in [
+            ("tab-people", t!("leaderboard-people"), false),
+            ("tab-bots", t!("leaderboard-bots"), true),
+        ]
+        .into_iter()
+        .enumerate()
         {
             let r = Rect::new(x0 + k as f32 * (tab_w + gap), y, tab_w, ui::TOUCH);
-            if ui.button_styled(name, label, r, true, self.bots == bots) && self.bots != bots {
+            if ui.button_styled(name, &label, r, true, self.bots == bots) && self.bots != bots {
                 go = Some(Route::Leaderboard { bots });
             }
         }
@@ -78,14 +88,14 @@ impl Screen for Leaderboard {
         let mut ry = area.y + 10.0;
         if self.rows.is_empty() {
             let text = if let Some(m) = &self.message {
-                m.as_str()
+                m.clone()
             } else if self.loaded {
-                "no rated accounts yet"
+                t!("leaderboard-empty")
             } else {
-                "loading..."
+                t!("loading")
             };
             ui::text(
-                &ui::fit(text, 16.0, area.w - 20.0),
+                &ui::fit(&text, 16.0, area.w - 20.0),
                 area.x + 10.0,
                 ry + 4.0,
                 16.0,
@@ -108,7 +118,7 @@ impl Screen for Leaderboard {
             let facts = format!(
                 "{} · {}",
                 account::profile_rating(p),
-                crate::story::count(p.games, "game")
+                t!("games-count", count = p.games)
             );
             let tx = r.x + r.w + 12.0;
             ui::text(

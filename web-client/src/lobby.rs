@@ -17,6 +17,7 @@ pub mod state;
 
 use crate::account;
 use crate::api::{token_key, Api, Opponent, Pending, Profile, SeatGrant, Summary};
+use crate::i18n::{self, t};
 use crate::route::Route;
 use crate::screen::Screen;
 use crate::ui::{self, colors, Ui};
@@ -192,13 +193,28 @@ impl Lobby {
         let row = ui::TOUCH;
         let gap = 8.0;
         let Some(a) = self.s.account.clone() else {
-            ui::text("Your name", x0, y + 12.0, 17.0, colors::TEXT);
+            ui::text_in(
+                &t!("lobby-your-name"),
+                x0,
+                y + 12.0,
+                17.0,
+                label_w - 6.0,
+                colors::TEXT,
+            );
             let sign_w = if narrow { 84.0 } else { 110.0 };
             let field_w = (col - label_w - gap - sign_w).min(260.0);
             let field = Rect::new(x0 + label_w, y, field_w, row);
-            ui.text_field("name", &mut self.s.name, field, "Player", 40);
+            ui.text_field(
+                "name",
+                &mut self.s.name,
+                field,
+                &t!("player-default-name"),
+                40,
+            );
             let b = Rect::new(field.x + field.w + gap, y, sign_w, row);
-            return ui.button("sign-in", "Sign in", b).then_some(Route::SignIn);
+            return ui
+                .button("sign-in", &t!("sign-in"), b)
+                .then_some(Route::SignIn);
         };
         let rating = self
             .s
@@ -208,7 +224,14 @@ impl Lobby {
         let (x, w) = if narrow {
             (x0, col)
         } else {
-            ui::text("Signed in", x0, y + 12.0, 17.0, colors::TEXT);
+            ui::text_in(
+                &t!("lobby-signed-in"),
+                x0,
+                y + 12.0,
+                17.0,
+                label_w - 6.0,
+                colors::TEXT,
+            );
             (x0 + label_w, (col - label_w).min(560.0))
         };
         let name_w = (w - 2.0 * gap) * 0.46;
@@ -220,16 +243,16 @@ impl Lobby {
         }
         let rated = Rect::new(x + name_w + gap, y, other_w, row);
         let label = if self.s.rated {
-            "Rated: on"
+            t!("lobby-rated-on")
         } else {
-            "Rated: off"
+            t!("lobby-rated-off")
         };
-        if ui.button_styled("rated", label, rated, true, self.s.rated) {
+        if ui.button_styled("rated", &label, rated, true, self.s.rated) {
             let remembered = self.s.toggle_rated();
             platform::storage_set(RATED_KEY, remembered);
         }
         let out = Rect::new(rated.x + other_w + gap, y, other_w, row);
-        if ui.button("sign-out", "Sign out", out) {
+        if ui.button("sign-out", &t!("sign-out"), out) {
             self.dialog = Some(Dialog::SignOut);
         }
         go
@@ -238,29 +261,22 @@ impl Lobby {
     /// The question `d` over the lobby, and what its buttons do.
     fn dialog(&mut self, ui: &mut Ui, d: &Dialog) -> Option<Route> {
         use crate::play::layout::{dialog, dialog_buttons};
-        let (title, lines, h): (&str, &[&str], f32) = match d {
-            Dialog::Return(_) => (
-                "Your match is still on",
-                &[
-                    "You left it while it was being played:",
-                    "return before you forfeit it.",
-                ],
-                190.0,
-            ),
-            Dialog::SignOut => (
-                "Sign out?",
-                &[
-                    "The key is the only way back into this",
-                    "account. Copy it and keep it somewhere",
-                    "safe first, or the account is lost.",
-                ],
-                268.0,
-            ),
+        let (title, body, lines) = match d {
+            Dialog::Return(_) => (t!("lobby-return-title"), t!("lobby-return-body"), 2),
+            Dialog::SignOut => (t!("lobby-sign-out-title"), t!("lobby-sign-out-body"), 3),
         };
+        let h = if lines == 2 { 190.0 } else { 268.0 };
         let box_ = dialog(crate::scale::size(), h);
         ui::panel(box_);
         let (x, w) = (box_.x + 16.0, box_.w - 32.0);
-        ui::text(title, x, box_.y + 14.0, 21.0, colors::ACCENT);
+        ui::text(
+            &ui::fit(&title, 21.0, w),
+            x,
+            box_.y + 14.0,
+            21.0,
+            colors::ACCENT,
+        );
+        let lines = crate::help::wrap_lines(&body, 16.0, w, lines);
         for (i, l) in lines.iter().enumerate() {
             let y = box_.y + 50.0 + i as f32 * 22.0;
             ui::text(&ui::fit(l, 16.0, w), x, y, 16.0, colors::TEXT);
@@ -269,29 +285,29 @@ impl Lobby {
             Dialog::Return(match_id) => {
                 platform::storage_set(crate::play::LEFT_KEY, "");
                 let (back, stay) = dialog_buttons(box_, h - 64.0);
-                if ui.button("return-match", "Return to it", back) {
+                if ui.button("return-match", &t!("lobby-return-yes"), back) {
                     self.dialog = None;
                     return Some(Route::Play {
                         match_id: match_id.clone(),
                     });
                 }
-                if ui.button("return-no", "Stay here", stay) {
+                if ui.button("return-no", &t!("lobby-return-no"), stay) {
                     self.dialog = None;
                 }
             }
             Dialog::SignOut => {
                 let copy = Rect::new(x, box_.y + h - 116.0, w, ui::TOUCH);
-                if ui.button("sign-out-copy", "Copy the key", copy) {
+                if ui.button("sign-out-copy", &t!("copy-key"), copy) {
                     if let Some(a) = account::signed_in() {
                         platform::copy_text(&a.key);
-                        self.s.message = Some("The key is copied: keep it safe".into());
+                        self.s.message = Some(t!("key-copied"));
                     }
                 }
                 let (cancel, out) = dialog_buttons(box_, h - 64.0);
-                if ui.button("sign-out-no", "Cancel", cancel) {
+                if ui.button("sign-out-no", &t!("cancel"), cancel) {
                     self.dialog = None;
                 }
-                if ui.button("sign-out-yes", "Sign out", out) {
+                if ui.button("sign-out-yes", &t!("sign-out"), out) {
                     self.dialog = None;
                     account::sign_out();
                     self.s.signed_out();
@@ -326,41 +342,44 @@ impl Lobby {
             1.0,
         );
         let tx = x0 + logo * 4.2;
-        let room = help.x - tx - gap;
+        let room = l.lang.x - tx - gap;
+        let name = t!("app-title");
         let mut title = if narrow { 26.0 } else { 40.0 };
-        while title > 16.0 && ui::text_width("Chapaev online", title) > room {
+        while title > 16.0 && ui::text_width(&name, title) > room {
             title -= 1.0;
         }
-        ui::text("Chapaev online", tx, y, title, colors::ACCENT);
-        ui::text(
-            &ui::fit(
-                "flick your checkers, knock theirs off the board",
-                if narrow { 13.0 } else { 18.0 },
-                room,
-            ),
-            tx + 2.0,
-            y + title + 4.0,
-            if narrow { 13.0 } else { 18.0 },
-            colors::MUTED,
-        );
-        let rules = if narrow { "Rules" } else { "How to play" };
-        if ui.button("help", rules, help) {
+        ui::text(&name, tx, y, title, colors::ACCENT);
+        // The tagline: one line, or two on a phone, under the title.
+        let size = if narrow { 13.0 } else { 18.0 };
+        let lines = if narrow { 2 } else { 1 };
+        let tagline = crate::help::wrap_lines(&t!("lobby-tagline"), size, room, lines);
+        for (i, line) in tagline.iter().enumerate() {
+            let ly = y + title + 4.0 + i as f32 * (size + 2.0);
+            ui::text(line, tx + 2.0, ly, size, colors::MUTED);
+        }
+        let rules = if narrow {
+            t!("rules-short")
+        } else {
+            t!("how-to-play")
+        };
+        if ui.button("help", &rules, help) {
             self.s.help = true;
         }
+        i18n::switch(ui, l.lang, narrow);
         let label_w = l.label_w;
         if let Some(r) = self.account_row(ui, x0, l.account_y, col, label_w, narrow) {
             go = Some(r);
         }
         // The matches to start: one row, or a grid of two columns.
-        let choices: [(&str, &str); layout::CHOICES] = [
-            ("quick-match", "Quick match"),
-            ("vs-computer-easy", "Computer: easy"),
-            ("vs-computer-medium", "Computer: medium"),
-            ("vs-computer-hard", "Computer: hard"),
-            ("vs-computer-adaptive", "Computer: adaptive"),
-            ("vs-person", "A friend (link)"),
-            ("sandbox", "Physics sandbox"),
-            ("leaderboard", "Leaderboard"),
+        let choices: [(&str, String); layout::CHOICES] = [
+            ("quick-match", t!("lobby-quick-match")),
+            ("vs-computer-easy", t!("lobby-computer-easy")),
+            ("vs-computer-medium", t!("lobby-computer-medium")),
+            ("vs-computer-hard", t!("lobby-computer-hard")),
+            ("vs-computer-adaptive", t!("lobby-computer-adaptive")),
+            ("vs-person", t!("lobby-friend")),
+            ("sandbox", t!("lobby-sandbox")),
+            ("leaderboard", t!("leaderboard")),
         ];
         for ((name, label), rect) in choices.iter().zip(l.choices) {
             if ui.button(name, label, rect) {
@@ -381,10 +400,23 @@ impl Lobby {
             }
         }
         let field = l.join_field;
-        ui::text("Join by id", x0, field.y + 12.0, 17.0, colors::TEXT);
-        let entered = ui.text_field("join-id-field", &mut self.s.join_id, field, "match id", 64);
+        ui::text_in(
+            &t!("lobby-join-by-id"),
+            x0,
+            field.y + 12.0,
+            17.0,
+            label_w - 6.0,
+            colors::TEXT,
+        );
+        let entered = ui.text_field(
+            "join-id-field",
+            &mut self.s.join_id,
+            field,
+            &t!("lobby-match-id"),
+            64,
+        );
         let target = self.s.join_target();
-        let pressed = ui.button_styled("join-id", "Join", l.join, target.is_some(), false);
+        let pressed = ui.button_styled("join-id", &t!("join"), l.join, target.is_some(), false);
         if let Some(id) = target.filter(|_| pressed || entered) {
             go = Some(Route::Join { match_id: id });
         }
@@ -394,11 +426,17 @@ impl Lobby {
             ui::text(&ui::fit(m, size, mw), mx, my, size, colors::MUTED);
         }
         let footer = if narrow {
-            "Writing a bot? See /api"
+            t!("lobby-footer-short")
         } else {
-            "Writing a bot? The HTTP and WebSocket protocol is described at /api"
+            t!("lobby-footer")
         };
-        ui::text(footer, x0, l.footer_y, 14.0, colors::MUTED);
+        ui::text(
+            &ui::fit(&footer, 14.0, col),
+            x0,
+            l.footer_y,
+            14.0,
+            colors::MUTED,
+        );
         for (list_, area) in self.s.lists.iter().zip(l.lists) {
             if let Some(r) = list(ui, list_, area) {
                 go = Some(r);
@@ -416,10 +454,16 @@ impl Lobby {
 fn list(ui: &mut Ui, l: &MatchList, area: Rect) -> Option<Route> {
     let mut go = None;
     ui::panel(area);
-    ui::text(l.title, area.x + 10.0, area.y + 8.0, 19.0, colors::ACCENT);
+    ui::text(
+        &ui::fit(&i18n::text(l.title, &[]), 19.0, area.w - 20.0),
+        area.x + 10.0,
+        area.y + 8.0,
+        19.0,
+        colors::ACCENT,
+    );
     let mut y = area.y + 34.0;
     if l.items.is_empty() {
-        ui::text("none yet", area.x + 10.0, y, 16.0, colors::MUTED);
+        ui::text(&t!("lobby-none-yet"), area.x + 10.0, y, 16.0, colors::MUTED);
     }
     let button_w = 76.0;
     let text_w = area.w - button_w - 28.0;
@@ -445,7 +489,7 @@ fn list(ui: &mut Ui, l: &MatchList, area: Rect) -> Option<Route> {
         let offered = offered(l.status, s);
         let name = format!("{}-{k}", l.status);
         let r = Rect::new(area.x + area.w - button_w - 8.0, y, button_w, ui::TOUCH);
-        if offered && ui.button(&name, l.action, r) {
+        if offered && ui.button(&name, &i18n::text(l.action, &[]), r) {
             let match_id = s.match_id.clone();
             go = Some(match l.status {
                 "open" => Route::Join { match_id },

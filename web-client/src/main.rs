@@ -14,6 +14,7 @@ mod connection;
 mod draw;
 mod help;
 mod highlight;
+mod i18n;
 mod leaderboard;
 mod lobby;
 mod pace;
@@ -42,7 +43,7 @@ use ui::{Input, Ui};
 fn conf() -> macroquad::conf::Conf {
     macroquad::conf::Conf {
         miniquad_conf: Conf {
-            window_title: "Chapaev online".to_owned(),
+            window_title: i18n::text("app-title", &[]),
             window_width: 1024,
             window_height: 720,
             high_dpi: true,
@@ -113,6 +114,9 @@ async fn main() {
         let mut state = screen.report();
         state.insert("screen".into(), screen.name().into());
         state.insert("buttons".into(), ui.layout());
+        state.insert("labels".into(), ui.labels());
+        state.insert("cut".into(), ui.cut());
+        state.insert("lang".into(), i18n::current().code().into());
         state
             .entry("animating")
             .or_insert_with(|| screen.animating().into());

@@ -120,6 +120,8 @@ mod imp {
         );
         fn chapaev_field_take_len(n: *const u8, nl: usize) -> i32;
         fn chapaev_field_flags(n: *const u8, nl: usize) -> i32;
+        fn chapaev_languages_len() -> i32;
+        fn chapaev_set_document_lang(ptr: *const u8, len: usize);
     }
 
     /// The plugin's version, checked by miniquad's loader against `chapaev.js`.
@@ -220,7 +222,7 @@ mod imp {
 
     pub fn save_file(name: &str, contents: &str) -> Result<String, String> {
         unsafe { chapaev_download(name.as_ptr(), name.len(), contents.as_ptr(), contents.len()) }
-        Ok(format!("downloaded {name}"))
+        Ok(crate::i18n::t!("file-downloaded", name = name))
     }
 
     pub fn request_file() {
@@ -293,6 +295,18 @@ mod imp {
             focused: bits & 1 != 0,
             entered: bits & 2 != 0,
         }
+    }
+
+    /// The browser's preferred languages, best first, comma-separated
+    /// (`navigator.languages`).
+    pub fn languages() -> String {
+        let len = unsafe { chapaev_languages_len() };
+        take(len, |p, c| unsafe { chapaev_staged_take(p, c) })
+    }
+
+    /// Sets the page's `<html lang>`.
+    pub fn set_document_lang(code: &str) {
+        unsafe { chapaev_set_document_lang(code.as_ptr(), code.len()) }
     }
 }
 
@@ -451,8 +465,8 @@ mod imp {
 
     pub fn save_file(name: &str, contents: &str) -> Result<String, String> {
         std::fs::write(name, contents)
-            .map(|()| format!("saved {name}"))
-            .map_err(|e| format!("could not save {name}: {e}"))
+            .map(|()| crate::i18n::t!("file-saved", name = name))
+            .map_err(|e| crate::i18n::t!("file-save-failed", name = name, error = e.to_string()))
     }
 
     /// On the desktop "opening" reads `scene.json` from the working folder.
@@ -502,10 +516,20 @@ mod imp {
     pub fn field_flags(_name: &str) -> super::FieldFlags {
         super::FieldFlags::default()
     }
+
+    /// On the desktop the locale's variables say the language.
+    pub fn languages() -> String {
+        ["LC_ALL", "LC_MESSAGES", "LANG"]
+            .iter()
+            .find_map(|v| std::env::var(v).ok().filter(|s| !s.is_empty()))
+            .unwrap_or_default()
+    }
+
+    pub fn set_document_lang(_code: &str) {}
 }
 
 pub use imp::{
-    coarse_pointer, copy_text, field_flags, field_place, field_sweep, field_take, location, pasted,
-    picked_file, play_sound, report, request_file, save_file, set_hash, set_ready, storage_get,
-    storage_set, Request, Socket,
+    coarse_pointer, copy_text, field_flags, field_place, field_sweep, field_take, languages,
+    location, pasted, picked_file, play_sound, report, request_file, save_file, set_document_lang,
+    set_hash, set_ready, storage_get, storage_set, Request, Socket,
 };

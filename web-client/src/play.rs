@@ -18,6 +18,7 @@ pub mod state;
 use crate::api::{token_key, Api, Pending, SeatGrant};
 use crate::connection::{Connection, Link};
 use crate::highlight;
+use crate::i18n::t;
 use crate::platform;
 use crate::route::{ws_origin, Route};
 use crate::screen::Screen;
@@ -152,7 +153,7 @@ impl Play {
     fn send(&mut self, m: ClientMessage) -> bool {
         let sent = self.conn.as_ref().is_some_and(|c| c.send(&m));
         if !sent {
-            self.state.notify("not connected; trying again");
+            self.state.notify(t!("play-not-connected-retry"));
         }
         sent
     }
@@ -181,7 +182,7 @@ impl Play {
     fn board(&mut self, area: Rect) {
         let Some(v) = &self.state.view else {
             self.viewport = None;
-            ui::text_centred("Connecting to the match...", area, 22.0, colors::MUTED);
+            ui::text_centred(&t!("play-connecting-match"), area, 22.0, colors::MUTED);
             return;
         };
         let shown = board::show(
@@ -220,17 +221,18 @@ impl Play {
     /// The connection's status line and its colour.
     fn link(&self) -> (String, Color) {
         match self.conn.as_ref().map(Connection::link) {
-            Some(Link::Open) => ("connected".to_string(), colors::GOOD),
-            Some(Link::Connecting) => ("connecting...".to_string(), colors::MUTED),
+            Some(Link::Open) => (t!("play-link-open"), colors::GOOD),
+            Some(Link::Connecting) => (t!("play-link-connecting"), colors::MUTED),
             Some(Link::Retrying { at, attempt }) => (
-                format!(
-                    "reconnecting in {:.0} s (try {attempt})",
-                    (at - self.state.now).max(0.0)
+                t!(
+                    "play-link-retrying",
+                    seconds = (at - self.state.now).max(0.0).round(),
+                    attempt = attempt
                 ),
                 colors::DANGER,
             ),
-            Some(Link::Failed(why)) => (format!("disconnected: {why}"), colors::DANGER),
-            None => ("not connected".to_string(), colors::MUTED),
+            Some(Link::Failed(why)) => (t!("play-link-failed", why = why.as_str()), colors::DANGER),
+            None => (t!("play-link-none"), colors::MUTED),
         }
     }
 
@@ -274,7 +276,7 @@ impl Play {
             "copy-link" => {
                 let link = format!("{}/#/join/{}", self.api.origin, self.match_id);
                 platform::copy_text(&link);
-                self.state.notify(format!("copied {link}"));
+                self.state.notify(t!("play-link-copied", link = link));
             }
             "resign" => self.confirm_resign = true,
             "resign-yes" => {
@@ -330,22 +332,25 @@ impl Play {
         let box_ = layout::dialog(crate::scale::size(), 190.0);
         ui::panel(box_);
         let (x, w) = (box_.x + 16.0, box_.w - 32.0);
-        ui::text("Leave the match?", x, box_.y + 14.0, 21.0, colors::ACCENT);
-        for (i, l) in [
-            "It goes on without you: come back within",
-            "a minute or you forfeit it.",
-        ]
-        .iter()
-        .enumerate()
+        ui::text(
+            &ui::fit(&t!("play-leave-title"), 21.0, w),
+            x,
+            box_.y + 14.0,
+            21.0,
+            colors::ACCENT,
+        );
+        for (i, l) in crate::help::wrap_lines(&t!("play-leave-body"), 16.0, w, 2)
+            .iter()
+            .enumerate()
         {
             let y = box_.y + 50.0 + i as f32 * 22.0;
             ui::text(&ui::fit(l, 16.0, w), x, y, 16.0, colors::TEXT);
         }
         let (stay, leave) = layout::dialog_buttons(box_, 126.0);
-        if ui.button("leave-no", "Stay", stay) {
+        if ui.button("leave-no", &t!("play-leave-no"), stay) {
             return self.press("leave-no");
         }
-        if ui.button("leave-yes", "Leave", leave) {
+        if ui.button("leave-yes", &t!("play-leave-yes"), leave) {
             return self.press("leave-yes");
         }
         None
@@ -364,6 +369,7 @@ impl Play {
         let words = end_screen::words(result, self.state.my_side(), &self.state.score(), v);
         let rematch = self.state.you.map(|_| self.state.rematch_label());
         let mut go = None;
+        let rematch = rematch.as_ref().map(|(l, e)| (l.as_str(), *e));
         for name in end_screen::show(ui, area, &words, rematch) {
             go = go.or(self.press(name));
         }
@@ -392,22 +398,22 @@ impl Screen for Play {
             ui::panel(box_);
             let (x, w) = (box_.x + 16.0, box_.w - 32.0);
             ui::text(
-                "You are invited to a match",
+                &ui::fit(&t!("play-invited-title"), 21.0, w),
                 x,
                 box_.y + 14.0,
                 21.0,
                 colors::ACCENT,
             );
-            ui::text("Your name", x, box_.y + 48.0, 16.0, colors::TEXT);
+            ui::text(&t!("lobby-your-name"), x, box_.y + 48.0, 16.0, colors::TEXT);
             let field = Rect::new(x, box_.y + 72.0, w, ui::TOUCH);
-            let entered = ui.text_field("join-name", draft, field, "Player", 40);
+            let entered = ui.text_field("join-name", draft, field, &t!("player-default-name"), 40);
             let (ok, watch) = layout::dialog_buttons(box_, 136.0);
-            if ui.button("join-name-ok", "Take the seat", ok) || entered {
+            if ui.button("join-name-ok", &t!("play-take-seat"), ok) || entered {
                 let name = crate::lobby::clean_name(draft);
                 platform::storage_set(NAME_KEY, &name);
                 self.setup = Setup::Joining(self.api.join(&self.match_id, &name));
                 self.name = name;
-            } else if ui.button("watch", "Just watch", watch) {
+            } else if ui.button("watch", &t!("play-just-watch"), watch) {
                 return Some(Route::Watch {
                     match_id: self.match_id.clone(),
                 });
@@ -419,7 +425,7 @@ impl Screen for Play {
             ui::panel(box_);
             let (x, w) = (box_.x + 16.0, box_.w - 32.0);
             ui::text(
-                "Could not take the seat",
+                &ui::fit(&t!("play-seat-refused"), 21.0, w),
                 x,
                 box_.y + 14.0,
                 21.0,
@@ -427,12 +433,12 @@ impl Screen for Play {
             );
             ui::text(&ui::fit(why, 15.0, w), x, box_.y + 50.0, 15.0, colors::TEXT);
             let (watch, lobby) = layout::dialog_buttons(box_, 126.0);
-            if ui.button("watch", "Watch instead", watch) {
+            if ui.button("watch", &t!("play-watch-instead"), watch) {
                 return Some(Route::Watch {
                     match_id: self.match_id.clone(),
                 });
             }
-            if ui.button("lobby", "Lobby", lobby) {
+            if ui.button("lobby", &t!("lobby"), lobby) {
                 return Some(Route::Lobby);
             }
             return None;
@@ -485,9 +491,10 @@ impl Screen for Play {
         // The instant replay of a shot worth seeing again, and its Skip.
         if self.state.replaying {
             let r = Rect::new(board.x + board.w - 128.0, board.y + 6.0, 120.0, ui::TOUCH);
-            let label = format!("Slow motion {}x", highlight::SLOW);
+            let label = t!("play-slow-motion", speed = highlight::SLOW);
+            let label = ui::fit(&label, 17.0, r.x - board.x - 16.0);
             ui::text(&label, board.x + 10.0, board.y + 16.0, 17.0, colors::ACCENT);
-            if !help && ui.button("skip-replay", "Skip replay", r) {
+            if !help && ui.button("skip-replay", &t!("play-skip-replay"), r) {
                 self.state.skip_replay();
             }
         }

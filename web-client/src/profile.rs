@@ -5,6 +5,7 @@
 
 use crate::account;
 use crate::api::{Api, HistoryPoint, Pending, Profile as Account, Summary};
+use crate::i18n::t;
 use crate::route::Route;
 use crate::screen::Screen;
 use crate::ui::{self, colors, Ui};
@@ -70,35 +71,36 @@ impl Screen for Profile {
         let x0 = (w - col) / 2.0;
         let gap = 8.0;
         let mut y = 12.0;
-        if ui.button("lobby", "Lobby", Rect::new(x0, y, 96.0, ui::TOUCH)) {
+        if ui.button("lobby", &t!("lobby"), Rect::new(x0, y, 96.0, ui::TOUCH)) {
             go = Some(Route::Lobby);
         }
         if ui.button(
             "leaderboard",
-            "Leaderboard",
+            &t!("leaderboard"),
             Rect::new(x0 + 96.0 + gap, y, 140.0, ui::TOUCH),
         ) {
             go = Some(Route::Leaderboard {
                 bots: self.account.got().is_some_and(|a| a.bot),
             });
         }
+        crate::i18n::switch_top(ui, x0 + col, y);
         y += ui::TOUCH + 16.0;
         ui::text(&ui::fit(&self.name, 26.0, col), x0, y, 26.0, colors::ACCENT);
         y += 34.0;
         let facts = match &self.account {
-            Answer::Got(a) => format!(
-                "{} · rating {} ±{} · {}",
-                if a.bot { "bot" } else { "person" },
-                account::profile_rating(a),
-                a.deviation.round() as i64,
-                crate::story::count(a.games, "rated game")
+            Answer::Got(a) => t!(
+                "profile-facts",
+                kind = if a.bot { "bot" } else { "person" },
+                rating = account::profile_rating(a),
+                deviation = a.deviation.round() as i64,
+                games = a.games
             ),
-            Answer::Waiting(_) => "loading...".to_string(),
+            Answer::Waiting(_) => t!("loading"),
             Answer::Failed(e) => e.clone(),
         };
         ui::text(&ui::fit(&facts, 16.0, col), x0, y, 16.0, colors::TEXT);
         y += 30.0;
-        ui::text("Rating over time", x0, y, 17.0, colors::ACCENT);
+        ui::text(&t!("profile-rating-over-time"), x0, y, 17.0, colors::ACCENT);
         y += 24.0;
         let chart_h = if w < 600.0 { 150.0 } else { 180.0 };
         let chart = Rect::new(x0, y, col, chart_h);
@@ -113,7 +115,7 @@ impl Screen for Profile {
             }
         }
         y += chart_h + 16.0;
-        ui::text("Matches", x0, y, 17.0, colors::ACCENT);
+        ui::text(&t!("profile-matches"), x0, y, 17.0, colors::ACCENT);
         y += 26.0;
         let area = Rect::new(x0, y, col, h - y - 12.0);
         ui::panel(area);
@@ -144,7 +146,7 @@ impl Screen for Profile {
                     if s.result.is_some() {
                         let r =
                             Rect::new(area.x + area.w - button_w - 8.0, ry, button_w, ui::TOUCH);
-                        if ui.button(&format!("match-{k}"), "Replay", r) {
+                        if ui.button(&format!("match-{k}"), &t!("replay"), r) {
                             go = Some(Route::Replay {
                                 match_id: s.match_id.clone(),
                             });
@@ -155,7 +157,7 @@ impl Screen for Profile {
             }
             Answer::Got(_) => {
                 ui::text(
-                    "no matches yet",
+                    &t!("profile-no-matches"),
                     area.x + 10.0,
                     ry + 4.0,
                     16.0,

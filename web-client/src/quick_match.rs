@@ -11,6 +11,7 @@
 pub mod seek;
 
 use crate::api::{Api, Opponent, Pending, SeatGrant};
+use crate::i18n::t;
 use crate::platform::{Socket, SocketState};
 use crate::route::{ws_origin, Route};
 use crate::screen::Screen;
@@ -38,7 +39,7 @@ impl QuickMatch {
         let socket = if api.key.is_some() {
             Some(Socket::open(&stream_url(&api)))
         } else {
-            seek.refuse("sign in to be paired with a stranger");
+            seek.refuse(t!("quick-sign-in-first"));
             None
         };
         QuickMatch {
@@ -106,10 +107,11 @@ struct Places {
 
 fn places(w: f32, h: f32) -> Places {
     let pw = (w - 24.0).min(520.0);
-    let ph = 300.0f32.min(h - 24.0);
+    let ph = 340.0f32.min(h - 24.0);
     let panel = Rect::new((w - pw) / 2.0, ((h - ph) / 2.0).min(120.0), pw, ph);
     let (x, bw) = (panel.x + 16.0, pw - 32.0);
-    let row = |i: f32| Rect::new(x, panel.y + 104.0 + i * (ui::TOUCH + 12.0), bw, ui::TOUCH);
+    // The status and the hint take up to two lines each above the buttons.
+    let row = |i: f32| Rect::new(x, panel.y + 144.0 + i * (ui::TOUCH + 12.0), bw, ui::TOUCH);
     Places {
         panel,
         status_y: panel.y + 54.0,
@@ -146,41 +148,42 @@ impl Screen for QuickMatch {
         let p = places(w, h);
         ui::panel(p.panel);
         let (x, tw) = (p.panel.x + 16.0, p.panel.w - 32.0);
-        ui::text("Quick match", x, p.panel.y + 14.0, 26.0, colors::ACCENT);
         ui::text(
-            &ui::fit(&self.seek.status(), 17.0, tw),
+            &ui::fit(&t!("lobby-quick-match"), 26.0, tw),
             x,
-            p.status_y,
-            17.0,
-            colors::TEXT,
+            p.panel.y + 14.0,
+            26.0,
+            colors::ACCENT,
         );
+        let status = crate::help::wrap_lines(&self.seek.status(), 17.0, tw, 2);
+        for (i, line) in status.iter().enumerate() {
+            ui::text(line, x, p.status_y + i as f32 * 20.0, 17.0, colors::TEXT);
+        }
         let hint = match &self.message {
             Some(m) => m.clone(),
-            None if self.seek.offer_computer() => {
-                "Nobody yet? The adaptive computer plays at your level.".to_string()
-            }
-            None => "You will play the next person who presses Quick match.".to_string(),
+            None if self.seek.offer_computer() => t!("quick-nobody-yet"),
+            None => t!("quick-next-person"),
         };
-        ui::text(
-            &ui::fit(&hint, 15.0, tw),
-            x,
-            p.status_y + 24.0,
-            15.0,
-            colors::MUTED,
-        );
+        let hint_y = p.status_y + 20.0 * status.len() as f32 + 4.0;
+        for (i, line) in crate::help::wrap_lines(&hint, 15.0, tw, 2)
+            .iter()
+            .enumerate()
+        {
+            ui::text(line, x, hint_y + i as f32 * 18.0, 15.0, colors::MUTED);
+        }
         let mut go = None;
-        if ui.button("quick-cancel", "Cancel", p.cancel) {
+        if ui.button("quick-cancel", &t!("cancel"), p.cancel) {
             self.stop();
             go = Some(Route::Lobby);
         }
         if self.seek.offer_computer() {
             let label = if self.creating.is_some() {
-                "Starting..."
+                t!("quick-starting")
             } else {
-                "Play the computer (adaptive)"
+                t!("quick-play-computer")
             };
             let enabled = self.creating.is_none();
-            if ui.button_styled("quick-computer", label, p.computer, enabled, false) {
+            if ui.button_styled("quick-computer", &label, p.computer, enabled, false) {
                 self.creating = Some(self.api.create(
                     &self.name,
                     Opponent::Bot("adaptive"),
@@ -188,7 +191,7 @@ impl Screen for QuickMatch {
                 ));
             }
         }
-        if self.api.key.is_none() && ui.button("sign-in", "Sign in", p.sign_in) {
+        if self.api.key.is_none() && ui.button("sign-in", &t!("sign-in"), p.sign_in) {
             go = Some(Route::SignIn);
         }
         go
@@ -231,7 +234,10 @@ mod tests {
             for (i, b) in buttons.iter().enumerate() {
                 assert!(inside(*b, p.panel) && inside(*b, window), "{w}x{h}: {b:?}");
                 assert!(b.h >= ui::TOUCH);
-                assert!(b.y > p.status_y + 40.0, "below the status and the hint");
+                assert!(
+                    b.y > p.status_y + 80.0,
+                    "below two lines of status and of hint"
+                );
                 for c in &buttons[i + 1..] {
                     assert!(!overlap(*b, *c), "{w}x{h}: {b:?} overlaps {c:?}");
                 }

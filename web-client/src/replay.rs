@@ -11,6 +11,7 @@ use crate::api::{Api, Pending};
 use crate::clip::{Clip, Frame};
 use crate::draw;
 use crate::highlight;
+use crate::i18n::t;
 use crate::platform::{self, Sound};
 use crate::route::Route;
 use crate::screen::Screen;
@@ -38,9 +39,9 @@ struct Loaded {
 /// [`game::verify`]'s verdict on a record, in a few words for the heading.
 fn fairness(record: &game::MatchRecord) -> String {
     match game::verify(record) {
-        Ok(v) => format!("noise verified ({} shots)", v.shots),
-        Err(game::VerifyError::Uncommitted { .. }) => "no noise commitment (an old record)".into(),
-        Err(e) => format!("noise NOT verified: {}", e.code()),
+        Ok(v) => t!("replay-noise-verified", shots = v.shots),
+        Err(game::VerifyError::Uncommitted { .. }) => t!("replay-noise-uncommitted"),
+        Err(e) => t!("replay-noise-failed", code = e.code()),
     }
 }
 
@@ -73,7 +74,8 @@ impl Replay {
 
     /// Replays a record's JSON text.
     fn load(text: &str) -> Result<Loaded, String> {
-        let replay = GameReplay::from_json(text).map_err(|e| format!("cannot replay: {e}"))?;
+        let replay =
+            GameReplay::from_json(text).map_err(|e| t!("replay-cannot", error = e.to_string()))?;
         let clips: Vec<Clip> = (0..replay.shot_count())
             .filter_map(|n| {
                 Some(Clip::new(
@@ -139,21 +141,20 @@ fn at(l: &Loaded, t: f64) -> (MatchView, Frame, Option<usize>) {
 /// How the match ended, in words.
 fn result_line(r: MatchResult) -> String {
     match r {
-        MatchResult::Draw => "drawn".to_string(),
+        MatchResult::Draw => t!("replay-result-drawn"),
         MatchResult::Won { side, reason } => {
-            let who = if side == Side::White {
-                "White"
-            } else {
-                "Black"
-            };
             let how = match reason {
-                WinReason::FarEdge => "reaching the far edge",
-                WinReason::QuickMatch => "winning the round",
+                WinReason::FarEdge => "far-edge",
+                WinReason::QuickMatch => "quick",
                 WinReason::Resignation => "resignation",
-                WinReason::Timeouts => "the other side's timeouts",
-                WinReason::Abandoned => "the other side's abandoning",
+                WinReason::Timeouts => "timeouts",
+                WinReason::Abandoned => "abandoned",
             };
-            format!("{who} won by {how}")
+            t!(
+                "replay-result-won",
+                side = crate::story::side_key(side),
+                how = how
+            )
         }
     }
 }
@@ -178,16 +179,25 @@ impl Screen for Replay {
             State::Ready(l) => l,
             State::Fetching(_) => {
                 ui::text_centred(
-                    "Loading the record...",
+                    &t!("replay-loading"),
                     Rect::new(0.0, 0.0, w, h),
                     24.0,
                     colors::MUTED,
                 );
-                return ui.button("lobby", "Lobby", lobby).then_some(Route::Lobby);
+                return ui
+                    .button("lobby", &t!("lobby"), lobby)
+                    .then_some(Route::Lobby);
             }
             State::Failed(e) => {
-                ui::text_centred(e, Rect::new(0.0, 0.0, w, h), 20.0, colors::DANGER);
-                return ui.button("lobby", "Lobby", lobby).then_some(Route::Lobby);
+                ui::text_centred(
+                    &ui::fit(e, 20.0, w - 24.0),
+                    Rect::new(0.0, 0.0, w, h),
+                    20.0,
+                    colors::DANGER,
+                );
+                return ui
+                    .button("lobby", &t!("lobby"), lobby)
+                    .then_some(Route::Lobby);
             }
         };
         if self.playing && !self.scrubbing {
@@ -218,22 +228,18 @@ impl Screen for Replay {
         let head = match shot {
             Some(n) => {
                 let o = &l.clips[n].outcome;
-                format!(
-                    "Shot {} of {} · round {} · {} plays {} · White {} / Black {}",
-                    n + 1,
-                    l.clips.len(),
-                    o.round,
-                    if o.shooter == Side::White {
-                        "White"
-                    } else {
-                        "Black"
-                    },
-                    o.piece,
-                    count(Side::White),
-                    count(Side::Black)
+                t!(
+                    "replay-head",
+                    shot = n + 1,
+                    shots = l.clips.len(),
+                    round = o.round,
+                    side = crate::story::side_key(o.shooter),
+                    piece = o.piece.to_string(),
+                    white = count(Side::White),
+                    black = count(Side::Black)
                 )
             }
-            None => "No shots were played".to_string(),
+            None => t!("replay-no-shots"),
         };
         let head = match l.replay.game().result() {
             Some(r) if self.t >= l.timeline.total() => format!("{head} · {}", result_line(r)),
@@ -242,10 +248,17 @@ impl Screen for Replay {
         // The heading stays above the board (the board is drawn first, so
         // a piece sliding off it goes under the heading and the bar).
         draw_rectangle(0.0, 0.0, w, head_h, colors::BACKGROUND);
-        let text_w = lobby.x - 20.0;
+        let lang_w = if narrow { 48.0 } else { 110.0 };
+        let lang = Rect::new(lobby.x - 8.0 - lang_w, lobby.y, lang_w, ui::TOUCH);
+        crate::i18n::switch(ui, lang, narrow);
+        let text_w = lang.x - 20.0;
         ui::text(
             &ui::fit(
-                &format!("Replay of {} · {}", self.match_id, l.fairness),
+                &t!(
+                    "replay-title",
+                    id = self.match_id.as_str(),
+                    fairness = l.fairness.as_str()
+                ),
                 19.0,
                 text_w,
             ),
@@ -256,8 +269,12 @@ impl Screen for Replay {
         );
         // The heading in one line, or two where the window is narrow.
         let parts: Vec<&str> = head.splitn(3, " · ").collect();
-        if narrow && parts.len() == 3 {
-            let first = format!("{} · {}", parts[0], parts[1]);
+        if narrow && parts.len() >= 2 {
+            let (first, rest) = match parts[..] {
+                [a, b, c] => (format!("{a} · {b}"), c),
+                [a, b, ..] => (a.to_string(), b),
+                _ => (head.clone(), ""),
+            };
             ui::text(
                 &ui::fit(&first, 14.0, text_w),
                 12.0,
@@ -266,32 +283,41 @@ impl Screen for Replay {
                 colors::TEXT,
             );
             ui::text(
-                &ui::fit(parts[2], 14.0, w - 24.0),
+                &ui::fit(rest, 14.0, w - 24.0),
                 12.0,
                 50.0,
                 14.0,
                 colors::TEXT,
             );
         } else {
+            // Beside the buttons, so it stops before them.
             ui::text(
-                &ui::fit(&head, 15.0, w - 24.0),
+                &ui::fit(&head, 15.0, text_w),
                 12.0,
                 34.0,
                 15.0,
                 colors::TEXT,
             );
         }
-        let mut go = ui.button("lobby", "Lobby", lobby).then_some(Route::Lobby);
+        let mut go = ui
+            .button("lobby", &t!("lobby"), lobby)
+            .then_some(Route::Lobby);
         // The best shots down the board's left edge: each jumps to its
         // shot, in slow motion.
         let bw = if narrow { 112.0 } else { 150.0 };
         if !l.best.is_empty() && !narrow {
-            ui::text("Best shots", 12.0, head_h + 6.0, 15.0, colors::MUTED);
+            ui::text(
+                &t!("replay-best-shots"),
+                12.0,
+                head_h + 6.0,
+                15.0,
+                colors::MUTED,
+            );
         }
         for (i, &(n, k)) in l.best.iter().enumerate() {
             let top = head_h + if narrow { 6.0 } else { 28.0 };
             let r = Rect::new(12.0, top + i as f32 * (ui::TOUCH + 6.0), bw, ui::TOUCH);
-            let label = format!("Shot {} · {k} off", n + 1);
+            let label = t!("replay-best-shot", shot = n + 1, off = k);
             if ui.button(&format!("best-{i}"), &label, r) {
                 self.t = l.timeline.start(n);
                 self.speed = highlight::SLOW;
@@ -328,8 +354,12 @@ impl Screen for Replay {
         if ui.button("previous-shot", "|<", next(44.0)) {
             self.t = l.timeline.previous_shot(self.t);
         }
-        let label = if self.playing { "Pause" } else { "Play" };
-        if ui.button("play-pause", label, next(80.0)) {
+        let label = if self.playing {
+            t!("replay-pause")
+        } else {
+            t!("replay-play")
+        };
+        if ui.button("play-pause", &label, next(80.0)) {
             if !self.playing && self.speed > 0.0 && self.t >= l.timeline.total() {
                 self.t = 0.0;
             }
@@ -340,7 +370,11 @@ impl Screen for Replay {
         }
         let clock = next(0.0);
         ui::text(
-            &format!("{:.1} / {:.1} s", self.t, l.timeline.total()),
+            &t!(
+                "replay-clock",
+                at = format!("{:.1}", self.t),
+                total = format!("{:.1}", l.timeline.total())
+            ),
             clock.x + 4.0,
             y + 13.0,
             17.0,

@@ -6,6 +6,7 @@
 
 use crate::account::{self, Account};
 use crate::api::{Api, Created, Pending, Profile};
+use crate::i18n::t;
 use crate::platform;
 use crate::route::Route;
 use crate::screen::Screen;
@@ -91,17 +92,17 @@ impl SignIn {
             self.message = Some(account::name_rule());
         } else if self.creating.is_none() {
             self.creating = Some(self.api.create_account(&name));
-            self.message = Some("creating the account...".into());
+            self.message = Some(t!("account-creating"));
         }
     }
 
     fn use_key(&mut self) {
         let key = self.key.trim().to_string();
         if key.is_empty() {
-            self.message = Some("paste the key exported from another browser".into());
+            self.message = Some(t!("account-paste-key-first"));
         } else if self.checking.is_none() {
             self.checking = Some((self.api.me(&key), key));
-            self.message = Some("checking the key...".into());
+            self.message = Some(t!("account-checking-key"));
         }
     }
 
@@ -109,7 +110,13 @@ impl SignIn {
     fn signed_out(&mut self, ui: &mut Ui, x0: f32, col: f32, mut y: f32) {
         let gap = 8.0;
         let bw = 112.0;
-        ui::text("A new account", x0, y, 19.0, colors::ACCENT);
+        ui::text(
+            &ui::fit(&t!("account-new"), 19.0, col),
+            x0,
+            y,
+            19.0,
+            colors::ACCENT,
+        );
         y += 26.0;
         ui::text(
             &ui::fit(&account::name_hint(), 14.0, col),
@@ -124,22 +131,38 @@ impl SignIn {
             "account-name",
             &mut self.name,
             field,
-            "your name",
+            &t!("account-name-placeholder"),
             account::MAX_NAME,
         );
         let ok = account::valid_name(self.name.trim());
         let b = Rect::new(x0 + col - bw, y, bw, ui::TOUCH);
-        if (ui.button_styled("account-create", "Create", b, ok, false) || entered) && ok {
+        if (ui.button_styled("account-create", &t!("account-create"), b, ok, false) || entered)
+            && ok
+        {
             self.create();
         }
         y += ui::TOUCH + 28.0;
-        ui::text("Or a key from another browser", x0, y, 19.0, colors::ACCENT);
+        ui::text(
+            &ui::fit(&t!("account-key-heading"), 19.0, col),
+            x0,
+            y,
+            19.0,
+            colors::ACCENT,
+        );
         y += 30.0;
         let field = Rect::new(x0, y, col - bw - gap, ui::TOUCH);
-        let entered = ui.text_field("account-key", &mut self.key, field, "paste the key", 200);
+        let entered = ui.text_field(
+            "account-key",
+            &mut self.key,
+            field,
+            &t!("account-key-placeholder"),
+            200,
+        );
         let ok = !self.key.trim().is_empty();
         let b = Rect::new(x0 + col - bw, y, bw, ui::TOUCH);
-        if (ui.button_styled("account-use-key", "Use key", b, ok, false) || entered) && ok {
+        if (ui.button_styled("account-use-key", &t!("account-use-key"), b, ok, false) || entered)
+            && ok
+        {
             self.use_key();
         }
     }
@@ -155,7 +178,11 @@ impl SignIn {
     ) -> Option<Route> {
         let gap = 8.0;
         ui::text(
-            &ui::fit(&format!("Signed in as {}", a.name), 19.0, col),
+            &ui::fit(
+                &t!("account-signed-in-as", name = a.name.as_str()),
+                19.0,
+                col,
+            ),
             x0,
             y,
             19.0,
@@ -163,34 +190,38 @@ impl SignIn {
         );
         y += 28.0;
         let rating = match &self.profile {
-            Some(p) => format!(
-                "rating {} · {}",
-                account::profile_rating(p),
-                crate::story::count(p.games, "rated game")
+            Some(p) => t!(
+                "account-rating",
+                rating = account::profile_rating(p),
+                games = p.games
             ),
-            None => "rating —".to_string(),
+            None => t!("account-rating-unknown"),
         };
         ui::text(&ui::fit(&rating, 16.0, col), x0, y, 16.0, colors::TEXT);
         y += 30.0;
         let bw = (col - 2.0 * gap) / 3.0;
         let mut go = None;
-        if ui.button("account-page", "My page", Rect::new(x0, y, bw, ui::TOUCH)) {
+        if ui.button(
+            "account-page",
+            &t!("account-my-page"),
+            Rect::new(x0, y, bw, ui::TOUCH),
+        ) {
             go = Some(Route::Account {
                 name: a.name.clone(),
             });
         }
         if ui.button(
             "export-key",
-            "Export key",
+            &t!("account-export-key"),
             Rect::new(x0 + bw + gap, y, bw, ui::TOUCH),
         ) {
             platform::copy_text(&a.key);
             self.exported = true;
-            self.message = Some("the key is copied; keep it secret".into());
+            self.message = Some(t!("account-key-copied"));
         }
         if ui.button(
             "sign-out",
-            "Sign out",
+            &t!("sign-out"),
             Rect::new(x0 + 2.0 * (bw + gap), y, bw, ui::TOUCH),
         ) {
             account::sign_out();
@@ -199,7 +230,7 @@ impl SignIn {
         y += ui::TOUCH + 16.0;
         if self.exported {
             ui::text(
-                &ui::fit("Your key (paste it to sign in elsewhere):", 14.0, col),
+                &ui::fit(&t!("account-your-key"), 14.0, col),
                 x0,
                 y,
                 14.0,
@@ -228,10 +259,17 @@ impl Screen for SignIn {
         let col = (w - 2.0 * pad).min(560.0);
         let x0 = (w - col) / 2.0;
         let mut y = 12.0;
-        if ui.button("lobby", "Lobby", Rect::new(x0, y, 96.0, ui::TOUCH)) {
+        if ui.button("lobby", &t!("lobby"), Rect::new(x0, y, 96.0, ui::TOUCH)) {
             go = Some(Route::Lobby);
         }
-        ui::text("Your account", x0 + 112.0, y + 9.0, 24.0, colors::ACCENT);
+        ui::text(
+            &t!("account-title"),
+            x0 + 112.0,
+            y + 9.0,
+            24.0,
+            colors::ACCENT,
+        );
+        crate::i18n::switch_top(ui, x0 + col, y);
         y += ui::TOUCH + 24.0;
         match self.account.clone() {
             Some(a) => {

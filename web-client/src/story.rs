@@ -3,26 +3,23 @@
 //! (rounds won by each side, shots played), both from the shots'
 //! announced outcomes alone.
 
+use crate::i18n::t;
 use game::{Next, RoundResult, ShotOutcome, Side};
 
-/// The side's name for people.
-pub fn side_name(s: Side) -> &'static str {
+/// The side's name for people ("White", "Белые").
+pub fn side_name(s: Side) -> String {
     match s {
-        Side::White => "White",
-        Side::Black => "Black",
+        Side::White => t!("side-white"),
+        Side::Black => t!("side-black"),
     }
 }
 
-/// "1 shot", "2 shots".
-pub fn count(n: impl Into<u64>, noun: &str) -> String {
-    match n.into() {
-        1 => format!("1 {noun}"),
-        n => format!("{n} {noun}s"),
+/// The side as the messages' selectors name it (`white`, `black`).
+pub fn side_key(s: Side) -> &'static str {
+    match s {
+        Side::White => "white",
+        Side::Black => "black",
     }
-}
-
-fn pieces(n: usize) -> String {
-    count(n as u64, "piece")
 }
 
 /// One line about a shot, told to the player of `me` (`None`: a spectator).
@@ -32,9 +29,9 @@ fn pieces(n: usize) -> String {
 pub fn shot_line(o: &ShotOutcome, me: Option<Side>, goes_on: bool) -> String {
     let mine = me == Some(o.shooter);
     let who = if mine {
-        "You".to_string()
+        t!("shot-who-you")
     } else {
-        side_name(o.shooter).to_string()
+        side_name(o.shooter)
     };
     let theirs = o
         .knocked_off
@@ -43,28 +40,31 @@ pub fn shot_line(o: &ShotOutcome, me: Option<Side>, goes_on: bool) -> String {
         .count();
     let own = o.knocked_off.len() - theirs;
     let mut line = match (theirs, own) {
-        (0, 0) => format!("{who}: nothing fell"),
-        (t, 0) => format!("{who} knocked off {}", pieces(t)),
-        (0, l) => format!("{who} lost {}", pieces(l)),
-        (t, l) => format!("{who} knocked off {}, lost {l}", pieces(t)),
+        (0, 0) => t!("shot-nothing", who = who),
+        (t, 0) => t!("shot-knocked", who = who, taken = t),
+        (0, l) => t!("shot-lost", who = who, lost = l),
+        (t, l) => t!("shot-knocked-lost", who = who, taken = t, lost = l),
     };
     let next = match (o.round_end.map(|r| r.result), o.next) {
-        (_, Next::MatchOver { .. }) => " — the match is over".to_string(),
-        (Some(RoundResult::Won(s)), _) if me == Some(s) => " — you won the round".to_string(),
-        (Some(RoundResult::Won(s)), _) => format!(" — {} won the round", side_name(s)),
-        (Some(RoundResult::Draw), _) => " — the round is drawn".to_string(),
+        (_, Next::MatchOver { .. }) => Some(t!("shot-then-match-over")),
+        (Some(RoundResult::Won(s)), _) if me == Some(s) => Some(t!("shot-then-you-won-round")),
+        (Some(RoundResult::Won(s)), _) => Some(t!("shot-then-side-won-round", side = side_key(s))),
+        (Some(RoundResult::Draw), _) => Some(t!("shot-then-round-drawn")),
         (None, Next::Shoot { side }) | (None, Next::PieDecision { then: side })
             if side == o.shooter && goes_on =>
         {
             if mine {
-                " — shoot again".to_string()
+                Some(t!("shot-then-you-again"))
             } else {
-                " — shoots again".to_string()
+                Some(t!("shot-then-again"))
             }
         }
-        (None, _) => String::new(),
+        (None, _) => None,
     };
-    line.push_str(&next);
+    if let Some(next) = next {
+        line.push_str(" — ");
+        line.push_str(&next);
+    }
     line
 }
 
@@ -95,12 +95,14 @@ impl Score {
 
     /// "Rounds: White 2 · Black 1" (and the drawn ones, if any).
     pub fn rounds_line(&self) -> String {
-        let mut l = format!(
-            "Rounds won: White {} · Black {}",
-            self.white_rounds, self.black_rounds
+        let mut l = t!(
+            "score-rounds-won",
+            white = self.white_rounds,
+            black = self.black_rounds
         );
         if self.drawn_rounds > 0 {
-            l.push_str(&format!(" · drawn {}", self.drawn_rounds));
+            l.push_str(" · ");
+            l.push_str(&t!("score-rounds-drawn", drawn = self.drawn_rounds));
         }
         l
     }

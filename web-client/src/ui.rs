@@ -7,8 +7,8 @@
 //! remembered by name with its rectangle, so the app can tell whether the
 //! pointer is over a control and publish the layout to the browser test.
 //!
-//! Text is drawn in DejaVu Sans (a subset of Latin-1 and a little
-//! punctuation, about 17 kB, embedded): macroquad's own pixel font has a
+//! Text is drawn in DejaVu Sans (a subset of Latin-1, Russian Cyrillic
+//! and a little punctuation, about 22 kB, embedded): macroquad's own pixel font has a
 //! dotted zero that reads as an eight. Sizes are layout units; the glyphs
 //! are rasterised at the size they finally take on the screen.
 
@@ -207,6 +207,10 @@ pub struct Ui {
     press_at: Option<Vec2>,
     /// Buttons drawn this frame, by name.
     buttons: BTreeMap<String, Rect>,
+    /// The labels of the buttons drawn this frame, by name.
+    labels: BTreeMap<String, String>,
+    /// The buttons whose label did not fit whole this frame.
+    cut: std::collections::BTreeSet<String>,
     /// The text field with the keyboard focus.
     focus: Option<String>,
     /// Whether a widget took this frame's press.
@@ -238,6 +242,18 @@ pub fn text_width(s: &str, size: f32) -> f32 {
     measure(s, size).width
 }
 
+/// Draws `s` at `(x, y)` in at most `width` units: at `size`, smaller
+/// (down to 12 units) where it is too wide, and cut with an ellipsis only
+/// below that.
+pub fn text_in(s: &str, x: f32, y: f32, size: f32, width: f32, color: Color) {
+    let mut sz = size;
+    while sz > 12.0 && text_width(s, sz) > width {
+        sz -= 1.0;
+    }
+    // The smaller text stays on the line the full size would take.
+    text(&fit(s, sz, width), x, y + (size - sz) * 0.5, sz, color);
+}
+
 /// `s` cut (with an ellipsis) to at most `width` units at `size`.
 pub fn fit(s: &str, size: f32, width: f32) -> String {
     if text_width(s, size) <= width {
@@ -254,6 +270,49 @@ pub fn fit(s: &str, size: f32, width: f32) -> String {
     String::new()
 }
 
+/// The words of `label` in two lines as even as can be, split at a space.
+pub fn split_in_two(label: &str) -> Option<(&str, &str)> {
+    let half = label.chars().count() / 2;
+    label
+        .char_indices()
+        .filter(|(_, c)| *c == ' ')
+        .min_by_key(|(i, _)| label[..*i].chars().count().abs_diff(half))
+        .map(|(i, _)| (label[..i].trim_end(), label[i + 1..].trim_start()))
+}
+
+/// Draws a button's `label` in `r`: one line, smaller as needed down to
+/// 12 units; a label still too wide takes two lines where the button is
+/// finger-tall; whatever is left too wide ends with an ellipsis, so no
+/// label ever runs past its button. Whether the label shows whole.
+fn label_in(label: &str, r: Rect, color: Color) -> bool {
+    // A narrow button (the sandbox's speeds on a phone) keeps less margin.
+    let room = r.w - if r.w < 60.0 { 4.0 } else { 10.0 };
+    let fits = |s: &str, size: f32| text_width(s, size) <= room;
+    let mut size = (r.h * 0.45).clamp(12.0, 20.0);
+    while size > 12.0 && !fits(label, size) {
+        size -= 1.0;
+    }
+    if !fits(label, size) && r.h >= 40.0 {
+        if let Some((a, b)) = split_in_two(label) {
+            let mut small = (r.h * 0.34).clamp(10.0, 16.0);
+            while small > 10.0 && !(fits(a, small) && fits(b, small)) {
+                small -= 1.0;
+            }
+            let line = small * 1.1;
+            let top = Rect::new(r.x, r.y + r.h / 2.0 - line, r.w, line);
+            let bottom = Rect::new(r.x, r.y + r.h / 2.0, r.w, line);
+            text_centred(&fit(a, small, room), top, small, color);
+            text_centred(&fit(b, small, room), bottom, small, color);
+            return fits(a, small) && fits(b, small);
+        }
+    }
+    while size > 10.0 && !fits(label, size) {
+        size -= 1.0;
+    }
+    text_centred(&fit(label, size, room), r, size, color);
+    fits(label, size)
+}
+
 /// Draws a rounded-looking panel.
 pub fn panel(r: Rect) {
     draw_rectangle(r.x, r.y, r.w, r.h, colors::PANEL);
@@ -268,6 +327,8 @@ impl Ui {
         }
         self.input = input;
         self.buttons.clear();
+        self.labels.clear();
+        self.cut.clear();
         self.captured = false;
         // Native inputs not laid over a field last frame go away.
         platform::field_sweep();
@@ -309,6 +370,21 @@ impl Ui {
         )
     }
 
+    /// The labels of the buttons drawn this frame, as `{"name": "label"}`.
+    pub fn labels(&self) -> serde_json::Value {
+        serde_json::Value::Object(
+            self.labels
+                .iter()
+                .map(|(k, v)| (k.clone(), v.clone().into()))
+                .collect(),
+        )
+    }
+
+    /// The names of the buttons whose label was cut this frame.
+    pub fn cut(&self) -> serde_json::Value {
+        self.cut.iter().cloned().collect::<Vec<_>>().into()
+    }
+
     /// A button; `true` on the frame it is clicked.
     pub fn button(&mut self, name: &str, label: &str, r: Rect) -> bool {
         self.button_styled(name, label, r, true, false)
@@ -338,10 +414,6 @@ impl Ui {
         draw_rectangle(r.x, r.y + 2.0, r.w, r.h, Color::new(0.0, 0.0, 0.0, 0.35));
         draw_rectangle(r.x, r.y, r.w, r.h, color);
         draw_rectangle_lines(r.x, r.y, r.w, r.h, 1.0, Color::new(1.0, 0.9, 0.7, 0.25));
-        let mut size = (r.h * 0.45).clamp(12.0, 20.0);
-        while size > 10.0 && text_width(label, size) > r.w - 10.0 {
-            size -= 1.0;
-        }
         let tc = if !enabled {
             colors::MUTED
         } else if selected || held {
@@ -349,7 +421,10 @@ impl Ui {
         } else {
             colors::TEXT
         };
-        text_centred(label, r, size, tc);
+        self.labels.insert(name.to_string(), label.to_string());
+        if !label_in(label, r, tc) {
+            self.cut.insert(name.to_string());
+        }
         if hot && self.input.pressed {
             self.captured = true;
         }
@@ -453,6 +528,19 @@ mod tests {
 
     fn chars(s: &str) -> Vec<Typed> {
         s.chars().map(Typed::Char).collect()
+    }
+
+    #[test]
+    fn a_long_label_splits_at_the_space_nearest_its_middle() {
+        assert_eq!(
+            split_in_two("Компьютер: адаптивный"),
+            Some(("Компьютер:", "адаптивный"))
+        );
+        assert_eq!(
+            split_in_two("Play the computer (adaptive)"),
+            Some(("Play the computer", "(adaptive)"))
+        );
+        assert_eq!(split_in_two("Лидеры"), None);
     }
 
     #[test]

@@ -26,6 +26,8 @@ pub struct Layout {
     pub title_y: f32,
     /// The rules button beside the title.
     pub help: Rect,
+    /// The language switch beside the rules button.
+    pub lang: Rect,
     /// The logo's checkers' radius.
     pub logo: f32,
     /// The account row's top and the width of its label.
@@ -57,6 +59,11 @@ pub fn layout(w: f32, h: f32, message: bool) -> Layout {
         Rect::new(x0 + col - 84.0, title_y + 2.0, 84.0, row)
     } else {
         Rect::new(x0 + col - 150.0, title_y + 4.0, 150.0, row)
+    };
+    let lang = if narrow {
+        Rect::new(help.x - GAP - 48.0, help.y, 48.0, row)
+    } else {
+        Rect::new(help.x - GAP - 110.0, help.y, 110.0, row)
     };
     let logo = if narrow { 14.0 } else { 20.0 };
     let account_y = title_y + if narrow { 62.0 } else { 86.0 };
@@ -104,6 +111,7 @@ pub fn layout(w: f32, h: f32, message: bool) -> Layout {
         narrow,
         title_y,
         help,
+        lang,
         logo,
         account_y,
         label_w,
@@ -135,7 +143,7 @@ mod tests {
     }
 
     fn all(l: &Layout) -> Vec<Rect> {
-        let mut v = vec![l.help, l.join_field, l.join];
+        let mut v = vec![l.help, l.lang, l.join_field, l.join];
         v.extend(l.choices);
         v.extend(l.lists);
         v

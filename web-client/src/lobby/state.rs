@@ -8,6 +8,7 @@
 
 use crate::account::{self, Account};
 use crate::api::{Profile, SeatGrant, Summary};
+use crate::i18n::t;
 use game::Side;
 
 /// Seconds between refreshes of the match lists.
@@ -17,8 +18,9 @@ const REFRESH_SECONDS: f64 = 5.0;
 pub struct MatchList {
     /// The server's name for it (`open`, `live`, `finished`).
     pub status: &'static str,
+    /// The message id of its title.
     pub title: &'static str,
-    /// Its rows' button.
+    /// The message id of its rows' button.
     pub action: &'static str,
     /// The matches last listed.
     pub items: Vec<Summary>,
@@ -59,9 +61,9 @@ impl LobbyState {
             name,
             join_id: String::new(),
             lists: [
-                list("open", "Waiting for an opponent", "Join"),
-                list("live", "Being played", "Watch"),
-                list("finished", "Finished", "Replay"),
+                list("open", "lobby-list-open", "join"),
+                list("live", "lobby-list-live", "watch"),
+                list("finished", "lobby-list-finished", "replay"),
             ],
             refreshed: f64::NEG_INFINITY,
             now: 0.0,
@@ -115,7 +117,7 @@ impl LobbyState {
             Ok(profile) => self.profile = Some(profile),
             Err(e) if refused => {
                 self.account = None;
-                self.message = Some(format!("signed out: {e}"));
+                self.message = Some(t!("signed-out-because", reason = e));
                 return true;
             }
             Err(e) => self.message = Some(e),
@@ -125,7 +127,7 @@ impl LobbyState {
 
     /// A new match was asked for.
     pub fn creating(&mut self) {
-        self.message = Some("creating the match...".into());
+        self.message = Some(t!("lobby-creating"));
     }
 
     /// The server answered the new match: its seat, or a message.
@@ -166,7 +168,7 @@ pub fn clean_name(n: &str) -> String {
         .take(40)
         .collect();
     if n.is_empty() {
-        "Player".to_string()
+        t!("player-default-name")
     } else {
         n
     }
@@ -181,7 +183,7 @@ pub fn describe(s: &Summary) -> (String, String) {
         Some((a, b)) => (Some(a), b),
         None => (None, b),
     });
-    let computer = |level: &str| format!("computer ({level})");
+    let computer = |level: &str| t!("computer-level", level = level_name(level));
     let first = match levels {
         Some((Some(level), _)) => account::with_rating(&computer(level), s.first_rating),
         _ => account::with_rating(s.first.as_deref().unwrap_or("?"), s.first_rating),
@@ -195,22 +197,37 @@ pub fn describe(s: &Summary) -> (String, String) {
     };
     let mut facts = Vec::new();
     if s.rated {
-        facts.push("rated".to_string());
+        facts.push(t!("lobby-fact-rated"));
     }
     if !s.playable {
-        facts.push("not playable here".to_string());
+        facts.push(t!("lobby-fact-not-playable"));
     }
     match s.result {
         Some(r) => match r.winner() {
-            Some(Side::White) => facts.push("White won".to_string()),
-            Some(Side::Black) => facts.push("Black won".to_string()),
-            None => facts.push("drawn".to_string()),
+            Some(Side::White) => facts.push(t!("lobby-fact-white-won")),
+            Some(Side::Black) => facts.push(t!("lobby-fact-black-won")),
+            None => facts.push(t!("lobby-fact-drawn")),
         },
-        None if s.second.is_none() && s.bot.is_none() => facts.push("waiting".to_string()),
+        None if s.second.is_none() && s.bot.is_none() => facts.push(t!("lobby-fact-waiting")),
         None => {}
     }
-    facts.push(crate::story::count(s.shots, "shot"));
-    (format!("{first} vs {second}"), facts.join(" · "))
+    facts.push(t!("shots-count", count = s.shots));
+    (
+        t!("lobby-versus", first = first, second = second),
+        facts.join(" · "),
+    )
+}
+
+/// The computer's level (`easy`, `medium`, `hard`, `adaptive`) in words;
+/// a level this client does not know shows as the server named it.
+pub fn level_name(level: &str) -> String {
+    match level {
+        "easy" => t!("level-easy"),
+        "medium" => t!("level-medium"),
+        "hard" => t!("level-hard"),
+        "adaptive" => t!("level-adaptive"),
+        other => other.to_string(),
+    }
 }
 
 /// Whether a match in the list of `status` gets its button: a match this

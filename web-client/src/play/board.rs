@@ -8,6 +8,7 @@ use super::layout::meter_rect;
 use crate::aim::{self, Aim, Slingshot};
 use crate::clip::Frame;
 use crate::draw;
+use crate::i18n::t;
 use crate::ui::{self, colors, Ui};
 use crate::viewport::Viewport;
 use ::glam::DVec2;
@@ -102,7 +103,12 @@ pub fn show(
             msg.h,
             Color::new(0.0, 0.0, 0.0, 0.6 * k),
         );
-        ui::text_centred("Your turn", msg, 24.0, Color::new(0.55, 0.95, 0.5, k));
+        ui::text_centred(
+            &t!("board-your-turn"),
+            msg,
+            24.0,
+            Color::new(0.55, 0.95, 0.5, k),
+        );
     }
     Shown {
         viewport: vp,
@@ -203,11 +209,11 @@ pub fn sling(
             );
         }
         Aim::Cancel => {
-            let msg = "release here to cancel";
-            let tw = ui::text_width(msg, 16.0);
+            let msg = t!("board-release-to-cancel");
+            let tw = ui::text_width(&msg, 16.0);
             let x = (p.x + 14.0).min(window.x - tw - 6.0).max(4.0);
             let y = (p.y - 30.0).clamp(4.0, window.y - 24.0);
-            ui::text(msg, x, y, 16.0, colors::MUTED);
+            ui::text(&msg, x, y, 16.0, colors::MUTED);
         }
     }
     if ui.input.released || !ui.input.down {

@@ -4,7 +4,8 @@
 //! drawing ([`words`]); its places come from [`super::layout::end_screen`].
 
 use super::layout;
-use crate::story::{self, side_name, Score};
+use crate::i18n::t;
+use crate::story::{side_key, side_name, Score};
 use crate::ui::{self, colors, Ui};
 use game::{MatchResult, MatchView, Side, WinReason};
 use macroquad::prelude::{draw_rectangle, Color, Rect};
@@ -22,10 +23,10 @@ pub struct Words {
 /// The end screen's words for `result`, seen from `me`'s side.
 pub fn words(result: MatchResult, me: Option<Side>, score: &Score, v: &MatchView) -> Words {
     let (title, color) = match (result.winner(), me) {
-        (None, _) => ("Drawn".to_string(), colors::TEXT),
-        (Some(wn), Some(me)) if wn == me => ("You won!".to_string(), colors::GOOD),
-        (Some(_), Some(_)) => ("You lost".to_string(), colors::DANGER),
-        (Some(wn), None) => (format!("{} won", side_name(wn)), colors::ACCENT),
+        (None, _) => (t!("end-drawn"), colors::TEXT),
+        (Some(wn), Some(me)) if wn == me => (t!("end-you-won"), colors::GOOD),
+        (Some(_), Some(_)) => (t!("end-you-lost"), colors::DANGER),
+        (Some(wn), None) => (t!("end-side-won", side = side_key(wn)), colors::ACCENT),
     };
     Words {
         title,
@@ -34,8 +35,8 @@ pub fn words(result: MatchResult, me: Option<Side>, score: &Score, v: &MatchView
         rounds: score.rounds_line(),
         counts: format!(
             "{} · {}",
-            story::count(v.shots, "shot"),
-            story::count(v.round, "round")
+            t!("shots-count", count = v.shots),
+            t!("rounds-count", count = v.round)
         ),
     }
 }
@@ -43,16 +44,16 @@ pub fn words(result: MatchResult, me: Option<Side>, score: &Score, v: &MatchView
 /// How the match was decided, in words.
 pub fn reason(r: MatchResult) -> String {
     match r {
-        MatchResult::Draw => "Both sides' last pieces fell together".to_string(),
+        MatchResult::Draw => t!("end-reason-draw"),
         MatchResult::Won { side, reason } => {
-            let how = match reason {
-                WinReason::FarEdge => "reached the far edge",
-                WinReason::QuickMatch => "won the round",
-                WinReason::Resignation => "won by resignation",
-                WinReason::Timeouts => "won: the other side ran out of time three times",
-                WinReason::Abandoned => "won: the other side left",
-            };
-            format!("{} {how}", side_name(side))
+            let side = side_name(side);
+            match reason {
+                WinReason::FarEdge => t!("end-reason-far-edge", side = side),
+                WinReason::QuickMatch => t!("end-reason-quick", side = side),
+                WinReason::Resignation => t!("end-reason-resignation", side = side),
+                WinReason::Timeouts => t!("end-reason-timeouts", side = side),
+                WinReason::Abandoned => t!("end-reason-abandoned", side = side),
+            }
         }
     }
 }
@@ -76,7 +77,13 @@ pub fn show(
         Color::new(0.0, 0.0, 0.0, 0.45),
     );
     ui::panel(r);
-    ui::text(&w.title, l.x, r.y + 14.0, 30.0, w.color);
+    ui::text(
+        &ui::fit(&w.title, 30.0, l.w),
+        l.x,
+        r.y + 14.0,
+        30.0,
+        w.color,
+    );
     ui::text(
         &ui::fit(&w.reason, 15.0, l.w),
         l.x,
@@ -91,17 +98,23 @@ pub fn show(
         17.0,
         colors::TEXT,
     );
-    ui::text(&w.counts, l.x, r.y + 104.0, 17.0, colors::TEXT);
+    ui::text(
+        &ui::fit(&w.counts, 17.0, l.w),
+        l.x,
+        r.y + 104.0,
+        17.0,
+        colors::TEXT,
+    );
     let mut pressed = Vec::new();
     if let (Some((label, enabled)), Some(b)) = (rematch, l.rematch) {
         if ui.button_styled("end-rematch", label, b, enabled, false) {
             pressed.push("end-rematch");
         }
     }
-    if ui.button("end-replay", "Replay", l.replay) {
+    if ui.button("end-replay", &t!("replay"), l.replay) {
         pressed.push("end-replay");
     }
-    if ui.button("end-close", "Close", l.close) {
+    if ui.button("end-close", &t!("close"), l.close) {
         pressed.push("end-close");
     }
     pressed

@@ -15,7 +15,8 @@
 use super::layout::{self, PanelLayout, PanelSpec};
 use super::state::{MatchState, LOG_LINES};
 use crate::draw;
-use crate::story::{self, side_name};
+use crate::i18n::t;
+use crate::story::{side_key, side_name};
 use crate::ui::{self, colors, Ui};
 use game::protocol::MAX_CHAT_CHARS;
 use game::{MatchResult, Phase, Seat, Side, WinReason};
@@ -148,16 +149,16 @@ impl Content {
 pub fn content(s: &MatchState, cx: &Context) -> Content {
     let compact = cx.compact;
     let role = match s.my_side() {
-        Some(side) => format!("You play {}", side_name(side)),
-        None => "Watching".to_string(),
+        Some(side) => t!("play-you-play", side = side_key(side)),
+        None => t!("play-watching"),
     };
     let mut head = Vec::new();
     if compact {
         head.push(line(format!("{role} · {}", cx.link.0), 15.0, cx.link.1));
     } else {
-        head.push(line("Chapaev", 26.0, colors::ACCENT));
+        head.push(line(t!("play-heading"), 26.0, colors::ACCENT));
         head.push(line(
-            format!("{role} · match {}", cx.match_id),
+            t!("play-role-match", role = role, id = cx.match_id),
             15.0,
             colors::MUTED,
         ));
@@ -169,7 +170,7 @@ pub fn content(s: &MatchState, cx: &Context) -> Content {
             players: None,
             body: Vec::new(),
             hints: Vec::new(),
-            buttons: vec![button(Slot::Lobby, "lobby", "Back to the lobby", true)],
+            buttons: vec![button(Slot::Lobby, "lobby", t!("play-back-to-lobby"), true)],
             log: Vec::new(),
             log_lines: 0,
             chat_field: false,
@@ -177,12 +178,16 @@ pub fn content(s: &MatchState, cx: &Context) -> Content {
     };
     let player = |side: Side| {
         let seat = Seat::of(side, v.swapped);
-        let you = if Some(seat) == s.you { " (you)" } else { "" };
+        let you = Some(seat) == s.you;
         // Rows count from the side's own edge.
         let rank = v.rows.rank(side);
         Player {
             side,
-            name: format!("{}{you}", s.name_of(seat)),
+            name: if you {
+                t!("play-name-you", name = s.name_of(seat))
+            } else {
+                s.name_of(seat)
+            },
             // Counted on the board at rest: a shot's losses show once
             // its film has run.
             left: v
@@ -206,20 +211,20 @@ pub fn content(s: &MatchState, cx: &Context) -> Content {
     let busy = s.busy();
     let mut body = Vec::new();
     let shots = if over && !busy {
-        format!("Round {} · {}", v.round, story::count(v.shots, "shot"))
+        t!("play-round-shots", round = v.round, shots = v.shots)
     } else {
-        format!("Round {} · shot {}", v.round, v.shots + 1)
+        t!("play-round-shot", round = v.round, shot = v.shots + 1)
     };
     body.push(line(shots, 16.0, colors::TEXT));
     // Whose turn, and the clock.
     let status = match v.phase {
         Phase::Over { result } => result_text(result, s.my_side()),
-        Phase::PieDecision => "Black decides: swap seats or not".to_string(),
-        Phase::Shooting if waiting => "Waiting for your friend to join".to_string(),
+        Phase::PieDecision => t!("play-pie-decides"),
+        Phase::Shooting if waiting => t!("play-waiting-friend"),
         Phase::Shooting if busy => "...".to_string(),
-        Phase::Shooting if s.awaiting => "shooting...".to_string(),
-        Phase::Shooting if cx.my_turn => "Your turn: drag back from a piece".to_string(),
-        Phase::Shooting => format!("{} to shoot", side_name(v.turn)),
+        Phase::Shooting if s.awaiting => t!("play-shooting"),
+        Phase::Shooting if cx.my_turn => t!("play-your-turn"),
+        Phase::Shooting => t!("play-side-to-shoot", side = side_key(v.turn)),
     };
     let status_color = if cx.my_turn {
         colors::GOOD
@@ -244,8 +249,8 @@ pub fn content(s: &MatchState, cx: &Context) -> Content {
     if !compact {
         // The clock's line is kept while there is no clock.
         let (text, color) = match &clock {
-            Some((c, true)) => (format!("clock {c}"), colors::DANGER),
-            Some((c, false)) => (format!("clock {c}"), colors::TEXT),
+            Some((c, true)) => (t!("play-clock", time = c.as_str()), colors::DANGER),
+            Some((c, false)) => (t!("play-clock", time = c.as_str()), colors::TEXT),
             None => (String::new(), colors::TEXT),
         };
         body.push(line(text, 16.0, color));
@@ -260,41 +265,55 @@ pub fn content(s: &MatchState, cx: &Context) -> Content {
         .collect();
     let mut hint = String::new();
     let mut buttons = Vec::new();
-    buttons.push(button(Slot::Lobby, "lobby", "Lobby", true));
-    buttons.push(button(Slot::Rules, "help", "Rules", true));
-    let sound = if cx.sound { "Sound: on" } else { "Sound: off" };
+    buttons.push(button(Slot::Lobby, "lobby", t!("lobby"), true));
+    buttons.push(button(Slot::Rules, "help", t!("rules-short"), true));
+    let sound = if cx.sound {
+        t!("play-sound-on")
+    } else {
+        t!("play-sound-off")
+    };
     buttons.push(button(Slot::Sound, "sound", sound, true));
     if s.you.is_some() && !over {
         // Pressed again while its question is open, Resign does nothing.
         let label = if cx.confirm_resign {
-            "Resign?"
+            t!("play-resign-asking")
         } else {
-            "Resign"
+            t!("play-resign")
         };
         buttons.push(button(Slot::Resign, "resign", label, !cx.confirm_resign));
     }
     if over {
-        buttons.push(button(Slot::Resign, "replay", "Watch the replay", true));
+        buttons.push(button(
+            Slot::Resign,
+            "replay",
+            t!("play-watch-replay"),
+            true,
+        ));
     }
     if over && s.you.is_some() {
         let (label, enabled) = s.rematch_label();
         buttons.push(button(Slot::Second, "rematch", label, enabled));
     } else if s.you.is_some() && cx.confirm_resign {
-        buttons.push(button(Slot::First, "resign-yes", "Really resign", true));
-        buttons.push(button(Slot::Second, "resign-no", "Play on", true));
-    } else if v.phase == Phase::PieDecision && s.my_side() == Some(Side::Black) {
-        // Pie rule: Black's seat decides.
-        buttons.push(button(Slot::First, "pie-swap", "Swap seats", true));
-        buttons.push(button(Slot::Second, "pie-keep", "Keep", true));
-    } else if waiting {
-        // Invite: a seat is empty.
-        hint = format!("Send your friend the link, or the id {}", cx.match_id);
         buttons.push(button(
             Slot::First,
-            "copy-link",
-            "Copy invitation link",
+            "resign-yes",
+            t!("play-resign-yes"),
             true,
         ));
+        buttons.push(button(
+            Slot::Second,
+            "resign-no",
+            t!("play-resign-no"),
+            true,
+        ));
+    } else if v.phase == Phase::PieDecision && s.my_side() == Some(Side::Black) {
+        // Pie rule: Black's seat decides.
+        buttons.push(button(Slot::First, "pie-swap", t!("play-pie-swap"), true));
+        buttons.push(button(Slot::Second, "pie-keep", t!("play-pie-keep"), true));
+    } else if waiting {
+        // Invite: a seat is empty.
+        hint = t!("play-invite-hint", id = cx.match_id);
+        buttons.push(button(Slot::First, "copy-link", t!("play-copy-link"), true));
     }
     buttons.sort_by_key(|b| b.slot);
     Content {
@@ -312,20 +331,26 @@ pub fn content(s: &MatchState, cx: &Context) -> Content {
 /// The result as the viewer reads it.
 pub fn result_text(r: MatchResult, me: Option<Side>) -> String {
     match r {
-        MatchResult::Draw => "Drawn".to_string(),
+        MatchResult::Draw => t!("end-drawn"),
         MatchResult::Won { side, reason } => {
             let how = match reason {
-                WinReason::FarEdge => "reached the far edge",
-                WinReason::QuickMatch => "won the round",
-                WinReason::Resignation => "wins by resignation",
-                WinReason::Timeouts => "wins: the other side ran out of time three times",
-                WinReason::Abandoned => "wins: the other side left",
+                WinReason::FarEdge => "far-edge",
+                WinReason::QuickMatch => "quick",
+                WinReason::Resignation => "resignation",
+                WinReason::Timeouts => "timeouts",
+                WinReason::Abandoned => "abandoned",
             };
-            match me {
-                Some(m) if m == side => format!("You won: {how}"),
-                Some(_) => format!("You lost: {} {how}", side_name(side)),
-                None => format!("{} {how}", side_name(side)),
-            }
+            let viewer = match me {
+                Some(m) if m == side => "won",
+                Some(_) => "lost",
+                None => "watching",
+            };
+            t!(
+                "play-result",
+                viewer = viewer,
+                side = side_name(side),
+                how = how
+            )
         }
     }
 }
@@ -370,7 +395,7 @@ pub fn show(ui: &mut Ui, area: Rect, c: &Content, chat: &[&String], draft: &mut 
         );
         ui::text(&count, r.x + r.w - cw, r.y, 18.0, colors::TEXT);
         ui::text(
-            &format!("row {} of 8", p.row),
+            &ui::fit(&t!("play-row-of", row = p.row), 13.0, r.w - 22.0),
             r.x + 22.0,
             r.y + 21.0,
             13.0,
@@ -400,8 +425,14 @@ pub fn show(ui: &mut Ui, area: Rect, c: &Content, chat: &[&String], draft: &mut 
         ui::text(&ui::fit(s, 14.0, r.w), r.x, r.y, 14.0, colors::TEXT);
     }
     if let Some((field, send)) = l.chat_field {
-        let entered = ui.text_field("chat", draft, field, "say something...", MAX_CHAT_CHARS);
-        let send = ui.button("chat-send", "Send", send);
+        let entered = ui.text_field(
+            "chat",
+            draft,
+            field,
+            &t!("play-chat-placeholder"),
+            MAX_CHAT_CHARS,
+        );
+        let send = ui.button("chat-send", &t!("play-chat-send"), send);
         if (entered || send) && !draft.trim().is_empty() {
             pressed.chat = Some(std::mem::take(draft));
         }

@@ -8,6 +8,7 @@
 
 use crate::clip::{Clip, Frame};
 use crate::highlight;
+use crate::i18n::t;
 use crate::platform::Sound;
 use crate::story::{self, Score};
 use game::protocol::{Players, ServerMessage};
@@ -73,7 +74,7 @@ impl MatchState {
             Seat::First => &self.players.first,
             Seat::Second => &self.players.second,
         };
-        n.clone().unwrap_or_else(|| "(waiting)".into())
+        n.clone().unwrap_or_else(|| t!("play-seat-waiting"))
     }
 
     /// Whether announcements are still being shown.
@@ -111,15 +112,15 @@ impl MatchState {
     }
 
     /// The rematch button's label, and whether it can be pressed.
-    pub fn rematch_label(&self) -> (&'static str, bool) {
+    pub fn rematch_label(&self) -> (String, bool) {
         let theirs = self.rematch_is_theirs();
         let mine = self.rematch_offer.is_some() && !theirs;
         if theirs {
-            ("Accept the rematch", true)
+            (t!("play-rematch-accept"), true)
         } else if mine {
-            ("Rematch offered...", false)
+            (t!("play-rematch-offered"), false)
         } else {
-            ("Offer a rematch", true)
+            (t!("play-rematch-offer"), true)
         }
     }
 
@@ -158,7 +159,7 @@ impl MatchState {
             ServerMessage::RematchOffered { by } => {
                 self.rematch_offer = Some(by);
                 if Some(by) != self.you {
-                    self.notify(format!("{} offers a rematch", self.name_of(by)));
+                    self.notify(t!("play-notice-rematch", name = self.name_of(by)));
                 }
             }
             ServerMessage::RematchStarted { match_id } => return Some(match_id),
@@ -177,18 +178,15 @@ impl MatchState {
                     Seat::First => self.players.first = Some(name.clone()),
                     Seat::Second => self.players.second = Some(name.clone()),
                 }
-                self.notify(format!("{name} joined"));
+                self.notify(t!("play-notice-joined", name = name));
             }
             ServerMessage::PlayerLeft { seat, grace_ms } => {
                 let n = self.name_of(seat);
-                self.notify(format!(
-                    "{n} lost the connection; the seat is kept for {} s",
-                    grace_ms / 1000
-                ));
+                self.notify(t!("play-notice-left", name = n, seconds = grace_ms / 1000));
             }
             ServerMessage::PlayerBack { seat } => {
                 let n = self.name_of(seat);
-                self.notify(format!("{n} is back"));
+                self.notify(t!("play-notice-back", name = n));
             }
             ServerMessage::Clock {
                 seat,
@@ -197,11 +195,11 @@ impl MatchState {
             } => self.clock = Some((seat, side, self.now + remaining_ms as f64 / 1000.0)),
             ServerMessage::TurnTimedOut { seat, strikes } => {
                 let n = self.name_of(seat);
-                self.notify(format!("{n} ran out of time ({strikes} of 3)"));
+                self.notify(t!("play-notice-timeout", name = n, strikes = strikes));
             }
             ServerMessage::Forfeited { seat, .. } => {
                 let n = self.name_of(seat);
-                self.notify(format!("{n} forfeited"));
+                self.notify(t!("play-notice-forfeited", name = n));
             }
             ServerMessage::Welcome { .. } | ServerMessage::MatchCreated { .. } => {}
         }
@@ -471,13 +469,13 @@ pub(crate) mod tests {
     #[test]
     fn the_rematch_button_offers_accepts_or_waits() {
         let mut s = seated(Some(Seat::First));
-        assert_eq!(s.rematch_label(), ("Offer a rematch", true));
+        assert_eq!(s.rematch_label(), ("Offer a rematch".into(), true));
         s.receive(ServerMessage::RematchOffered { by: Seat::First });
-        assert_eq!(s.rematch_label(), ("Rematch offered...", false));
+        assert_eq!(s.rematch_label(), ("Rematch offered...".into(), false));
         assert!(s.notice.is_none(), "one's own offer is not announced");
         let mut s = seated(Some(Seat::First));
         s.receive(ServerMessage::RematchOffered { by: Seat::Second });
-        assert_eq!(s.rematch_label(), ("Accept the rematch", true));
+        assert_eq!(s.rematch_label(), ("Accept the rematch".into(), true));
         assert!(s.rematch_is_theirs());
         assert_eq!(s.notice.unwrap().0, "Petka offers a rematch");
     }

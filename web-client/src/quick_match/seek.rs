@@ -6,6 +6,7 @@
 //! (it says hello and seeks once more: the server forgets a seek with its
 //! stream).
 
+use crate::i18n::t;
 use game::protocol::PROTOCOL_VERSION;
 use game::stream::{StreamClientMessage, StreamServerMessage};
 use game::token::SeatToken;
@@ -129,14 +130,15 @@ impl Seek {
     /// The wait in words: "Looking for an opponent (rated) · 0:12".
     pub fn status(&self) -> String {
         let kind = if self.rated { "rated" } else { "casual" };
+        let kind = t!("quick-kind", kind = kind);
         let secs = self.waited.max(0.0) as u64;
         let clock = format!("{}:{:02}", secs / 60, secs % 60);
         match &self.phase {
-            Phase::Connecting => format!("Connecting to the lobby ({kind}) · {clock}"),
-            Phase::Waiting => format!("Looking for an opponent ({kind}) · {clock}"),
-            Phase::Retrying { .. } => format!("Connection lost; trying again · {clock}"),
-            Phase::Paired { .. } => "Opponent found".to_string(),
-            Phase::Refused(why) => format!("No quick match: {why}"),
+            Phase::Connecting => t!("quick-connecting", kind = kind, clock = clock),
+            Phase::Waiting => t!("quick-looking", kind = kind, clock = clock),
+            Phase::Retrying { .. } => t!("quick-retrying", clock = clock),
+            Phase::Paired { .. } => t!("quick-found"),
+            Phase::Refused(why) => t!("quick-refused", why = why.as_str()),
         }
     }
 }

@@ -1,6 +1,7 @@
 //! The sandbox's controls, drawn where [`layout`] puts them and applied to
 //! the [`State`]: the toolbar (the lobby, the tools, walls or edges, the
-//! side panel's button on a phone, export and import), the side panel
+//! side panel's button on a phone, export and import, and the language
+//! switch where the row has room for it), the side panel
 //! (the presets, gravity, what new discs are made of, the selected body)
 //! and the playback bar (rewind, play, the speeds and the time slider).
 //! Every control is finger-sized.
@@ -11,6 +12,7 @@ use super::presets::{Kind, MAX_GALPERIN};
 use super::sim::SPEEDS;
 use super::state::State;
 use super::tools::{Tool, TOOLS};
+use crate::i18n::t;
 use crate::platform;
 use crate::route::Route;
 use crate::ui::{self, colors, Ui};
@@ -21,27 +23,34 @@ use macroquad::prelude::Rect;
 /// The toolbar in a window `w` wide; the route to take, if one was asked.
 pub fn toolbar(s: &mut State, ui: &mut Ui, w: f32, compact: bool) -> Option<Route> {
     // (name, label, selected), in the order of [`layout::toolbar`].
-    let mut items: Vec<(String, &str, bool)> = vec![("lobby".into(), "Lobby", false)];
+    let mut items: Vec<(String, String, bool)> = vec![("lobby".into(), t!("lobby"), false)];
     for tool in TOOLS {
         let label = match tool {
-            Tool::Select => "Select",
-            Tool::Velocity => "Velocity",
-            Tool::Disc => "Disc",
-            Tool::Point => "Point",
-            Tool::Line(LineKind::Line) => "Line",
-            Tool::Line(LineKind::Ray) => "Ray",
-            Tool::Line(LineKind::Segment) => "Segment",
-            Tool::Delete => "Delete",
+            Tool::Select => t!("sandbox-tool-select"),
+            Tool::Velocity => t!("sandbox-tool-velocity"),
+            Tool::Disc => t!("sandbox-tool-disc"),
+            Tool::Point => t!("sandbox-tool-point"),
+            Tool::Line(LineKind::Line) => t!("sandbox-tool-line"),
+            Tool::Line(LineKind::Ray) => t!("sandbox-tool-ray"),
+            Tool::Line(LineKind::Segment) => t!("sandbox-tool-segment"),
+            Tool::Delete => t!("sandbox-tool-delete"),
         };
         items.push((format!("tool-{}", tool.name()), label, s.tool == tool));
     }
-    let sensor = if s.sensor { "Edge" } else { "Wall" };
+    let sensor = if s.sensor {
+        t!("sandbox-edge")
+    } else {
+        t!("sandbox-wall")
+    };
     items.push(("sensor".into(), sensor, s.sensor));
     if compact {
-        items.push(("panel".into(), "Panel", s.panel_open));
+        items.push(("panel".into(), t!("sandbox-panel"), s.panel_open));
     }
-    items.push(("export".into(), "Export", false));
-    items.push(("import".into(), "Import", false));
+    items.push(("export".into(), t!("sandbox-export"), false));
+    items.push(("import".into(), t!("sandbox-import"), false));
+    if let Some(r) = layout::language(w, compact) {
+        crate::i18n::switch(ui, r, true);
+    }
     let mut go = None;
     for ((name, label, selected), r) in items.iter().zip(layout::toolbar(w, compact)) {
         if !ui.button_styled(name, label, r, true, *selected) {
@@ -56,7 +65,7 @@ pub fn toolbar(s: &mut State, ui: &mut Ui, w: f32, compact: bool) -> Option<Rout
                 s.await_file();
             }
             "export" => match platform::save_file("scene.json", &s.sim.export()) {
-                Ok(m) => s.say(format!("{m} (the scene at t = {} s)", num(s.sim.t)), false),
+                Ok(m) => s.say(t!("sandbox-exported", done = m, t = num(s.sim.t)), false),
                 Err(e) => s.say(e, true),
             },
             tool => {
@@ -71,13 +80,18 @@ pub fn toolbar(s: &mut State, ui: &mut Ui, w: f32, compact: bool) -> Option<Rout
 
 /// The material of new discs.
 fn new_disc_controls(s: &mut State, ui: &mut Ui, x: f32, d: NewDiscs) {
-    ui::text("New discs", x, d.heading, 15.0, colors::MUTED);
+    ui::text(&t!("sandbox-new-discs"), x, d.heading, 15.0, colors::MUTED);
     let t = s.template;
-    let radius = format!("radius {}", num(t.radius));
+    let radius = t!("sandbox-radius", value = num(t.radius));
     if let Some(f) = stepper(ui, "new-radius", &radius, d.radius) {
         s.template.radius = (t.radius * f).clamp(1e-4, 1e3);
     }
-    if let Some(f) = stepper(ui, "new-mass", &format!("mass {}", num(t.mass)), d.mass) {
+    if let Some(f) = stepper(
+        ui,
+        "new-mass",
+        &t!("sandbox-mass", value = num(t.mass)),
+        d.mass,
+    ) {
         s.template.mass = (t.mass * f * f).clamp(1e-6, 1e12);
     }
     s.template.mu = unit_slider(ui, "new-mu", "mu", t.mu, d.mu);
@@ -93,11 +107,11 @@ pub fn side_panel(s: &mut State, ui: &mut Ui, r: Rect, scene: &Scene) {
     let x = top.x;
     let heading = |t: &str, y: f32| ui::text(t, x, y, 17.0, colors::ACCENT);
 
-    heading("Presets", top.presets);
+    heading(&t!("sandbox-presets"), top.presets);
     let n = s.galperin_n;
     if ui.button_styled(
         "preset-galperin",
-        &format!("Galperin n={n}"),
+        &t!("sandbox-galperin", n = n),
         top.galperin,
         true,
         s.kind == Kind::Galperin(n),
@@ -119,27 +133,32 @@ pub fn side_panel(s: &mut State, ui: &mut Ui, r: Rect, scene: &Scene) {
     let presets = [
         (
             "preset-brownian",
-            "Brownian box",
+            t!("sandbox-brownian"),
             top.brownian,
             Kind::Brownian,
         ),
-        ("preset-break", "Chapaev break", top.chapaev, Kind::Break),
-        ("preset-empty", "Empty table", top.empty, Kind::Empty),
+        (
+            "preset-break",
+            t!("sandbox-break"),
+            top.chapaev,
+            Kind::Break,
+        ),
+        ("preset-empty", t!("sandbox-empty"), top.empty, Kind::Empty),
     ];
     for (name, label, rect, kind) in presets {
-        if ui.button_styled(name, label, rect, true, s.kind == kind) {
+        if ui.button_styled(name, &label, rect, true, s.kind == kind) {
             s.load_preset(kind);
         }
     }
-    if ui.button("fit", "Fit view", top.fit) {
+    if ui.button("fit", &t!("sandbox-fit"), top.fit) {
         s.refit = true;
     }
 
-    heading("World", top.world);
+    heading(&t!("sandbox-world"), top.world);
     let g_now = s.g_edit.unwrap_or(scene.g);
     let row = top.gravity;
     ui::text(
-        &format!("g = {g_now:.2} m/s2"),
+        &t!("sandbox-gravity", g = format!("{g_now:.2}")),
         x,
         row.y + 4.0,
         16.0,
@@ -155,24 +174,29 @@ pub fn side_panel(s: &mut State, ui: &mut Ui, r: Rect, scene: &Scene) {
 
     match (s.selected, s.selected_body(scene).zip(l.body)) {
         (Some(_), Some((b, c))) => {
-            heading(&format!("Body {}", b.id.0), l.selection);
+            heading(&t!("sandbox-body", id = b.id.0), l.selection);
             ui::text(
-                &format!(
-                    "at ({}, {})  |v| {} m/s",
-                    num(b.pos.x),
-                    num(b.pos.y),
-                    num(b.vel.length())
+                &t!(
+                    "sandbox-body-at",
+                    x = num(b.pos.x),
+                    y = num(b.pos.y),
+                    v = num(b.vel.length())
                 ),
                 x,
                 c.info,
                 15.0,
                 colors::TEXT,
             );
-            let radius = format!("radius {}", num(b.radius));
+            let radius = t!("sandbox-radius", value = num(b.radius));
             if let Some(f) = stepper(ui, "body-radius", &radius, c.radius) {
                 s.update_selected(scene, |b| b.radius *= f);
             }
-            if let Some(f) = stepper(ui, "body-mass", &format!("mass {}", num(b.mass)), c.mass) {
+            if let Some(f) = stepper(
+                ui,
+                "body-mass",
+                &t!("sandbox-mass", value = num(b.mass)),
+                c.mass,
+            ) {
                 s.update_selected(scene, |b| b.mass *= f * f);
             }
             if let Some(f) = stepper(ui, "body-mu", &format!("mu {:.2}", b.mu), c.mu) {
@@ -187,20 +211,20 @@ pub fn side_panel(s: &mut State, ui: &mut Ui, r: Rect, scene: &Scene) {
                     b.restitution = ((b.restitution + step) * 10.0).round().clamp(0.0, 10.0) / 10.0
                 });
             }
-            if ui.button("body-stop", "Stop it", c.stop) {
+            if ui.button("body-stop", &t!("sandbox-stop-it"), c.stop) {
                 s.edit(Action::SetVelocity {
                     id: b.id,
                     vel: DVec2::ZERO,
                 });
             }
-            if ui.button("body-delete", "Delete", c.delete) {
+            if ui.button("body-delete", &t!("sandbox-tool-delete"), c.delete) {
                 s.edit(Action::RemoveBody { id: b.id });
             }
         }
         (Some(id), None) => {
-            heading(&format!("Body {}", id.0), l.selection);
+            heading(&t!("sandbox-body", id = id.0), l.selection);
             ui::text(
-                "not in the scene at this time",
+                &t!("sandbox-body-absent"),
                 x,
                 l.selection + 22.0,
                 15.0,
@@ -208,17 +232,17 @@ pub fn side_panel(s: &mut State, ui: &mut Ui, r: Rect, scene: &Scene) {
             );
         }
         (None, _) => {
-            heading("Selection", l.selection);
-            for (k, line) in [
-                "Click a body to select it.",
-                "Drag it to move it; right-drag",
-                "(or the Velocity tool) to aim it.",
-                "Wheel: zoom.  Drag empty: pan.",
-                "Space: play/pause.  Del: delete.",
+            heading(&t!("sandbox-selection"), l.selection);
+            let lines: Vec<String> = [
+                t!("sandbox-help-1"),
+                t!("sandbox-help-2"),
+                t!("sandbox-help-3"),
+                t!("sandbox-help-4"),
             ]
             .iter()
-            .enumerate()
-            {
+            .flat_map(|p| crate::help::wrap(p, 15.0, r.x + r.w - x - 8.0))
+            .collect();
+            for (k, line) in lines.iter().enumerate() {
                 let ly = l.selection + 22.0 + 18.0 * k as f32;
                 // As many as the panel holds.
                 if ly + 18.0 > r.y + r.h {
@@ -237,8 +261,12 @@ pub fn playback_bar(s: &mut State, ui: &mut Ui, r: Rect, compact: bool) {
     if ui.button("rewind", "|<", l.rewind) {
         s.rewind();
     }
-    let label = if s.sim.playing { "Pause" } else { "Play" };
-    if ui.button_styled("play", label, l.play, true, s.sim.playing) {
+    let label = if s.sim.playing {
+        t!("replay-pause")
+    } else {
+        t!("replay-play")
+    };
+    if ui.button_styled("play", &label, l.play, true, s.sim.playing) {
         s.toggle_play();
     }
     for (&speed, rect) in SPEEDS.iter().zip(&l.speeds) {
@@ -253,7 +281,7 @@ pub fn playback_bar(s: &mut State, ui: &mut Ui, r: Rect, compact: bool) {
     s.scrub(t);
     let (tx, ty, tw) = l.time;
     ui::text(
-        &ui::fit(&format!("t = {} s", num(s.sim.t)), 17.0, tw),
+        &ui::fit(&t!("sandbox-time", t = num(s.sim.t)), 17.0, tw),
         tx,
         ty,
         17.0,
@@ -278,8 +306,14 @@ fn unit_slider(ui: &mut Ui, id: &str, label: &str, value: f64, row: Row) -> f64 
 /// A `-` / `+` pair with a label in `row`; the factor 1/1.25 or 1.25 when
 /// clicked.
 fn stepper(ui: &mut Ui, name: &str, label: &str, row: Row) -> Option<f64> {
-    ui::text(label, row.x, row.y + 13.0, 16.0, colors::TEXT);
     let (less, more) = layout::stepper_buttons(row);
+    ui::text(
+        &ui::fit(label, 16.0, less.x - row.x - 4.0),
+        row.x,
+        row.y + 13.0,
+        16.0,
+        colors::TEXT,
+    );
     let less = ui.button(&format!("{name}-less"), "-", less);
     let more = ui.button(&format!("{name}-more"), "+", more);
     if less {

@@ -132,6 +132,29 @@ pub fn toolbar(w: f32, compact: bool) -> Vec<Rect> {
     rects
 }
 
+/// The language switch in the toolbar, where there is room for it: a
+/// spare place at the end of the compact toolbar's last row, or the room
+/// between Wall/Edge and Import on a desktop wide enough (`None` else).
+pub fn language(w: f32, compact: bool) -> Option<Rect> {
+    let (h, y, lw) = (TOUCH, 6.0, 52.0);
+    if compact {
+        let per_row = toolbar_per_row(w);
+        if TOOLBAR_BUTTONS.is_multiple_of(per_row) {
+            return None;
+        }
+        let bw = (w - 16.0 - GAP * (per_row - 1) as f32) / per_row as f32;
+        let (c, r) = (
+            (TOOLBAR_BUTTONS % per_row) as f32,
+            (TOOLBAR_BUTTONS / per_row) as f32,
+        );
+        return Some(Rect::new(8.0 + c * (bw + GAP), y + r * (h + GAP), bw, h));
+    }
+    let t = toolbar(w, false);
+    let wall_end = t[TOOLS.len() + 1].right();
+    let import = t[t.len() - 1].x;
+    (import - wall_end - 2.0 * 14.0 >= lw).then(|| Rect::new(import - 14.0 - lw, y, lw, h))
+}
+
 /// The playback bar's controls.
 #[derive(Clone, Debug)]
 pub struct Playback {
@@ -450,6 +473,26 @@ mod tests {
         assert_eq!(toolbar_rows(390.0), 3.0);
         assert_eq!(toolbar_rows(999.0), 1.0);
         assert_eq!(toolbar_rows(200.0), 4.0);
+    }
+
+    #[test]
+    fn the_language_switch_takes_a_free_place_in_the_toolbar() {
+        for (w, compact) in [
+            (390.0, true),
+            (412.0, true),
+            (768.0, true),
+            (1280.0, false),
+            (1920.0, false),
+        ] {
+            let lang = language(w, compact).expect("room for the switch");
+            assert!(inside(lang, Rect::new(0.0, 0.0, w, 200.0)), "{w}: {lang:?}");
+            assert!(lang.h >= TOUCH);
+            for r in toolbar(w, compact) {
+                assert!(!overlap(lang, r), "{w}: {lang:?} overlaps {r:?}");
+            }
+        }
+        // No room: a desktop at its narrowest.
+        assert_eq!(language(1000.0, false), None);
     }
 
     #[test]

@@ -7,6 +7,7 @@
 use super::format::{num, speed_label};
 use super::layout;
 use super::state::State;
+use crate::i18n::t;
 use crate::ui::{self, colors};
 use engine::{EndReason, Scene};
 use macroquad::prelude::*;
@@ -20,37 +21,72 @@ pub fn stats(s: &State, area: Rect, scene: &Scene) {
     let r = layout::stats(area);
     ui::panel(r);
     let mut y = r.y + 8.0;
-    let mut row = |label: &str, value: String, color: Color| {
-        ui::text(label, r.x + 10.0, y, 16.0, colors::MUTED);
+    let mut row = |label: String, value: String, color: Color| {
+        ui::text(
+            &ui::fit(&label, 16.0, 114.0),
+            r.x + 10.0,
+            y,
+            16.0,
+            colors::MUTED,
+        );
         ui::text(&value, r.x + 128.0, y, 16.0, color);
         y += 19.0;
     };
     let end = match s.sim.end() {
-        Some(e) if e.reason == EndReason::Rest => "end (rest)".to_string(),
-        Some(e) if e.reason == EndReason::Free => "end (free)".to_string(),
-        _ => format!("{} s", num(s.sim.computed_to())),
+        Some(e) if e.reason == EndReason::Rest => t!("stats-end-rest"),
+        Some(e) if e.reason == EndReason::Free => t!("stats-end-free"),
+        _ => t!("stats-seconds", t = num(s.sim.computed_to())),
     };
-    row("time", format!("{} s", num(s.sim.t)), colors::TEXT);
-    row("speed", speed_label(s.sim.speed), colors::TEXT);
-    row("computed to", end, colors::TEXT);
-    row("events", tally.physical().to_string(), colors::TEXT);
-    row("  body-body", tally.body_body.to_string(), colors::TEXT);
-    row("  body-line", tally.body_line.to_string(), colors::TEXT);
-    row("  body-point", tally.body_point.to_string(), colors::TEXT);
-    row("  stops", tally.stops.to_string(), colors::TEXT);
-    row("  fell off", tally.exits.to_string(), colors::TEXT);
-    row("edits", tally.actions.to_string(), colors::TEXT);
-    row("bodies", scene.bodies.len().to_string(), colors::TEXT);
+    let sub = |id: &str| format!("  {}", crate::i18n::text(id, &[]));
     row(
-        "lines, points",
+        t!("stats-time"),
+        t!("stats-seconds", t = num(s.sim.t)),
+        colors::TEXT,
+    );
+    row(t!("stats-speed"), speed_label(s.sim.speed), colors::TEXT);
+    row(t!("stats-computed-to"), end, colors::TEXT);
+    row(
+        t!("stats-events"),
+        tally.physical().to_string(),
+        colors::TEXT,
+    );
+    row(
+        sub("stats-body-body"),
+        tally.body_body.to_string(),
+        colors::TEXT,
+    );
+    row(
+        sub("stats-body-line"),
+        tally.body_line.to_string(),
+        colors::TEXT,
+    );
+    row(
+        sub("stats-body-point"),
+        tally.body_point.to_string(),
+        colors::TEXT,
+    );
+    row(sub("stats-stops"), tally.stops.to_string(), colors::TEXT);
+    row(sub("stats-fell-off"), tally.exits.to_string(), colors::TEXT);
+    row(t!("stats-edits"), tally.actions.to_string(), colors::TEXT);
+    row(
+        t!("stats-bodies"),
+        scene.bodies.len().to_string(),
+        colors::TEXT,
+    );
+    row(
+        t!("stats-lines-points"),
         format!("{}, {}", scene.lines.len(), scene.points.len()),
         colors::TEXT,
     );
-    row("frame", format!("{:.1} ms", s.frame_ms), colors::TEXT);
+    row(
+        t!("stats-frame"),
+        t!("stats-ms", ms = format!("{:.1}", s.frame_ms)),
+        colors::TEXT,
+    );
     if s.sim.behind {
         row(
-            "computing",
-            format!("{:.0} ms/frame", s.compute_ms),
+            t!("stats-computing"),
+            t!("stats-ms-per-frame", ms = format!("{:.0}", s.compute_ms)),
             colors::ACCENT,
         );
     }
@@ -62,23 +98,33 @@ pub fn galperin(s: &State, area: Rect, n: u32) {
     let target = engine::presets::pi_digits(n);
     let r = layout::galperin_counter(area);
     ui::panel(r);
-    ui::text("collisions", r.x + 12.0, r.y + 8.0, 16.0, colors::MUTED);
+    ui::text(
+        &t!("galperin-collisions"),
+        r.x + 12.0,
+        r.y + 8.0,
+        16.0,
+        colors::MUTED,
+    );
     let done = count == target && s.sim.end().is_some_and(|e| e.reason == EndReason::Free);
     let color = if done { colors::GOOD } else { colors::ACCENT };
     ui::text(&count.to_string(), r.x + 12.0, r.y + 26.0, 44.0, color);
     let digits = target.to_string();
     let pi = format!("{}.{}", &digits[..1], &digits[1..]);
     ui::text(
-        &format!("pi to {n} digits: {pi}"),
+        &ui::fit(&t!("galperin-pi", n = n, pi = pi), 18.0, r.w - 20.0),
         r.x + 12.0,
         r.y + 70.0,
         18.0,
         colors::TEXT,
     );
-    let ratio = format!("mass ratio 100^{} ", n - 1);
-    let status = if done { "all done" } else { "" };
+    let ratio = t!("galperin-ratio", power = n - 1);
+    let line = if done {
+        format!("{ratio} {}", t!("galperin-done"))
+    } else {
+        ratio
+    };
     ui::text(
-        &format!("{ratio}{status}"),
+        &ui::fit(&line, 15.0, r.w - 20.0),
         r.x + 12.0,
         r.y + 90.0,
         15.0,

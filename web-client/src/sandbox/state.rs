@@ -10,6 +10,7 @@ use super::layout::fit;
 use super::presets::{self, DiscTemplate, Kind};
 use super::sim::{Sim, Tally};
 use super::tools::{self, Button, Gesture, Make, Tool};
+use crate::i18n::t;
 use crate::viewport::Viewport;
 use ::glam::DVec2;
 use engine::{Action, BodyId, BodySpec, Scene};
@@ -147,7 +148,7 @@ impl State {
                 self.refit = true;
                 self.say(hint(p.kind), false);
             }
-            Err(e) => self.say(format!("preset failed: {e}"), true),
+            Err(e) => self.say(t!("sandbox-preset-failed", error = e.to_string()), true),
         }
     }
 
@@ -168,9 +169,9 @@ impl State {
                 self.selected = None;
                 self.gesture = None;
                 self.refit = true;
-                self.say(format!("imported a scene of {n} bodies"), false);
+                self.say(t!("sandbox-imported", bodies = n), false);
             }
-            Err(e) => self.say(format!("import refused, scene unchanged: {e}"), true),
+            Err(e) => self.say(t!("sandbox-import-refused", error = e.to_string()), true),
         }
     }
 
@@ -193,7 +194,7 @@ impl State {
                     self.selected = None;
                 }
             }
-            Err(e) => self.say(format!("refused: {e}"), true),
+            Err(e) => self.say(t!("sandbox-refused", error = e.to_string()), true),
         }
     }
 
@@ -277,9 +278,9 @@ impl State {
         self.sensor = !self.sensor;
         self.say(
             if self.sensor {
-                "new lines are edges: a disc whose centre crosses one falls off"
+                t!("sandbox-lines-are-edges")
             } else {
-                "new lines are walls: discs bounce off them"
+                t!("sandbox-lines-are-walls")
             },
             false,
         );
@@ -294,7 +295,7 @@ impl State {
     /// Waits for the file the browser was asked to pick.
     pub fn await_file(&mut self) {
         self.waiting_file = true;
-        self.say("choose a scene file (JSON)", false);
+        self.say(t!("sandbox-choose-file"), false);
     }
 
     /// The gravity slider shows `shown` and was moved to `g` while the
@@ -369,14 +370,12 @@ fn preset_in(address: &str) -> Option<Kind> {
 }
 
 /// What to tell the user when a preset opens.
-fn hint(kind: Kind) -> &'static str {
+fn hint(kind: Kind) -> String {
     match kind {
-        Kind::Galperin(_) => {
-            "Galperin's billiard: press Play (try 0.1x or 0.01x) and count the collisions"
-        }
-        Kind::Brownian => "a heavy disc among light ones: press Play and watch its trail",
-        Kind::Break => "the Chapaev break: press Play, or aim a checker with the right button",
-        Kind::Empty | Kind::Imported => "place discs, points and lines with the tools above",
+        Kind::Galperin(_) => t!("sandbox-hint-galperin"),
+        Kind::Brownian => t!("sandbox-hint-brownian"),
+        Kind::Break => t!("sandbox-hint-break"),
+        Kind::Empty | Kind::Imported => t!("sandbox-hint-empty"),
     }
 }
 

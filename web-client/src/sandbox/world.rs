@@ -135,7 +135,7 @@ fn gesture_preview(s: &State, scene: &Scene) {
                 draw::arrow(from, tip, colors::ACCENT, 3.0);
                 let speed = tools::velocity_from_drag(to - b.pos).length();
                 ui::text(
-                    &format!("{speed:.2} m/s"),
+                    &crate::i18n::t!("sandbox-speed", v = format!("{speed:.2}")),
                     tip.x + 10.0,
                     tip.y - 10.0,
                     18.0,
@@ -187,7 +187,7 @@ fn grid(v: &Viewport, area: Rect) {
         draw_line(area.x, y, area.x + area.w, y, 1.0, c);
     }
     ui::text(
-        &format!("grid {} m", num(step)),
+        &crate::i18n::t!("sandbox-grid", step = num(step)),
         area.x + 10.0,
         area.y + area.h - 62.0,
         14.0,

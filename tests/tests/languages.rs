@@ -1,0 +1,315 @@
+//! The interface in Russian and English, in a real browser: a Chromium
+//! whose preferred language is Russian (`--lang=ru`, `--accept-lang=ru`)
+//! opens the game in Russian (the client's report says `lang: "ru"`, the
+//! page's `<html lang>` follows, the lobby's buttons read in Russian); the
+//! language switch turns it to English and the choice survives a reload.
+//! Every main screen (lobby, rules, leaderboard, account, quick match, play
+//! against the computer, the end of the match, the replay, the sandbox) is
+//! visited in both languages, at a laptop's and a phone's size, and on each
+//! the client reports no button whose label had to be cut; each is saved as
+//! a screenshot (`lobby-ru.png`, `lobby-en.png`, `lobby-ru-phone.png`, ...)
+//! in the artifacts folder (`target/e2e-artifacts` or
+//! `$CHAPAEV_E2E_ARTIFACTS`).
+
+use e2e::browser::{self, Driver};
+use e2e::process::Server;
+use e2e::{artifacts_dir, picture, E2eError, Result};
+use fantoccini::Client;
+use serde_json::Value;
+use std::path::Path;
+use std::time::Duration;
+
+const STATE: &str = "return window.chapaev_state || null;";
+
+/// A window the tour runs in: its name in the screenshots' names, its
+/// CSS size and device-pixel ratio.
+struct Window {
+    suffix: &'static str,
+    width: u32,
+    height: u32,
+    dpr: u32,
+}
+
+const LAPTOP: Window = Window {
+    suffix: "",
+    width: 1280,
+    height: 800,
+    dpr: 1,
+};
+
+const PHONE: Window = Window {
+    suffix: "-phone",
+    width: 390,
+    height: 844,
+    dpr: 2,
+};
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_russian_browser_gets_russian_the_switch_turns_it_to_english_and_a_reload_keeps_it() {
+    let Some(programs) = browser::find_programs().unwrap_or_else(|e| panic!("{e}")) else {
+        return;
+    };
+    let artifacts = artifacts_dir().unwrap_or_else(|e| panic!("{e}"));
+    let scratch = tempfile::tempdir().unwrap();
+    let server = Server::start(
+        Path::new(env!("CARGO_BIN_EXE_e2e-server")),
+        &scratch.path().join("data"),
+        &artifacts.join("server-languages.log"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let driver = Driver::start(&programs, &artifacts.join("chromedriver-languages.log"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut failures = Vec::new();
+    for window in [&LAPTOP, &PHONE] {
+        let extra = [
+            "--lang=ru".to_string(),
+            "--accept-lang=ru-RU,ru".to_string(),
+            format!("--window-size={},{}", window.width, window.height),
+            format!("--force-device-scale-factor={}", window.dpr),
+        ];
+        let profile = scratch
+            .path()
+            .join(format!("profile-languages{}", window.suffix));
+        let client = driver
+            .session_with(&programs, &profile, &extra)
+            .await
+            .unwrap_or_else(|e| panic!("{e}"));
+        let outcome = both_languages(&client, &server, &artifacts, window).await;
+        if let Err(e) = outcome {
+            let _ = browser::screenshot(
+                &client,
+                &artifacts.join(format!("failure-languages{}.png", window.suffix)),
+            )
+            .await;
+            if let Ok(state) = browser::eval(&client, STATE).await {
+                eprintln!("e2e: chapaev_state at the failure: {state}");
+            }
+            failures.push(format!("{}x{}: {e}", window.width, window.height));
+        }
+        let _ = client.close().await;
+    }
+    drop(driver);
+    drop(server);
+    assert!(
+        failures.is_empty(),
+        "{}\n(screenshots and logs are in {})",
+        failures.join("\n"),
+        artifacts.display()
+    );
+}
+
+/// Russian first (from the browser's preference), the tour; then the
+/// switch to English, a reload, the tour again.
+async fn both_languages(
+    client: &Client,
+    server: &Server,
+    artifacts: &Path,
+    window: &Window,
+) -> Result<()> {
+    browser::fit_viewport(client, window.width, window.height).await?;
+    client.goto(&server.url("/")).await?;
+    let preferred = browser::eval(client, "return navigator.languages.join(',');").await?;
+    eprintln!("e2e: the browser prefers {preferred}");
+    let lobby = lobby_in(client, "ru").await?;
+    expect_label(&lobby, "vs-computer-easy", "Компьютер: лёгкий")?;
+    expect_label(
+        &lobby,
+        "lang",
+        if window.width < 600 { "EN" } else { "English" },
+    )?;
+    expect_html_lang(client, "ru").await?;
+    tour(client, artifacts, window, "ru").await?;
+
+    // The switch, in the lobby: English at once, and after a reload.
+    click_button(client, "lang").await?;
+    let lobby = lobby_in(client, "en").await?;
+    expect_label(&lobby, "vs-computer-easy", "Computer: easy")?;
+    expect_html_lang(client, "en").await?;
+    client.refresh().await?;
+    let lobby = lobby_in(client, "en").await?;
+    expect_label(&lobby, "vs-computer-easy", "Computer: easy")?;
+    expect_label(
+        &lobby,
+        "lang",
+        if window.width < 600 {
+            "RU"
+        } else {
+            "Русский"
+        },
+    )?;
+    tour(client, artifacts, window, "en").await
+}
+
+/// Visits every main screen from the lobby, checking each shows `lang`
+/// with no label cut, and saves its screenshot as `<screen>-<lang><suffix>.png`.
+async fn tour(client: &Client, artifacts: &Path, window: &Window, lang: &str) -> Result<()> {
+    let snap = |name: &'static str| async move {
+        let state = settle(client, lang).await?;
+        let file = format!("{name}-{lang}{}.png", window.suffix);
+        let png = browser::screenshot(client, &artifacts.join(&file)).await?;
+        picture::stats(&png)?.check_drawn(&file, 8, 0.001)?;
+        let cut = state["cut"].as_array().cloned().unwrap_or_default();
+        if !cut.is_empty() {
+            return Err(E2eError::Check(format!(
+                "{file}: labels cut on {}: {cut:?} (labels {})",
+                state["screen"], state["labels"]
+            )));
+        }
+        Ok::<Value, E2eError>(state)
+    };
+    snap("lobby").await?;
+    click_button(client, "help").await?;
+    snap("help").await?;
+    click_button(client, "help-close").await?;
+
+    click_button(client, "leaderboard").await?;
+    state_until(client, "the leaderboard, loaded", 15, |s| {
+        s["screen"] == "leaderboard" && s["loaded"] == true
+    })
+    .await?;
+    snap("leaderboard").await?;
+    click_button(client, "lobby").await?;
+
+    click_button(client, "sign-in").await?;
+    state_until(client, "the account screen", 15, |s| {
+        s["screen"] == "account"
+    })
+    .await?;
+    snap("sign-in").await?;
+    click_button(client, "lobby").await?;
+
+    // Without an account the quick match offers the computer at once.
+    click_button(client, "quick-match").await?;
+    state_until(client, "the quick match's offer of the computer", 15, |s| {
+        s["screen"] == "quick-match" && s["buttons"]["quick-computer"].is_array()
+    })
+    .await?;
+    snap("quick-match").await?;
+    click_button(client, "quick-cancel").await?;
+
+    click_button(client, "vs-computer-easy").await?;
+    state_until(
+        client,
+        "the match against the computer, on our turn",
+        30,
+        |s| s["screen"] == "play" && s["my_turn"] == true && s["animating"] == false,
+    )
+    .await?;
+    snap("play").await?;
+    click_button(client, "resign").await?;
+    click_button(client, "resign-yes").await?;
+    state_until(client, "the end of the match", 15, |s| {
+        s["buttons"]["end-replay"].is_array()
+    })
+    .await?;
+    snap("end").await?;
+    click_button(client, "end-replay").await?;
+    state_until(client, "the replay, loaded", 15, |s| {
+        s["screen"] == "replay" && s["buttons"]["timeline"].is_array()
+    })
+    .await?;
+    snap("replay").await?;
+    click_button(client, "lobby").await?;
+
+    click_button(client, "sandbox").await?;
+    state_until(client, "the sandbox with its bodies", 15, |s| {
+        s["screen"] == "sandbox" && s["bodies"].as_u64().is_some_and(|n| n > 0)
+    })
+    .await?;
+    let sandbox = snap("sandbox").await?;
+    if !sandbox["buttons"]["lang"].is_array() {
+        return Err(E2eError::Check(format!(
+            "no language switch in the sandbox's toolbar: {}",
+            sandbox["buttons"]
+        )));
+    }
+    click_button(client, "lobby").await?;
+    lobby_in(client, lang).await?;
+    Ok(())
+}
+
+/// Waits for the lobby drawn in `lang`.
+async fn lobby_in(client: &Client, lang: &str) -> Result<Value> {
+    state_until(client, &format!("the lobby in {lang}"), 30, |s| {
+        s["screen"] == "lobby" && s["lang"] == lang && s["buttons"]["vs-computer-easy"].is_array()
+    })
+    .await
+}
+
+/// Lets the screen draw a few frames, then reads it: it must be in `lang`.
+async fn settle(client: &Client, lang: &str) -> Result<Value> {
+    tokio::time::sleep(Duration::from_millis(600)).await;
+    let state = browser::eval(client, STATE).await?;
+    if state["lang"] != lang {
+        return Err(E2eError::Check(format!(
+            "the {} screen is in {}, not {lang}",
+            state["screen"], state["lang"]
+        )));
+    }
+    Ok(state)
+}
+
+fn expect_label(state: &Value, button: &str, label: &str) -> Result<()> {
+    if state["labels"][button] == label {
+        Ok(())
+    } else {
+        Err(E2eError::Check(format!(
+            "the {button} button reads {}, not {label:?}",
+            state["labels"][button]
+        )))
+    }
+}
+
+async fn expect_html_lang(client: &Client, lang: &str) -> Result<()> {
+    let html = browser::eval(client, "return document.documentElement.lang;").await?;
+    if html == lang {
+        Ok(())
+    } else {
+        Err(E2eError::Check(format!(
+            "<html lang> is {html}, not {lang:?}"
+        )))
+    }
+}
+
+/// Polls the app's state every 50 ms until `done` holds (at most `secs` seconds).
+async fn state_until(
+    client: &Client,
+    what: &str,
+    secs: u64,
+    done: impl FnMut(&Value) -> bool,
+) -> Result<Value> {
+    browser::poll(
+        client,
+        what,
+        STATE,
+        Duration::from_secs(secs),
+        Duration::from_millis(50),
+        done,
+    )
+    .await
+}
+
+/// Waits for the button `name` to be drawn, then clicks its centre and
+/// waits for a frame drawn after the click.
+async fn click_button(client: &Client, name: &str) -> Result<()> {
+    let state = state_until(client, &format!("the {name} button"), 15, |s| {
+        s["buttons"][name].is_array()
+    })
+    .await?;
+    let rect = &state["buttons"][name];
+    let (Some(x), Some(y), Some(w), Some(h)) = (
+        rect[0].as_f64(),
+        rect[1].as_f64(),
+        rect[2].as_f64(),
+        rect[3].as_f64(),
+    ) else {
+        return Err(E2eError::Check(format!("not a rectangle: {rect}")));
+    };
+    browser::click(client, x + w / 2.0, y + h / 2.0).await?;
+    let after = state["frame"].as_u64().unwrap_or(0);
+    state_until(client, "a frame after the click", 10, |s| {
+        s["frame"].as_u64().is_some_and(|f| f > after)
+    })
+    .await?;
+    Ok(())
+}
