@@ -33,6 +33,8 @@ pub enum ClusterError {
     Pool(#[from] r2d2::Error),
     #[error("this node cannot reach Redis")]
     NoRedis,
+    #[error("PostgreSQL or Redis did not answer in time")]
+    TimedOut,
 }
 
 impl From<ClusterError> for StoreError {
@@ -42,6 +44,9 @@ impl From<ClusterError> for StoreError {
             ClusterError::Pool(e) => StoreError::Pool(e),
             ClusterError::Redis(e) => StoreError::Corrupt(format!("redis: {e}")),
             ClusterError::NoRedis => StoreError::Corrupt("this node cannot reach Redis".into()),
+            ClusterError::TimedOut => {
+                StoreError::Corrupt("PostgreSQL or Redis did not answer in time".into())
+            }
         }
     }
 }
@@ -132,10 +137,15 @@ impl Cluster {
         lease: Duration,
         rt: &tokio::runtime::Handle,
     ) -> Result<Arc<Cluster>, ClusterError> {
-        let config: postgres::Config = database_url.parse()?;
+        // Every query here waits at most a third of a lease for its
+        // connection: while PostgreSQL is down renewals fail in time, and
+        // once it is back the pool reconnects within a sixth of a lease.
+        let wait = leases::db_wait(lease);
+        let mut config: postgres::Config = database_url.parse()?;
+        config.connect_timeout(wait);
         let pool = r2d2::Pool::builder()
             .max_size(4)
-            .connection_timeout(Duration::from_secs(10))
+            .connection_timeout(wait)
             .build(PostgresConnectionManager::new(config, postgres::NoTls))?;
         let redis = redis::Client::open(redis_url)?;
         // After a failure, trying again about twice a second (a constant
@@ -180,12 +190,14 @@ impl Cluster {
     }
 
     /// Checks that this node reaches Redis now (a `PING` answered within a
-    /// second), and remembers the answer for [`Cluster::ensure_reachable`].
-    pub(super) async fn check_redis(&self) -> bool {
+    /// second, and by `by`), and remembers the answer for
+    /// [`Cluster::ensure_reachable`].
+    pub(super) async fn check_redis(&self, by: tokio::time::Instant) -> bool {
         let mut conn = self.publisher.clone();
         let cmd = redis::cmd("PING");
         let ping = cmd.query_async::<String>(&mut conn);
-        let ok = matches!(tokio::time::timeout(REDIS_TIMEOUT, ping).await, Ok(Ok(_)));
+        let by = by.min(tokio::time::Instant::now() + REDIS_TIMEOUT);
+        let ok = matches!(tokio::time::timeout_at(by, ping).await, Ok(Ok(_)));
         if self.reaches_redis.swap(ok, Ordering::Relaxed) != ok {
             if ok {
                 tracing::info!(node = %self.node, "this node reaches Redis again");
