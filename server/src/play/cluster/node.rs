@@ -6,6 +6,7 @@
 //! [`super::leases`].
 
 use super::leases::{self, Lease};
+use super::outlet::Outgoing;
 use super::relay::{LinkEnd, Links};
 use super::wire::{channel, Envelope};
 use crate::play::room::Command;
@@ -76,6 +77,9 @@ pub struct Cluster {
     /// This node's proxy rooms: the node each relays to, and how to tell
     /// it that the match moved.
     pub(super) proxies: Mutex<HashMap<String, ProxyEntry>>,
+    /// The outlets taking what this node's rooms send the connections it
+    /// serves, one per node of their clients ([`super::outlet`]).
+    pub(super) outlets: Mutex<HashMap<String, tokio::sync::mpsc::UnboundedSender<Outgoing>>>,
 }
 
 /// A relayed connect waiting for the owner: its connection's end, put in
@@ -173,6 +177,7 @@ impl Cluster {
             pending_joins: Mutex::default(),
             served: Mutex::default(),
             proxies: Mutex::default(),
+            outlets: Mutex::default(),
         });
         cluster.heartbeat()?;
         Ok(cluster)
