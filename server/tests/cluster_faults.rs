@@ -214,7 +214,6 @@ async fn a_redis_restart_mid_play_loses_no_acknowledged_shot_and_the_match_resum
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-#[ignore = "fails today: after PostgreSQL comes back, the first shot is not answered within 15 s (under investigation; see docs/cluster.md)"]
 async fn a_postgresql_restart_mid_play_loses_no_acknowledged_shot_and_the_match_resumes() {
     let _one = ONE_AT_A_TIME.lock().await;
     let test = "fault_postgres_restart";

@@ -576,14 +576,8 @@ impl Hub {
         }
         let _loading = self.inner.load_lock.lock().await;
         let present = self.rooms().get(id).cloned();
-        if let Some(h) = present {
-            if wanted(&h) {
-                return Ok(h);
-            }
-            // A proxy, but this node is to play the match: the proxy goes.
-            self.remove(id, h.generation);
-            let (done, _) = oneshot::channel();
-            let _ = h.tx.send(Command::Shutdown { done }).await;
+        if let Some(h) = present.as_ref().filter(|h| wanted(h)) {
+            return Ok(h.clone());
         }
         if let Some(cluster) = self.cluster().cloned() {
             // Cut off from the other nodes, this node can neither play nor
@@ -601,6 +595,8 @@ impl Hub {
                 Lease::Ours => {}
                 Lease::Theirs(node) if node.is_empty() => return Err(no_such_match(id)),
                 Lease::Theirs(node) => {
+                    // A proxy already here stays: its clients reach the
+                    // node that plays the match.
                     return match reach {
                         Reach::Own => Err(Refusal::new(
                             ErrorCode::ServerBusy,
@@ -610,6 +606,13 @@ impl Hub {
                     };
                 }
             }
+        }
+        if let Some(h) = present {
+            // A proxy, but this node is to play the match (it holds the
+            // lease now): the proxy goes.
+            self.remove(id, h.generation);
+            let (done, _) = oneshot::channel();
+            let _ = h.tx.send(Command::Shutdown { done }).await;
         }
         let slot = if within_limit {
             match self.reserve() {

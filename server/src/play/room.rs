@@ -207,6 +207,9 @@ struct Carried {
     refused: Option<Refusal>,
     /// A durable write failed (the rest of its effects were dropped).
     write_failed: bool,
+    /// ...because this node of a cluster no longer holds the match's
+    /// lease: another node may play it now, so the room stops.
+    lease_lost: bool,
     /// A shot was stored.
     shot_stored: bool,
 }
@@ -246,6 +249,11 @@ pub struct Room<H: RoomHost> {
     rated: bool,
     /// The account of the join being handled, stored with the seat.
     joining: Option<String>,
+    /// A write was refused because this node of a cluster no longer holds
+    /// the match's lease: the room stops once it has said so (its
+    /// connections end; their clients reconnect and find the node that
+    /// plays the match now).
+    lease_lost: bool,
 }
 
 /// A bot's slot (a panic while it was held cannot leave it half-changed).
@@ -308,6 +316,7 @@ impl<H: RoomHost> Room<H> {
             accounts: stored.seats.clone().map(|s| s.account),
             rated: stored.rated,
             joining: None,
+            lease_lost: false,
         }
     }
 
@@ -325,7 +334,7 @@ impl<H: RoomHost> Room<H> {
         let Some(mut bots) = self.bot_rx.take() else {
             return;
         };
-        while !self.session.is_closed() {
+        while !self.session.is_closed() && !self.lease_lost {
             let timer = self
                 .session
                 .next_deadline()
@@ -422,7 +431,12 @@ impl<H: RoomHost> Room<H> {
                 let carried = self.feed(input).await;
                 if carried.write_failed {
                     self.host.metrics().refused();
-                    self.say(To::Only(ConnId(conn)), &Refusal::internal().to_message());
+                    let refusal = if carried.lease_lost {
+                        lease_lost()
+                    } else {
+                        Refusal::internal()
+                    };
+                    self.say(To::Only(ConnId(conn)), &refusal.to_message());
                 } else if shot && carried.shot_stored {
                     self.flush().await;
                     self.host.metrics().shot_broadcast(received.elapsed());
@@ -547,6 +561,15 @@ impl<H: RoomHost> Room<H> {
                                 self.host.metrics().shot_resolved(started.elapsed());
                                 carried.shot_stored = true;
                             }
+                        }
+                        Err(e @ crate::store::StoreError::LeaseLost { .. }) => {
+                            // Nothing was written; what the session said
+                            // after the move is dropped, and the room stops.
+                            warn!(match_id = %self.id, error = %e, "this node lost the match's lease; its room stops");
+                            carried.write_failed = true;
+                            carried.lease_lost = true;
+                            self.lease_lost = true;
+                            queue.clear();
                         }
                         Err(e) => {
                             error!(match_id = %self.id, error = %e, "storing a move failed; reloading the match from the store");
@@ -784,6 +807,16 @@ impl<H: RoomHost> Room<H> {
             }
         }
     }
+}
+
+/// The refusal of a move this node may no longer write (its lease on the
+/// match is lost): the client should connect again, and reaches the node
+/// that plays the match now.
+fn lease_lost() -> Refusal {
+    Refusal::new(
+        ErrorCode::ServerBusy,
+        "the match moved to another server node; connect again",
+    )
 }
 
 async fn sleep_until(t: Option<Instant>) {

@@ -35,8 +35,15 @@ use std::time::Duration;
 
 /// Connections in the read pool.
 const POOL: u32 = 8;
-/// How long a caller waits for a pooled connection (or a first connection).
+/// How long connecting to the database may take.
 const CONNECT_TIMEOUT: Duration = Duration::from_secs(10);
+/// How long a caller waits for a pooled connection before its read fails.
+/// While the database is down this bounds a room's wait to reload its
+/// match after a failed write (the room then closes, and its clients
+/// reconnect); and the pool, which tries to connect again after at most
+/// half this wait, has its connections back within a second of the
+/// database's return.
+const POOL_WAIT: Duration = Duration::from_secs(2);
 /// An arbitrary key for the advisory lock migrations run under.
 const MIGRATION_LOCK: i64 = 0x0063_6861_7061_6576;
 
@@ -348,7 +355,7 @@ impl PostgresStore {
         let pool = r2d2::Pool::builder()
             .max_size(POOL)
             .min_idle(Some(1))
-            .connection_timeout(CONNECT_TIMEOUT)
+            .connection_timeout(POOL_WAIT)
             .build(PostgresConnectionManager::new(config.clone(), NoTls))?;
         let node = node.map(str::to_string);
         let commit = GroupCommit::start(Writer {
@@ -865,36 +872,56 @@ impl Writer {
     ) -> Result<Vec<Result<(), StoreError>>, StoreError> {
         let node = self.node.clone();
         let node = node.as_deref();
-        let conn = self.conn()?;
-        // First the whole batch without savepoints (two round trips a move
-        // fewer): moves almost never fail.
-        {
+        let mut reconnected = false;
+        loop {
+            let conn = self.conn()?;
+            // First the whole batch without savepoints (two round trips a
+            // move fewer): moves almost never fail.
+            let began = match conn.client.transaction() {
+                Ok(mut tx) => {
+                    let fence = Fence::lock(&mut tx, conn.lock_leases.as_ref(), node, batch)?;
+                    let all = batch.iter().all(|m| {
+                        fence.check(m, node).is_ok()
+                            && write_move(&mut tx, &conn.insert_move, &conn.update_match, m).is_ok()
+                    });
+                    if all {
+                        tx.commit()?;
+                        return Ok(batch.iter().map(|_| Ok(())).collect());
+                    }
+                    // Dropped unfinished: rolled back.
+                    Ok(())
+                }
+                Err(e) => Err(e),
+            };
+            if let Err(e) = began {
+                // A connection the database ended since the last batch (it
+                // restarted) fails at BEGIN, before anything is written:
+                // the batch begins once more on a fresh connection, so the
+                // first moves after a restart are not refused for it.
+                if reconnected {
+                    return Err(e.into());
+                }
+                tracing::info!(error = %e, "the store's writer connects again");
+                self.conn = None;
+                reconnected = true;
+                continue;
+            }
+            // A move failed: again, each in a savepoint of its own, so that
+            // it fails alone.
+            let conn = self.conn()?;
             let mut tx = conn.client.transaction()?;
             let fence = Fence::lock(&mut tx, conn.lock_leases.as_ref(), node, batch)?;
-            let all = batch.iter().all(|m| {
-                fence.check(m, node).is_ok()
-                    && write_move(&mut tx, &conn.insert_move, &conn.update_match, m).is_ok()
-            });
-            if all {
-                tx.commit()?;
-                return Ok(batch.iter().map(|_| Ok(())).collect());
+            let mut results = Vec::with_capacity(batch.len());
+            for m in batch {
+                results.push(
+                    fence.check(m, node).and_then(|()| {
+                        write_one(&mut tx, &conn.insert_move, &conn.update_match, m)
+                    }),
+                );
             }
-            // Dropped unfinished: rolled back.
+            tx.commit()?;
+            return Ok(results);
         }
-        // A move failed: again, each in a savepoint of its own, so that it
-        // fails alone.
-        let mut tx = conn.client.transaction()?;
-        let fence = Fence::lock(&mut tx, conn.lock_leases.as_ref(), node, batch)?;
-        let mut results = Vec::with_capacity(batch.len());
-        for m in batch {
-            results.push(
-                fence
-                    .check(m, node)
-                    .and_then(|()| write_one(&mut tx, &conn.insert_move, &conn.update_match, m)),
-            );
-        }
-        tx.commit()?;
-        Ok(results)
     }
 }
 

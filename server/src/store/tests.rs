@@ -53,6 +53,38 @@ fn postgres(test: &str) -> Option<Backend> {
     })
 }
 
+/// PostgreSQL only (it restarts the database): the writer's connection
+/// and the pool's idle one die with the database; the first move written
+/// after it is back goes through all the same (its batch begins again on
+/// a fresh connection instead of being refused), and reads get fresh
+/// connections.
+#[test]
+fn on_postgres_the_first_move_after_the_database_restarts_is_written_not_refused() {
+    let test = "store_postgres_restart";
+    let mut pg = match local_services::LocalPostgres::start() {
+        Ok(pg) => pg,
+        Err(e) => {
+            local_services::skip::without(
+                test,
+                local_services::skip::Service::Postgres,
+                &e.to_string(),
+            );
+            return;
+        }
+    };
+    let url = pg.fresh_database("restart").unwrap();
+    let store = PostgresStore::connect(&url).unwrap();
+    store.create(&stored("m1")).unwrap();
+    let first = RecordedMove::Resign { side: Side::White };
+    store.append_move("m1", 0, &first, &LIVE).unwrap();
+    pg.start_again().unwrap();
+    let second = RecordedMove::Resign { side: Side::Black };
+    store
+        .append_move("m1", 1, &second, &LIVE)
+        .expect("the first move after the restart is written");
+    assert_eq!(store.moves("m1").unwrap(), vec![first, second]);
+}
+
 /// Each named test, on each backend.
 macro_rules! on_both_backends {
     ($($test:ident),* $(,)?) => {

@@ -23,6 +23,8 @@ pub struct Server {
     child: Child,
     pub addr: String,
     pub dir: PathBuf,
+    /// Its log (stderr), shown when a test fails.
+    log: PathBuf,
 }
 
 impl Server {
@@ -35,14 +37,14 @@ impl Server {
 
     /// Starts the server binary on `dir` with extra flags; waits until it listens.
     pub fn start(dir: &Path, extra: &[&str]) -> Server {
-        let log = std::fs::File::create(dir.join(format!(
+        let log_path = dir.join(format!(
             "server-{}.log",
             std::time::SystemTime::now()
                 .duration_since(std::time::UNIX_EPOCH)
                 .unwrap()
                 .as_nanos()
-        )))
-        .unwrap();
+        ));
+        let log = std::fs::File::create(&log_path).unwrap();
         let mut child = Command::new(env!("CARGO_BIN_EXE_server"))
             .args([
                 "--addr",
@@ -71,6 +73,7 @@ impl Server {
             child,
             addr,
             dir: dir.to_path_buf(),
+            log: log_path,
         }
     }
 
@@ -153,6 +156,19 @@ impl Drop for Server {
     fn drop(&mut self) {
         let _ = self.child.kill();
         let _ = self.child.wait();
+        // A failing test shows what the server said last (its folder,
+        // and so its log, goes with the test).
+        if std::thread::panicking() {
+            let log = std::fs::read_to_string(&self.log).unwrap_or_default();
+            let lines: Vec<&str> = log.lines().collect();
+            let tail = &lines[lines.len().saturating_sub(60)..];
+            eprintln!(
+                "--- the last {} lines of the server on {} ---\n{}",
+                tail.len(),
+                self.addr,
+                tail.join("\n")
+            );
+        }
     }
 }
 

@@ -2,8 +2,8 @@
 //! each [`Envelope`] another node sent it: as the owner of a match, it
 //! starts serving relayed connections ([`super::serve`]) and hands their
 //! messages and joins to its rooms; as the node of a client, it settles
-//! pending connects and joins and forwards deliveries in order
-//! ([`super::relay`]).
+//! pending connects and joins and fans each envelope of deliveries out to
+//! its connections, each in order ([`super::relay`]).
 
 use super::node::{lock, Cluster};
 use super::relay::Delivery;
@@ -12,6 +12,7 @@ use super::serve::serve;
 use super::wire::{channel, Envelope, WireRefusal};
 use crate::play::room::Command;
 use crate::refusal::Refusal;
+use bytestring::ByteString;
 use futures_util::StreamExt;
 use game::protocol::{ClientMessage, ErrorCode};
 use game::token::TokenHash;
@@ -108,25 +109,40 @@ async fn handle<R: LocalRooms>(cluster: &Arc<Cluster>, rooms: &R, e: Envelope) {
                 let _ = p.reply.send(Err(refusal.into()));
             }
         }
-        Envelope::Deliver {
+        Envelope::Deliveries {
             from,
-            link,
-            seq,
-            text,
-            refused,
+            texts,
+            to,
+            closed,
         } => {
-            let delivery = lock(&cluster.links).deliver(link, seq, text, refused);
-            if delivery == Delivery::Unknown {
-                // A connection this node no longer has (it closed, or its
-                // connect was given up as late): the owner stops serving it.
+            let texts: Vec<ByteString> = texts.into_iter().map(ByteString::from).collect();
+            let mut unknown: Vec<u64> = Vec::new();
+            {
+                let mut links = lock(&cluster.links);
+                for a in to {
+                    let Some(text) = texts.get(a.text) else {
+                        // No such text: the connection misses a message.
+                        warn!(link = a.link, "a delivery names a text its envelope lacks");
+                        links.remove(&a.link);
+                        continue;
+                    };
+                    let delivery = links.deliver(a.link, a.seq, text.clone(), a.refused);
+                    if delivery == Delivery::Unknown && !unknown.contains(&a.link) {
+                        unknown.push(a.link);
+                    }
+                }
+                for link in closed {
+                    links.remove(&link);
+                }
+            }
+            // Connections this node no longer has (closed, or their connect
+            // given up as late): the owner stops serving them.
+            for link in unknown {
                 let node = cluster.node.clone();
                 cluster
                     .send(&from, &Envelope::Disconnect { from: node, link })
                     .await;
             }
-        }
-        Envelope::Closed { link } => {
-            lock(&cluster.links).remove(&link);
         }
         Envelope::Joined { request, result } => {
             if let Some(tx) = lock(&cluster.pending_joins).remove(&request) {

@@ -10,30 +10,62 @@
 //! and other nodes, which reach both, take its matches over.
 
 use super::leases::{self, Renewal};
-use super::node::Cluster;
+use super::node::{Cluster, ClusterError};
 use super::rooms::LocalRooms;
 use std::sync::Arc;
-use tokio::time::Instant;
+use std::time::Duration;
+use tokio::time::{Instant, MissedTickBehavior};
 use tracing::{debug, info, warn};
 
 /// Renews this node's leases every third of a lease; stops the rooms of
-/// the matches it lost, and all of them if it could not renew for most of
-/// a lease (it can no longer be sure it holds them).
+/// the matches it lost, and all of them once no renewal has succeeded for
+/// four fifths of a lease (it can no longer be sure it holds them). That
+/// moment is kept even while a renewal still waits on PostgreSQL (a
+/// renewal is given up at it), so the rooms stop before any other node
+/// may take their matches over.
 pub(super) async fn keep_leases<R: LocalRooms>(cluster: Arc<Cluster>, rooms: R) {
-    let mut tick = tokio::time::interval(leases::renew_every(cluster.lease));
+    let every = leases::renew_every(cluster.lease);
+    let mut tick = tokio::time::interval(every);
+    tick.set_missed_tick_behavior(MissedTickBehavior::Delay);
     let mut renewal = Renewal::new(cluster.lease, Instant::now());
+    // Whether the rooms were stopped for the failures since the last
+    // renewal that succeeded.
+    let mut gave_up = false;
     loop {
-        tick.tick().await;
+        let deadline = renewal.deadline() + Duration::from_millis(1);
+        tokio::select! {
+            _ = tick.tick() => {}
+            _ = tokio::time::sleep_until(deadline), if !gave_up => {
+                stop_all(&rooms).await;
+                gave_up = true;
+                continue;
+            }
+        }
+        let began = Instant::now();
         let owned = rooms.owned_matches();
         let ids = owned.clone();
-        let renewed = if cluster.check_redis().await {
-            cluster.blocking(move |c| c.renew(&ids)).await
+        // Waits no longer than the next renewal, nor past the deadline
+        // while the rooms still play.
+        let until = if gave_up {
+            began + every
         } else {
-            Err(super::node::ClusterError::NoRedis)
+            (began + every).min(deadline)
+        };
+        let renewed = if cluster.check_redis(until).await {
+            let renewal = cluster.blocking(move |c| c.renew(&ids));
+            tokio::time::timeout_at(until, renewal)
+                .await
+                .unwrap_or(Err(ClusterError::TimedOut))
+        } else {
+            Err(ClusterError::NoRedis)
         };
         match renewed {
             Ok(lost) => {
-                renewal.renewed(Instant::now());
+                renewal.renewed(began);
+                if gave_up {
+                    info!(node = %cluster.node, "renewing the leases works again");
+                }
+                gave_up = false;
                 for id in lost {
                     warn!(match_id = %id, "this node lost the match's lease; its room stops");
                     rooms.stop_room(&id).await;
@@ -41,13 +73,29 @@ pub(super) async fn keep_leases<R: LocalRooms>(cluster: Arc<Cluster>, rooms: R) 
             }
             Err(e) => {
                 warn!(error = %e, "renewing the leases failed");
+                // Again while renewals keep failing: a room started
+                // meanwhile (its match taken) stops too.
                 if renewal.failed(Instant::now()) {
-                    for id in owned {
-                        rooms.stop_room(&id).await;
-                    }
+                    stop_all(&rooms).await;
+                    gave_up = true;
                 }
             }
         }
+    }
+}
+
+/// Stops the rooms of every match this node plays: it can no longer be
+/// sure it holds their leases.
+async fn stop_all<R: LocalRooms>(rooms: &R) {
+    let owned = rooms.owned_matches();
+    if !owned.is_empty() {
+        warn!(
+            matches = owned.len(),
+            "no lease renewal for four fifths of a lease: this node stops its rooms"
+        );
+    }
+    for id in owned {
+        rooms.stop_room(&id).await;
     }
 }
 

@@ -35,6 +35,17 @@ pub fn renew_every(lease: Duration) -> Duration {
     lease / 3
 }
 
+/// How long one of the node's queries on the leases may wait for a
+/// PostgreSQL connection (and take to connect) before it counts as
+/// failed: a third of a lease (at least a quarter second, at most ten),
+/// so that while PostgreSQL is down a renewal fails in time for the node
+/// to stop its rooms before its leases can expire, and so that the pool,
+/// which tries again after at most half this wait, has its connections
+/// back within a sixth of a lease of PostgreSQL's return.
+pub fn db_wait(lease: Duration) -> Duration {
+    renew_every(lease).clamp(Duration::from_millis(250), Duration::from_secs(10))
+}
+
 /// How often a node looks for orphaned matches: every second, or every
 /// half lease if that is shorter (a dead node's match is taken within a
 /// lease and a second of its death).
@@ -81,9 +92,17 @@ impl Renewal {
         }
     }
 
-    /// A renewal succeeded at `now`.
+    /// A renewal begun at `now` succeeded (its leases run from when it
+    /// reached PostgreSQL, no earlier than this).
     pub fn renewed(&mut self, now: Instant) {
-        self.renewed = now;
+        self.renewed = self.renewed.max(now);
+    }
+
+    /// When the leases must count as lost if no renewal succeeds before:
+    /// four fifths of a lease after the last success. The node stops its
+    /// rooms then, even while a renewal is still waiting on PostgreSQL.
+    pub fn deadline(&self) -> Instant {
+        self.renewed + self.lease * 4 / 5
     }
 
     /// A renewal failed at `now`: `true` when the last success is more
@@ -150,6 +169,30 @@ mod tests {
         r.renewed(t0 + ms(2_000));
         assert!(!r.failed(t0 + ms(4_000)));
         assert!(r.failed(t0 + ms(4_401)));
+    }
+
+    #[test]
+    fn the_leases_count_as_lost_just_after_the_deadline_and_a_late_success_moves_it_on() {
+        let t0 = Instant::now();
+        let mut r = Renewal::new(LEASE, t0);
+        assert_eq!(r.deadline(), t0 + ms(2_400));
+        assert!(!r.failed(r.deadline()));
+        assert!(r.failed(r.deadline() + ms(1)));
+        r.renewed(t0 + ms(1_000));
+        assert_eq!(r.deadline(), t0 + ms(3_400));
+        // A renewal begun earlier that answers later never moves it back.
+        r.renewed(t0 + ms(500));
+        assert_eq!(r.deadline(), t0 + ms(3_400));
+    }
+
+    #[test]
+    fn a_query_on_the_leases_waits_a_third_of_a_lease_for_postgresql_within_bounds() {
+        assert_eq!(db_wait(LEASE), ms(1_000));
+        assert_eq!(db_wait(ms(2_000)), ms(2_000) / 3);
+        assert_eq!(db_wait(ms(300)), ms(250));
+        assert_eq!(db_wait(ms(600_000)), ms(10_000));
+        // Shorter than the time a node may go without renewing.
+        assert!(db_wait(LEASE) < LEASE * 4 / 5);
     }
 
     #[test]

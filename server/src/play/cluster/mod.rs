@@ -16,8 +16,10 @@
 //! join) and relays them over Redis pub/sub to the owner, whose
 //! dispatcher hands them to the real room as if its client were local. The
 //! owner relays everything the room sends that connection back, numbered
-//! per connection; the relaying node forwards it in order, and a gap (a
-//! message lost by pub/sub) ends the connection, so the client reconnects
+//! per connection, in one envelope per node for all that node's
+//! connections at once (a message several of them are sent crosses once);
+//! the relaying node fans it out and forwards each connection's messages
+//! in order, and a gap (a message lost by pub/sub) ends the connection, so the client reconnects
 //! and starts again from the full `match-state`: it never sees a gap or a
 //! duplicate. Every client thus gets exactly the messages a client of the
 //! owner gets, in the same order.
@@ -40,6 +42,7 @@
 //! | --- | --- |
 //! | [`wire`] | the envelopes nodes send each other, and their JSON |
 //! | [`relay`] | relay sequencing: numbered deliveries, duplicates, gaps |
+//! | [`outlet`] | what goes back to a node: its connections' messages batched into one envelope, each message once |
 //! | [`leases`] | the lease rules (renewal, loss, takeover, moved proxies), without I/O |
 //! | [`rooms`] | [`LocalRooms`], what the cluster needs of the node's own rooms |
 //! | [`node`] | [`Cluster`]: a node's PostgreSQL and Redis connections and tables |
@@ -55,6 +58,7 @@ mod inbox;
 mod keeper;
 mod leases;
 mod node;
+mod outlet;
 mod proxy;
 mod relay;
 mod rooms;

@@ -6,6 +6,7 @@
 //! [`super::leases`].
 
 use super::leases::{self, Lease};
+use super::outlet::Outgoing;
 use super::relay::{LinkEnd, Links};
 use super::wire::{channel, Envelope};
 use crate::play::room::Command;
@@ -33,6 +34,8 @@ pub enum ClusterError {
     Pool(#[from] r2d2::Error),
     #[error("this node cannot reach Redis")]
     NoRedis,
+    #[error("PostgreSQL or Redis did not answer in time")]
+    TimedOut,
 }
 
 impl From<ClusterError> for StoreError {
@@ -42,6 +45,9 @@ impl From<ClusterError> for StoreError {
             ClusterError::Pool(e) => StoreError::Pool(e),
             ClusterError::Redis(e) => StoreError::Corrupt(format!("redis: {e}")),
             ClusterError::NoRedis => StoreError::Corrupt("this node cannot reach Redis".into()),
+            ClusterError::TimedOut => {
+                StoreError::Corrupt("PostgreSQL or Redis did not answer in time".into())
+            }
         }
     }
 }
@@ -71,6 +77,9 @@ pub struct Cluster {
     /// This node's proxy rooms: the node each relays to, and how to tell
     /// it that the match moved.
     pub(super) proxies: Mutex<HashMap<String, ProxyEntry>>,
+    /// The outlets taking what this node's rooms send the connections it
+    /// serves, one per node of their clients ([`super::outlet`]).
+    pub(super) outlets: Mutex<HashMap<String, tokio::sync::mpsc::UnboundedSender<Outgoing>>>,
 }
 
 /// A relayed connect waiting for the owner: its connection's end, put in
@@ -132,10 +141,15 @@ impl Cluster {
         lease: Duration,
         rt: &tokio::runtime::Handle,
     ) -> Result<Arc<Cluster>, ClusterError> {
-        let config: postgres::Config = database_url.parse()?;
+        // Every query here waits at most a third of a lease for its
+        // connection: while PostgreSQL is down renewals fail in time, and
+        // once it is back the pool reconnects within a sixth of a lease.
+        let wait = leases::db_wait(lease);
+        let mut config: postgres::Config = database_url.parse()?;
+        config.connect_timeout(wait);
         let pool = r2d2::Pool::builder()
             .max_size(4)
-            .connection_timeout(Duration::from_secs(10))
+            .connection_timeout(wait)
             .build(PostgresConnectionManager::new(config, postgres::NoTls))?;
         let redis = redis::Client::open(redis_url)?;
         // After a failure, trying again about twice a second (a constant
@@ -163,6 +177,7 @@ impl Cluster {
             pending_joins: Mutex::default(),
             served: Mutex::default(),
             proxies: Mutex::default(),
+            outlets: Mutex::default(),
         });
         cluster.heartbeat()?;
         Ok(cluster)
@@ -180,12 +195,14 @@ impl Cluster {
     }
 
     /// Checks that this node reaches Redis now (a `PING` answered within a
-    /// second), and remembers the answer for [`Cluster::ensure_reachable`].
-    pub(super) async fn check_redis(&self) -> bool {
+    /// second, and by `by`), and remembers the answer for
+    /// [`Cluster::ensure_reachable`].
+    pub(super) async fn check_redis(&self, by: tokio::time::Instant) -> bool {
         let mut conn = self.publisher.clone();
         let cmd = redis::cmd("PING");
         let ping = cmd.query_async::<String>(&mut conn);
-        let ok = matches!(tokio::time::timeout(REDIS_TIMEOUT, ping).await, Ok(Ok(_)));
+        let by = by.min(tokio::time::Instant::now() + REDIS_TIMEOUT);
+        let ok = matches!(tokio::time::timeout_at(by, ping).await, Ok(Ok(_)));
         if self.reaches_redis.swap(ok, Ordering::Relaxed) != ok {
             if ok {
                 tracing::info!(node = %self.node, "this node reaches Redis again");

@@ -118,7 +118,7 @@ impl Links {
     /// Hands message number `seq` (`text`) to connection `link`, and the
     /// owner's count of its refused messages (see the module's
     /// documentation).
-    pub fn deliver(&mut self, link: u64, seq: u64, text: String, refused: u32) -> Delivery {
+    pub fn deliver(&mut self, link: u64, seq: u64, text: ByteString, refused: u32) -> Delivery {
         let Some(end) = self.0.get_mut(&link) else {
             return Delivery::Unknown;
         };
@@ -136,7 +136,7 @@ impl Links {
                 Delivery::Ended
             }
             Order::Next => {
-                let item: Outbound = Arc::from(vec![ByteString::from(text)]);
+                let item: Outbound = Arc::from(vec![text]);
                 if end.tx.try_send(item).is_err() {
                     tracing::debug!(link, seq, "a relayed connection too slow ends");
                     self.0.remove(&link);

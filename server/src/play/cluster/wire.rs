@@ -65,6 +65,17 @@ impl From<WireClaim> for Claim {
     }
 }
 
+/// One message of a [`Envelope::Deliveries`] for one connection: its
+/// number among that connection's messages, which of the envelope's texts
+/// it is, and the owner's count of the connection's refused messages.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub(super) struct Addressed {
+    pub link: u64,
+    pub seq: u64,
+    pub text: usize,
+    pub refused: u32,
+}
+
 /// A message between two nodes, on the receiving node's channel.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "kebab-case")]
@@ -103,16 +114,15 @@ pub(super) enum Envelope {
         link: u64,
         refusal: WireRefusal,
     },
-    Deliver {
-        /// The node serving the connection.
+    /// What the owner's rooms sent the connections it serves for the
+    /// receiving node's clients ([`super::outlet`]): each message once,
+    /// addressed by `to`; then the connections the rooms `closed`.
+    Deliveries {
+        /// The node serving the connections.
         from: String,
-        link: u64,
-        seq: u64,
-        text: String,
-        refused: u32,
-    },
-    Closed {
-        link: u64,
+        texts: Vec<String>,
+        to: Vec<Addressed>,
+        closed: Vec<u64>,
     },
     Joined {
         request: u64,
@@ -183,14 +193,34 @@ mod tests {
                 link: 1,
                 refusal: refusal.clone(),
             },
-            Envelope::Deliver {
+            Envelope::Deliveries {
                 from: "b".into(),
-                link: 1,
-                seq: 3,
-                text: "{\"type\":\"match-state\",\"quote\":\"\\\"\"}".into(),
-                refused: 2,
+                texts: vec![
+                    "{\"type\":\"match-state\",\"quote\":\"\\\"\"}".into(),
+                    r#"{"type":"clock"}"#.into(),
+                ],
+                to: vec![
+                    Addressed {
+                        link: 1,
+                        seq: 3,
+                        text: 0,
+                        refused: 2,
+                    },
+                    Addressed {
+                        link: 4,
+                        seq: 0,
+                        text: 0,
+                        refused: 0,
+                    },
+                    Addressed {
+                        link: 1,
+                        seq: 4,
+                        text: 1,
+                        refused: 2,
+                    },
+                ],
+                closed: vec![4],
             },
-            Envelope::Closed { link: 1 },
             Envelope::Joined {
                 request: 7,
                 result: Ok(Seat::Second),
@@ -234,7 +264,7 @@ mod tests {
     #[test]
     fn an_unknown_kind_or_a_missing_field_does_not_decode() {
         assert!(Envelope::decode(r#"{"kind":"teleport","link":1}"#).is_err());
-        assert!(Envelope::decode(r#"{"kind":"closed"}"#).is_err());
+        assert!(Envelope::decode(r#"{"kind":"deliveries","from":"b"}"#).is_err());
         assert!(Envelope::decode("not json").is_err());
     }
 
