@@ -578,16 +578,29 @@ mod tests {
         assert!(!page.contains("<script>") && page.contains("localhost:8080"));
     }
 
-    /// The size budget of the browser build (the web client issue's target).
-    const WASM_BUDGET_BYTES: usize = 1_500_000;
+    /// The size budget of the browser build, as built. It was 1.5 MB
+    /// until the client spoke two languages: Project Fluent and the two
+    /// message files added 204 KB (66 KB gzipped).
+    const WASM_BUDGET_BYTES: usize = 1_700_000;
+    /// What a browser that accepts brotli downloads: the figure a player
+    /// waits for (428 KB when the budget was set).
+    const WASM_BROTLI_BUDGET_BYTES: usize = 460_000;
 
     #[test]
     fn the_embedded_wasm_stays_within_its_size_budget() {
         match web_client() {
             Ok(bundle) => {
                 let n = bundle.wasm.bytes.len();
-                println!("web client wasm: {n} bytes (budget {WASM_BUDGET_BYTES})");
+                let br = bundle.wasm.brotli.len();
+                println!(
+                    "web client wasm: {n} bytes (budget {WASM_BUDGET_BYTES}), \
+                     {br} with brotli (budget {WASM_BROTLI_BUDGET_BYTES})"
+                );
                 assert!(n <= WASM_BUDGET_BYTES, "the wasm grew to {n} bytes");
+                assert!(
+                    br <= WASM_BROTLI_BUDGET_BYTES,
+                    "the wasm grew to {br} bytes with brotli"
+                );
             }
             Err(not_built) => assert!(
                 not_built.skipped,
