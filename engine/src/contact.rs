@@ -275,6 +275,7 @@ pub(crate) fn disc_disc(
     tj: &Trajectory,
     s: f64,
     now: f64,
+    origin: f64,
     solver: &impl RootSolver,
     rev: Revision,
 ) -> Option<f64> {
@@ -285,7 +286,7 @@ pub(crate) fn disc_disc(
         (Some(m), true) if ti.is_frictionless() && tj.is_frictionless() => {
             linear_pair(m.pos, ti, tj, s, now, rev)
         }
-        (Some(m), true) => curved_pair(m.pos, ti, tj, s, now, solver, rev),
+        (Some(m), true) => curved_pair(m.pos, ti, tj, s, now, origin, solver, rev),
     }
 }
 
@@ -335,6 +336,7 @@ fn curved_pair(
     tj: &Trajectory,
     s: f64,
     now: f64,
+    origin: f64,
     solver: &impl RootSolver,
     rev: Revision,
 ) -> Option<f64> {
@@ -367,7 +369,7 @@ fn curved_pair(
     if touching
         && rev.at_least_r2()
         && c1 < -min_slope
-        && pressing(ti, tj, dp, s, now, -min_slope, rev)
+        && pressing(ti, tj, dp, s, now, origin, -min_slope, rev)
     {
         // Neither approaching nor parting, and pressed together obliquely:
         // the approximated contact, now (see `push::pressing_kick`).
@@ -418,6 +420,7 @@ fn pressing(
     dp: DVec2,
     s: f64,
     now: f64,
+    origin: f64,
     noise: f64,
     rev: Revision,
 ) -> bool {
@@ -427,7 +430,7 @@ fn pressing(
     let (vi, vj) = (ti.velocity(now), tj.velocity(now));
     let n = dp.normalize_or_zero();
     let accelerations = [ti.acceleration(now), tj.acceleration(now)];
-    match push::pressing_kick([vi, vj], accelerations, n, s, now, rev) {
+    match push::pressing_kick([vi, vj], accelerations, n, s, origin + now, rev) {
         Some(push::Press::Part(dw)) => 2.0 * s * ((vi - vj).dot(n).max(0.0) + dw) > noise,
         Some(push::Press::Rest) => true,
         None => false,
@@ -510,6 +513,7 @@ mod tests {
             Mover::new(a, 0.0).as_ref(),
             b,
             s,
+            0.0,
             0.0,
             &Production,
             Revision::LATEST,
