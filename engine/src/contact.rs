@@ -269,6 +269,8 @@ pub(crate) fn centre_crossing(m: &Mover, line: &LineGeom, inside: bool) -> Optio
 /// while approaching. `mi` is the path of the first disc if it moves;
 /// `solver` finds the roots of the quartic when both move with friction.
 #[inline]
+// The clock's origin travels with the time it offsets.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn disc_disc(
     ti: &Trajectory,
     mi: Option<&Mover>,
@@ -330,6 +332,8 @@ fn linear_pair(
 
 /// At least one of two moving discs slows down: solve the quartic on the
 /// interval until the first of them stops.
+// The clock's origin travels with the time it offsets.
+#[allow(clippy::too_many_arguments)]
 fn curved_pair(
     pi: DVec2,
     ti: &Trajectory,
@@ -414,6 +418,8 @@ fn curved_pair(
 /// distance `s`) are pressed together obliquely, so that the approximated
 /// contact would part them faster than `noise` (in units of `2 s` times a
 /// speed, as the slope of the squared gap).
+// The clock's origin travels with the time it offsets.
+#[allow(clippy::too_many_arguments)]
 fn pressing(
     ti: &Trajectory,
     tj: &Trajectory,
