@@ -70,6 +70,14 @@ impl Clock {
         }
     }
 
+    /// The absolute time of working time zero, rounded: what the rounding
+    /// of an absolute time is judged from (`push::next_within_rounding`).
+    /// Zero while the origin is at zero.
+    #[inline(always)]
+    pub(crate) fn origin(&self) -> f64 {
+        self.hi
+    }
+
     /// The working time of absolute time `t`; `t` itself while the origin is
     /// at zero.
     #[inline(always)]

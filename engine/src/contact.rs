@@ -269,12 +269,15 @@ pub(crate) fn centre_crossing(m: &Mover, line: &LineGeom, inside: bool) -> Optio
 /// while approaching. `mi` is the path of the first disc if it moves;
 /// `solver` finds the roots of the quartic when both move with friction.
 #[inline]
+// The clock's origin travels with the time it offsets.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn disc_disc(
     ti: &Trajectory,
     mi: Option<&Mover>,
     tj: &Trajectory,
     s: f64,
     now: f64,
+    origin: f64,
     solver: &impl RootSolver,
     rev: Revision,
 ) -> Option<f64> {
@@ -285,7 +288,7 @@ pub(crate) fn disc_disc(
         (Some(m), true) if ti.is_frictionless() && tj.is_frictionless() => {
             linear_pair(m.pos, ti, tj, s, now, rev)
         }
-        (Some(m), true) => curved_pair(m.pos, ti, tj, s, now, solver, rev),
+        (Some(m), true) => curved_pair(m.pos, ti, tj, s, now, origin, solver, rev),
     }
 }
 
@@ -329,12 +332,15 @@ fn linear_pair(
 
 /// At least one of two moving discs slows down: solve the quartic on the
 /// interval until the first of them stops.
+// The clock's origin travels with the time it offsets.
+#[allow(clippy::too_many_arguments)]
 fn curved_pair(
     pi: DVec2,
     ti: &Trajectory,
     tj: &Trajectory,
     s: f64,
     now: f64,
+    origin: f64,
     solver: &impl RootSolver,
     rev: Revision,
 ) -> Option<f64> {
@@ -367,7 +373,7 @@ fn curved_pair(
     if touching
         && rev.at_least_r2()
         && c1 < -min_slope
-        && pressing(ti, tj, dp, s, now, -min_slope, rev)
+        && pressing(ti, tj, dp, s, now, origin, -min_slope, rev)
     {
         // Neither approaching nor parting, and pressed together obliquely:
         // the approximated contact, now (see `push::pressing_kick`).
@@ -412,12 +418,15 @@ fn curved_pair(
 /// distance `s`) are pressed together obliquely, so that the approximated
 /// contact would part them faster than `noise` (in units of `2 s` times a
 /// speed, as the slope of the squared gap).
+// The clock's origin travels with the time it offsets.
+#[allow(clippy::too_many_arguments)]
 fn pressing(
     ti: &Trajectory,
     tj: &Trajectory,
     dp: DVec2,
     s: f64,
     now: f64,
+    origin: f64,
     noise: f64,
     rev: Revision,
 ) -> bool {
@@ -427,7 +436,7 @@ fn pressing(
     let (vi, vj) = (ti.velocity(now), tj.velocity(now));
     let n = dp.normalize_or_zero();
     let accelerations = [ti.acceleration(now), tj.acceleration(now)];
-    match push::pressing_kick([vi, vj], accelerations, n, s, now, rev) {
+    match push::pressing_kick([vi, vj], accelerations, n, s, origin + now, rev) {
         Some(push::Press::Part(dw)) => 2.0 * s * ((vi - vj).dot(n).max(0.0) + dw) > noise,
         Some(push::Press::Rest) => true,
         None => false,
@@ -510,6 +519,7 @@ mod tests {
             Mover::new(a, 0.0).as_ref(),
             b,
             s,
+            0.0,
             0.0,
             &Production,
             Revision::LATEST,

@@ -92,13 +92,17 @@ pub(crate) const CAPTURE: f64 = 1e-6;
 ///
 /// From the third revision (`rev`), a chatter whose next bounce would come
 /// within the rounding of the time (late in a long run, where an instant
-/// spans microseconds) is taken to its end too, however fast it parts.
+/// spans microseconds) is taken to its end too, however fast it parts:
+/// the rounding of the absolute time, `origin + now` (`origin` the
+/// absolute time of working time zero, see `clock`), however finely the
+/// working time resolves.
 #[inline]
 pub(crate) fn chatters(
     ti: &Trajectory,
     tj: &Trajectory,
     n: DVec2,
     now: f64,
+    origin: f64,
     rev: Revision,
 ) -> bool {
     // Cheapest test first: without pressing braking (frictionless pairs,
@@ -113,7 +117,23 @@ pub(crate) fn chatters(
     let (vi, vj) = (ti.velocity(now), tj.velocity(now));
     let w = (vi - vj).dot(n);
     w <= CAPTURE * (vi.length() + vj.length())
-        || (rev.at_least_r3() && same_instant(now, now + 2.0 * w / -a))
+        || (rev.at_least_r3() && next_within_rounding(origin + now, 2.0 * w / -a))
+}
+
+/// Whether a bounce `dt` after a hit at absolute time `at` falls within the
+/// rounding of that time (see [`same_instant`]): a pressed pair that
+/// bounces so fast has come to rest for all a reported time can show.
+/// It is the absolute time that decides, not the working time the hit was
+/// computed in: from the seventh revision the world's clock moves its
+/// origin up to the latest event (see `clock`), and measured from there
+/// every bounce, however fast, would lie beyond the rounding, so that a
+/// pressed pair whose bounces come ever faster (a disc held between a
+/// wall and a braking one) would never be let come to rest and would end
+/// the run `stuck`. Before the seventh revision the origin is zero and the
+/// working time is the absolute time.
+#[inline]
+pub(crate) fn next_within_rounding(at: f64, dt: f64) -> bool {
+    same_instant(at, at + dt)
 }
 
 /// Largest gap, as a fraction of the contact distance, that the
@@ -163,13 +183,14 @@ pub(crate) const PRESS_SPEED: f64 = 0.05;
 /// energy added is at most `m w^2 / 2` of the pair's reduced mass `m` (once
 /// per pressing episode: the bounces themselves are elastic). `vi`, `vj`
 /// are the velocities after the hit, `ai`, `aj` the accelerations, `n` the
-/// unit normal from `j` to `i`, `s` the contact distance.
+/// unit normal from `j` to `i`, `s` the contact distance, `at` the absolute
+/// time of the hit (see [`next_within_rounding`]).
 pub(crate) fn pressing_kick(
     [vi, vj]: [DVec2; 2],
     [ai, aj]: [DVec2; 2],
     n: DVec2,
     s: f64,
-    now: f64,
+    at: f64,
     rev: Revision,
 ) -> Option<Press> {
     let (w, w_min, g2) = pressing([vi, vj], [ai, aj], n, s, rev)?;
@@ -189,7 +210,7 @@ pub(crate) fn pressing_kick(
     }
     // So slow that the next bounce would fall within the rounding of the
     // time: the pair comes to rest here (it would within that time anyway).
-    if same_instant(now, now + 2.0 * w_min / -g2) {
+    if next_within_rounding(at, 2.0 * w_min / -g2) {
         return Some(Press::Rest);
     }
     Some(Press::Part(w_min - w.max(0.0)))
@@ -328,6 +349,24 @@ mod tests {
 
     fn sliding(x: f64, vx: f64, alpha: f64) -> Trajectory {
         Trajectory::new(0.0, DVec2::new(x, 0.0), DVec2::new(vx, 0.0), alpha)
+    }
+
+    #[test]
+    fn a_pressed_pair_rests_when_its_next_bounce_is_within_the_rounding_of_the_absolute_time() {
+        // A frictionless disc sliding past a braking one that presses it
+        // (1 m/s^2 along their normal): its next bounce is 1e-13 s away.
+        let (v, a) = (
+            [DVec2::new(0.0, 1e-12), DVec2::ZERO],
+            [DVec2::ZERO, DVec2::X],
+        );
+        let kick = |at: f64| pressing_kick(v, a, DVec2::X, 0.04, at, Revision::R7);
+        assert_eq!(kick(1.0), Some(Press::Rest), "within the rounding at 1 s");
+        assert!(
+            matches!(kick(1e-9), Some(Press::Part(_))),
+            "beyond the rounding at 1 ns: it bounces"
+        );
+        assert!(next_within_rounding(1.0, 1e-13));
+        assert!(!next_within_rounding(1e-9, 1e-13));
     }
 
     #[test]

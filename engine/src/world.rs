@@ -895,7 +895,8 @@ impl World {
             -braking[0] * vi.normalize_or_zero(),
             -braking[1] * vj.normalize_or_zero(),
         ];
-        let Some(press) = push::pressing_kick([vi, vj], acc, n, s, t, self.config.revision) else {
+        let at = self.clock.origin() + t;
+        let Some(press) = push::pressing_kick([vi, vj], acc, n, s, at, self.config.revision) else {
             return false;
         };
         self.slots[i].traj = ti;
@@ -1427,7 +1428,8 @@ impl World {
             Trajectory::new(t, pi, vi, alpha[0]),
             Trajectory::new(t, pj, vj, alpha[1]),
         );
-        if e > 0.0 && push::chatters(&new_i, &new_j, n, t, self.config.revision) {
+        let origin = self.clock.origin();
+        if e > 0.0 && push::chatters(&new_i, &new_j, n, t, origin, self.config.revision) {
             // The pair would bounce ever faster into a pressing contact:
             // take the chatter's end, one plastic hit, now.
             (vi, vj) = impulse::body_body(ui, uj, mi.mass, mj.mass, 0.0, n);
@@ -1515,7 +1517,7 @@ impl World {
             [ti.acceleration(t), tj.acceleration(t)],
             n,
             s,
-            t,
+            self.clock.origin() + t,
             self.config.revision,
         )
     }
@@ -1765,6 +1767,7 @@ impl World {
                     &sj.traj,
                     s,
                     now,
+                    self.clock.origin(),
                     &self.config.solver,
                     self.config.revision,
                 );

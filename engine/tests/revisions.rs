@@ -231,6 +231,22 @@ fn a_chatter_late_in_a_long_run_ends_when_its_bounces_fall_within_an_instant() {
 }
 
 #[test]
+fn a_disc_held_in_a_wedge_by_a_braking_one_rests_once_the_clock_has_moved() {
+    // A frictionless disc is pressed into a wall of a wedge by a braking
+    // one: their bounces come ever faster, 3.6e-10 s apart and closing,
+    // and the seventh revision's clock moves its origin up to them. The
+    // pair must still come to rest when a bounce falls within the rounding
+    // of the absolute time, as it did before the clock: measured from the
+    // moved origin no bounce ever did, and the run ended `stuck`.
+    let out = holds(Revision::R6, "wedge-4805", EndReason::Rest);
+    let latest = run("wedge-4805", Revision::LATEST);
+    assert_eq!(
+        latest.events, out.events,
+        "as many events as before the clock"
+    );
+}
+
+#[test]
 fn a_pressed_pair_that_stops_stops_what_pushes_it() {
     // A heavy disc pushes a light one obliquely into a resting one. Had
     // the light pair come to rest alone, the heavy one would push it again
