@@ -93,7 +93,7 @@ impl RootSolver for Production {
                 Path::General => general(&a, n, lo, hi, true, false, &mut out),
             },
         }
-        out.first()
+        out.first().filter(|&r| lo <= r && r < hi)
     }
 }
 
@@ -115,6 +115,16 @@ fn solve(coeffs: &[f64], lo: f64, hi: f64, first: bool) -> Roots {
             Path::Single => general(&a, n, lo, hi, first, true, &mut out),
             Path::General => general(&a, n, lo, hi, first, false, &mut out),
         },
+    }
+    // A root polished onto the excluded end (a huge leading coefficient
+    // beside a subnormal one rounds a root of -8e-73 to `hi = 0`) is not
+    // in the interval.
+    if out.as_slice().last().is_some_and(|&r| r >= hi) {
+        let kept: Vec<f64> = out.as_slice().iter().copied().filter(|&r| r < hi).collect();
+        out = Roots::new();
+        for r in kept {
+            out.push(r);
+        }
     }
     out
 }

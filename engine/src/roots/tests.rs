@@ -497,3 +497,24 @@ fn roots_in_a_finite_interval_never_returns_a_point_where_bisection_paused() {
         "{got:?} vs {exact:?}"
     );
 }
+
+/// Found by `arbitrary_input_never_panics`: a quartic with a huge leading
+/// coefficient and a subnormal one, searched on `[-4.05, 0)`.
+#[test]
+fn a_huge_leading_coefficient_beside_a_subnormal_one_gives_well_formed_roots() {
+    let c = [
+        -381981.46306435304,
+        0.0,
+        1.831774374608786e-309,
+        -369.762703204847,
+        1.0000000000000005e294,
+    ];
+    let (lo, hi) = (-4.049888306990507, 0.0);
+    for m in Method::ALL {
+        let all = m.roots_in(&c, lo, hi);
+        assert!(well_formed(&all), "{m:?}: {all:?}");
+        assert!(all.iter().all(|&r| lo <= r && r < hi), "{m:?}: {all:?}");
+        assert_eq!(m.first_root(&c, lo, hi), all.first(), "{m:?}");
+        assert!(well_formed(&m.real_roots(&c)), "{m:?}");
+    }
+}
