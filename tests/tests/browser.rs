@@ -1268,25 +1268,56 @@ fn overlaps(a: &Value, b: &Value) -> bool {
 async fn the_panels_buttons_keep_their_places_and_resigns_confirmation_stands_elsewhere() {
     in_player_windows("-panel", |client, _server, artifacts, window| {
         Box::pin(async move {
-            let start = against_the_computer(client).await?;
             let fixed = ["lobby", "help", "sound", "resign"];
             let at = |s: &Value, n: &str| s["buttons"][n].clone();
-            // Two shots each way: the log grows.
-            for round in 0..2 {
-                let ready = state_until(client, "our turn", 60, |s| {
-                    s["my_turn"] == true && s["animating"] == false
-                })
-                .await?;
-                shoot(client, &ready).await?;
-                state_until(client, "the shot counted", 30, |s| {
-                    s["shots"].as_u64().is_some_and(|n| n > 2 * round)
-                })
-                .await?;
-            }
-            let later = state_until(client, "a log of shots, our turn", 60, |s| {
-                s["my_turn"] == true && s["log"].as_array().is_some_and(|l| l.len() >= 3)
-            })
-            .await?;
+            let over = |s: &Value| s["end_screen"] == true;
+            // Two shots each way: the log grows. The computer may sweep the
+            // board and win round after round (the winner opens the next
+            // one) before our third turn comes: then a new match.
+            let mut attempt = 0;
+            let (start, later) = loop {
+                attempt += 1;
+                let start = against_the_computer(client).await?;
+                let mut swept = false;
+                for round in 0..2 {
+                    let ready = state_until(client, "our turn", 60, |s| {
+                        (s["my_turn"] == true && s["animating"] == false) || over(s)
+                    })
+                    .await?;
+                    if over(&ready) {
+                        swept = true;
+                        break;
+                    }
+                    shoot(client, &ready).await?;
+                    state_until(client, "the shot counted", 30, |s| {
+                        s["shots"].as_u64().is_some_and(|n| n > 2 * round)
+                    })
+                    .await?;
+                }
+                let later = if swept {
+                    None
+                } else {
+                    let s = state_until(client, "a log of shots, our turn", 120, |s| {
+                        (s["my_turn"] == true && s["log"].as_array().is_some_and(|l| l.len() >= 3))
+                            || over(s)
+                    })
+                    .await?;
+                    (!over(&s)).then_some(s)
+                };
+                match later {
+                    Some(later) => break (start, later),
+                    None if attempt < 3 => {
+                        eprintln!("e2e: the computer won before our third turn; a new match");
+                        click_button(client, "lobby").await?;
+                        state_until(client, "the lobby", 15, |s| s["screen"] == "lobby").await?;
+                    }
+                    None => {
+                        return Err(E2eError::Check(
+                            "the computer won three matches before our third turn".into(),
+                        ))
+                    }
+                }
+            };
             for n in fixed {
                 if at(&start, n) != at(&later, n) {
                     return Err(E2eError::Check(format!(
