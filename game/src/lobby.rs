@@ -3,6 +3,12 @@
 //! withdrawn, expired), quick pairing of seekers, and the bot ladder that
 //! pairs online ladder bots (and the built-in computer levels) all day.
 //!
+//! A hosted bot (a bot account whose WebAssembly module the server plays
+//! itself) is always online: it is on the ladder and accepts every
+//! challenge at once, without a stream, as long as fewer than
+//! [`LobbyLimits::max_hosted_seats`] seats of the lobby's matches are
+//! played by hosted bots.
+//!
 //! It is a state machine without I/O, like a match's session:
 //! [`Lobby::handle`] takes an [`Input`] and the time, and returns the
 //! [`Effect`]s for its driver to carry out (send a stream message, start a
@@ -30,6 +36,11 @@ pub struct LobbyLimits {
     pub ladder_every: Duration,
     /// Two rated seekers are paired when their ratings are this close.
     pub seek_rating_gap: f64,
+    /// Most seats of the lobby's unfinished matches that hosted bots play
+    /// at once (a match between two hosted bots takes two): the ladder
+    /// pairs no more of them, and a challenge to one is refused with
+    /// `server-busy`.
+    pub max_hosted_seats: usize,
 }
 
 impl Default for LobbyLimits {
@@ -39,6 +50,7 @@ impl Default for LobbyLimits {
             challenges_per_account: 20,
             ladder_every: Duration::from_secs(10),
             seek_rating_gap: 300.0,
+            max_hosted_seats: 16,
         }
     }
 }
@@ -67,6 +79,8 @@ pub enum Player<L> {
     Account(String),
     /// A built-in computer level, played by the server as its account.
     Computer(L),
+    /// A bot account whose hosted module the server plays.
+    Hosted(String),
 }
 
 /// Why the lobby starts a match.
@@ -116,6 +130,9 @@ pub enum Input<L> {
     StartFailed { seats: [Player<L>; 2] },
     /// Time passed (expire challenges, pair the ladder).
     Tick,
+    /// The hosted bots now (every bot account with an active module, at
+    /// its rating): they replace the ones known before.
+    Hosted { bots: Vec<Member> },
 }
 
 struct Online {
@@ -152,6 +169,8 @@ pub struct Lobby<L> {
     playing: HashMap<String, u32>,
     /// The computer levels' ratings.
     computers: Vec<(L, f64)>,
+    /// The hosted bots, by lower-case name.
+    hosted: BTreeMap<String, Member>,
     next_challenge: u64,
     next_ladder: Moment,
     /// Which of an odd number of ladder bots sits out (turns round).
@@ -182,11 +201,17 @@ impl<L: ComputerLevel> Lobby<L> {
             challenges: BTreeMap::new(),
             playing: HashMap::new(),
             computers,
+            hosted: BTreeMap::new(),
             next_challenge: 1,
             rounds: 0,
             rng: crate::noise::SplitMix64::new(seed),
             out: Vec::new(),
         }
+    }
+
+    /// How often the ladder pairs its bots.
+    pub fn ladder_every(&self) -> Duration {
+        self.limits.ladder_every
     }
 
     /// When the lobby next needs [`Input::Tick`].
@@ -248,15 +273,32 @@ impl<L: ComputerLevel> Lobby<L> {
                 }
             }
             Input::Tick => self.tick(now),
+            Input::Hosted { bots } => {
+                self.hosted = bots.into_iter().map(|m| (key(&m.name), m)).collect();
+            }
         }
         std::mem::take(&mut self.out)
     }
 
     fn player_name(&self, p: &Player<L>) -> String {
         match p {
-            Player::Account(a) => a.clone(),
+            Player::Account(a) | Player::Hosted(a) => a.clone(),
             Player::Computer(l) => crate::name::computer_account(*l),
         }
+    }
+
+    /// Whether `account` is a hosted bot.
+    pub fn is_hosted(&self, account: &str) -> bool {
+        self.hosted.contains_key(&key(account))
+    }
+
+    /// Seats of the lobby's unfinished matches that hosted bots play.
+    fn hosted_seats(&self) -> usize {
+        self.hosted
+            .keys()
+            .filter_map(|k| self.playing.get(k))
+            .map(|&n| n as usize)
+            .sum()
     }
 
     fn done_playing(&mut self, account: &str) {
@@ -273,6 +315,9 @@ impl<L: ComputerLevel> Lobby<L> {
             if key(&s.member.name) == key(account) {
                 s.member.rating = rating;
             }
+        }
+        if let Some(m) = self.hosted.get_mut(&key(account)) {
+            m.rating = rating;
         }
         for (level, r) in &mut self.computers {
             if key(&crate::name::computer_account(*level)) == key(account) {
@@ -425,6 +470,9 @@ impl<L: ComputerLevel> Lobby<L> {
                 "too many open challenges; wait for answers or withdraw some",
             ));
         }
+        if let Some(bot) = self.hosted.get(&key(&to)).map(|m| m.name.clone()) {
+            return self.challenge_hosted(me, bot, rated, rules, turn_seconds, color);
+        }
         let id = format!("c{}", self.next_challenge);
         self.next_challenge += 1;
         let open = Open {
@@ -452,6 +500,41 @@ impl<L: ComputerLevel> Lobby<L> {
             ));
         }
         self.challenges.insert(id, open);
+        Ok(())
+    }
+
+    /// A challenge to a hosted bot: accepted at once (the match starts and
+    /// both are told `match-start` by the driver), unless hosted bots play
+    /// as many seats as they may.
+    fn challenge_hosted(
+        &mut self,
+        me: &Member,
+        bot: String,
+        rated: bool,
+        rules: Preset,
+        turn_seconds: Option<u64>,
+        color: Option<Side>,
+    ) -> Result<(), Refusal> {
+        if self.hosted_seats() >= self.limits.max_hosted_seats {
+            return Err(refused(
+                ErrorCode::ServerBusy,
+                "the server plays as many hosted bots as it can; try later",
+            ));
+        }
+        let white = match color {
+            Some(side) => side == Side::White,
+            None => self.rng.next_u64() & 1 == 0,
+        };
+        let id = format!("c{}", self.next_challenge);
+        self.next_challenge += 1;
+        let (from, to) = (Player::Account(me.name.clone()), Player::Hosted(bot));
+        self.start(
+            if white { [from, to] } else { [to, from] },
+            rated,
+            rules,
+            turn_seconds,
+            Pairing::Challenge(id),
+        );
         Ok(())
     }
 
@@ -568,6 +651,19 @@ impl<L: ComputerLevel> Lobby<L> {
             let k = key(&s.member.name);
             if s.ladder && !self.playing.contains_key(&k) && seen.insert(k) {
                 pool.push((Player::Account(s.member.name.clone()), s.member.rating));
+            }
+        }
+        let mut room = self
+            .limits
+            .max_hosted_seats
+            .saturating_sub(self.hosted_seats());
+        for (k, m) in &self.hosted {
+            if room == 0 {
+                break;
+            }
+            if !self.playing.contains_key(k) && seen.insert(k.clone()) {
+                pool.push((Player::Hosted(m.name.clone()), m.rating));
+                room -= 1;
             }
         }
         if pool.is_empty() {
@@ -872,6 +968,86 @@ mod tests {
         l.handle(finished, at(21));
         let fx = l.handle(Input::Tick, at(30));
         assert_eq!(fx.len(), 1, "search and greedy again: {fx:?}");
+    }
+
+    fn starts(fx: &[Effect]) -> Vec<[Player; 2]> {
+        fx.iter()
+            .filter_map(|e| match e {
+                Effect::Start { seats, .. } => Some(seats.clone()),
+                _ => None,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_hosted_bot_is_on_the_ladder_without_a_stream_and_plays_one_ladder_match_at_a_time() {
+        let mut l = lobby();
+        let hosted = Input::Hosted {
+            bots: vec![member("Wasm", true, 1500.0)],
+        };
+        assert!(l.handle(hosted, at(0)).is_empty());
+        assert!(l.is_hosted("wasm"));
+        let fx = l.handle(Input::Tick, at(10));
+        let paired = starts(&fx);
+        assert_eq!(paired.len(), 1, "{fx:?}");
+        assert!(paired[0].contains(&Player::Hosted("Wasm".into())));
+        assert!(paired[0].contains(&Player::Computer(Level::Easy)));
+        assert!(l.handle(Input::Tick, at(20)).is_empty(), "still playing");
+        let finished = Input::Finished {
+            ratings: vec![("Wasm".into(), 1600.0), ("computer-easy".into(), 1400.0)],
+        };
+        l.handle(finished, at(21));
+        assert_eq!(starts(&l.handle(Input::Tick, at(30))).len(), 1);
+        // Gone from the list (its module deleted): off the ladder.
+        l.handle(Input::Hosted { bots: Vec::new() }, at(31));
+        l.handle(
+            Input::Finished {
+                ratings: vec![("Wasm".into(), 1600.0), ("computer-easy".into(), 1400.0)],
+            },
+            at(32),
+        );
+        assert!(l.handle(Input::Tick, at(40)).is_empty());
+    }
+
+    #[test]
+    fn a_challenge_to_a_hosted_bot_starts_at_once_until_hosted_bots_fill_their_seats() {
+        let mut l = Lobby::new(
+            LobbyLimits {
+                max_hosted_seats: 1,
+                ..LobbyLimits::default()
+            },
+            vec![(Level::Easy, 1500.0)],
+            at(0),
+            7,
+        );
+        l.handle(
+            Input::Hosted {
+                bots: vec![member("Wasm", true, 1500.0)],
+            },
+            at(0),
+        );
+        let a = online(&mut l, 1, member("Anka", false, 1500.0));
+        let white = StreamClientMessage::Challenge {
+            to: "wasm".into(),
+            rated: true,
+            rules: None,
+            turn_seconds: None,
+            color: Some(Side::White),
+        };
+        let fx = say(&mut l, a, white.clone(), 1);
+        assert_eq!(
+            starts(&fx),
+            [[
+                Player::Account("Anka".into()),
+                Player::Hosted("Wasm".into())
+            ]],
+            "{fx:?}"
+        );
+        // Its one hosted seat is taken: the next is refused, and the
+        // ladder pairs no hosted bot.
+        let fx = say(&mut l, a, white, 2);
+        assert_eq!(error_code(&fx), Some(ErrorCode::ServerBusy));
+        assert!(l.handle(Input::Tick, at(10)).is_empty());
     }
 
     #[test]

@@ -89,6 +89,12 @@ pub struct MatchRecord {
     /// Format 4 on: the sealed noise.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub noise: Option<SealedNoise>,
+    /// The hosted bot module that played each seat (first, second), named
+    /// by its SHA-256 in hex, `null` for a seat no module played; absent
+    /// when none did. With the revealed secret, it lets anyone run the
+    /// same modules again and get the same moves.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hosted: Option<[Option<String>; 2]>,
     pub moves: Vec<RecordedMove>,
 }
 
@@ -145,6 +151,7 @@ impl MatchRecord {
             config,
             seed,
             noise,
+            hosted: None,
             moves: Vec::new(),
         }
     }

@@ -112,6 +112,11 @@ pub fn run(config: Config) -> Result<(), AppError> {
         store = store.backend(),
         "store opened; live matches resumed"
     );
+    info!(
+        workers = hub.hosted().workers(),
+        hosted_seats = config.hosted_matches,
+        "hosted bots' budget"
+    );
     game_rt.spawn(expire_open_matches(
         hub.clone(),
         Duration::from_secs(config.open_match_expiry_seconds),

@@ -181,6 +181,20 @@ pub struct Config {
     #[arg(long, env = "CHAPAEV_LADDER_SECONDS", default_value_t = 10, value_parser = clap::value_parser!(u64).range(1..=24 * 3600))]
     pub ladder_seconds: u64,
 
+    /// Hosted bots' decisions that may run at once, server-wide, each on a
+    /// blocking thread of its own (default: a quarter of the cores, at
+    /// least one); the others wait their turn, so hosted bots never take
+    /// more than these cores from people's matches.
+    #[arg(long, env = "CHAPAEV_HOSTED_WORKERS", default_value_t = default_hosted_workers(), value_parser = clap::value_parser!(u16).range(1..=256))]
+    pub hosted_workers: u16,
+
+    /// Most seats of ladder matches and challenges that hosted bots play
+    /// at once (a match between two hosted bots takes two); past it the
+    /// ladder pairs no more of them and a challenge to one is refused
+    /// with `server-busy`.
+    #[arg(long, env = "CHAPAEV_HOSTED_MATCHES", default_value_t = 16, value_parser = clap::value_parser!(u32).range(0..=100_000))]
+    pub hosted_matches: u32,
+
     /// Seconds a challenge waits for an answer before it expires.
     #[arg(long, env = "CHAPAEV_CHALLENGE_SECONDS", default_value_t = 60, value_parser = clap::value_parser!(u64).range(5..=24 * 3600))]
     pub challenge_seconds: u64,
@@ -228,6 +242,12 @@ fn default_http_workers() -> u16 {
     cores.saturating_sub(1).clamp(1, 64) as u16
 }
 
+/// A quarter of the cores this process may use, at least one.
+fn default_hosted_workers() -> u16 {
+    let cores = std::thread::available_parallelism().map_or(2, |n| n.get());
+    (cores / 4).clamp(1, 256) as u16
+}
+
 /// SQLite's `synchronous` setting under the write-ahead log.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum SyncMode {
@@ -266,6 +286,8 @@ pub struct Limits {
     pub outbound_queue: usize,
     /// The most one write to a WebSocket may take.
     pub write_timeout: Duration,
+    /// Hosted bots' decisions that may run at once.
+    pub hosted_workers: usize,
 }
 
 /// A node id: 1 to 64 letters, digits, `-`, `_` or `.`.
@@ -316,6 +338,7 @@ impl Config {
         game::lobby::LobbyLimits {
             challenge_ttl: Duration::from_secs(self.challenge_seconds),
             ladder_every: Duration::from_secs(self.ladder_seconds),
+            max_hosted_seats: self.hosted_matches as usize,
             ..Default::default()
         }
     }
@@ -337,6 +360,7 @@ impl Config {
             idle: Duration::from_secs(self.idle_seconds),
             outbound_queue: usize::try_from(self.outbound_queue).unwrap_or(256),
             write_timeout: Duration::from_millis(self.write_timeout_ms),
+            hosted_workers: usize::from(self.hosted_workers),
         }
     }
 }

@@ -40,6 +40,8 @@ pub struct Metrics {
     live: Gauge,
     shots: Counter,
     refused: Counter,
+    hosted_decisions: Counter,
+    hosted_failures: Counter,
     resolution: Histogram,
     to_broadcast: Histogram,
 }
@@ -98,6 +100,14 @@ impl Metrics {
         self.shots.get()
     }
 
+    /// A hosted bot decided (`failed`: it gave no answer).
+    pub fn hosted_decided(&self, failed: bool) {
+        self.hosted_decisions.inc();
+        if failed {
+            self.hosted_failures.inc();
+        }
+    }
+
     /// A shot was resolved and stored in `took`.
     pub fn shot_resolved(&self, took: Duration) {
         self.shots.inc();
@@ -137,6 +147,16 @@ impl Metrics {
             "chapaev_refused_messages",
             "Client messages answered with an error",
             self.refused.clone(),
+        );
+        registry.register(
+            "chapaev_hosted_decisions",
+            "Decisions of hosted bots (WebAssembly modules the server plays)",
+            self.hosted_decisions.clone(),
+        );
+        registry.register(
+            "chapaev_hosted_decision_failures",
+            "Decisions of hosted bots that gave no answer (out of fuel, a trap, a bad answer)",
+            self.hosted_failures.clone(),
         );
         if let Some(cpu) = cpu_seconds() {
             registry.register(

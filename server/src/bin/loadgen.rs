@@ -23,6 +23,14 @@
 //! nothing is relayed: the two runs side by side give the cost of relayed
 //! connections against local ones.
 //!
+//! With `--hosted-bots N --hosted-module FILE` it first makes N bot
+//! accounts that each upload FILE as their hosted module, and waits
+//! `--hosted-wait-seconds` for the server's ladder to pair them: the people's
+//! matches are then measured while the server plays hosted bots beside
+//! them (start the server with `--hosted-matches` at least N and a short
+//! `--ladder-seconds`), and the hosted bots' decisions during the run are
+//! reported.
+//!
 //! ```sh
 //! cargo run --release -p server -- --data-dir /tmp/chapaev-load \
 //!     --max-connections-per-address 100000 --create-per-sec 10000 --create-burst 10000 &
@@ -81,6 +89,17 @@ struct Args {
     /// leaves the other cores to the server.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=64))]
     threads: u16,
+
+    /// Hosted bots to put on the server's ladder before the run (bot
+    /// accounts made on the first node, each uploading `--hosted-module`).
+    #[arg(long, default_value_t = 0)]
+    hosted_bots: usize,
+    /// The WebAssembly module the hosted bots upload.
+    #[arg(long, value_name = "FILE")]
+    hosted_module: Option<std::path::PathBuf>,
+    /// Seconds to wait after the uploads for the ladder to pair them.
+    #[arg(long, default_value_t = 5)]
+    hosted_wait_seconds: u64,
 }
 
 /// Where the clients of a match connect (see `--placement`).
@@ -112,6 +131,32 @@ async fn http(addr: &str, method: &str, path: &str, body: &str) -> Result<String
         return Err(LoadError::Http(format!("{method} {path}: status {status}")));
     }
     Ok(text)
+}
+
+/// Makes `count` bot accounts on `addr` that each upload the module at
+/// `path` as their hosted module.
+async fn hosted_bots(addr: &str, count: usize, path: &std::path::Path) -> Result<(), LoadError> {
+    let bytes = Arc::new(std::fs::read(path)?);
+    let tag = std::process::id();
+    for k in 0..count {
+        let body = format!(r#"{{"name":"load-{tag}-{k}","bot":true}}"#);
+        let created: serde_json::Value =
+            serde_json::from_str(&http(addr, "POST", "/api/accounts", &body).await?)?;
+        let key = created["key"].as_str().unwrap_or_default().to_string();
+        let url = format!("http://{addr}/api/accounts/me/module");
+        let bytes = bytes.clone();
+        let put = tokio::task::spawn_blocking(move || {
+            ureq::put(&url)
+                .set("Authorization", &format!("Bearer {key}"))
+                .send_bytes(&bytes)
+                .map(|_| ())
+                .map_err(|e| format!("PUT {url}: {e}"))
+        })
+        .await
+        .map_err(|e| LoadError::Http(e.to_string()))?;
+        put.map_err(LoadError::Http)?;
+    }
+    Ok(())
 }
 
 /// The cumulative buckets of a histogram in the text of `/metrics`: (upper
@@ -451,6 +496,15 @@ async fn run(args: Args) -> Result<(), LoadError> {
         Placement::Spread => node(k),
         Placement::Local => node(m),
     };
+    if args.hosted_bots > 0 {
+        let Some(path) = &args.hosted_module else {
+            return Err(LoadError::Http(
+                "--hosted-bots needs --hosted-module".into(),
+            ));
+        };
+        hosted_bots(node(0), args.hosted_bots, path).await?;
+        tokio::time::sleep(Duration::from_secs(args.hosted_wait_seconds)).await;
+    }
     let matches = args.matches.max(1);
     let clients = args.clients.max(2 * matches);
     let rss_before = resident_bytes(addrs).await;
@@ -578,6 +632,19 @@ async fn run(args: Args) -> Result<(), LoadError> {
         println!("nodes:                  1 ({})", addrs[0]);
     }
     println!("matches:                {matches}");
+    if args.hosted_bots > 0 {
+        let decided = |m: &[String], name: &str| metric_sum(m, name).unwrap_or(0.0);
+        let held_live = metric_sum(&held_metrics, "chapaev_live_matches").unwrap_or(0.0);
+        println!(
+            "hosted bots:            {} on the ladder; {:.0} matches live with the clients connected ({matches} of them people's); {:.0} hosted decisions during the run ({:.0} failed)",
+            args.hosted_bots,
+            held_live,
+            decided(&metrics, "chapaev_hosted_decisions_total")
+                - decided(&metrics_before, "chapaev_hosted_decisions_total"),
+            decided(&metrics, "chapaev_hosted_decision_failures_total")
+                - decided(&metrics_before, "chapaev_hosted_decision_failures_total"),
+        );
+    }
     println!(
         "clients:                {clients} ({} players, {} spectators), opened in {:.2} s",
         2 * matches,

@@ -91,11 +91,13 @@ mod tests {
                     name: Some(account.into()),
                     token: None,
                     account: Some(account.into()),
+                    module: None,
                 },
                 StoredSeat {
                     name: Some(format!("bot ({level})")),
                     token: None,
                     account: None,
+                    module: None,
                 },
             ],
             rematch_of: None,

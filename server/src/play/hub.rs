@@ -15,6 +15,7 @@ use crate::config::Limits;
 use crate::limit_key::LimitKey;
 use crate::metrics::Metrics;
 use crate::play::cluster::{Cluster, Lease, LocalRooms};
+use crate::play::hosted::HostedPool;
 use crate::play::room::{Claim, Command, Connected, FinishedMatch, MatchListener, Room, RoomHost};
 use crate::refusal::Refusal;
 #[cfg(test)]
@@ -90,6 +91,9 @@ pub struct NewSeat {
     pub bot: Option<Level>,
     /// The account playing the seat.
     pub account: Option<String>,
+    /// The version (SHA-256, hex) of the account's hosted module that the
+    /// server plays the seat with.
+    pub module: Option<String>,
 }
 
 impl NewSeat {
@@ -101,7 +105,26 @@ impl NewSeat {
             token: None,
             bot: Some(level),
             account: rated.then(|| game::name::computer_account(level)),
+            module: None,
         }
+    }
+
+    /// A hosted bot's seat: its account, played with its module `hash`
+    /// (which the caller holds compiled in the hub's [`HostedPool`] until
+    /// the match has started).
+    pub fn hosted(account: String, hash: String) -> NewSeat {
+        NewSeat {
+            name: Some(account.clone()),
+            token: None,
+            bot: None,
+            account: Some(account),
+            module: Some(hash),
+        }
+    }
+
+    /// Whether the server plays the seat (a computer level or a module).
+    fn played_by_server(&self) -> bool {
+        self.bot.is_some() || self.module.is_some()
     }
 }
 
@@ -135,6 +158,8 @@ struct Inner {
     listener: std::sync::OnceLock<Arc<dyn MatchListener>>,
     /// The cluster this node belongs to, if any.
     cluster: std::sync::OnceLock<Arc<Cluster>>,
+    /// The hosted bots' budget and modules.
+    hosted: HostedPool,
 }
 
 /// The registry of rooms (cheap to clone).
@@ -158,6 +183,7 @@ fn store_failed(e: StoreError) -> Refusal {
 impl Hub {
     /// A hub whose rooms run on `rt`.
     pub fn new(store: Arc<dyn Store>, metrics: Arc<Metrics>, limits: Limits, rt: Handle) -> Hub {
+        let hosted = HostedPool::new(limits.hosted_workers);
         Hub {
             inner: Arc::new(Inner {
                 store,
@@ -173,8 +199,14 @@ impl Hub {
                 closing: AtomicBool::new(false),
                 listener: std::sync::OnceLock::new(),
                 cluster: std::sync::OnceLock::new(),
+                hosted,
             }),
         }
+    }
+
+    /// The hosted bots' budget and modules.
+    pub fn hosted(&self) -> &HostedPool {
+        &self.inner.hosted
     }
 
     pub fn store(&self) -> &Arc<dyn Store> {
@@ -211,7 +243,7 @@ impl Hub {
         let turn_seconds = self.turn_seconds(turn_seconds)?;
         let mut tokens = [None, None];
         for (seat, token) in seats.iter_mut().zip(&mut tokens) {
-            if seat.bot.is_none() {
+            if !seat.played_by_server() {
                 let t = random(token::seat_token())?;
                 seat.token = Some(t.hash());
                 *token = Some(t);
@@ -432,6 +464,7 @@ impl Hub {
                 token: Some(token.hash()),
                 bot: None,
                 account: req.account,
+                module: None,
             },
             second,
         ];
@@ -511,7 +544,9 @@ impl Hub {
             .map_err(|e| Refusal::new(ErrorCode::BadConfig, e.to_string()))?;
         let id = random(token::match_id())?;
         let bot = StoredMatch::bots_column([seats[0].bot, seats[1].bot]);
-        let both = seats.iter().all(|s| s.token.is_some() || s.bot.is_some());
+        let both = seats
+            .iter()
+            .all(|s| s.token.is_some() || s.played_by_server());
         let stored = StoredMatch {
             id: id.clone(),
             created_at: 0,
@@ -525,6 +560,7 @@ impl Hub {
                 name: s.name,
                 token: s.token,
                 account: s.account,
+                module: s.module,
             }),
             rematch_of,
             rated,
@@ -949,6 +985,7 @@ impl RoomHost for Hub {
         let [a, b] = accounts;
         let [s, t] = seats;
         let seat = |s: SeatSpec, account| NewSeat {
+            module: None,
             bot: s.bot.as_deref().and_then(Level::parse),
             name: s.name,
             token: s.token,
@@ -959,6 +996,9 @@ impl RoomHost for Hub {
     }
     fn remove(&self, id: &str, generation: u64) {
         Hub::remove(self, id, generation)
+    }
+    fn hosted(&self) -> Option<&HostedPool> {
+        Some(Hub::hosted(self))
     }
 }
 

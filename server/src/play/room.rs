@@ -10,11 +10,13 @@
 //! connection too slow to take it is dropped. The room also wakes the
 //! session when its next deadline passes (turn clock, grace periods, the
 //! built-in bot's delay, idling out), computes a built-in bot's move on a
-//! blocking thread, counts the match in the metrics, and leaves memory when
-//! the session closes or the server shuts down.
+//! blocking thread (a hosted bot's within the server's budget for them,
+//! [`crate::play::hosted`]), counts the match in the metrics, and leaves
+//! memory when the session closes or the server shuts down.
 
 use crate::config::Limits;
 use crate::metrics::Metrics;
+use crate::play::hosted::{HostedPool, HostedSeat};
 use crate::refusal::Refusal;
 use crate::store::{AfterMove, Store, StoredMatch};
 use bots::{Bot, Context, Decision};
@@ -104,6 +106,11 @@ pub trait RoomHost: Clone + Send + Sync + 'static {
     /// The match has just ended, its last move stored. By default nobody
     /// is told.
     fn finished(&self, _m: FinishedMatch) {}
+    /// The hosted bots' budget and modules (`None`: this host plays no
+    /// hosted bot, and a hosted seat never answers).
+    fn hosted(&self) -> Option<&HostedPool> {
+        None
+    }
 }
 
 /// A match that just ended, as its room saw it.
@@ -188,13 +195,20 @@ pub struct Connected {
     pub refused: Arc<AtomicU32>,
 }
 
-/// A built-in bot's decision, computed off the room's task.
+/// A bot's decision, computed off the room's task.
 struct BotAnswer {
     seat: Seat,
     at_move: usize,
     decision: BotDecision,
     /// The bot, back from its thinking thread.
-    bot: Box<dyn Bot>,
+    bot: Thinker,
+}
+
+/// Who thought: a built-in level, or a hosted module (`None`: its module
+/// could not be compiled; the next decision tries again).
+enum Thinker {
+    Builtin(Box<dyn Bot>),
+    Hosted(Option<bots::hosted_bot::HostedBot>),
 }
 
 /// What carrying out one input's effects came to, for the command's
@@ -234,6 +248,11 @@ pub struct Room<H: RoomHost> {
     /// the room, held across awaits, can be shared: only the room touches
     /// it).
     bots: [std::sync::Mutex<Option<Box<dyn Bot>>>; 2],
+    /// The hosted module playing each seat played by one.
+    hosted: [Option<HostedSeat>; 2],
+    /// The match's noise key (a hosted bot's random streams derive from
+    /// its secret).
+    noise: game::NoiseKey,
     /// For a seat the adaptive level plays against a person with an
     /// account: that account, until the level's first decision looks up
     /// what it learned of them ([`crate::play::adaptive_memory`]).
@@ -278,10 +297,30 @@ impl<H: RoomHost> Room<H> {
     /// A room for a stored match whose record has been replayed into `game`.
     pub fn new(stored: &StoredMatch, game: Game, host: H, generation: u64) -> Room<H> {
         let levels = stored.bots();
+        let hosted = [0, 1].map(|i| {
+            let s = &stored.seats[i];
+            let (account, hash) = (s.account.clone()?, s.module.clone()?);
+            // Compiled when the match started, if it did just now.
+            let bot = match (host.hosted().and_then(|p| p.cached(&hash)), &stored.noise) {
+                (Some(m), game::NoiseKey::ChaCha20(secret)) => {
+                    Some(bots::hosted_bot::HostedBot::new(m, *secret))
+                }
+                _ => None,
+            };
+            Some(HostedSeat {
+                account,
+                hash,
+                bot,
+                thinking: false,
+            })
+        });
         let seat = |i: usize| SeatSpec {
             name: stored.seats[i].name.clone(),
             token: stored.seats[i].token,
-            bot: levels[i].map(|b| b.as_str().to_string()),
+            bot: match &hosted[i] {
+                Some(h) => Some(h.account.clone()),
+                None => levels[i].map(|b| b.as_str().to_string()),
+            },
         };
         let seats = [seat(0), seat(1)];
         let bots = levels.map(|l| std::sync::Mutex::new(l.map(|l| l.bot(bot_seed()))));
@@ -305,6 +344,8 @@ impl<H: RoomHost> Room<H> {
             refused: HashMap::new(),
             live: false,
             bots,
+            hosted,
+            noise: stored.noise,
             adaptive_person: [0, 1].map(|i| {
                 (levels[i] == Some(bots::Level::Adaptive))
                     .then(|| stored.seats[1 - i].account.clone())
@@ -349,7 +390,15 @@ impl<H: RoomHost> Room<H> {
                     Some(cmd) => self.handle(cmd).await,
                 },
                 Some(a) = bots.recv() => {
-                    *lock(&self.bots[a.seat.index()]) = Some(a.bot);
+                    match a.bot {
+                        Thinker::Builtin(bot) => *lock(&self.bots[a.seat.index()]) = Some(bot),
+                        Thinker::Hosted(bot) => {
+                            if let Some(h) = &mut self.hosted[a.seat.index()] {
+                                h.bot = bot;
+                                h.thinking = false;
+                            }
+                        }
+                    }
                     let input = Input::BotMove { seat: a.seat, at_move: a.at_move, decision: a.decision };
                     self.feed(input).await;
                 }
@@ -601,6 +650,14 @@ impl<H: RoomHost> Room<H> {
                         queue = self.session.handle(Input::JoinFailed, self.now()).into();
                     }
                 }
+                Effect::CreateRematch { .. } if self.hosted.iter().any(Option::is_some) => {
+                    let refusal = Refusal::new(
+                        ErrorCode::BadMessage,
+                        "a hosted bot plays no rematch: challenge it again from the event stream",
+                    );
+                    let input = Input::RematchFailed { refusal };
+                    queue.extend(self.session.handle(input, self.now()));
+                }
                 Effect::CreateRematch {
                     config,
                     turn,
@@ -632,7 +689,13 @@ impl<H: RoomHost> Room<H> {
                     level,
                     at_move,
                     view,
-                } => self.ask_bot(seat, side, &level, at_move, view),
+                } => {
+                    if self.hosted[seat.index()].is_some() {
+                        self.ask_hosted(seat, side, at_move, view);
+                    } else {
+                        self.ask_bot(seat, side, &level, at_move, view);
+                    }
+                }
                 Effect::Status(status) => {
                     self.set_live(status == Status::Live);
                     if let (Status::Finished, Some(result)) = (status, self.session.game().result())
@@ -743,8 +806,74 @@ impl<H: RoomHost> Room<H> {
                 seat,
                 at_move,
                 decision,
-                bot,
+                bot: Thinker::Builtin(bot),
             });
+        });
+    }
+
+    /// Asks the hosted module of `seat` for its move: the decision waits
+    /// for a permit of the server's budget, then runs on a blocking
+    /// thread; a failed one (out of fuel, a trap, a bad answer, a module
+    /// that does not load) is no answer, and the turn times out.
+    fn ask_hosted(&mut self, seat: Seat, side: Side, at_move: usize, view: Box<MatchView>) {
+        let Some(h) = &mut self.hosted[seat.index()] else {
+            return;
+        };
+        if h.thinking {
+            warn!(match_id = %self.id, ?seat, "the hosted bot is still thinking");
+            return;
+        }
+        let tx = self.bot_tx.clone();
+        let Some(pool) = self.host.hosted().cloned() else {
+            let _ = tx.try_send(BotAnswer {
+                seat,
+                at_move,
+                decision: BotDecision::NoAnswer,
+                bot: Thinker::Hosted(h.bot.take()),
+            });
+            return;
+        };
+        h.thinking = true;
+        let bot = h.bot.take();
+        let (account, hash) = (h.account.clone(), h.hash.clone());
+        let store = self.host.store().clone();
+        let noise = self.noise;
+        let match_id = self.id.clone();
+        let metrics = self.host.metrics().clone();
+        tokio::spawn(async move {
+            let runner = pool.clone();
+            let ran = runner
+                .run(move || {
+                    crate::play::hosted::decide(
+                        &pool,
+                        store.as_ref(),
+                        (account.as_str(), hash.as_str()),
+                        &noise,
+                        bot,
+                        side,
+                        *view,
+                    )
+                })
+                .await;
+            let (decision, bot) = match ran {
+                Some((decision, bot, failure)) => {
+                    metrics.hosted_decided(failure.is_some());
+                    if let Some(e) = failure {
+                        warn!(%match_id, ?seat, error = %e, "a hosted bot's decision failed: no answer");
+                    }
+                    (decision, bot)
+                }
+                None => (BotDecision::NoAnswer, None),
+            };
+            // The room may have stopped meanwhile.
+            let _ = tx
+                .send(BotAnswer {
+                    seat,
+                    at_move,
+                    decision,
+                    bot: Thinker::Hosted(bot),
+                })
+                .await;
         });
     }
 
@@ -890,6 +1019,7 @@ mod tests {
             name: Some(name.into()),
             token: Some(TokenHash::of(token)),
             account: None,
+            module: None,
         };
         let stored = StoredMatch {
             id: "m1".into(),

@@ -234,6 +234,9 @@ pub struct StoredSeat {
     /// The account playing the seat, if its player signed in (the seat's
     /// name is then the account's).
     pub account: Option<String>,
+    /// The version (SHA-256, hex) of the account's hosted module that the
+    /// server plays the seat with, if it does.
+    pub module: Option<String>,
 }
 
 /// A match row.
@@ -570,6 +573,13 @@ pub trait Store: Send + Sync {
     /// `account`'s active version and its bytes, if it has one.
     fn active_module(&self, account: &str) -> Result<Option<(ModuleVersion, Vec<u8>)>, StoreError>;
 
+    /// The bytes of `account`'s version `hash`, if it has it (active or not).
+    fn module_bytes(&self, account: &str, hash: &str) -> Result<Option<Vec<u8>>, StoreError>;
+
+    /// The bot accounts with an active module (the hosted bots), as their
+    /// profiles, at most `limit` of them.
+    fn hosted_bots(&self, limit: usize) -> Result<Vec<Profile>, StoreError>;
+
     // --- operations ---
 
     /// Registers the store's metrics (group commits: count and duration,
@@ -613,6 +623,8 @@ pub trait Store: Send + Sync {
         let mut record = MatchRecord::new(m.config.clone(), &m.noise, PhysicsVersion::CURRENT);
         record.physics = m.physics;
         record.reveal(&m.noise);
+        let modules = m.seats.clone().map(|s| s.module);
+        record.hosted = modules.iter().any(Option::is_some).then_some(modules);
         record.moves = self.moves(id)?;
         Ok(Some((m, record)))
     }

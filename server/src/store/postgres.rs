@@ -144,6 +144,8 @@ CREATE TABLE bot_modules (
 );
 CREATE UNIQUE INDEX bot_modules_one_active ON bot_modules (account_key) WHERE active;
 ",
+    // The hosted module version playing each seat (NULL: none).
+    "ALTER TABLE matches ADD COLUMN first_module TEXT, ADD COLUMN second_module TEXT;",
 ];
 
 type Pool = r2d2::Pool<PostgresConnectionManager<NoTls>>;
@@ -206,11 +208,13 @@ fn stored_match(r: &Row) -> Result<StoredMatch, StoreError> {
                 name: r.get(7),
                 token: token_of(&id, r.get(8))?,
                 account: r.get(13),
+                module: r.get(17),
             },
             StoredSeat {
                 name: r.get(9),
                 token: token_of(&id, r.get(10))?,
                 account: r.get(14),
+                module: r.get(18),
             },
         ],
         rematch_of: r.get(11),
@@ -400,8 +404,10 @@ impl Store for PostgresStore {
         self.conn()?.execute(
             "INSERT INTO matches (id, created_at, updated_at, config, seed, status, bot, turn_seconds,
                                   first_name, first_token_hash, second_name, second_token_hash, rematch_of,
-                                  physics, first_account, second_account, rated, noise_secret)
-             VALUES ($1, $2, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14, $15, $16, $17)",
+                                  physics, first_account, second_account, rated, noise_secret,
+                                  first_module, second_module)
+             VALUES ($1, $2, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14, $15, $16, $17,
+                     $18, $19)",
             &[
                 &m.id,
                 &t,
@@ -420,6 +426,8 @@ impl Store for PostgresStore {
                 &m.seats[1].account,
                 &m.rated,
                 &secret,
+                &m.seats[0].module,
+                &m.seats[1].module,
             ],
         )?;
         Ok(())
@@ -728,6 +736,27 @@ impl Store for PostgresStore {
             &[&account],
         )?;
         Ok(row.map(|r| (module_version(&r), r.get(4))))
+    }
+
+    fn module_bytes(&self, account: &str, hash: &str) -> Result<Option<Vec<u8>>, StoreError> {
+        let row = self.conn()?.query_opt(
+            "SELECT module FROM bot_modules WHERE account_key = lower($1) AND hash = $2",
+            &[&account, &hash],
+        )?;
+        Ok(row.map(|r| r.get(0)))
+    }
+
+    fn hosted_bots(&self, limit: usize) -> Result<Vec<Profile>, StoreError> {
+        let limit = i64::try_from(limit).unwrap_or(i64::MAX);
+        let rows = self.conn()?.query(
+            &format!(
+                "SELECT {PROFILE_COLUMNS} FROM accounts
+                 WHERE bot AND name_key IN (SELECT account_key FROM bot_modules WHERE active)
+                 ORDER BY name_key LIMIT $1"
+            ),
+            &[&limit],
+        )?;
+        Ok(rows.iter().map(profile).collect())
     }
 
     fn leaderboard(&self, bots: bool, limit: usize) -> Result<Vec<Profile>, StoreError> {

@@ -227,7 +227,10 @@ fn add_account_columns(conn: &Connection) -> Result<(), StoreError> {
     add_column(conn, "second_account", "TEXT")?;
     add_column(conn, "rated", "INTEGER NOT NULL DEFAULT 0")?;
     // A match's noise secret (NULL: a match keyed by its seed, from before).
-    add_column(conn, "noise_secret", "TEXT")
+    add_column(conn, "noise_secret", "TEXT")?;
+    // The hosted module version playing each seat (NULL: none).
+    add_column(conn, "first_module", "TEXT")?;
+    add_column(conn, "second_module", "TEXT")
 }
 
 /// Adds `column` to the `matches` table unless it has it.
@@ -383,6 +386,7 @@ impl SqliteStore {
                 rematch_of: row.get(11)?,
                 physics: row.get(12)?,
                 accounts: [row.get(13)?, row.get(14)?],
+                modules: [row.get(17)?, row.get(18)?],
                 rated: row.get(15)?,
             },
             row.get(2)?,
@@ -413,7 +417,7 @@ impl SqliteStore {
 /// reads them.
 pub(crate) const MATCH_COLUMNS: &str = "id, created_at, config, seed, status, bot, turn_seconds,
     first_name, first_token_hash, second_name, second_token_hash, rematch_of, physics,
-    first_account, second_account, rated, noise_secret";
+    first_account, second_account, rated, noise_secret, first_module, second_module";
 
 /// A summary's columns, read from `matches` joined to the seats' accounts
 /// (`a` and `b`).
@@ -452,8 +456,10 @@ impl Store for SqliteStore {
         conn.execute(
             "INSERT INTO matches (id, created_at, updated_at, config, seed, status, bot, turn_seconds,
                                   first_name, first_token_hash, second_name, second_token_hash, rematch_of,
-                                  physics, first_account, second_account, rated, noise_secret)
-             VALUES (?1, ?2, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17)",
+                                  physics, first_account, second_account, rated, noise_secret,
+                                  first_module, second_module)
+             VALUES (?1, ?2, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17,
+                     ?18, ?19)",
             params![
                 m.id,
                 t as i64,
@@ -472,6 +478,8 @@ impl Store for SqliteStore {
                 m.seats[1].account,
                 m.rated,
                 secret,
+                m.seats[0].module,
+                m.seats[1].module,
             ],
         )?;
         self.log_grew();
@@ -870,6 +878,30 @@ impl Store for SqliteStore {
             .optional()?)
     }
 
+    fn module_bytes(&self, account: &str, hash: &str) -> Result<Option<Vec<u8>>, StoreError> {
+        Ok(self
+            .read()?
+            .query_row(
+                "SELECT module FROM bot_modules WHERE account = ?1 AND hash = ?2",
+                params![account, hash],
+                |r| r.get(0),
+            )
+            .optional()?)
+    }
+
+    fn hosted_bots(&self, limit: usize) -> Result<Vec<Profile>, StoreError> {
+        let conn = self.read()?;
+        let mut stmt = conn.prepare(&format!(
+            "SELECT {PROFILE_COLUMNS} FROM accounts
+             WHERE bot AND name IN (SELECT account FROM bot_modules WHERE active)
+             ORDER BY name LIMIT ?1"
+        ))?;
+        let rows = stmt
+            .query_map(params![limit as i64], profile)?
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(rows)
+    }
+
     fn register_metrics(&self, registry: &mut Registry) {
         self.commit.register_metrics(registry);
     }
@@ -958,6 +990,7 @@ struct StoredMatchRaw {
     rematch_of: Option<String>,
     physics: i64,
     accounts: [Option<String>; 2],
+    modules: [Option<String>; 2],
     rated: bool,
 }
 
@@ -968,6 +1001,7 @@ impl StoredMatchRaw {
             token_of(&self.id, self.second_token_hash)?,
         ];
         let [first_account, second_account] = self.accounts;
+        let [first_module, second_module] = self.modules;
         Ok(StoredMatch {
             physics: physics_of(&self.id, self.physics)?,
             config: serde_json::from_str(config)?,
@@ -981,11 +1015,13 @@ impl StoredMatchRaw {
                     name: self.first_name,
                     token: tokens[0],
                     account: first_account,
+                    module: first_module,
                 },
                 StoredSeat {
                     name: self.second_name,
                     token: tokens[1],
                     account: second_account,
+                    module: second_module,
                 },
             ],
             rematch_of: self.rematch_of,

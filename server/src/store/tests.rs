@@ -120,6 +120,7 @@ on_both_backends!(
     every_match_id_is_walked_in_pages_in_byte_order,
     module_versions_are_kept_by_hash_with_one_active_and_a_refused_change_writes_nothing,
     only_a_bots_account_uploads_a_module_and_one_the_runtime_refuses_is_not_stored,
+    the_hosted_bots_are_the_bots_with_an_active_module_and_a_seat_keeps_its_version,
 );
 
 pub(super) fn stored(id: &str) -> StoredMatch {
@@ -137,6 +138,7 @@ pub(super) fn stored(id: &str) -> StoredMatch {
                 name: Some("Petka".into()),
                 token: Some(TokenHash::of("t1")),
                 account: None,
+                module: None,
             },
             StoredSeat::default(),
         ],
@@ -488,6 +490,7 @@ fn rated(id: &str, accounts: [&str; 2]) -> StoredMatch {
             name: Some(a.into()),
             token: None,
             account: Some(a.into()),
+            module: None,
         }),
         rated: true,
         ..stored(id)
@@ -712,4 +715,54 @@ fn only_a_bots_account_uploads_a_module_and_one_the_runtime_refuses_is_not_store
             .unwrap(),
         version
     );
+}
+
+fn the_hosted_bots_are_the_bots_with_an_active_module_and_a_seat_keeps_its_version(b: Backend) {
+    let store = b.store;
+    store.create_account(&name("Furmanov"), true).unwrap();
+    store.create_account(&name("Anka"), true).unwrap();
+    assert!(store.hosted_bots(10).unwrap().is_empty());
+    store
+        .insert_module("Furmanov", &hash(1), b"one", 3)
+        .unwrap();
+    store
+        .insert_module("Furmanov", &hash(2), b"two", 3)
+        .unwrap();
+    let hosted: Vec<String> = store
+        .hosted_bots(10)
+        .unwrap()
+        .into_iter()
+        .map(|p| p.name)
+        .collect();
+    assert_eq!(hosted, ["Furmanov"], "Anka has no module");
+    // Any version's bytes, active or not; none of another account's.
+    assert_eq!(
+        store.module_bytes("furmanov", &hash(1)).unwrap(),
+        Some(b"one".to_vec())
+    );
+    assert_eq!(store.module_bytes("Anka", &hash(1)).unwrap(), None);
+    // A hosted seat's version comes back with the match and its record.
+    let mut m = stored("0123456789abcdef");
+    m.seats[1] = StoredSeat {
+        name: Some("Furmanov".into()),
+        token: None,
+        account: Some("Furmanov".into()),
+        module: Some(hash(1)),
+    };
+    m.noise = NoiseKey::ChaCha20(game::NoiseSecret::from_hex(&hash(7)).unwrap());
+    store.create(&m).unwrap();
+    let got = store.get(&m.id).unwrap().unwrap();
+    assert_eq!(got.seats[1].module, Some(hash(1)));
+    assert_eq!(got.seats[0].module, None);
+    let (_, record) = store.load(&m.id).unwrap().unwrap();
+    assert_eq!(record.hosted, Some([None, Some(hash(1))]));
+    let (_, plain) = store.load(&stored_plain(&*store)).unwrap().unwrap();
+    assert_eq!(plain.hosted, None, "absent when no module played");
+}
+
+/// Stores a match no module plays; its id.
+fn stored_plain(store: &dyn Store) -> String {
+    let m = stored("00000000000000aa");
+    store.create(&m).unwrap();
+    m.id
 }

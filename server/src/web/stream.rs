@@ -6,6 +6,11 @@
 //! and matches started through the hub, whose seat tokens go to their
 //! players in `match-start`.
 //!
+//! The driver also keeps the lobby's list of hosted bots (the bot
+//! accounts with an active module) fresh from the store, and starts a
+//! hosted bot's match with its active module, compiled before the match
+//! starts (a module that no longer loads starts no match).
+//!
 //! A stream opens with `{"type":"hello","protocol":1,"key":KEY}` within
 //! 10 s; the answer is `welcome` with the full picture (the account's
 //! matches not over, its open challenges), then events as they come, and
@@ -21,6 +26,14 @@ type Lobby = game::lobby::Lobby<bots::Level>;
 type Effect = game::lobby::Effect<bots::Level>;
 type Input = game::lobby::Input<bots::Level>;
 type Player = game::lobby::Player<bots::Level>;
+
+/// How often the hosted bots are read from the store: every ladder round,
+/// at most [`HOSTED_REFRESH`] apart.
+fn limits_refresh(streams: &Streams) -> Duration {
+    locked(&streams.inner.lobby)
+        .ladder_every()
+        .min(HOSTED_REFRESH)
+}
 use crate::play::room::{FinishedMatch, MatchListener};
 use crate::refusal::Refusal;
 use crate::store::Status;
@@ -46,6 +59,10 @@ use tracing::{debug, info, warn};
 pub const STREAM_QUEUE: usize = 64;
 /// Quiet time after which a stream gets a `keep-alive`.
 pub const KEEP_ALIVE: Duration = Duration::from_secs(30);
+/// The most time between two readings of the hosted bots from the store.
+pub const HOSTED_REFRESH: Duration = Duration::from_secs(5);
+/// Most hosted bots the lobby knows of.
+pub const MAX_HOSTED_BOTS: usize = 10_000;
 
 /// The lobby and every open stream (cheap to clone).
 #[derive(Clone)]
@@ -106,7 +123,40 @@ impl Streams {
         hub.set_listener(Arc::new(streams.clone()));
         let timer = streams.clone();
         tokio::spawn(async move { timer.run_timer().await });
+        let every = limits_refresh(&streams);
+        let refresher = streams.clone();
+        tokio::spawn(async move { refresher.refresh_hosted(every).await });
         streams
+    }
+
+    /// Reads the hosted bots from the store every `every`, for as long as
+    /// anyone holds the streams, and tells the lobby.
+    async fn refresh_hosted(self, every: Duration) {
+        loop {
+            let store = self.inner.hub.store().clone();
+            let read =
+                tokio::task::spawn_blocking(move || store.hosted_bots(MAX_HOSTED_BOTS)).await;
+            match read {
+                Ok(Ok(profiles)) => {
+                    let bots = profiles
+                        .into_iter()
+                        .map(|p| Member {
+                            name: p.name,
+                            bot: true,
+                            rating: p.rating as f64,
+                        })
+                        .collect();
+                    self.feed(Input::Hosted { bots });
+                }
+                Ok(Err(e)) => warn!(error = %e, "reading the hosted bots failed"),
+                Err(e) => warn!(error = %e, "the task reading the hosted bots failed"),
+            }
+            tokio::time::sleep(every).await;
+            if Arc::strong_count(&self.inner) <= 3 {
+                // Only this task, the timer and the hub's listener hold it.
+                return;
+            }
+        }
     }
 
     fn now(&self) -> Moment {
@@ -123,8 +173,9 @@ impl Streams {
                 _ = tokio::time::sleep_until(at.into()) => self.feed(Input::Tick),
                 _ = self.inner.wake.notified() => {}
             }
-            if Arc::strong_count(&self.inner) <= 2 {
-                // Only this task and the hub's listener hold it.
+            if Arc::strong_count(&self.inner) <= 3 {
+                // Only this task, the hosted bots' refresher and the hub's
+                // listener hold it.
                 return;
             }
         }
@@ -192,25 +243,56 @@ impl Streams {
         turn_seconds: Option<u64>,
         why: Pairing,
     ) {
-        let new_seat = |p: &Player| match p {
-            Player::Account(name) => NewSeat {
-                name: Some(name.clone()),
-                token: None,
-                bot: None,
-                account: Some(name.clone()),
-            },
-            Player::Computer(level) => NewSeat::computer(*level, computer_account(*level), rated),
+        // A hosted bot's active module, compiled now and held until its
+        // room holds it.
+        let mut modules = Vec::new();
+        let mut new_seats = Vec::new();
+        let mut refused = None;
+        for p in &seats {
+            new_seats.push(match p {
+                Player::Account(name) => NewSeat {
+                    name: Some(name.clone()),
+                    token: None,
+                    bot: None,
+                    account: Some(name.clone()),
+                    module: None,
+                },
+                Player::Computer(level) => {
+                    NewSeat::computer(*level, computer_account(*level), rated)
+                }
+                Player::Hosted(name) => match self.hosted_module(name).await {
+                    Ok(module) => {
+                        let hash = module.hash_hex();
+                        modules.push(module);
+                        NewSeat::hosted(name.clone(), hash)
+                    }
+                    Err(r) => {
+                        warn!(account = %name, message = %r.message, "a hosted bot's module does not start a match");
+                        refused = Some(r);
+                        break;
+                    }
+                },
+            });
+        }
+        if let Some(r) = refused {
+            for p in &seats {
+                if let Player::Account(a) = p {
+                    self.tell(a, StreamServerMessage::refused(&r));
+                }
+            }
+            self.feed(Input::StartFailed { seats });
+            return;
+        }
+        let [first, second]: [NewSeat; 2] = match new_seats.try_into() {
+            Ok(pair) => pair,
+            Err(_) => return,
         };
         let made = self
             .inner
             .hub
-            .create_between(
-                [new_seat(&seats[0]), new_seat(&seats[1])],
-                rules.config(),
-                turn_seconds,
-                rated,
-            )
+            .create_between([first, second], rules.config(), turn_seconds, rated)
             .await;
+        drop(modules);
         let (id, tokens) = match made {
             Ok(made) => made,
             Err(r) => {
@@ -227,7 +309,7 @@ impl Streams {
         info!(match_id = %id, ?why, rated, "the lobby started a match");
         locked(&self.inner.started).insert(id.clone());
         let name = |p: &Player| match p {
-            Player::Account(a) => a.clone(),
+            Player::Account(a) | Player::Hosted(a) => a.clone(),
             Player::Computer(l) => computer_account(*l),
         };
         for (i, token) in tokens.into_iter().enumerate() {
@@ -245,6 +327,27 @@ impl Streams {
                     rated,
                 },
             );
+        }
+    }
+
+    /// `account`'s active module, compiled.
+    async fn hosted_module(&self, account: &str) -> Result<Arc<hosted::BotModule>, Refusal> {
+        let pool = self.inner.hub.hosted().clone();
+        let store = self.inner.hub.store().clone();
+        let name = account.to_string();
+        let loaded = tokio::task::spawn_blocking(move || pool.active(store.as_ref(), &name))
+            .await
+            .map_err(|_| Refusal::internal())?;
+        match loaded {
+            Ok(Some(module)) => Ok(module),
+            Ok(None) => Err(Refusal::new(
+                ErrorCode::NoSuchAccount,
+                format!("{account} has no active module"),
+            )),
+            Err(e) => {
+                warn!(account, error = %e, "a hosted bot's module does not load");
+                Err(Refusal::internal())
+            }
         }
     }
 

@@ -1,0 +1,366 @@
+//! Hosted bots playing on the real server: a bot account uploads the
+//! starter module (built for wasm32 as its author would), and with no
+//! process of its own online it is paired on the ladder, plays a rated
+//! match to the end against a computer level, and its rating moves; the
+//! match's record names the module version that played, and running that
+//! module again on the record's positions gives every one of its moves
+//! bit for bit. A version made active (and the old one deleted) during a
+//! match plays from the next match on. A hostile module (an endless loop)
+//! loses on time while a match between people goes on.
+
+mod common;
+
+use common::{http_with, shot, Server};
+use game::decide::DecideRequest;
+use game::{MatchRecord, NoiseKey, RecordedMove, Replay, Side};
+use serde_json::Value;
+use std::path::Path;
+use std::process::Command;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+fn json(text: &str) -> Value {
+    serde_json::from_str(text).unwrap_or_else(|e| panic!("{e}: {text}"))
+}
+
+async fn as_key(s: &Server, method: &str, path: &str, key: &str, body: &str) -> (u16, String) {
+    http_with(
+        &s.addr,
+        method,
+        path,
+        &format!("Authorization: Bearer {key}\r\n"),
+        body,
+    )
+    .await
+}
+
+async fn bot_account(s: &Server, name: &str) -> String {
+    let (status, text) = s
+        .http(
+            "POST",
+            "/api/accounts",
+            &format!(r#"{{"name":"{name}","bot":true}}"#),
+        )
+        .await;
+    assert_eq!(status, 201, "{text}");
+    json(&text)["key"].as_str().unwrap().to_string()
+}
+
+/// Uploads `bytes` as the account's module; its hash.
+async fn upload(s: &Server, key: &str, bytes: Vec<u8>) -> String {
+    let url = format!("http://{}/api/accounts/me/module", s.addr);
+    let auth = format!("Bearer {key}");
+    let (status, text) = tokio::task::spawn_blocking(move || {
+        let answer = match ureq::put(&url)
+            .set("Content-Type", "application/wasm")
+            .set("Authorization", &auth)
+            .send_bytes(&bytes)
+        {
+            Ok(a) => a,
+            Err(ureq::Error::Status(_, a)) => a,
+            Err(e) => panic!("no answer to PUT {url}: {e}"),
+        };
+        (answer.status(), answer.into_string().unwrap())
+    })
+    .await
+    .unwrap();
+    assert!(status == 200 || status == 201, "{status} {text}");
+    json(&text)["hash"].as_str().unwrap().to_string()
+}
+
+/// The starter bot (`bots/wasm-starter`) built for wasm32 in release, as
+/// its author would, into this workspace's target folder.
+fn starter() -> Vec<u8> {
+    let target = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .parent()
+        .expect("the temporary folder is inside the target folder")
+        .to_path_buf();
+    let status = Command::new(env!("CARGO"))
+        .args(["build", "-p", "chapaev-starter-bot", "--release"])
+        .args(["--target", "wasm32-unknown-unknown", "--target-dir"])
+        .arg(&target)
+        .current_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join(".."))
+        .status()
+        .expect("cargo runs");
+    assert!(
+        status.success(),
+        "building the starter bot failed (it needs `rustup target add wasm32-unknown-unknown`)"
+    );
+    std::fs::read(target.join("wasm32-unknown-unknown/release/chapaev_starter_bot.wasm"))
+        .expect("the starter's wasm was built")
+}
+
+/// A module that answers `answer` at once (its own bytes for each `k`).
+fn answering(answer: &str, k: u32) -> Vec<u8> {
+    let escaped = answer.replace('"', "\\\"");
+    wat::parse_str(format!(
+        r#"(module
+            (memory (export "memory") 1)
+            (data (i32.const 0) "{escaped}")
+            (global i32 (i32.const {k}))
+            (func (export "chapaev_alloc") (param i32) (result i32) i32.const 1024)
+            (func (export "chapaev_decide") (param i32 i32) (result i64) i64.const {len}))"#,
+        len = answer.len()
+    ))
+    .unwrap()
+}
+
+/// A module whose decision never ends (it runs out of fuel).
+fn endless() -> Vec<u8> {
+    wat::parse_str(
+        r#"(module
+            (memory (export "memory") 1)
+            (func (export "chapaev_alloc") (param i32) (result i32) i32.const 1024)
+            (func (export "chapaev_decide") (param i32 i32) (result i64)
+                (loop $forever (br $forever))
+                i64.const 0))"#,
+    )
+    .unwrap()
+}
+
+/// The matches `account` played, newest first.
+async fn matches_of(s: &Server, account: &str) -> Vec<Value> {
+    let (status, text) = s
+        .http("GET", &format!("/api/accounts/{account}/matches"), "")
+        .await;
+    assert_eq!(status, 200, "{text}");
+    json(&text).as_array().unwrap().clone()
+}
+
+/// Waits (at most `within`) for a match of `account` in `status` other
+/// than those in `seen`; its summary.
+async fn wait_for(
+    s: &Server,
+    account: &str,
+    status: &str,
+    seen: &[String],
+    within: Duration,
+) -> Value {
+    let deadline = Instant::now() + within;
+    loop {
+        let found = matches_of(s, account).await.into_iter().find(|m| {
+            m["status"] == status && !seen.contains(&m["match_id"].as_str().unwrap().to_string())
+        });
+        if let Some(m) = found {
+            return m;
+        }
+        assert!(
+            Instant::now() < deadline,
+            "no {status} match of {account} within {within:?}"
+        );
+        tokio::time::sleep(Duration::from_millis(200)).await;
+    }
+}
+
+/// Waits for match `id` to finish; its summary.
+async fn wait_finished(s: &Server, id: &str, within: Duration) -> Value {
+    let deadline = Instant::now() + within;
+    loop {
+        let (status, text) = s.http("GET", &format!("/api/matches/{id}"), "").await;
+        assert_eq!(status, 200, "{text}");
+        let m = json(&text);
+        if m["status"] == "finished" {
+            return m;
+        }
+        assert!(
+            Instant::now() < deadline,
+            "match {id} not over within {within:?}"
+        );
+        tokio::time::sleep(Duration::from_millis(200)).await;
+    }
+}
+
+async fn record(s: &Server, id: &str) -> MatchRecord {
+    let (status, text) = s
+        .http("GET", &format!("/api/matches/{id}/record"), "")
+        .await;
+    assert_eq!(status, 200, "{text}");
+    MatchRecord::from_json(&text).unwrap()
+}
+
+/// The seat (0 or 1) of `account` in a summary.
+fn seat_of(summary: &Value, account: &str) -> usize {
+    if summary["first"] == account {
+        0
+    } else {
+        assert_eq!(summary["second"], account, "{summary}");
+        1
+    }
+}
+
+/// Runs `module` again on the position before each move of its seat in
+/// `record` (its random stream derived from the revealed secret) and
+/// checks it decides that very move, bit for bit; how many it checked.
+fn replay_hosted_moves(record: &MatchRecord, seat: usize, module: &[u8]) -> usize {
+    let module = Arc::new(hosted::BotModule::load(module, &hosted::Limits::default()).unwrap());
+    let NoiseKey::ChaCha20(secret) = record.key().unwrap() else {
+        panic!("a hosted bot's match is keyed by a secret")
+    };
+    let mut bot = bots::hosted_bot::HostedBot::new(module, secret);
+    let replay = Replay::new(record.clone()).expect("the record replays");
+    let mut checked = 0;
+    for (k, m) in record.moves.iter().enumerate() {
+        let view = replay.view_before(k).unwrap().clone();
+        let side = if (seat == 0) != view.swapped {
+            Side::White
+        } else {
+            Side::Black
+        };
+        let request = DecideRequest { me: side, view };
+        match m {
+            RecordedMove::Shot(o) if o.shooter == side => {
+                let bots::Decision::Shot(again) = bot.try_decide(&request).unwrap() else {
+                    panic!("move {k}: the module no longer shoots")
+                };
+                assert_eq!(again.piece(), o.piece, "move {k}");
+                assert_eq!(
+                    again.velocity().x.to_bits(),
+                    o.aimed.x.to_bits(),
+                    "move {k}"
+                );
+                assert_eq!(
+                    again.velocity().y.to_bits(),
+                    o.aimed.y.to_bits(),
+                    "move {k}"
+                );
+                checked += 1;
+            }
+            RecordedMove::Pie { swap } if side == Side::Black => {
+                assert_eq!(
+                    bot.try_decide(&request).unwrap(),
+                    bots::Decision::Pie { swap: *swap },
+                    "move {k}"
+                );
+                checked += 1;
+            }
+            RecordedMove::Resign { side: s } if *s == side => {
+                assert_eq!(
+                    bot.try_decide(&request).unwrap(),
+                    bots::Decision::Resign,
+                    "move {k}"
+                );
+                checked += 1;
+            }
+            _ => {}
+        }
+    }
+    checked
+}
+
+/// The starter as a hosted bot on the ladder, and a new version during its
+/// match.
+async fn starter_on_the_ladder(extra: &[&str]) {
+    let starter = tokio::task::block_in_place(starter);
+    let dir = tempfile::tempdir().unwrap();
+    let mut flags = vec!["--ladder-seconds", "1", "--hosted-workers", "1"];
+    flags.extend_from_slice(extra);
+    let s = Server::start(dir.path(), &flags);
+    let key = bot_account(&s, "Starter").await;
+    let v1 = upload(&s, &key, starter.clone()).await;
+
+    // No stream, no client: the server pairs it and plays it.
+    let live = wait_for(&s, "Starter", "live", &[], Duration::from_secs(60)).await;
+    let id = live["match_id"].as_str().unwrap().to_string();
+    assert_eq!(live["rated"], true, "{live}");
+    let seat = seat_of(&live, "Starter");
+    let opponent = live[if seat == 0 { "second" } else { "first" }]
+        .as_str()
+        .unwrap()
+        .to_string();
+    assert!(opponent.starts_with("computer-"), "{live}");
+
+    // A new version, made active during the match, and the one playing
+    // deleted: the match goes on with the version it started with.
+    let resigner = answering(r#"{"type":"resign"}"#, 1);
+    let v2 = upload(&s, &key, resigner.clone()).await;
+    assert_ne!(v1, v2);
+    let (status, text) = as_key(
+        &s,
+        "DELETE",
+        &format!("/api/accounts/me/modules/{v1}"),
+        &key,
+        "",
+    )
+    .await;
+    assert_eq!(status, 204, "{text}");
+
+    let over = wait_finished(&s, &id, Duration::from_secs(600)).await;
+    assert!(over["result"].is_object(), "{over}");
+    let first = record(&s, &id).await;
+    let mut named = [None, None];
+    named[seat] = Some(v1.clone());
+    assert_eq!(first.hosted, Some(named), "the record names the version");
+    game::verify(&first).expect("the record verifies");
+    let checked = replay_hosted_moves(&first, seat, &starter);
+    assert!(checked >= 2, "only {checked} of the starter's moves");
+    assert!(
+        !first
+            .moves
+            .iter()
+            .any(|m| matches!(m, RecordedMove::Resign { .. })),
+        "the new version did not play in the running match"
+    );
+
+    // Rated: its rating moved, and it is on the bots' leaderboard.
+    let (status, text) = s.http("GET", "/api/accounts/Starter", "").await;
+    assert_eq!(status, 200, "{text}");
+    let profile = json(&text);
+    assert!(profile["games"].as_u64().unwrap() >= 1, "{profile}");
+    assert_ne!(profile["rating"], 1500, "{profile}");
+    let (status, text) = s.http("GET", "/api/leaderboard?bots=true", "").await;
+    assert_eq!(status, 200, "{text}");
+    assert!(text.contains("\"Starter\""), "{text}");
+
+    // The next match is the new version's: it resigns at its first move.
+    let next = wait_for(&s, "Starter", "finished", &[id], Duration::from_secs(120)).await;
+    let id2 = next["match_id"].as_str().unwrap();
+    let second = record(&s, id2).await;
+    let seat2 = seat_of(&next, "Starter");
+    let mut named = [None, None];
+    named[seat2] = Some(v2);
+    assert_eq!(second.hosted, Some(named));
+    assert_eq!(replay_hosted_moves(&second, seat2, &resigner), 1);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn on_sqlite_an_uploaded_starter_is_paired_on_the_ladder_plays_a_rated_match_that_replays_and_a_new_version_waits_for_the_next_match(
+) {
+    starter_on_the_ladder(&[]).await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_hostile_module_loses_on_time_while_a_match_between_people_plays_on() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = Server::start(
+        dir.path(),
+        &["--ladder-seconds", "1", "--hosted-workers", "1"],
+    );
+    let key = bot_account(&s, "Spinner").await;
+    let hash = upload(&s, &key, endless()).await;
+    let live = wait_for(&s, "Spinner", "live", &[], Duration::from_secs(60)).await;
+    let id = live["match_id"].as_str().unwrap().to_string();
+    let seat = seat_of(&live, "Spinner");
+
+    // Meanwhile two people play: every shot is acknowledged.
+    let (pid, a, b) = s.two_player_match(r#","rules":"casual""#).await;
+    let mut white = s.ws(&pid, Some(&a)).await;
+    let mut black = s.ws(&pid, Some(&b)).await;
+    white.send(&shot(4, 0.0, 2.0)).await;
+    white.next_of("shot-played").await;
+    black.next_of("shot-played").await;
+
+    let over = wait_finished(&s, &id, Duration::from_secs(300)).await;
+    let side = if seat == 0 { "white" } else { "black" };
+    assert_eq!(over["result"]["reason"], "timeouts", "{over}");
+    assert_ne!(over["result"]["side"], side, "{over}");
+    let r = record(&s, &id).await;
+    let mut named = [None, None];
+    named[seat] = Some(hash);
+    assert_eq!(r.hosted, Some(named));
+    game::verify(&r).expect("the record verifies");
+    let (status, text) = s.http("GET", "/api/accounts/Spinner", "").await;
+    assert_eq!(status, 200, "{text}");
+    assert!(json(&text)["rating"].as_i64().unwrap() < 1500, "{text}");
+    let (status, _) = s.http("GET", "/healthz", "").await;
+    assert_eq!(status, 200);
+}
