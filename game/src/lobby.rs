@@ -642,8 +642,9 @@ impl<L: ComputerLevel> Lobby<L> {
     /// ladder match, and every idle computer level, sorted by rating and
     /// paired with its neighbour — the one above in one round, the one
     /// below in the next; a pair of two computer levels is skipped (the
-    /// ladder is for the registered bots). With an odd number, a different
-    /// one sits out each round.
+    /// ladder is for the registered bots). With an odd number, one sits out:
+    /// a computer level if one is there (a different one each round), so
+    /// that a registered bot alone with the computer levels plays at once.
     fn pair_ladder(&mut self) {
         let mut pool: Vec<(Player<L>, f64)> = Vec::new();
         let mut seen = std::collections::HashSet::new();
@@ -678,11 +679,24 @@ impl<L: ComputerLevel> Lobby<L> {
         pool.sort_by(|a, b| b.1.total_cmp(&a.1));
         // Every other round the pairs shift by one (the top one sits out),
         // so that each meets both its neighbours, not always the same one.
-        if self.rounds & 1 == 1 && pool.len() >= 4 {
+        let registered = pool
+            .iter()
+            .filter(|(p, _)| !matches!(p, Player::Computer(_)))
+            .count();
+        if self.rounds & 1 == 1 && pool.len() >= 4 && registered >= 2 {
             pool.remove(0);
         }
         if pool.len() % 2 == 1 {
-            let out = (self.rounds as usize) % pool.len();
+            let computers: Vec<usize> = pool
+                .iter()
+                .enumerate()
+                .filter(|(_, (p, _))| matches!(p, Player::Computer(_)))
+                .map(|(i, _)| i)
+                .collect();
+            let out = match computers.len() {
+                0 => (self.rounds as usize) % pool.len(),
+                n => computers[(self.rounds as usize) % n],
+            };
             pool.remove(out);
         }
         self.rounds += 1;
@@ -1007,6 +1021,26 @@ mod tests {
             at(32),
         );
         assert!(l.handle(Input::Tick, at(40)).is_empty());
+    }
+
+    #[test]
+    fn a_bot_alone_with_an_odd_number_of_computer_levels_is_paired_in_the_first_round() {
+        let mut l = Lobby::new(
+            LobbyLimits::default(),
+            vec![(Level::Easy, 1500.0), (Level::Easy, 1400.0)],
+            at(0),
+            7,
+        );
+        l.handle(
+            Input::Hosted {
+                bots: vec![member("Wasm", true, 1600.0)],
+            },
+            at(0),
+        );
+        // Three in the pool, the bot on top: a computer level sits out.
+        let paired = starts(&l.handle(Input::Tick, at(10)));
+        assert_eq!(paired.len(), 1);
+        assert!(paired[0].contains(&Player::Hosted("Wasm".into())));
     }
 
     #[test]
