@@ -5,8 +5,10 @@
 //! match's record names the module version that played, and running that
 //! module again on the record's positions gives every one of its moves
 //! bit for bit. A version made active (and the old one deleted) during a
-//! match plays from the next match on. A hostile module (an endless loop)
-//! loses on time while a match between people goes on.
+//! match plays from the next match on; a match resumed after a restart is
+//! played on by its own version, read back from the store. A hostile
+//! module (an endless loop) loses on time while a match between people
+//! goes on.
 
 mod common;
 
@@ -326,6 +328,58 @@ async fn starter_on_the_ladder(extra: &[&str]) {
 async fn on_sqlite_an_uploaded_starter_is_paired_on_the_ladder_plays_a_rated_match_that_replays_and_a_new_version_waits_for_the_next_match(
 ) {
     starter_on_the_ladder(&[]).await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn on_postgresql_an_uploaded_starter_is_paired_on_the_ladder_plays_a_rated_match_that_replays_and_a_new_version_waits_for_the_next_match(
+) {
+    let Some(url) = tokio::task::block_in_place(|| {
+        local_services::local_postgres::shared_database("hosted_play_on_postgresql")
+    }) else {
+        return;
+    };
+    starter_on_the_ladder(&[&format!("--database-url={url}")]).await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_hosted_match_resumed_after_a_restart_is_played_on_by_its_version_from_the_store() {
+    let starter = tokio::task::block_in_place(starter);
+    let dir = tempfile::tempdir().unwrap();
+    let flags = ["--ladder-seconds", "1", "--hosted-workers", "1"];
+    let mut s = Server::start(dir.path(), &flags);
+    let key = bot_account(&s, "Starter").await;
+    let v1 = upload(&s, &key, starter.clone()).await;
+    let live = wait_for(&s, "Starter", "live", &[], Duration::from_secs(60)).await;
+    let id = live["match_id"].as_str().unwrap().to_string();
+    let seat = seat_of(&live, "Starter");
+    // A few moves in, the server dies; a new version is active by the time
+    // it is back.
+    let deadline = Instant::now() + Duration::from_secs(60);
+    loop {
+        let (_, text) = s.http("GET", &format!("/api/matches/{id}"), "").await;
+        if json(&text)["shots"].as_u64().unwrap_or(0) >= 2 {
+            break;
+        }
+        assert!(Instant::now() < deadline, "no shots in match {id}");
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+    s.kill();
+    let s = Server::start(dir.path(), &flags);
+    let v2 = upload(&s, &key, answering(r#"{"type":"resign"}"#, 2)).await;
+    assert_ne!(v1, v2);
+    let over = wait_finished(&s, &id, Duration::from_secs(600)).await;
+    assert!(over["result"].is_object(), "{over}");
+    let r = record(&s, &id).await;
+    let mut named = [None, None];
+    named[seat] = Some(v1);
+    assert_eq!(r.hosted, Some(named));
+    assert!(
+        !r.moves
+            .iter()
+            .any(|m| matches!(m, RecordedMove::Resign { .. } | RecordedMove::Pass { .. })),
+        "the resumed match was played on by its own version, every decision answered"
+    );
+    assert!(replay_hosted_moves(&r, seat, &starter) >= 2);
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
