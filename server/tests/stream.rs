@@ -1,8 +1,9 @@
 //! The account event stream through the real server: the welcome's full
 //! picture, challenges (refused, made, accepted once, played with the
 //! seat tokens the stream hands over, finished with the new rating), the
-//! ladder pairing a bot with a computer level, and hostile openings (a
-//! wrong key, a bot's key from a web page) refused with a stable code.
+//! ladder pairing a bot with a computer level, a challenge to a hosted bot
+//! (accepted at once, its seat played by the server), and hostile openings
+//! (a wrong key, a bot's key from a web page) refused with a stable code.
 
 mod common;
 
@@ -265,4 +266,63 @@ async fn a_stream_with_a_wrong_key_or_a_bot_key_from_a_web_page_is_refused() {
         .await
         .unwrap();
     assert_eq!(junk.error().await, ErrorCode::NoHello);
+}
+
+/// A module that resigns at every decision.
+fn resigning_module() -> Vec<u8> {
+    wat::parse_str(
+        r#"(module
+            (memory (export "memory") 1)
+            (data (i32.const 0) "{\"type\":\"resign\"}")
+            (func (export "chapaev_alloc") (param i32) (result i32) i32.const 1024)
+            (func (export "chapaev_decide") (param i32 i32) (result i64) i64.const 17))"#,
+    )
+    .unwrap()
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_challenge_to_a_hosted_bot_is_accepted_at_once_and_the_server_plays_its_seat() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = Server::start(dir.path(), &["--ladder-seconds", "1"]);
+    let bot = account(&s, "Wasm", true).await;
+    let url = format!("http://{}/api/accounts/me/module", s.addr);
+    let status = tokio::task::spawn_blocking(move || {
+        ureq::put(&url)
+            .set("Authorization", &format!("Bearer {bot}"))
+            .send_bytes(&resigning_module())
+            .map(|a| a.status())
+            .unwrap_or_else(|e| panic!("{e}"))
+    })
+    .await
+    .unwrap();
+    assert_eq!(status, 201);
+    let key = account(&s, "Anka", false).await;
+    let mut anka = Stream::open(&s.addr, &key).await;
+    anka.next().await;
+    // The lobby reads the hosted bots every ladder round.
+    tokio::time::sleep(Duration::from_millis(2500)).await;
+    anka.send(&StreamClientMessage::Challenge {
+        to: "wasm".into(),
+        rated: true,
+        rules: None,
+        turn_seconds: None,
+        color: Some(game::Side::White),
+    })
+    .await;
+    let (match_id, token, opponent) = started(anka.next().await);
+    assert_eq!(opponent, "Wasm");
+    let mut m = Client::connect(&s.addr, &match_id, Some(&token)).await;
+    m.send(&common::shot(4, 0.0, 2.0)).await;
+    // The module resigns at its first decision: Anka wins, rated.
+    assert!(matches!(
+        anka.next().await,
+        StreamServerMessage::MatchFinish { rating: Some(r), .. } if r > 1500
+    ));
+    let (_, text) = s
+        .http("GET", &format!("/api/matches/{match_id}/record"), "")
+        .await;
+    let record = game::MatchRecord::from_json(&text).unwrap();
+    assert!(record
+        .hosted
+        .is_some_and(|h| h[0].is_none() && h[1].is_some()));
 }
