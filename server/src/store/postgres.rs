@@ -144,6 +144,8 @@ CREATE TABLE bot_modules (
 );
 CREATE UNIQUE INDEX bot_modules_one_active ON bot_modules (account_key) WHERE active;
 ",
+    // Where clients reach each node (`--public-url`; NULL: not given).
+    "ALTER TABLE cluster_nodes ADD COLUMN public_url TEXT;",
 ];
 
 type Pool = r2d2::Pool<PostgresConnectionManager<NoTls>>;
