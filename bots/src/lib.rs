@@ -27,7 +27,8 @@
 //! measured), [`arena`] (one match in process), [`remote`] (one match on a
 //! server), [`stats`] (Elo, LOS, SPRT), [`tournament`],
 //! [`follow`] (a seat's view kept from the server's messages), [`runner`]
-//! (a bot on a server: create or join, play, reconnect), [`hosted_bot`] (a
+//! (a bot on a server: create or join, play, reconnect), [`owner`]
+//! (connecting on the node of a cluster that plays the match), [`hosted_bot`] (a
 //! WebAssembly bot as a [`Bot`]), [`program`] (any program speaking JSON
 //! lines as a [`Bot`]).
 
@@ -49,6 +50,7 @@ pub mod hosted_bot;
 pub mod level;
 pub mod misses;
 pub mod online;
+pub mod owner;
 pub mod pie;
 pub mod planner;
 pub mod program;

@@ -452,7 +452,8 @@ impl Runner {
         let mut jitter = Backoff::rng_for(&grant.match_id);
         let mut since = Instant::now();
         loop {
-            let dropped = match tokio_tungstenite::connect_async(url.as_str()).await {
+            // On the node that plays the match, if the server has several.
+            let dropped = match crate::owner::connect(&url, false).await {
                 Ok((mut ws, _)) => {
                     connections += 1;
                     let (end, got_state) = play.session(&mut ws).await?;

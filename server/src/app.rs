@@ -94,8 +94,14 @@ pub fn run(config: Config) -> Result<(), AppError> {
         &config.redis_url,
     ) {
         let lease = Duration::from_secs(config.lease_seconds);
-        let cluster =
-            crate::play::cluster::Cluster::connect(node, db, redis, lease, game_rt.handle())?;
+        let cluster = crate::play::cluster::Cluster::connect(
+            node,
+            config.public_url.clone(),
+            db,
+            redis,
+            lease,
+            game_rt.handle(),
+        )?;
         hub.set_cluster(cluster.clone());
         cluster.start(&hub, game_rt.handle());
         info!(

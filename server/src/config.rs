@@ -50,6 +50,15 @@ pub struct Config {
     #[arg(long, env = "CHAPAEV_NODE_ID", value_parser = parse_node_id)]
     pub node_id: Option<String>,
 
+    /// Where clients reach this node of a cluster, directly or through a
+    /// proxy's route to this node alone (`https://play.example/n/node-1`).
+    /// A node asked with `/ws?match=ID&follow=1` for a match another node
+    /// plays answers `307` with that node's URL, so the client talks to
+    /// the node playing its match instead of being relayed. Without it,
+    /// other nodes relay this node's matches to their clients.
+    #[arg(long, env = "CHAPAEV_PUBLIC_URL", requires = "redis_url", value_parser = parse_public_url)]
+    pub public_url: Option<String>,
+
     /// Seconds a node's lease on a match lasts unrenewed: after a node
     /// dies, its matches move to another node within about this long.
     #[arg(long, env = "CHAPAEV_LEASE_SECONDS", default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..=600))]
@@ -302,6 +311,28 @@ fn parse_node_id(s: &str) -> Result<String, String> {
     }
 }
 
+/// A `--public-url`: `http://` or `https://`, a host, perhaps a port
+/// and a path; no query, fragment or space. Kept without a trailing `/`.
+fn parse_public_url(s: &str) -> Result<String, String> {
+    let rest = s
+        .strip_prefix("http://")
+        .or_else(|| s.strip_prefix("https://"))
+        .ok_or("a public URL starts with http:// or https://")?;
+    let host = rest.split('/').next().unwrap_or_default();
+    if host.is_empty() {
+        return Err("a public URL names a host".into());
+    }
+    if s.len() > 512
+        || s.chars()
+            .any(|c| c.is_whitespace() || c.is_control() || c == '?' || c == '#')
+    {
+        return Err(
+            "a public URL has no query, fragment or space (and at most 512 characters)".into(),
+        );
+    }
+    Ok(s.trim_end_matches('/').to_string())
+}
+
 /// A `--trusted-proxy` value: a network in CIDR notation (`10.0.0.0/8`,
 /// `fd00::/8`) or a single address.
 pub fn parse_trusted_proxy(s: &str) -> Result<ipnet::IpNet, String> {
@@ -393,6 +424,29 @@ mod tests {
         assert!(Config::try_parse_from(["server", "--turn-seconds", "0"]).is_err());
         assert!(Config::try_parse_from(["server", "--sync", "sometimes"]).is_err());
         Config::command().debug_assert();
+    }
+
+    #[test]
+    fn a_public_url_is_http_or_https_with_a_host_and_no_query() {
+        assert_eq!(
+            parse_public_url("https://play.example/n/node-1/").as_deref(),
+            Ok("https://play.example/n/node-1")
+        );
+        assert_eq!(
+            parse_public_url("http://10.0.0.5:8080").as_deref(),
+            Ok("http://10.0.0.5:8080")
+        );
+        for bad in [
+            "play.example",
+            "ftp://play.example",
+            "https://",
+            "https:///path",
+            "https://play.example/?x=1",
+            "https://play.example/#a",
+            "https://play example",
+        ] {
+            assert!(parse_public_url(bad).is_err(), "{bad}");
+        }
     }
 
     #[test]

@@ -4,13 +4,18 @@
 //! same messages in the same order; when the node playing a match is
 //! killed with SIGKILL, another node takes it over within the lease plus
 //! a second, the clients reconnect, the match finishes, and every
-//! acknowledged shot is in its record. Skipped (with a note) where the
+//! acknowledged shot is in its record. A client that asks a node with
+//! `follow=1` is sent (`307`) to the node that plays its match when that
+//! node has a public URL, plays there instead of being relayed, and after
+//! that node dies it reaches the node that took the match over. Skipped (with a note) where the
 //! machine has no PostgreSQL or Redis, unless `CHAPAEV_REQUIRE_POSTGRES`
 //! / `CHAPAEV_REQUIRE_REDIS` say they must be there.
 
 mod common;
 
-use common::cluster::{node, reconnect, services, until_shots, LEASE};
+use common::cluster::{
+    node, reconnect, reconnect_following, routed_node, services, until_shots, LEASE,
+};
 use common::{shot, view, Client};
 use game::protocol::{ClientMessage, ServerMessage};
 use std::time::{Duration, Instant};
@@ -165,4 +170,138 @@ async fn when_the_node_playing_a_match_is_killed_another_takes_it_over_and_no_ac
     assert_eq!(record.moves.len(), 5, "four shots and the resignation");
     let replay = game::Replay::new(record).unwrap();
     assert_eq!(replay.game().view().shots, 4);
+}
+
+/// A single-valued metric of a node's `/metrics`.
+async fn gauge(node: &common::Server, name: &str) -> Option<u64> {
+    let (_, text) = node.http("GET", "/metrics", "").await;
+    let line = text.lines().find(|l| l.starts_with(&format!("{name} ")))?;
+    line.split(' ').nth(1)?.parse().ok()
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_client_asking_another_node_for_a_match_is_sent_to_the_node_playing_it_and_plays_it_to_the_end(
+) {
+    let Some((db, redis)) = services("cluster_routed") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let a = routed_node(dir.path(), &db, &redis, "routed-a");
+    let b = routed_node(dir.path(), &db, &redis, "routed-b");
+    let (id, white_token) = a.create(r#"{"name":"Petka"}"#).await;
+    let black_token = b.join(&id).await;
+    // Both players and a spectator ask node B; node A plays the match.
+    let (mut white, white_at) =
+        common::Client::try_connect_following(&b.addr, &id, Some(&white_token))
+            .await
+            .unwrap();
+    let (mut black, black_at) =
+        common::Client::try_connect_following(&b.addr, &id, Some(&black_token))
+            .await
+            .unwrap();
+    let (mut watcher, watcher_at) = common::Client::try_connect_following(&b.addr, &id, None)
+        .await
+        .unwrap();
+    assert_eq!([&white_at, &black_at, &watcher_at], [&a.addr; 3]);
+    let first = [
+        view(white.next().await),
+        view(black.next().await),
+        view(watcher.next().await),
+    ];
+    assert!(first.iter().all(|v| *v == first[0]), "{first:?}");
+    // Node B sent them on and relays no connection (it keeps the proxy
+    // room the join through it started); node A serves nobody for B.
+    assert_eq!(
+        gauge(&b, "chapaev_cluster_connections_routed").await,
+        Some(3)
+    );
+    assert_eq!(
+        gauge(&b, "chapaev_cluster_connections_relayed").await,
+        Some(0)
+    );
+    assert_eq!(
+        gauge(&a, "chapaev_cluster_connections_served").await,
+        Some(0)
+    );
+    assert_eq!(gauge(&a, "chapaev_connections").await, Some(3));
+    // A client that does not ask to be sent on is relayed, as before.
+    let mut relayed = b.ws(&id, None).await;
+    view(relayed.next().await);
+    assert_eq!(
+        gauge(&b, "chapaev_cluster_connections_relayed").await,
+        Some(1)
+    );
+    // Played to the end on node A.
+    white.send(&shot(4, 0.0, 2.0)).await;
+    white.send(&shot(2, 0.0, 0.5)).await;
+    until_shots(&mut black, 2).await;
+    black.send(&shot(10, 0.0, -0.5)).await;
+    until_shots(&mut white, 3).await;
+    black.send(&ClientMessage::Resign).await;
+    for c in [&mut white, &mut black, &mut watcher, &mut relayed] {
+        c.next_of("match-over").await;
+    }
+    let (status, record) = a
+        .http("GET", &format!("/api/matches/{id}/record"), "")
+        .await;
+    assert_eq!(status, 200, "{record}");
+    let record: game::MatchRecord = serde_json::from_str(&record).unwrap();
+    assert_eq!(record.moves.len(), 4, "three shots and the resignation");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_client_sent_to_a_node_that_is_killed_reaches_the_node_that_takes_the_match_over() {
+    let Some((db, redis)) = services("cluster_routed_takeover") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let mut a = routed_node(dir.path(), &db, &redis, "routed-takeover-a");
+    let b = routed_node(dir.path(), &db, &redis, "routed-takeover-b");
+    let (id, white_token, black_token) = a.two_player_match("").await;
+    let (mut white, white_at) =
+        common::Client::try_connect_following(&b.addr, &id, Some(&white_token))
+            .await
+            .unwrap();
+    let (mut black, black_at) =
+        common::Client::try_connect_following(&b.addr, &id, Some(&black_token))
+            .await
+            .unwrap();
+    assert_eq!([&white_at, &black_at], [&a.addr; 2]);
+    view(white.next().await);
+    view(black.next().await);
+    white.send(&shot(4, 0.0, 2.0)).await;
+    white.send(&shot(2, 0.0, 0.5)).await;
+    until_shots(&mut black, 2).await;
+    black.send(&shot(10, 0.0, -0.5)).await;
+    until_shots(&mut white, 3).await;
+
+    a.kill();
+    let killed = Instant::now();
+    assert!(black.closes().await && white.closes().await);
+    // They come back through node B, which sends them to A while A's
+    // lease lasts (they cannot reach it, so B relays, to nobody), and
+    // plays the match itself once it took it over.
+    let (mut black, state, black_at) = reconnect_following(&b, &id, &black_token).await;
+    let took = killed.elapsed();
+    assert_eq!(black_at, b.addr);
+    assert_eq!(state.shots, 3, "every acknowledged shot came back");
+    println!("routed client back on the new owner after SIGKILL: {took:?} (lease {LEASE} s)");
+    let (mut white, again, white_at) = reconnect_following(&b, &id, &white_token).await;
+    assert_eq!(white_at, b.addr);
+    assert_eq!(again, state);
+    assert_eq!(gauge(&b, "chapaev_cluster_matches_owned").await, Some(1));
+    assert_eq!(
+        gauge(&b, "chapaev_cluster_connections_relayed").await,
+        Some(0)
+    );
+    white.send(&shot(3, 0.0, 0.5)).await;
+    until_shots(&mut black, 1).await;
+    black.send(&ClientMessage::Resign).await;
+    white.next_of("match-over").await;
+    let (status, record) = b
+        .http("GET", &format!("/api/matches/{id}/record"), "")
+        .await;
+    assert_eq!(status, 200, "{record}");
+    let record: game::MatchRecord = serde_json::from_str(&record).unwrap();
+    assert_eq!(record.moves.len(), 5, "four shots and the resignation");
 }

@@ -21,7 +21,10 @@
 //! one, and its CPU seconds. With `--placement local` every client of a
 //! match connects to the node that created (and plays) it instead, so
 //! nothing is relayed: the two runs side by side give the cost of relayed
-//! connections against local ones.
+//! connections against local ones. With `--placement routed` the clients
+//! connect where `spread` puts them but ask to be sent to the node that
+//! plays their match (`follow=1`, [`bots::owner`]): nodes started with
+//! `--public-url` answer `307` to it, and the client ends up local.
 //!
 //! With `--hosted-bots N --hosted-module FILE` it first makes N bot
 //! accounts that each upload FILE as their hosted module, and waits
@@ -80,7 +83,9 @@ struct Args {
 
     /// Where the clients of a match connect over several nodes: `spread`
     /// (its second player and spectators on the other nodes, relayed to
-    /// the node that plays it) or `local` (all on that node).
+    /// the node that plays it), `local` (all on that node) or `routed`
+    /// (where `spread` puts them, asking to be sent to the node that plays
+    /// the match, which the nodes do when given `--public-url`).
     #[arg(long, value_enum, default_value_t = Placement::Spread)]
     placement: Placement,
 
@@ -107,6 +112,7 @@ struct Args {
 enum Placement {
     Spread,
     Local,
+    Routed,
 }
 
 /// Failures that end the run.
@@ -301,13 +307,18 @@ struct Totals {
 
 type Ws = tokio_tungstenite::WebSocketStream<tokio_tungstenite::MaybeTlsStream<TcpStream>>;
 
-/// Opens a match's WebSocket and says hello with `token` (none: watch).
-async fn connect(addr: &str, id: &str, token: Option<&str>) -> Result<Ws, LoadError> {
+/// Opens a match's WebSocket (on the node that plays it, if `follow`)
+/// and says hello with `token` (none: watch).
+async fn connect(addr: &str, id: &str, token: Option<&str>, follow: bool) -> Result<Ws, LoadError> {
     let url = format!("ws://{addr}/ws?match={id}");
     // No Nagle: a shot is one small frame and must leave at once.
-    let mut ws = tokio_tungstenite::connect_async_with_config(url, None, true)
-        .await?
-        .0;
+    let mut ws = if follow {
+        bots::owner::connect(&url, true).await?.0
+    } else {
+        tokio_tungstenite::connect_async_with_config(url, None, true)
+            .await?
+            .0
+    };
     let hello = ClientMessage::Hello {
         protocol: PROTOCOL_VERSION,
         name: "loadgen".into(),
@@ -493,7 +504,7 @@ async fn run(args: Args) -> Result<(), LoadError> {
     let node = |k: usize| addrs[k % nodes].as_str();
     // The node of a client of match `m` that would be on node `k`.
     let client_node = |m: usize, k: usize| match args.placement {
-        Placement::Spread => node(k),
+        Placement::Spread | Placement::Routed => node(k),
         Placement::Local => node(m),
     };
     if args.hosted_bots > 0 {
@@ -505,6 +516,7 @@ async fn run(args: Args) -> Result<(), LoadError> {
         hosted_bots(node(0), args.hosted_bots, path).await?;
         tokio::time::sleep(Duration::from_secs(args.hosted_wait_seconds)).await;
     }
+    let follow = args.placement == Placement::Routed;
     let matches = args.matches.max(1);
     let clients = args.clients.max(2 * matches);
     let rss_before = resident_bytes(addrs).await;
@@ -533,15 +545,23 @@ async fn run(args: Args) -> Result<(), LoadError> {
     let mut watchers = Vec::new();
     for (m, (id, a, b)) in seats.iter().enumerate() {
         // The first player on the creating node, the second on the next one.
-        players.push(connect(node(m), id, Some(a)).await?);
-        players.push(connect(client_node(m, m + 1), id, Some(b)).await?);
+        players.push(connect(node(m), id, Some(a), follow).await?);
+        players.push(connect(client_node(m, m + 1), id, Some(b), follow).await?);
     }
     for k in 0..clients - 2 * matches {
         // Spectator k watches match k % matches, as its (k / matches)-th
         // spectator: round-robin over the nodes from the one after the
         // creating node.
         let m = k % matches;
-        watchers.push(connect(client_node(m, m + 1 + k / matches), &seats[m].0, None).await?);
+        watchers.push(
+            connect(
+                client_node(m, m + 1 + k / matches),
+                &seats[m].0,
+                None,
+                follow,
+            )
+            .await?,
+        );
     }
     let connect_time = started.elapsed();
     // Let the servers settle, then weigh them.
@@ -626,6 +646,9 @@ async fn run(args: Args) -> Result<(), LoadError> {
             match args.placement {
                 Placement::Spread => "each one's players on two nodes, spectators spread",
                 Placement::Local => "all of each one's clients on its node",
+                Placement::Routed => {
+                    "each one's clients asking two or more nodes, sent to the node playing it"
+                }
             }
         );
     } else {
@@ -717,13 +740,14 @@ async fn run(args: Args) -> Result<(), LoadError> {
                 .zip(metric_value(after, "process_cpu_seconds_total"))
                 .map_or("?".into(), |(a, b)| format!("{:.2}", b - a));
             println!(
-                "  node {} ({addr}): CPU {cpu} s; connections {}; matches played {}, relayed {}; connections relayed {}, served for other nodes {}",
+                "  node {} ({addr}): CPU {cpu} s; connections {}; matches played {}, relayed {}; connections relayed {}, served for other nodes {}, sent to the node playing their match {}",
                 k + 1,
                 gauge("chapaev_connections"),
                 gauge("chapaev_cluster_matches_owned"),
                 gauge("chapaev_cluster_matches_relayed"),
                 gauge("chapaev_cluster_connections_relayed"),
                 gauge("chapaev_cluster_connections_served"),
+                gauge("chapaev_cluster_connections_routed"),
             );
         }
     }

@@ -312,6 +312,7 @@ impl Hub {
             (owned, rooms.len() - owned)
         };
         let (links, served) = cluster.connection_counts();
+        let routed = usize::try_from(cluster.routed()).unwrap_or(usize::MAX);
         for (name, help, value) in [
             (
                 "chapaev_cluster_matches_owned",
@@ -332,6 +333,11 @@ impl Hub {
                 "chapaev_cluster_connections_served",
                 "Connections of other nodes' clients to matches played here",
                 served,
+            ),
+            (
+                "chapaev_cluster_connections_routed",
+                "Connections this node sent on to the node playing their match (since it started)",
+                routed,
             ),
         ] {
             let value = i64::try_from(value).unwrap_or(i64::MAX);
@@ -823,6 +829,30 @@ impl Hub {
             reply,
         })
         .await
+    }
+
+    /// On a node of a cluster, where a client asking this node for match
+    /// `id` had better connect: the public URL of the node that plays it
+    /// ([`Cluster::route`]). `None` when this node plays the match, takes
+    /// it, or does not know where the owner is reached (it then relays,
+    /// as it does for a client that does not ask to be routed).
+    pub async fn route(&self, id: &str) -> Option<String> {
+        let cluster = self.cluster()?.clone();
+        if !token::is_match_id(id) || self.rooms().get(id).is_some_and(|h| h.owned) {
+            return None;
+        }
+        let key = id.to_string();
+        match tokio::task::spawn_blocking(move || cluster.route(&key)).await {
+            Ok(Ok(url)) => url,
+            Ok(Err(e)) => {
+                warn!(match_id = %id, error = %e, "looking up the node that plays a match failed; relaying");
+                None
+            }
+            Err(e) => {
+                error!(error = %e, "route task failed");
+                None
+            }
+        }
     }
 
     /// Admits a connection to `id`, which this node plays (a connection

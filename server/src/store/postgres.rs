@@ -146,6 +146,8 @@ CREATE UNIQUE INDEX bot_modules_one_active ON bot_modules (account_key) WHERE ac
 ",
     // The hosted module version playing each seat (NULL: none).
     "ALTER TABLE matches ADD COLUMN first_module TEXT, ADD COLUMN second_module TEXT;",
+    // Where clients reach each node (`--public-url`; NULL: not given).
+    "ALTER TABLE cluster_nodes ADD COLUMN public_url TEXT;",
 ];
 
 type Pool = r2d2::Pool<PostgresConnectionManager<NoTls>>;

@@ -1,4 +1,7 @@
-//! The WebSocket endpoint `/ws?match=ID`. The client's first message is a
+//! The WebSocket endpoint `/ws?match=ID`. On a node of a cluster, a
+//! client that adds `&follow=1` is answered `307` to the node that plays
+//! its match when that node has a public URL (`--public-url`), instead of
+//! being relayed to it. The client's first message is a
 //! `hello` carrying the seat token (none: a spectator); the token never
 //! travels in the URL, which proxies and browsers write down. A session
 //! admits the connection to its match room once the hello has come
@@ -47,6 +50,26 @@ pub struct WsQuery {
     pub match_id: String,
     /// Only read to refuse it: the token belongs in the hello.
     token: Option<String>,
+    /// Present (any value): the client follows a `307` to the node that
+    /// plays the match (a node of a cluster sends it there when it knows
+    /// that node's public URL; otherwise it relays, as for every client).
+    follow: Option<String>,
+}
+
+/// The answer sending a client that follows redirects to the node that
+/// plays its match: `307` to that node's `/ws` for the match (`base` is
+/// its public URL, `http` becoming `ws` and `https` `wss`), still asking
+/// to be sent on should the match have moved again.
+fn sent_to(base: &str, match_id: &str) -> HttpResponse {
+    let ws = match base.strip_prefix("https://") {
+        Some(rest) => format!("wss://{rest}"),
+        None => format!("ws://{}", base.strip_prefix("http://").unwrap_or(base)),
+    };
+    let location = format!("{ws}/ws?match={match_id}&follow=1");
+    HttpResponse::TemporaryRedirect()
+        .insert_header((actix_web::http::header::LOCATION, location))
+        .insert_header((actix_web::http::header::CACHE_CONTROL, "no-store"))
+        .finish()
 }
 
 /// Counts an open connection for as long as it lives.
@@ -151,6 +174,13 @@ pub async fn handler(
             "the seat token goes in the hello message, never in the URL \
              (URLs end up in logs); connect to /ws?match=ID",
         )));
+    }
+    // Sent to the node that plays the match (before counting it: this
+    // node holds no connection for it).
+    if query.follow.is_some() {
+        if let Some(base) = hub.route(&query.match_id).await {
+            return Ok(sent_to(&base, &query.match_id));
+        }
     }
     let admitted = match admit(&req, &hub) {
         Ok(a) => a,
@@ -395,4 +425,28 @@ impl pump::Endpoint for MatchEndpoint {
 async fn account_claim(hub: &Hub, key: SeatToken, browser: bool) -> Result<Claim, Refusal> {
     let account = crate::web::auth::account_of_key(hub, key, browser).await?;
     Ok(Claim::Account(account.name))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn location(r: &HttpResponse) -> &str {
+        r.headers()
+            .get(actix_web::http::header::LOCATION)
+            .and_then(|v| v.to_str().ok())
+            .unwrap_or_default()
+    }
+
+    #[test]
+    fn a_client_is_sent_to_the_owners_socket_on_its_public_url_with_the_scheme_of_a_websocket() {
+        let r = sent_to("https://play.example/n/node-1", "m123");
+        assert_eq!(r.status(), actix_web::http::StatusCode::TEMPORARY_REDIRECT);
+        assert_eq!(
+            location(&r),
+            "wss://play.example/n/node-1/ws?match=m123&follow=1"
+        );
+        let r = sent_to("http://10.0.0.5:8080", "m123");
+        assert_eq!(location(&r), "ws://10.0.0.5:8080/ws?match=m123&follow=1");
+    }
 }

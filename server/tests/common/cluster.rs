@@ -31,6 +31,35 @@ pub fn node(dir: &std::path::Path, db: &str, redis: &str, node: &str) -> Server 
     )
 }
 
+/// A node like [`node`] that tells the others where its clients reach
+/// it (`--public-url`, its own address), so that they send them there.
+pub fn routed_node(dir: &std::path::Path, db: &str, redis: &str, node: &str) -> Server {
+    // A free port, known before the node starts: it is in its URL.
+    let port = std::net::TcpListener::bind("127.0.0.1:0")
+        .and_then(|l| l.local_addr())
+        .map(|a| a.port())
+        .expect("a free port");
+    let addr = format!("127.0.0.1:{port}");
+    let lease = LEASE.to_string();
+    let url = format!("http://{addr}");
+    Server::start_on(
+        dir,
+        &addr,
+        &[
+            "--database-url",
+            db,
+            "--redis-url",
+            redis,
+            "--node-id",
+            node,
+            "--lease-seconds",
+            &lease,
+            "--public-url",
+            &url,
+        ],
+    )
+}
+
 /// A fresh database and the shared Redis, or `None` (skipped). (They
 /// block: off the runtime's thread.)
 pub fn services(test: &str) -> Option<(String, String)> {
@@ -82,6 +111,35 @@ pub async fn until_shots(client: &mut Client, n: usize) {
 /// (while it moves between nodes the node may refuse or close).
 pub async fn reconnect(server: &Server, id: &str, token: &str) -> (Client, game::MatchView) {
     reconnect_any(&[server], id, token).await
+}
+
+/// Connects to `id` through `node`, following it to the node that plays
+/// the match, until the match answers with its state (while it moves, a
+/// node may refuse, close, or send the client to a node that died): the
+/// client, the state, and the address of the node it ended on.
+pub async fn reconnect_following(
+    node: &Server,
+    id: &str,
+    token: &str,
+) -> (Client, game::MatchView, String) {
+    let deadline = Instant::now() + Duration::from_secs(40);
+    loop {
+        assert!(Instant::now() < deadline, "the match did not come back");
+        let attempt = tokio::time::timeout(Duration::from_secs(3), async {
+            let (mut c, at) = Client::try_connect_following(&node.addr, id, Some(token))
+                .await
+                .ok()?;
+            match c.try_next().await {
+                Some(ServerMessage::MatchState { view, .. }) => Some((c, view, at)),
+                _ => None,
+            }
+        })
+        .await;
+        if let Ok(Some(found)) = attempt {
+            return found;
+        }
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
 }
 
 /// Connects to `id` on each of `nodes` in turn until one answers with

@@ -37,6 +37,11 @@ impl Server {
 
     /// Starts the server binary on `dir` with extra flags; waits until it listens.
     pub fn start(dir: &Path, extra: &[&str]) -> Server {
+        Server::start_on(dir, "127.0.0.1:0", extra)
+    }
+
+    /// [`Server::start`] listening on `addr`.
+    pub fn start_on(dir: &Path, addr: &str, extra: &[&str]) -> Server {
         let log_path = dir.join(format!(
             "server-{}.log",
             std::time::SystemTime::now()
@@ -48,7 +53,7 @@ impl Server {
         let mut child = Command::new(env!("CARGO_BIN_EXE_server"))
             .args([
                 "--addr",
-                "127.0.0.1:0",
+                addr,
                 "--bot-delay-ms",
                 "0",
                 "--log",
@@ -233,6 +238,40 @@ impl Client {
             other => c.pending = other,
         }
         Ok(c)
+    }
+
+    /// Connects to the node that plays the match, asking `addr` first and
+    /// following its `307` ([`bots::owner::connect`]), and says hello: the
+    /// client, and the address of the node it ended on.
+    pub async fn try_connect_following(
+        addr: &str,
+        id: &str,
+        token: Option<&str>,
+    ) -> Result<(Client, String), tokio_tungstenite::tungstenite::Error> {
+        let (ws, url) = bots::owner::connect(&format!("ws://{addr}/ws?match={id}"), false).await?;
+        let at = url
+            .strip_prefix("ws://")
+            .and_then(|u| u.split('/').next())
+            .unwrap_or_default()
+            .to_string();
+        let mut c = Client {
+            ws,
+            received: Vec::new(),
+            sent: Vec::new(),
+            pending: None,
+        };
+        c.send(&ClientMessage::Hello {
+            protocol: game::protocol::PROTOCOL_VERSION,
+            name: "test".into(),
+            token: token.map(game::token::SeatToken::new),
+            key: None,
+        })
+        .await;
+        match c.try_next().await {
+            Some(ServerMessage::Welcome { .. }) => {}
+            other => c.pending = other,
+        }
+        Ok((c, at))
     }
 
     /// Connects without saying anything.

@@ -24,6 +24,12 @@
 //! duplicate. Every client thus gets exactly the messages a client of the
 //! owner gets, in the same order.
 //!
+//! **Routing.** A client may instead ask to be sent to the owner
+//! (`/ws?match=ID&follow=1`): a node that knows the owner's public URL
+//! (`--public-url`, recorded with each node's heartbeat) answers `307`
+//! to it ([`Cluster::route`]), and the client plays on the owner as a
+//! local one; where the owner is unknown or unreachable, it is relayed.
+//!
 //! **Takeover.** Every node looks, every second, for live matches whose
 //! lease has expired (their node died) and takes them: it loads the match
 //! from PostgreSQL (every acknowledged move is there) and resumes it. Proxy

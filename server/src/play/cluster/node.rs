@@ -56,6 +56,11 @@ impl From<ClusterError> for StoreError {
 pub struct Cluster {
     pub(super) node: String,
     pub(super) lease: Duration,
+    /// Where clients reach this node (`--public-url`), told to the other
+    /// nodes so that they send this node's matches' clients here.
+    public_url: Option<String>,
+    /// How many clients [`Cluster::route`] sent to another node.
+    routed: AtomicU64,
     pool: r2d2::Pool<PostgresConnectionManager<postgres::NoTls>>,
     /// Reconnects after Redis restarts (meanwhile, publishing fails).
     publisher: redis::aio::ConnectionManager,
@@ -136,6 +141,7 @@ impl Cluster {
     /// runtime.
     pub fn connect(
         node: String,
+        public_url: Option<String>,
         database_url: &str,
         redis_url: &str,
         lease: Duration,
@@ -167,6 +173,8 @@ impl Cluster {
         let cluster = Arc::new(Cluster {
             node,
             lease,
+            public_url,
+            routed: AtomicU64::new(0),
             pool,
             publisher,
             redis,
@@ -251,14 +259,38 @@ impl Cluster {
         self.lease.as_secs_f64() * 1000.0
     }
 
-    /// Records that this node lives.
+    /// Records that this node lives, and where its clients reach it.
     fn heartbeat(&self) -> Result<(), ClusterError> {
         self.db()?.execute(
-            "INSERT INTO cluster_nodes (id, started_at, seen_at) VALUES ($1, now(), now())
-             ON CONFLICT (id) DO UPDATE SET seen_at = now()",
-            &[&self.node],
+            "INSERT INTO cluster_nodes (id, started_at, seen_at, public_url) VALUES ($1, now(), now(), $2)
+             ON CONFLICT (id) DO UPDATE SET seen_at = now(), public_url = EXCLUDED.public_url",
+            &[&self.node, &self.public_url],
         )?;
         Ok(())
+    }
+
+    /// Where clients reach the node that plays match `id`, when another
+    /// node holds its lease (unexpired), that node lives and it was given
+    /// a public URL (other than this node's); `None` otherwise: this node
+    /// plays the match or takes it, or relays to its owner. (Blocking.)
+    pub fn route(&self, id: &str) -> Result<Option<String>, ClusterError> {
+        let row = self.db()?.query_opt(
+            "SELECT n.public_url FROM match_leases l JOIN cluster_nodes n ON n.id = l.owner
+             WHERE l.match_id = $1 AND l.expires_at >= now() AND l.owner <> $2
+             AND n.seen_at >= now() - $3 * interval '1 millisecond'",
+            &[&id, &self.node, &self.lease_ms()],
+        )?;
+        let url: Option<String> = row.and_then(|r| r.get(0));
+        let url = url.filter(|u| Some(u) != self.public_url.as_ref());
+        if url.is_some() {
+            self.routed.fetch_add(1, Ordering::Relaxed);
+        }
+        Ok(url)
+    }
+
+    /// How many clients this node sent to the node playing their match.
+    pub fn routed(&self) -> u64 {
+        self.routed.load(Ordering::Relaxed)
     }
 
     /// Takes the lease of match `id` if it is free, expired or already
