@@ -121,6 +121,10 @@ pub struct Input {
     pub enter: bool,
     /// Text pasted this frame (Ctrl+V or the browser's paste event).
     pub paste: Option<String>,
+    /// Whether a pointer resting over a button lights it: a mouse's does,
+    /// a finger's does not (a touch screen's pointer stays where the last
+    /// tap lifted, and would keep that button lit).
+    pub hover: bool,
 }
 
 /// One keyboard edit of a text field.
@@ -194,6 +198,7 @@ impl Input {
             typed: typed(),
             enter: is_key_pressed(KeyCode::Enter) || is_key_pressed(KeyCode::KpEnter),
             paste: platform::pasted(),
+            hover: !platform::coarse_pointer(),
         }
     }
 }
@@ -218,6 +223,8 @@ pub struct Ui {
     /// Inside [`Ui::without_input`]: a modal covers what is drawn, so no
     /// native text input may be laid over it.
     covered: bool,
+    /// The button drawn lit by the pointer resting over it this frame.
+    hovered: Option<String>,
 }
 
 /// Draws `text` with its top-left corner near `(x, y)` at `size` pixels.
@@ -330,6 +337,7 @@ impl Ui {
         self.labels.clear();
         self.cut.clear();
         self.captured = false;
+        self.hovered = None;
         // Native inputs not laid over a field last frame go away.
         platform::field_sweep();
     }
@@ -380,6 +388,11 @@ impl Ui {
         )
     }
 
+    /// The button lit by a resting pointer this frame, if any.
+    pub fn hovered(&self) -> Option<&str> {
+        self.hovered.as_deref()
+    }
+
     /// The names of the buttons whose label was cut this frame.
     pub fn cut(&self) -> serde_json::Value {
         self.cut.iter().cloned().collect::<Vec<_>>().into()
@@ -402,11 +415,15 @@ impl Ui {
         self.buttons.insert(name.to_string(), r);
         let hot = enabled && r.contains(self.input.pointer);
         let held = hot && self.input.down && self.press_at.is_some_and(|p| r.contains(p));
+        let lit = hot && !held && (self.input.hover || self.input.down);
+        if lit {
+            self.hovered = Some(name.to_string());
+        }
         let color = if !enabled {
             colors::BUTTON_OFF
         } else if selected || held {
             colors::ACCENT
-        } else if hot {
+        } else if lit {
             colors::BUTTON_HOT
         } else {
             colors::BUTTON
