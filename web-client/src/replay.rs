@@ -406,20 +406,19 @@ impl Screen for Replay {
         } else {
             (clock.x + 120.0, y, 56.0)
         };
-        for (i, s) in SPEEDS.into_iter().enumerate() {
-            let gap = if narrow { 6.0 } else { 8.0 };
-            let r = Rect::new(sx + i as f32 * (sw + gap), sy, sw, ui::TOUCH);
-            if ui.button_styled(
-                &format!("speed{s}"),
-                &format!("{s}x"),
-                r,
-                true,
-                self.speed == s,
-            ) {
-                self.speed = s;
-                self.playing = true;
+        // One label size for the row, so "0.25x" is not smaller than "1x".
+        let labels = SPEEDS.map(|s| format!("{s}x"));
+        let size = Rect::new(sx, sy, sw, ui::TOUCH);
+        ui.even_labels(&labels, size, |ui| {
+            for (i, (s, label)) in SPEEDS.into_iter().zip(&labels).enumerate() {
+                let gap = if narrow { 6.0 } else { 8.0 };
+                let r = Rect::new(sx + i as f32 * (sw + gap), sy, sw, ui::TOUCH);
+                if ui.button_styled(&format!("speed{s}"), label, r, true, self.speed == s) {
+                    self.speed = s;
+                    self.playing = true;
+                }
             }
-        }
+        });
         if is_key_pressed(KeyCode::Space) {
             self.playing = !self.playing;
         }
