@@ -343,7 +343,7 @@ fn even_size<S: AsRef<str>>(labels: &[S], r: Rect, width: impl Fn(&str, f32) -> 
     while size > 12.0 && labels.iter().any(|l| width(l.as_ref(), size) > room) {
         size -= 1.0;
     }
-    size
+    size.max(12.0)
 }
 
 /// Draws a rounded-looking panel.
