@@ -210,6 +210,7 @@ fn build(workspace: &Path, out_dir: &Path) -> Result<HashMap<&'static str, Copie
         let versioned = format!("{name}?v={}", files[key].hash);
         page = page.replace(&format!("\"{name}\""), &format!("\"{versioned}\""));
     }
+    let page = page.replace("__CHAPAEV_LOADING__", &loader_words(workspace)?);
     let page = store(page.into_bytes(), &web.join("index.html"))?;
     // The service worker caches this build's files under their addresses.
     let mut cached = vec!["/".to_string()];
@@ -235,6 +236,31 @@ fn build(workspace: &Path, out_dir: &Path) -> Result<HashMap<&'static str, Copie
         store(worker.into_bytes(), &web.join("sw.js"))?,
     );
     Ok(files)
+}
+
+/// The page's loader's words in each of the client's languages, as a JSON
+/// object (`{"en": "Loading Chapaev…", "ru": …}`): the message
+/// `page-loading` of each Fluent file in `web-client/locales`, so the words
+/// shown before the game has loaded are translated where all its others
+/// are.
+fn loader_words(workspace: &Path) -> Result<String, NotBuilt> {
+    let mut words = serde_json::Map::new();
+    for lang in ["en", "ru"] {
+        let path = workspace.join(format!("web-client/locales/{lang}.ftl"));
+        let ftl = String::from_utf8_lossy(&read(&path)?).into_owned();
+        let Some(text) = ftl
+            .lines()
+            .find_map(|l| l.strip_prefix("page-loading ="))
+            .map(str::trim)
+        else {
+            return Err(NotBuilt::Io {
+                what: format!("reading the message page-loading from {}", path.display()),
+                source: std::io::Error::new(std::io::ErrorKind::NotFound, "no such message"),
+            });
+        };
+        words.insert(lang.to_string(), text.into());
+    }
+    Ok(serde_json::Value::Object(words).to_string())
 }
 
 /// `<sysroot>/lib/rustlib/wasm32-unknown-unknown`, where the target's

@@ -159,6 +159,7 @@ pub fn play_match(
         let input = Input::Connect {
             conn: seats.conns[k],
             token: Some(SeatToken::new(format!("{name}-token"))),
+            name: name.to_string(),
         };
         let effects = session.handle(input, now);
         seats.deliver(effects);

@@ -102,7 +102,11 @@ impl Driver {
         self.last_conn += 1;
         let conn = ConnId(self.last_conn);
         let token = token.map(SeatToken::new);
-        self.feed(Input::Connect { conn, token });
+        self.feed(Input::Connect {
+            conn,
+            token,
+            name: "watcher".into(),
+        });
     }
 
     /// Connection `conn` closes.

@@ -69,6 +69,7 @@ impl DecideRequest {
                 return Err(AnswerError::NotADecision("accept-rematch"))
             }
             ClientMessage::Chat { .. } => return Err(AnswerError::NotADecision("chat")),
+            ClientMessage::Phrase { .. } => return Err(AnswerError::NotADecision("phrase")),
         })
     }
 }

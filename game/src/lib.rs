@@ -66,6 +66,7 @@ pub mod lobby;
 pub mod name;
 pub mod noise;
 pub mod outcome;
+pub mod phrase;
 pub mod physics;
 pub mod physics_version;
 pub mod piece;

@@ -3,7 +3,7 @@
 //!
 //! A client says hello with [`PROTOCOL_VERSION`], creates or joins a match,
 //! then shoots, decides the pie rule, resigns, offers or accepts a rematch,
-//! chats. The server answers with the full [`MatchView`] on connect, every
+//! chats (in words or by a quick [`Phrase`]). The server answers with the full [`MatchView`] on connect, every
 //! shot as [`ServerMessage::ShotPlayed`] — its outcome (the engine's event
 //! chain, the pieces knocked off, whose turn is next) and its [`Film`]
 //! (every piece's exact trajectory from the flick to rest), so a client
@@ -23,6 +23,7 @@ use crate::config::Config;
 use crate::film::Film;
 use crate::game::{GameError, MatchView, Played};
 use crate::outcome::{MatchResult, ShotOutcome};
+pub use crate::phrase::Phrase;
 use crate::piece::PieceId;
 use crate::record::MatchRecord;
 use crate::shot::ShotError;
@@ -81,6 +82,9 @@ pub enum ClientMessage {
     AcceptRematch,
     /// Say something to the match.
     Chat { text: String },
+    /// Say one of the quick phrases, by its code: each reader's client
+    /// shows it in the reader's language.
+    Phrase { phrase: Phrase },
 }
 
 /// Who is in a match.
@@ -127,11 +131,15 @@ pub enum ServerMessage {
     RematchOffered { by: Seat },
     /// The rematch has started under this id.
     RematchStarted { match_id: String },
-    /// Chat from a seat (`None`: a spectator or the server).
+    /// Chat from a seat (`None`: a spectator, under the name it said
+    /// hello with). A quick phrase comes with its code in `phrase`, and
+    /// its English words in `text`.
     Chat {
         from: Option<Seat>,
         name: String,
         text: String,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        phrase: Option<Phrase>,
     },
     /// A request was refused.
     Error { code: ErrorCode, message: String },
@@ -359,6 +367,9 @@ mod tests {
             ClientMessage::AcceptRematch,
             ClientMessage::Chat {
                 text: "Vasily Ivanovich!".into(),
+            },
+            ClientMessage::Phrase {
+                phrase: Phrase::GoodShot,
             },
         ];
         for m in all {

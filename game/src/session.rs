@@ -31,7 +31,9 @@
 use crate::config::Config;
 use crate::game::{Game, MatchView, Phase};
 use crate::outcome::{ForfeitReason, MatchResult};
-use crate::protocol::{ClientMessage, ErrorCode, Players, Refusal, ServerMessage, MAX_CHAT_CHARS};
+use crate::protocol::{
+    ClientMessage, ErrorCode, Phrase, Players, Refusal, ServerMessage, MAX_CHAT_CHARS,
+};
 use crate::record::RecordedMove;
 use crate::shot::Shot;
 use crate::side::{Seat, Side};
@@ -319,6 +321,9 @@ pub enum Input {
         conn: ConnId,
         /// The seat token presented.
         token: Option<SeatToken>,
+        /// The name it said hello with: a spectator chats under it, once
+        /// held to the rule of names ([`spectator_name`]).
+        name: String,
     },
     /// A connection the driver has proved to play `seat` another way
     /// (the key of the account holding it) asks to be admitted to it.
@@ -490,6 +495,17 @@ fn status_of(game: &Game, seats: &[SeatState; 2]) -> Status {
     }
 }
 
+/// What a spectator who said hello with `raw` is called in the chat: the
+/// name held to the rule of names ([`crate::name::seat_name`]: normalised, no
+/// invisible or reordering characters, nothing that passes for the
+/// computer), or "spectator" where it breaks the rule.
+pub fn spectator_name(raw: &str) -> String {
+    crate::name::seat_name(raw).unwrap_or_else(|_| SPECTATOR.to_string())
+}
+
+/// A spectator's name when the one it gave breaks the rule of names.
+pub const SPECTATOR: &str = "spectator";
+
 fn not_seated() -> Refusal {
     Refusal::new(
         ErrorCode::NotInMatch,
@@ -505,6 +521,8 @@ pub struct Session {
     seats: [SeatState; 2],
     /// The connections admitted, and the seat each holds.
     conns: BTreeMap<ConnId, Option<Seat>>,
+    /// The spectators' names, for their chat.
+    spectators: BTreeMap<ConnId, String>,
     limits: SessionLimits,
     clock: TurnClock,
     status: Status,
@@ -544,6 +562,7 @@ impl Session {
             game,
             seats,
             conns: BTreeMap::new(),
+            spectators: BTreeMap::new(),
             limits,
             clock: TurnClock::new(limits.turn),
             status,
@@ -630,7 +649,7 @@ impl Session {
             return Vec::new();
         }
         match input {
-            Input::Connect { conn, token } => self.connect(conn, token, now),
+            Input::Connect { conn, token, name } => self.connect(conn, token, name, now),
             Input::ConnectSeat { conn, seat } => self.admit(conn, Some(seat), now),
             Input::Disconnect { conn } => self.disconnect(conn, now),
             Input::Message { conn, msg } => {
@@ -759,9 +778,15 @@ impl Session {
         })
     }
 
-    fn connect(&mut self, conn: ConnId, token: Option<SeatToken>, now: Moment) {
+    fn connect(&mut self, conn: ConnId, token: Option<SeatToken>, name: String, now: Moment) {
         let seat = match token {
-            None => None,
+            None => {
+                self.admit(conn, None, now);
+                if self.conns.contains_key(&conn) {
+                    self.spectators.insert(conn, spectator_name(&name));
+                }
+                return;
+            }
             Some(t) => match self.seat_of_token(&t) {
                 Some(seat) => Some(seat),
                 None => {
@@ -823,6 +848,7 @@ impl Session {
         let Some(seat) = self.conns.remove(&conn) else {
             return;
         };
+        self.spectators.remove(&conn);
         if self.conns.is_empty() {
             self.idle_since = Some(now);
         }
@@ -839,6 +865,39 @@ impl Session {
                 grace_ms: grace.as_millis() as u64,
             });
         }
+    }
+
+    /// Says `text` (a quick `phrase`'s words) from `conn` to everyone
+    /// connected: under its seat's name from a seat, under the name it
+    /// said hello with from a spectator.
+    fn chat(
+        &mut self,
+        conn: ConnId,
+        seat: Option<Seat>,
+        text: String,
+        phrase: Option<Phrase>,
+    ) -> Result<(), Refusal> {
+        let name = match seat {
+            Some(seat) => {
+                let players = self.players();
+                match seat {
+                    Seat::First => players.first,
+                    Seat::Second => players.second,
+                }
+                .unwrap_or_else(|| match seat {
+                    Seat::First => "first".into(),
+                    Seat::Second => "second".into(),
+                })
+            }
+            None => self.spectators.get(&conn).cloned().ok_or_else(not_seated)?,
+        };
+        self.broadcast(ServerMessage::Chat {
+            from: seat,
+            name,
+            text,
+            phrase,
+        });
+        Ok(())
     }
 
     fn join(&mut self, name: String, token: TokenHash, now: Moment) -> Result<(), Refusal> {
@@ -899,27 +958,16 @@ impl Session {
                 self.apply(Action::Resign(side), Vec::new(), now)?;
             }
             ClientMessage::Chat { text } => {
-                let seat = seat.ok_or_else(not_seated)?;
                 if text.chars().count() > MAX_CHAT_CHARS {
                     return Err(Refusal::new(
                         ErrorCode::ChatTooLong,
                         format!("chat messages are at most {MAX_CHAT_CHARS} characters"),
                     ));
                 }
-                let players = self.players();
-                let name = match seat {
-                    Seat::First => players.first,
-                    Seat::Second => players.second,
-                }
-                .unwrap_or_else(|| match seat {
-                    Seat::First => "first".into(),
-                    Seat::Second => "second".into(),
-                });
-                self.broadcast(ServerMessage::Chat {
-                    from: Some(seat),
-                    name,
-                    text,
-                });
+                self.chat(conn, seat, text, None)?;
+            }
+            ClientMessage::Phrase { phrase } => {
+                self.chat(conn, seat, phrase.english().to_string(), Some(phrase))?;
             }
             ClientMessage::OfferRematch => {
                 let seat = seat.ok_or_else(not_seated)?;
@@ -1279,7 +1327,8 @@ mod tests {
 
     fn connect(s: &mut Session, conn: ConnId, token: Option<&str>, ms: u64) -> Vec<Effect> {
         let token = token.map(SeatToken::new);
-        s.handle(Input::Connect { conn, token }, at(ms))
+        let name = if token.is_some() { "" } else { "Furmanov" }.to_string();
+        s.handle(Input::Connect { conn, token, name }, at(ms))
     }
 
     fn say(s: &mut Session, conn: ConnId, msg: ClientMessage, ms: u64) -> Vec<Effect> {
@@ -1583,7 +1632,7 @@ mod tests {
     }
 
     #[test]
-    fn a_spectator_cannot_shoot_or_chat() {
+    fn a_spectator_cannot_shoot_but_chats_under_the_name_it_said_hello_with() {
         let mut s = live();
         connect(&mut s, WATCHER, None, 0);
         let e = say(&mut s, WATCHER, knock_off(), 100);
@@ -1594,11 +1643,90 @@ mod tests {
         assert_eq!(kinds(&e).len(), 1, "nothing else happens");
         let chat = ClientMessage::Chat { text: "hi".into() };
         let e = say(&mut s, WATCHER, chat, 100);
+        assert!(
+            matches!(
+                &e[..],
+                [Effect::Send {
+                    to: To::All,
+                    msg: ServerMessage::Chat { from: None, name, text, phrase: None }
+                }] if name == "Furmanov" && text == "hi"
+            ),
+            "{e:?}"
+        );
+        let long = "x".repeat(MAX_CHAT_CHARS + 1);
+        let e = say(&mut s, WATCHER, ClientMessage::Chat { text: long }, 120);
         assert_eq!(
             refusal(&e),
-            Some((Request::Message(WATCHER), ErrorCode::NotInMatch))
+            Some((Request::Message(WATCHER), ErrorCode::ChatTooLong))
         );
         assert_eq!(s.game().shots(), 0);
+    }
+
+    #[test]
+    fn a_spectator_whose_name_breaks_the_rule_chats_as_spectator() {
+        for raw in ["bot (hard)", "", "Pet\u{202E}ka", &"x".repeat(41)] {
+            let mut s = live();
+            let name = raw.to_string();
+            s.handle(
+                Input::Connect {
+                    conn: WATCHER,
+                    token: None,
+                    name,
+                },
+                at(0),
+            );
+            let e = say(
+                &mut s,
+                WATCHER,
+                ClientMessage::Chat { text: "hi".into() },
+                10,
+            );
+            assert!(
+                matches!(
+                    &e[..],
+                    [Effect::Send { msg: ServerMessage::Chat { name, .. }, .. }] if name == SPECTATOR
+                ),
+                "{raw:?}: {e:?}"
+            );
+        }
+        assert_eq!(spectator_name(" Ｆurmanov "), "Furmanov");
+    }
+
+    #[test]
+    fn a_quick_phrase_reaches_everyone_with_its_code_and_its_english_words() {
+        let mut s = live();
+        connect(&mut s, WATCHER, None, 0);
+        for (conn, from, name) in [(B, Some(Seat::Second), "Anka"), (WATCHER, None, "Furmanov")] {
+            let phrase = ClientMessage::Phrase {
+                phrase: Phrase::GoodShot,
+            };
+            let e = say(&mut s, conn, phrase, 10);
+            assert!(
+                matches!(
+                    &e[..],
+                    [Effect::Send {
+                        to: To::All,
+                        msg: ServerMessage::Chat { from: f, name: n, text, phrase: Some(Phrase::GoodShot) }
+                    }] if *f == from && n == name && text == "Good shot!"
+                ),
+                "{e:?}"
+            );
+        }
+        // A spectator that left says nothing more.
+        s.handle(Input::Disconnect { conn: WATCHER }, at(20));
+        let e = say(
+            &mut s,
+            WATCHER,
+            ClientMessage::Chat { text: "hi".into() },
+            30,
+        );
+        assert!(e.iter().all(|e| !matches!(
+            e,
+            Effect::Send {
+                msg: ServerMessage::Chat { .. },
+                ..
+            }
+        )));
     }
 
     #[test]
@@ -1992,6 +2120,7 @@ mod tests {
                     Input::Connect {
                         conn: WATCHER,
                         token: None,
+                        name: "Furmanov".into(),
                     },
                 ),
                 (

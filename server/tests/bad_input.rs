@@ -329,6 +329,27 @@ async fn a_chat_flood_sustained_above_the_rate_is_closed() {
 }
 
 #[tokio::test]
+async fn a_spectators_chat_flood_is_closed_like_a_players() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &["--rate-per-sec", "1", "--rate-burst", "2"]);
+    let (id, _, _) = server.two_player_match("").await;
+    let mut watcher = server.ws(&id, None).await;
+    view(watcher.next().await);
+    // Far above the rate: 200 dropped in a row close the connection.
+    let chat = ClientMessage::Chat {
+        text: "spam".into(),
+    }
+    .to_json();
+    let (close, _) = watcher
+        .flood_until_closed(&chat, Duration::from_millis(1), Duration::from_secs(20))
+        .await
+        .expect("a spectator's flood is closed");
+    let close = close.expect("a close frame");
+    assert_eq!(u16::from(close.code), 1008, "policy violation");
+    assert_eq!(close.reason, "rate-limited");
+}
+
+#[tokio::test]
 async fn legal_moves_are_never_dropped_by_the_flood_guard_but_refused_ones_pay() {
     let dir = tempfile::tempdir().unwrap();
     let server = Server::start(dir.path(), &["--rate-per-sec", "1", "--rate-burst", "2"]);

@@ -4,7 +4,7 @@
 mod common;
 
 use common::{shot, view, Server};
-use game::protocol::{ClientMessage, ForfeitReason, ServerMessage};
+use game::protocol::{ClientMessage, ForfeitReason, Phrase, ServerMessage};
 use game::{MatchResult, Seat, Side, WinReason};
 
 #[tokio::test]
@@ -111,7 +111,10 @@ async fn chat_resignation_and_rematch_between_two_players() {
         })
         .await;
     for c in [&mut white, &mut watcher] {
-        let ServerMessage::Chat { from, name, text } = c.next_of("chat").await else {
+        let ServerMessage::Chat {
+            from, name, text, ..
+        } = c.next_of("chat").await
+        else {
             unreachable!()
         };
         assert_eq!(
@@ -119,10 +122,37 @@ async fn chat_resignation_and_rematch_between_two_players() {
             (Some(Seat::Second), "Anka", "Vasily Ivanovich!")
         );
     }
+    // A spectator talks under the name it said hello with, and a quick
+    // phrase reaches everyone with its code and its English words.
     watcher
         .send(&ClientMessage::Chat { text: "hi".into() })
         .await;
-    assert_eq!(watcher.next_error().await, "not-in-match");
+    for c in [&mut white, &mut watcher] {
+        let ServerMessage::Chat {
+            from, name, text, ..
+        } = c.next_of("chat").await
+        else {
+            unreachable!()
+        };
+        assert_eq!((from, name.as_str(), text.as_str()), (None, "test", "hi"));
+    }
+    white
+        .send(&ClientMessage::Phrase {
+            phrase: Phrase::GoodLuck,
+        })
+        .await;
+    for c in [&mut white, &mut watcher] {
+        let ServerMessage::Chat {
+            from, text, phrase, ..
+        } = c.next_of("chat").await
+        else {
+            unreachable!()
+        };
+        assert_eq!(
+            (from, text.as_str(), phrase),
+            (Some(Seat::First), "Good luck!", Some(Phrase::GoodLuck))
+        );
+    }
     white.send(&ClientMessage::OfferRematch).await;
     assert_eq!(white.next_error().await, "match-not-over");
 

@@ -323,6 +323,13 @@ async fn touch(client: &Client, kind: &str, x: f64, y: f64) -> Result<()> {
     Ok(())
 }
 
+/// A finger's tap at (`x`, `y`): put down, held a few frames, lifted.
+pub async fn tap(client: &Client, x: f64, y: f64) -> Result<()> {
+    touch(client, "touchstart", x, y).await?;
+    tokio::time::sleep(Duration::from_millis(120)).await;
+    touch(client, "touchend", x, y).await
+}
+
 /// A finger put down at `from`, slid to `to` in `steps` moves (a frame or
 /// two each) and lifted there: touch events on the canvas.
 pub async fn touch_drag(

@@ -1553,3 +1553,286 @@ async fn on_a_touch_screen_a_text_field_is_a_real_input_that_takes_the_phones_ty
     })
     .await;
 }
+
+// ---- The chat of a game: quick phrases, spectators, mute.
+
+/// Presses the button `name` as this window's player does: a finger's tap
+/// on the phone, a mouse click on the desktop; then waits for a frame
+/// drawn after it.
+async fn press(client: &Client, window: &Window, name: &str) -> Result<()> {
+    if window.name != "phone" {
+        return click_button(client, name).await;
+    }
+    let state = state_until(client, &format!("the {name} button"), 15, |s| {
+        s["buttons"][name].is_array()
+    })
+    .await?;
+    let (x, y) = centre(&state["buttons"][name])?;
+    eprintln!("e2e: tapping {name} at ({x:.0}, {y:.0})");
+    let after = state["frame"].as_u64().unwrap_or(0);
+    browser::tap(client, x, y).await?;
+    state_until(client, "a frame after the tap", 10, |s| {
+        s["frame"].as_u64().is_some_and(|f| f > after)
+    })
+    .await?;
+    Ok(())
+}
+
+/// Whether the page's chat shows a line equal to `line`.
+fn chat_has(s: &Value, line: &str) -> bool {
+    s["chat"]
+        .as_array()
+        .is_some_and(|lines| lines.iter().any(|l| l == line))
+}
+
+/// Opens a spectator's WebSocket on match `id` from the page (the name
+/// `Furmanov`), which keeps every chat it reads in `window.spyChats`.
+const SPECTATOR: &str = r#"const [id] = arguments;
+    window.spyChats = [];
+    const ws = new WebSocket(location.origin.replace(/^http/, "ws") + "/ws?match=" + id);
+    window.spy = ws;
+    ws.onopen = () => ws.send(JSON.stringify({type: "hello", protocol: 1, name: "Furmanov"}));
+    ws.onmessage = (e) => {
+        const m = JSON.parse(e.data);
+        if (m.type === "welcome") window.spyReady = true;
+        if (m.type === "chat") window.spyChats.push(m);
+    };
+    return true;"#;
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_match_chat_has_quick_phrases_spectators_and_a_mute_and_a_tap_leaves_nothing_lit() {
+    in_player_windows("-chat", |client, _server, artifacts, window| {
+        Box::pin(async move {
+            if window.name == "phone" {
+                // Headless Chromium has a fine pointer: make it a touch screen.
+                browser::eval(
+                    client,
+                    r#"const real = window.matchMedia.bind(window);
+                       window.matchMedia = (q) => q.includes("pointer: coarse") ? { matches: true } : real(q);
+                       return null;"#,
+                )
+                .await?;
+            }
+            let play = against_the_computer(client).await?;
+            let id = play["match_id"].as_str().unwrap_or_default().to_string();
+            // A spectator talks: the player reads it, marked as a spectator's.
+            client
+                .execute(SPECTATOR, vec![serde_json::json!(id)])
+                .await?;
+            browser::poll(
+                client,
+                "the spectator connected",
+                "return window.spyReady || false;",
+                Duration::from_secs(10),
+                Duration::from_millis(50),
+                |v| v == true,
+            )
+            .await?;
+            browser::eval(
+                client,
+                r#"window.spy.send(JSON.stringify({type: "chat", text: "hi from the stands"})); return true;"#,
+            )
+            .await?;
+            let from_stands = "Furmanov (watching): hi from the stands";
+            state_until(client, "the spectator's line in the chat", 10, |s| {
+                chat_has(s, from_stands)
+            })
+            .await?;
+            // One press opens the quick phrases, one sends "Good shot!".
+            press(client, window, "chat-phrases").await?;
+            let open = state_until(client, "the chat's menu", 10, |s| {
+                s["chat_menu"] == true && s["buttons"]["phrase-good-shot"].is_array()
+            })
+            .await?;
+            // A finger lifted leaves no button lit; a mouse resting on one lights it.
+            let lit = &open["hovered"];
+            let expected = if window.name == "phone" {
+                Value::Null
+            } else {
+                Value::from("chat-phrases")
+            };
+            if open.get("hovered").is_none() || *lit != expected {
+                return Err(E2eError::Check(format!(
+                    "after pressing chat-phrases the lit button is {lit}, not {expected}"
+                )));
+            }
+            snap(client, artifacts, "chat-phrases", window).await?;
+            press(client, window, "phrase-good-shot").await?;
+            let me = play["seat"].as_str().unwrap_or_default().to_string();
+            state_until(client, "the phrase in the chat", 10, |s| {
+                s["chat_menu"] == false
+                    && s["chat"]
+                        .as_array()
+                        .is_some_and(|l| l.iter().any(|l| l.as_str().is_some_and(|l| l.ends_with(": Good shot!"))))
+            })
+            .await?;
+            // The spectator got its code, for its own language.
+            let heard = browser::eval(client, "return window.spyChats;").await?;
+            let coded = heard.as_array().is_some_and(|chats| {
+                chats
+                    .iter()
+                    .any(|c| c["phrase"] == "good-shot" && c["from"] == me.as_str())
+            });
+            if !coded {
+                return Err(E2eError::Check(format!(
+                    "the spectator did not hear the phrase by its code: {heard}"
+                )));
+            }
+            // Muting the spectators hides their lines, said before and after.
+            press(client, window, "chat-phrases").await?;
+            press(client, window, "mute-spectators").await?;
+            state_until(client, "the spectator's line hidden", 10, |s| {
+                !chat_has(s, from_stands)
+            })
+            .await?;
+            browser::eval(
+                client,
+                r#"window.spy.send(JSON.stringify({type: "chat", text: "still talking"})); return true;"#,
+            )
+            .await?;
+            browser::poll(
+                client,
+                "the spectator's own echo",
+                "return window.spyChats.some((c) => c.text === 'still talking');",
+                Duration::from_secs(10),
+                Duration::from_millis(50),
+                |v| v == true,
+            )
+            .await?;
+            tokio::time::sleep(Duration::from_millis(300)).await;
+            let muted = browser::eval(client, STATE).await?;
+            if muted["chat"]
+                .as_array()
+                .is_none_or(|l| l.iter().any(|l| l.as_str().is_some_and(|l| l.contains("still talking"))))
+            {
+                return Err(E2eError::Check(format!(
+                    "a muted spectator still shows: {}",
+                    muted["chat"]
+                )));
+            }
+            snap(client, artifacts, "chat-muted", window).await?;
+            Ok(())
+        })
+    })
+    .await;
+}
+
+// ---- Figures: the first frame, cold and warm, and the frame rate of a shot.
+
+/// Milliseconds from navigation start to the app's first frame
+/// (`window.chapaev_ready_ms`, set by the page's plugin on that frame).
+async fn first_frame_ms(client: &Client) -> Result<f64> {
+    let ready = browser::poll(
+        client,
+        "the first frame",
+        "return window.chapaev_ready === true ? window.chapaev_ready_ms : null;",
+        Duration::from_secs(60),
+        Duration::from_millis(10),
+        |v| v.is_number(),
+    )
+    .await?;
+    Ok(ready.as_f64().unwrap_or(f64::NAN))
+}
+
+/// Prints the figures the client's README quotes (they are measured, not
+/// asserted: a loaded machine is slower, not wrong): the first frame of a
+/// cold visit (a fresh profile, nothing cached) and of a warm one (the
+/// page reloaded, its files in the browser's cache), then the frames drawn
+/// per second while a shot animates, counted both by the app's own frame
+/// counter and by the browser's `requestAnimationFrame`. Desktop size
+/// (1280x800), headless Chromium with WebGL in software.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn figures_the_first_frame_cold_and_warm_and_the_frame_rate_while_a_shot_animates() {
+    let Some(Setup {
+        programs,
+        artifacts,
+        scratch,
+        server,
+        driver,
+    }) = setup("-figures")
+    else {
+        return;
+    };
+    let extra = [
+        "--window-size=1280,800".to_string(),
+        "--force-device-scale-factor=1".to_string(),
+    ];
+    let client = driver
+        .session_with(&programs, &scratch.path().join("profile-figures"), &extra)
+        .await
+        .unwrap_or_else(|e| panic!("{e}"));
+    let outcome = async {
+        browser::fit_viewport(&client, 1280, 800).await?;
+        client.goto(&server.url("/")).await?;
+        let cold = first_frame_ms(&client).await?;
+        client.goto(&server.url("/?warm")).await?;
+        let warm = first_frame_ms(&client).await?;
+        eprintln!("e2e: FIGURE first frame: cold {cold:.0} ms, warm {warm:.0} ms after navigation start");
+        state_until(&client, "the lobby", 30, |s| {
+            s["screen"] == "lobby" && s["buttons"]["vs-computer-easy"].is_array()
+        })
+        .await?;
+        let play = against_the_computer(&client).await?;
+        // The browser's own frames, counted from now.
+        browser::eval(
+            &client,
+            "window.rafCount = 0;
+             const tick = () => { window.rafCount += 1; requestAnimationFrame(tick); };
+             requestAnimationFrame(tick);
+             return true;",
+        )
+        .await?;
+        const COUNTS: &str = "const s = window.chapaev_state || {};
+            return [s.frame || 0, window.rafCount, performance.now(), s.animating === true];";
+        shoot(&client, &play).await?;
+        let start = browser::poll(
+            &client,
+            "the shot animating",
+            COUNTS,
+            Duration::from_secs(10),
+            Duration::from_millis(5),
+            |v| v[3] == true,
+        )
+        .await?;
+        let end = browser::poll(
+            &client,
+            "the shot's animation ended",
+            COUNTS,
+            Duration::from_secs(30),
+            Duration::from_millis(20),
+            |v| v[3] == false,
+        )
+        .await?;
+        let n = |v: &Value, i: usize| v[i].as_f64().unwrap_or(f64::NAN);
+        let secs = (n(&end, 2) - n(&start, 2)) / 1000.0;
+        let app = (n(&end, 0) - n(&start, 0)) / secs;
+        let raf = (n(&end, 1) - n(&start, 1)) / secs;
+        eprintln!(
+            "e2e: FIGURE while a shot animates ({secs:.2} s): {app:.1} app frames/s, {raf:.1} requestAnimationFrame/s"
+        );
+        std::fs::write(
+            artifacts.join("figures.json"),
+            format!(
+                "{{\"first_frame_cold_ms\":{cold:.1},\"first_frame_warm_ms\":{warm:.1},\
+                 \"shot_seconds\":{secs:.3},\"app_fps\":{app:.1},\"raf_fps\":{raf:.1}}}\n"
+            ),
+        )
+        .map_err(|source| E2eError::Io {
+            what: "writing figures.json".into(),
+            source,
+        })?;
+        if !(app > 0.0 && raf > 0.0 && cold > 0.0 && warm > 0.0) {
+            return Err(E2eError::Check(format!(
+                "no figure: cold {cold}, warm {warm}, {app} and {raf} frames/s"
+            )));
+        }
+        Ok(())
+    }
+    .await;
+    let _ = client.close().await;
+    drop(driver);
+    drop(server);
+    if let Err(e) = outcome {
+        panic!("{e}\n(logs are in {})", artifacts.display());
+    }
+}

@@ -9,7 +9,9 @@
 //! the client reports no button whose label had to be cut; each is saved as
 //! a screenshot (`lobby-ru.png`, `lobby-en.png`, `lobby-ru-phone.png`, ...)
 //! in the artifacts folder (`target/e2e-artifacts` or
-//! `$CHAPAEV_E2E_ARTIFACTS`).
+//! `$CHAPAEV_E2E_ARTIFACTS`). The page's loader, shown before the game
+//! has loaded, speaks the same language, and the computer's seat in a
+//! match reads as the computer of its level in it.
 
 use e2e::browser::{self, Driver};
 use e2e::process::Server;
@@ -112,6 +114,7 @@ async fn both_languages(
     eprintln!("e2e: the browser prefers {preferred}");
     let lobby = lobby_in(client, "ru").await?;
     expect_label(&lobby, "vs-computer-easy", "Компьютер: лёгкий")?;
+    expect_loader(client, "ru", "Загружается «Чапаев»…").await?;
     expect_label(
         &lobby,
         "lang",
@@ -137,7 +140,49 @@ async fn both_languages(
             "Русский"
         },
     )?;
+    expect_loader(client, "en", "Loading Chapaev…").await?;
     tour(client, artifacts, window, "en").await
+}
+
+/// Loads the page once more in a hidden frame and reads its loader as the
+/// page has parsed (before the game's first frame takes it away): it
+/// must speak `lang` (the language chosen before, else the browser's).
+async fn expect_loader(client: &Client, lang: &str, words: &str) -> Result<()> {
+    browser::eval(
+        client,
+        r#"window.loaderSeen = null;
+           const f = document.createElement("iframe");
+           f.style.cssText = "position:absolute;width:10px;height:10px;opacity:0";
+           f.src = "/?loader";
+           document.body.appendChild(f);
+           window.loaderFrame = f;
+           const look = setInterval(() => {
+               const d = f.contentDocument;
+               if (!d || d.URL === "about:blank" || d.readyState === "loading") return;
+               const w = d.getElementById("loading-words");
+               window.loaderSeen = w ? [d.documentElement.lang, w.textContent] : ["gone"];
+               clearInterval(look);
+           }, 1);
+           return true;"#,
+    )
+    .await?;
+    let seen = browser::poll(
+        client,
+        "the loader in a frame",
+        "return window.loaderSeen;",
+        Duration::from_secs(15),
+        Duration::from_millis(50),
+        |v| !v.is_null(),
+    )
+    .await?;
+    browser::eval(client, "window.loaderFrame.remove(); return true;").await?;
+    if seen[0] == lang && seen[1] == words {
+        Ok(())
+    } else {
+        Err(E2eError::Check(format!(
+            "the page's loader reads {seen}, not [{lang:?}, {words:?}]"
+        )))
+    }
 }
 
 /// Visits every main screen from the lobby, checking each shows `lang`
@@ -195,7 +240,20 @@ async fn tour(client: &Client, artifacts: &Path, window: &Window, lang: &str) ->
         |s| s["screen"] == "play" && s["my_turn"] == true && s["animating"] == false,
     )
     .await?;
-    snap("play").await?;
+    let play = snap("play").await?;
+    // The computer's seat reads as the computer of its level, in words of
+    // the language shown (the server names it `bot (easy)`).
+    let computer = if lang == "ru" {
+        "компьютер (лёгкий)"
+    } else {
+        "computer (easy)"
+    };
+    if play["players"][1] != computer {
+        return Err(E2eError::Check(format!(
+            "the computer's seat reads {}, not {computer:?}",
+            play["players"]
+        )));
+    }
     click_button(client, "resign").await?;
     click_button(client, "resign-yes").await?;
     state_until(client, "the end of the match", 15, |s| {
@@ -204,10 +262,23 @@ async fn tour(client: &Client, artifacts: &Path, window: &Window, lang: &str) ->
     .await?;
     snap("end").await?;
     click_button(client, "end-replay").await?;
-    state_until(client, "the replay, loaded", 15, |s| {
-        s["screen"] == "replay" && s["buttons"]["timeline"].is_array()
+    let replay = state_until(client, "the replay, loaded, with its players", 15, |s| {
+        s["screen"] == "replay" && s["buttons"]["timeline"].is_array() && s["players"].is_string()
     })
     .await?;
+    // Who played whom, and the shot jumps in words.
+    let players = replay["players"].as_str().unwrap_or_default();
+    if !players.contains(computer) {
+        return Err(E2eError::Check(format!(
+            "the replay's players read {players:?}, without {computer:?}"
+        )));
+    }
+    let previous = if lang == "ru" {
+        "Пред. щелчок"
+    } else {
+        "Prev. shot"
+    };
+    expect_label(&replay, "previous-shot", previous)?;
     snap("replay").await?;
     click_button(client, "lobby").await?;
 

@@ -218,7 +218,13 @@ impl Api {
         Pending::start("GET", &url, None, None, listing)
     }
 
-    /// The record of a finished match, as its JSON text.
+    /// `GET /api/matches/{id}`: one match's summary (its players).
+    pub fn summary(&self, match_id: &str) -> Pending<Summary> {
+        let url = format!("{}/api/matches/{match_id}", self.origin);
+        Pending::start("GET", &url, None, None, json)
+    }
+
+    /// `GET /api/matches/{id}/record`: the record's JSON text.
     pub fn record(&self, match_id: &str) -> Pending<String> {
         let url = format!("{}/api/matches/{match_id}/record", self.origin);
         Pending::start("GET", &url, None, None, |b| Ok(b.to_string()))

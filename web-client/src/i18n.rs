@@ -300,6 +300,28 @@ mod tests {
         assert!(used > 100, "only {used} lookups found");
     }
 
+    /// The message the page shows until the game has loaded: the server's
+    /// build writes it into the page (`index.html`) in each language, and
+    /// the page picks the language as [`current`] does.
+    const PAGE_LOADING: &str = "page-loading";
+
+    #[test]
+    fn the_pages_loader_has_its_words_in_every_language_on_one_line() {
+        // The server's build reads the line `page-loading = …` of each file.
+        for lang in [Lang::En, Lang::Ru] {
+            let line = lang
+                .source()
+                .lines()
+                .find_map(|l| l.strip_prefix(&format!("{PAGE_LOADING} =")));
+            let words = in_lang(lang, PAGE_LOADING, &[]);
+            assert_eq!(line.map(str::trim), Some(words.as_str()), "{lang:?}");
+        }
+        assert_eq!(
+            in_lang(Lang::Ru, PAGE_LOADING, &[]),
+            "Загружается «Чапаев»…"
+        );
+    }
+
     #[test]
     fn russian_counts_take_their_one_few_and_many_forms() {
         let n = |k: i64| in_lang(Lang::Ru, "shots-count", &[("count", k.into())]);

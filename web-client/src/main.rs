@@ -116,6 +116,7 @@ async fn main() {
         state.insert("buttons".into(), ui.layout());
         state.insert("labels".into(), ui.labels());
         state.insert("cut".into(), ui.cut());
+        state.insert("hovered".into(), ui.hovered().into());
         state.insert("lang".into(), i18n::current().code().into());
         state
             .entry("animating")

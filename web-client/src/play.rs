@@ -29,7 +29,10 @@ use game::protocol::ClientMessage;
 use game::token::SeatToken;
 use game::{Phase, PieceId};
 use macroquad::prelude::*;
-use state::MatchState;
+use state::{MatchState, Mute};
+
+/// Most chat lines the panel shows.
+const CHAT_SHOWN: usize = 6;
 
 /// How the screen came to the match.
 enum Setup {
@@ -54,6 +57,10 @@ pub struct Play {
     /// The match as this page follows it.
     state: MatchState,
     chat_draft: String,
+    /// The chat's menu (quick phrases, mute switches) is open.
+    chat_menu: bool,
+    /// Whose chat this page hides.
+    mute: Mute,
     drag: Option<Drag>,
     confirm_resign: bool,
     /// "Lobby" was pressed while the match is on: asking before leaving.
@@ -116,6 +123,8 @@ impl Play {
             conn: None,
             state: MatchState::default(),
             chat_draft: String::new(),
+            chat_menu: false,
+            mute: Mute::default(),
             drag: None,
             confirm_resign: false,
             confirm_leave: false,
@@ -252,14 +261,25 @@ impl Play {
             .get(1)
             .map(|l| l.text.clone())
             .unwrap_or_default();
-        let chat: Vec<&String> = self.state.chat.iter().collect();
-        let pressed = panel::show(ui, area, &content, &chat, &mut self.chat_draft);
+        let lines = self.state.chat_shown(self.mute, CHAT_SHOWN);
+        let chat = panel::Chat {
+            lines: &lines,
+            draft: &mut self.chat_draft,
+            menu: self.chat_menu,
+            mute: self.mute,
+            seated: self.state.you.is_some(),
+        };
+        let pressed = panel::show(ui, area, &content, chat);
         let mut go = None;
         for name in pressed.buttons {
             go = go.or(self.press(name));
         }
         if let Some(text) = pressed.chat {
             self.send(ClientMessage::Chat { text });
+        }
+        if let Some(phrase) = pressed.phrase {
+            self.send(ClientMessage::Phrase { phrase });
+            self.chat_menu = false;
         }
         go
     }
@@ -312,6 +332,9 @@ impl Play {
                 }
             }
             "end-close" => self.end_closed = true,
+            "chat-phrases" => self.chat_menu = !self.chat_menu,
+            "mute-players" => self.mute.players = !self.mute.players,
+            "mute-spectators" => self.mute.spectators = !self.mute.spectators,
             _ => {}
         }
         None
@@ -556,6 +579,18 @@ impl Screen for Play {
             m.insert("aim_power".into(), power.into());
             m.insert("meter".into(), serde_json::json!([r.x, r.y, r.w, r.h]));
         }
+        m.insert(
+            "chat".into(),
+            self.state.chat_shown(self.mute, CHAT_SHOWN).into(),
+        );
+        m.insert("chat_menu".into(), self.chat_menu.into());
+        m.insert(
+            "players".into(),
+            serde_json::json!([
+                self.state.name_of(game::Seat::First),
+                self.state.name_of(game::Seat::Second)
+            ]),
+        );
         m.insert(
             "log".into(),
             self.state.log.iter().cloned().collect::<Vec<_>>().into(),

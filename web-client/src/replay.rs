@@ -54,6 +54,10 @@ enum State {
 pub struct Replay {
     match_id: String,
     state: State,
+    /// The match's summary, being fetched for its players' names.
+    summary: Option<Pending<crate::api::Summary>>,
+    /// Who played whom ("Petka vs computer (easy)"), once known.
+    players: Option<String>,
     t: f64,
     speed: f64,
     playing: bool,
@@ -64,6 +68,8 @@ impl Replay {
     pub fn new(api: Api, match_id: String) -> Replay {
         Replay {
             state: State::Fetching(api.record(&match_id)),
+            summary: Some(api.summary(&match_id)),
+            players: None,
             match_id,
             t: 0.0,
             speed: 1.0,
@@ -161,6 +167,11 @@ fn result_line(r: MatchResult) -> String {
 
 impl Screen for Replay {
     fn frame(&mut self, ui: &mut Ui, dt: f64) -> Option<Route> {
+        if let Some(r) = self.summary.as_mut().and_then(Pending::poll) {
+            // Without an answer the heading names the match by its id.
+            self.players = r.ok().map(|s| crate::lobby::describe(&s).0);
+            self.summary = None;
+        }
         if let State::Fetching(p) = &mut self.state {
             if let Some(r) = p.poll() {
                 self.state = match r.and_then(|text| Replay::load(&text)) {
@@ -171,7 +182,8 @@ impl Screen for Replay {
         }
         let (w, h) = crate::scale::size().into();
         // Two rows of controls under the timeline when the window is narrow.
-        let narrow = w < 800.0;
+        // (The wide bar's controls end 812 units from the left.)
+        let narrow = w < 820.0;
         let bar_h = if narrow { 170.0 } else { 118.0 };
         let head_h = if narrow { 70.0 } else { 60.0 };
         let lobby = Rect::new(w - 98.0, 8.0, 90.0, ui::TOUCH);
@@ -252,16 +264,20 @@ impl Screen for Replay {
         let lang = Rect::new(lobby.x - 8.0 - lang_w, lobby.y, lang_w, ui::TOUCH);
         crate::i18n::switch(ui, lang, narrow);
         let text_w = lang.x - 20.0;
-        ui::text(
-            &ui::fit(
-                &t!(
-                    "replay-title",
-                    id = self.match_id.as_str(),
-                    fairness = l.fairness.as_str()
-                ),
-                19.0,
-                text_w,
+        let title = match &self.players {
+            Some(players) => t!(
+                "replay-title-players",
+                players = players.as_str(),
+                fairness = l.fairness.as_str()
             ),
+            None => t!(
+                "replay-title",
+                id = self.match_id.as_str(),
+                fairness = l.fairness.as_str()
+            ),
+        };
+        ui::text(
+            &ui::fit(&title, 19.0, text_w),
             12.0,
             8.0,
             19.0,
@@ -351,7 +367,10 @@ impl Screen for Replay {
             x += wdt + 8.0;
             r
         };
-        if ui.button("previous-shot", "|<", next(44.0)) {
+        // The shot jumps say what they do (narrower on a phone, where
+        // their words take two lines).
+        let jump_w = if narrow { 72.0 } else { 64.0 };
+        if ui.button("previous-shot", &t!("replay-previous-shot"), next(jump_w)) {
             self.t = l.timeline.previous_shot(self.t);
         }
         let label = if self.playing {
@@ -365,7 +384,7 @@ impl Screen for Replay {
             }
             self.playing = !self.playing;
         }
-        if ui.button("next-shot", ">|", next(44.0)) {
+        if ui.button("next-shot", &t!("replay-next-shot"), next(jump_w)) {
             self.t = l.timeline.next_shot(self.t);
         }
         let clock = next(0.0);
@@ -387,20 +406,19 @@ impl Screen for Replay {
         } else {
             (clock.x + 120.0, y, 56.0)
         };
-        for (i, s) in SPEEDS.into_iter().enumerate() {
-            let gap = if narrow { 6.0 } else { 8.0 };
-            let r = Rect::new(sx + i as f32 * (sw + gap), sy, sw, ui::TOUCH);
-            if ui.button_styled(
-                &format!("speed{s}"),
-                &format!("{s}x"),
-                r,
-                true,
-                self.speed == s,
-            ) {
-                self.speed = s;
-                self.playing = true;
+        // One label size for the row, so "0.25x" is not smaller than "1x".
+        let labels = SPEEDS.map(|s| format!("{s}x"));
+        let size = Rect::new(sx, sy, sw, ui::TOUCH);
+        ui.even_labels(&labels, size, |ui| {
+            for (i, (s, label)) in SPEEDS.into_iter().zip(&labels).enumerate() {
+                let gap = if narrow { 6.0 } else { 8.0 };
+                let r = Rect::new(sx + i as f32 * (sw + gap), sy, sw, ui::TOUCH);
+                if ui.button_styled(&format!("speed{s}"), label, r, true, self.speed == s) {
+                    self.speed = s;
+                    self.playing = true;
+                }
             }
-        }
+        });
         if is_key_pressed(KeyCode::Space) {
             self.playing = !self.playing;
         }
@@ -434,6 +452,7 @@ impl Screen for Replay {
             m.insert("best_shots".into(), serde_json::json!(l.best));
             m.insert("speed".into(), self.speed.into());
         }
+        m.insert("players".into(), self.players.clone().into());
         m
     }
 }

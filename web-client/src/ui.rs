@@ -121,6 +121,10 @@ pub struct Input {
     pub enter: bool,
     /// Text pasted this frame (Ctrl+V or the browser's paste event).
     pub paste: Option<String>,
+    /// Whether a pointer resting over a button lights it: a mouse's does,
+    /// a finger's does not (a touch screen's pointer stays where the last
+    /// tap lifted, and would keep that button lit).
+    pub hover: bool,
 }
 
 /// One keyboard edit of a text field.
@@ -194,6 +198,7 @@ impl Input {
             typed: typed(),
             enter: is_key_pressed(KeyCode::Enter) || is_key_pressed(KeyCode::KpEnter),
             paste: platform::pasted(),
+            hover: !platform::coarse_pointer(),
         }
     }
 }
@@ -218,6 +223,10 @@ pub struct Ui {
     /// Inside [`Ui::without_input`]: a modal covers what is drawn, so no
     /// native text input may be laid over it.
     covered: bool,
+    /// The button drawn lit by the pointer resting over it this frame.
+    hovered: Option<String>,
+    /// Inside [`Ui::even_labels`]: the size no label may start above.
+    label_cap: Option<f32>,
 }
 
 /// Draws `text` with its top-left corner near `(x, y)` at `size` pixels.
@@ -284,11 +293,10 @@ pub fn split_in_two(label: &str) -> Option<(&str, &str)> {
 /// 12 units; a label still too wide takes two lines where the button is
 /// finger-tall; whatever is left too wide ends with an ellipsis, so no
 /// label ever runs past its button. Whether the label shows whole.
-fn label_in(label: &str, r: Rect, color: Color) -> bool {
-    // A narrow button (the sandbox's speeds on a phone) keeps less margin.
-    let room = r.w - if r.w < 60.0 { 4.0 } else { 10.0 };
+fn label_in(label: &str, r: Rect, color: Color, cap: Option<f32>) -> bool {
+    let room = label_room(r);
     let fits = |s: &str, size: f32| text_width(s, size) <= room;
-    let mut size = (r.h * 0.45).clamp(12.0, 20.0);
+    let mut size = label_start(r).min(cap.unwrap_or(f32::INFINITY));
     while size > 12.0 && !fits(label, size) {
         size -= 1.0;
     }
@@ -313,6 +321,31 @@ fn label_in(label: &str, r: Rect, color: Color) -> bool {
     fits(label, size)
 }
 
+/// The width a button of `r` gives its label: a narrow button (the
+/// sandbox's speeds on a phone) keeps less margin.
+fn label_room(r: Rect) -> f32 {
+    r.w - if r.w < 60.0 { 4.0 } else { 10.0 }
+}
+
+/// The size a label in a button of `r` starts at, before it shrinks to fit.
+fn label_start(r: Rect) -> f32 {
+    (r.h * 0.45).clamp(12.0, 20.0)
+}
+
+/// The one size for the labels of a row of buttons the size of `r`: the
+/// largest (from [`label_start`] down to 12 units) at which every one of
+/// `labels` fits one line, as `width(label, size)` measures it. Drawn at
+/// it, a row whose longest label must shrink shrinks all of them alike,
+/// instead of one label smaller than its neighbours.
+fn even_size<S: AsRef<str>>(labels: &[S], r: Rect, width: impl Fn(&str, f32) -> f32) -> f32 {
+    let room = label_room(r);
+    let mut size = label_start(r);
+    while size > 12.0 && labels.iter().any(|l| width(l.as_ref(), size) > room) {
+        size -= 1.0;
+    }
+    size.max(12.0)
+}
+
 /// Draws a rounded-looking panel.
 pub fn panel(r: Rect) {
     draw_rectangle(r.x, r.y, r.w, r.h, colors::PANEL);
@@ -330,6 +363,7 @@ impl Ui {
         self.labels.clear();
         self.cut.clear();
         self.captured = false;
+        self.hovered = None;
         // Native inputs not laid over a field last frame go away.
         platform::field_sweep();
     }
@@ -380,6 +414,26 @@ impl Ui {
         )
     }
 
+    /// Runs `f`, which draws a row of buttons the size of `r` labelled
+    /// `labels`, with every label at one size ([`even_size`]).
+    pub fn even_labels<S: AsRef<str>, R>(
+        &mut self,
+        labels: &[S],
+        r: Rect,
+        f: impl FnOnce(&mut Ui) -> R,
+    ) -> R {
+        let cap = even_size(labels, r, text_width);
+        let outer = self.label_cap.replace(cap);
+        let out = f(self);
+        self.label_cap = outer;
+        out
+    }
+
+    /// The button lit by a resting pointer this frame, if any.
+    pub fn hovered(&self) -> Option<&str> {
+        self.hovered.as_deref()
+    }
+
     /// The names of the buttons whose label was cut this frame.
     pub fn cut(&self) -> serde_json::Value {
         self.cut.iter().cloned().collect::<Vec<_>>().into()
@@ -402,11 +456,15 @@ impl Ui {
         self.buttons.insert(name.to_string(), r);
         let hot = enabled && r.contains(self.input.pointer);
         let held = hot && self.input.down && self.press_at.is_some_and(|p| r.contains(p));
+        let lit = hot && !held && (self.input.hover || self.input.down);
+        if lit {
+            self.hovered = Some(name.to_string());
+        }
         let color = if !enabled {
             colors::BUTTON_OFF
         } else if selected || held {
             colors::ACCENT
-        } else if hot {
+        } else if lit {
             colors::BUTTON_HOT
         } else {
             colors::BUTTON
@@ -422,7 +480,7 @@ impl Ui {
             colors::TEXT
         };
         self.labels.insert(name.to_string(), label.to_string());
-        if !label_in(label, r, tc) {
+        if !label_in(label, r, tc, self.label_cap) {
             self.cut.insert(name.to_string());
         }
         if hot && self.input.pressed {
@@ -541,6 +599,22 @@ mod tests {
             Some(("Play the computer", "(adaptive)"))
         );
         assert_eq!(split_in_two("Лидеры"), None);
+    }
+
+    #[test]
+    fn a_row_of_labels_shrinks_evenly_to_its_longest() {
+        // A font whose letters are 0.6 of its size wide.
+        let width = |s: &str, size: f32| s.chars().count() as f32 * size * 0.6;
+        let r = Rect::new(0.0, 0.0, 56.0, TOUCH);
+        // "0.25x" needs a smaller size than "1x": the whole row takes it.
+        let even = even_size(&["-1x", "0.1x", "0.25x", "1x"], r, width);
+        assert!(width("0.25x", even) <= label_room(r));
+        assert!(width("0.25x", even + 1.0) > label_room(r));
+        assert!(even < label_start(r));
+        // Labels that all fit keep the full size; one too long for any
+        // size stops at the smallest.
+        assert_eq!(even_size(&["1x", "2x"], r, width), label_start(r));
+        assert_eq!(even_size(&["a label far too long"], r, width), 12.0);
     }
 
     #[test]

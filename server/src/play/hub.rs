@@ -814,7 +814,7 @@ impl Hub {
         id: &str,
         token: Option<SeatToken>,
     ) -> Result<(RoomHandle, Connected), Refusal> {
-        self.connect_as(id, token.map_or(Claim::Watch, Claim::Token))
+        self.connect_as(id, token.map_or(Claim::Watch(String::new()), Claim::Token))
             .await
     }
 

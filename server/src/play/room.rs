@@ -133,8 +133,8 @@ pub trait MatchListener: Send + Sync {
 /// What a connecting WebSocket claims.
 #[derive(Clone, Debug)]
 pub enum Claim {
-    /// Nothing: it watches.
-    Watch,
+    /// Nothing: it watches, and chats under this name (its hello's).
+    Watch(String),
     /// The seat this token holds.
     Token(SeatToken),
     /// The seat this account holds (its key already checked).
@@ -426,10 +426,15 @@ impl<H: RoomHost> Room<H> {
             Command::Connect { claim, reply } => {
                 let conn = ConnId(self.host.next_conn_id());
                 let input = match claim {
-                    Claim::Watch => Input::Connect { conn, token: None },
+                    Claim::Watch(name) => Input::Connect {
+                        conn,
+                        token: None,
+                        name,
+                    },
                     Claim::Token(t) => Input::Connect {
                         conn,
                         token: Some(t),
+                        name: String::new(),
                     },
                     Claim::Account(account) => {
                         let seat = self.accounts.iter().position(|a| {
@@ -1002,7 +1007,7 @@ mod tests {
     async fn connect(room: &mpsc::Sender<Command>, token: Option<&str>) -> Connected {
         let (reply, answer) = oneshot::channel();
         let token = token.map(SeatToken::new);
-        let claim = token.map_or(Claim::Watch, Claim::Token);
+        let claim = token.map_or(Claim::Watch("Furmanov".into()), Claim::Token);
         room.send(Command::Connect { claim, reply }).await.unwrap();
         answer.await.unwrap().unwrap()
     }

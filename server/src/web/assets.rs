@@ -519,6 +519,25 @@ mod tests {
         assert!(String::from_utf8(body).unwrap().contains("<svg"));
     }
 
+    #[test]
+    fn the_pages_loader_has_its_words_in_each_language_of_the_client() {
+        let bundle = match web_client() {
+            Ok(bundle) => bundle,
+            Err(why) => {
+                assert!(skipped(why), "the web client was not built: {}", why.reason);
+                return;
+            }
+        };
+        let page = String::from_utf8(bundle.index_html.bytes.to_vec()).unwrap();
+        assert!(
+            !page.contains("__CHAPAEV_LOADING__"),
+            "the words are written in"
+        );
+        // From the message `page-loading` of each Fluent file.
+        assert!(page.contains(r#""en":"Loading Chapaev…""#), "English");
+        assert!(page.contains(r#""ru":"Загружается «Чапаев»…""#), "Russian");
+    }
+
     #[actix_web::test]
     async fn the_page_can_be_installed_with_its_manifest_icons_and_service_worker() {
         let bundle = match web_client() {

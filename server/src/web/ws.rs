@@ -307,11 +307,11 @@ impl pump::Door for MatchDoor {
                 protocol,
                 token,
                 key,
-                ..
+                name,
             } if protocol == PROTOCOL_VERSION => match (token, key) {
                 (Some(token), _) => Claim::Token(token),
                 (None, Some(key)) => account_claim(&self.hub, key, self.browser).await?,
-                (None, None) => Claim::Watch,
+                (None, None) => Claim::Watch(name),
             },
             ClientMessage::Hello { .. } => {
                 return Err(Refusal::new(

@@ -17,6 +17,8 @@ const PLAYER_STEP: f32 = 40.0;
 const CHAT_LINE: f32 = 18.0;
 /// The chat's send button's width.
 const SEND_W: f32 = 70.0;
+/// The width of the chat's button that opens the quick phrases.
+const PHRASES_W: f32 = 84.0;
 
 /// The board's and the panel's areas in a `w` x `h` window: side by side
 /// when it is wide, the board on top at full width when it is tall.
@@ -70,8 +72,17 @@ pub struct PanelLayout {
     pub buttons: Vec<Rect>,
     pub log: Vec<Rect>,
     pub chat: Vec<Rect>,
-    /// The chat's text field and its send button.
-    pub chat_field: Option<(Rect, Rect)>,
+    /// The chat's row: its text field, the quick phrases' button and Send.
+    pub chat_field: Option<ChatRow>,
+}
+
+/// The chat's row at the panel's foot.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ChatRow {
+    pub field: Rect,
+    /// Opens (and closes) the quick phrases and the mute switches.
+    pub phrases: Rect,
+    pub send: Rect,
 }
 
 #[cfg(test)]
@@ -91,8 +102,8 @@ impl PanelLayout {
         .flatten()
         .copied()
         .collect();
-        if let Some((f, s)) = self.chat_field {
-            all.extend([f, s]);
+        if let Some(row) = self.chat_field {
+            all.extend([row.field, row.phrases, row.send]);
         }
         all
     }
@@ -171,12 +182,35 @@ pub fn panel(area: Rect, spec: &PanelSpec) -> PanelLayout {
         .map(|i| Rect::new(x, top + i as f32 * CHAT_LINE, w, 14.0))
         .collect();
     if spec.chat_field && field_y >= y {
-        l.chat_field = Some((
-            Rect::new(x, field_y, w - SEND_W - 8.0, TOUCH),
-            Rect::new(x + w - SEND_W, field_y, SEND_W, TOUCH),
-        ));
+        let phrases_x = x + w - SEND_W - GAP - PHRASES_W;
+        l.chat_field = Some(ChatRow {
+            field: Rect::new(x, field_y, phrases_x - GAP - x, TOUCH),
+            phrases: Rect::new(phrases_x, field_y, PHRASES_W, TOUCH),
+            send: Rect::new(x + w - SEND_W, field_y, SEND_W, TOUCH),
+        });
     }
     l
+}
+
+/// The chat's menu, opened over the panel `area` just above the chat's
+/// `row`: its box and `items` buttons in it, two to a row (three in a
+/// wide panel), in reading order. It covers what lies under it, so the
+/// panel's own buttons take no press while it is open.
+pub fn chat_menu(area: Rect, row: &ChatRow, items: usize) -> (Rect, Vec<Rect>) {
+    let x = area.x + 12.0;
+    let w = area.w - 24.0;
+    let per_row = if w > 520.0 { 3 } else { 2 };
+    let rows = items.div_ceil(per_row);
+    let bw = (w - GAP * (per_row - 1) as f32) / per_row as f32;
+    let h = rows as f32 * (TOUCH + GAP) - GAP + 16.0;
+    let top = (row.field.y - 6.0 - h).max(area.y);
+    let buttons = (0..items)
+        .map(|i| {
+            let (c, r) = ((i % per_row) as f32, (i / per_row) as f32);
+            Rect::new(x + c * (bw + GAP), top + 8.0 + r * (TOUCH + GAP), bw, TOUCH)
+        })
+        .collect();
+    (Rect::new(area.x + 4.0, top, area.w - 8.0, h), buttons)
 }
 
 /// The end-of-match box over the board.
@@ -348,9 +382,33 @@ mod tests {
         for (w, h) in DESKTOPS {
             let (_, area) = split(w, h);
             let l = panel(area, &playing(area, 5, 0));
-            let (field, send) = l.chat_field.expect("a chat field");
-            assert!((field.y + field.h - (area.y + area.h - 8.0)).abs() < 1e-3);
-            assert!(field.x + field.w < send.x);
+            let row = l.chat_field.expect("a chat field");
+            assert!((row.field.y + row.field.h - (area.y + area.h - 8.0)).abs() < 1e-3);
+            assert!(row.field.x + row.field.w < row.phrases.x);
+            assert!(row.phrases.x + row.phrases.w < row.send.x);
+            assert!(row.field.w >= 120.0, "{w}x{h}: room to type");
+        }
+    }
+
+    #[test]
+    fn the_chat_menu_stands_above_the_chat_row_inside_the_panel_its_buttons_apart() {
+        for (w, h) in PHONES.into_iter().chain(DESKTOPS).chain([(844.0, 390.0)]) {
+            let (_, area) = split(w, h);
+            let l = panel(area, &playing(area, 6, 6));
+            let Some(row) = l.chat_field else {
+                panic!("{w}x{h}: no chat row");
+            };
+            // The quick phrases and the two mute switches.
+            let (menu, buttons) = chat_menu(area, &row, 10);
+            assert!(inside(menu, area), "{w}x{h}: {menu:?} outside {area:?}");
+            assert!(menu.y + menu.h <= row.field.y, "{w}x{h}: covers the row");
+            for (i, a) in buttons.iter().enumerate() {
+                assert!(inside(*a, menu), "{w}x{h}: {a:?} outside {menu:?}");
+                assert!(a.h >= TOUCH);
+                for b in &buttons[i + 1..] {
+                    assert!(!overlap(*a, *b), "{w}x{h}: {a:?} overlaps {b:?}");
+                }
+            }
         }
     }
 

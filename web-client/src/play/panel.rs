@@ -13,14 +13,14 @@
 //! stand in other slots than Resign.
 
 use super::layout::{self, PanelLayout, PanelSpec};
-use super::state::{MatchState, LOG_LINES};
+use super::state::{phrase_text, MatchState, Mute, LOG_LINES};
 use crate::draw;
 use crate::i18n::t;
 use crate::story::{side_key, side_name};
 use crate::ui::{self, colors, Ui};
-use game::protocol::MAX_CHAT_CHARS;
+use game::protocol::{Phrase, MAX_CHAT_CHARS};
 use game::{MatchResult, Phase, Seat, Side, WinReason};
-use macroquad::prelude::{vec2, Color, Rect};
+use macroquad::prelude::{draw_rectangle, draw_rectangle_lines, vec2, Color, Rect};
 
 /// A line of text and how it shows.
 #[derive(Clone, Debug, PartialEq)]
@@ -121,7 +121,8 @@ pub struct Content {
     /// buttons, and how many lines that area holds.
     pub log: Vec<Line>,
     pub log_lines: usize,
-    /// Whether this page may chat (it holds a seat).
+    /// Whether this page may chat (once the match is known: players and
+    /// spectators alike).
     pub chat_field: bool,
 }
 
@@ -324,7 +325,7 @@ pub fn content(s: &MatchState, cx: &Context) -> Content {
         buttons,
         log,
         log_lines,
-        chat_field: s.you.is_some(),
+        chat_field: true,
     }
 }
 
@@ -362,13 +363,108 @@ pub struct Pressed {
     pub buttons: Vec<&'static str>,
     /// A chat line to send.
     pub chat: Option<String>,
+    /// A quick phrase to send.
+    pub phrase: Option<Phrase>,
+}
+
+/// The chat as the panel shows it.
+pub struct Chat<'a> {
+    /// The lines to show, oldest first (the newest that fit show).
+    pub lines: &'a [String],
+    /// What the chat's field holds.
+    pub draft: &'a mut String,
+    /// Whether the menu of quick phrases and mute switches is open.
+    pub menu: bool,
+    pub mute: Mute,
+    /// Whether this page holds a seat (the mute switch names the
+    /// opponent) or watches (it names the players).
+    pub seated: bool,
+}
+
+/// The chat menu's buttons: each quick phrase, then the mute switches,
+/// as (name, label).
+pub fn menu_buttons(chat: &Chat) -> Vec<(String, String)> {
+    let mut b: Vec<(String, String)> = Phrase::ALL
+        .iter()
+        .map(|p| (format!("phrase-{}", p.code()), phrase_text(*p)))
+        .collect();
+    let players = match (chat.seated, chat.mute.players) {
+        (true, false) => t!("chat-mute-opponent"),
+        (true, true) => t!("chat-unmute-opponent"),
+        (false, false) => t!("chat-mute-players"),
+        (false, true) => t!("chat-unmute-players"),
+    };
+    let spectators = if chat.mute.spectators {
+        t!("chat-unmute-spectators")
+    } else {
+        t!("chat-mute-spectators")
+    };
+    b.push(("mute-players".into(), players));
+    b.push(("mute-spectators".into(), spectators));
+    b
 }
 
 /// Draws the panel in `area` with its content and the newest chat lines
-/// that fit, the chat field editing `draft`.
-pub fn show(ui: &mut Ui, area: Rect, c: &Content, chat: &[&String], draft: &mut String) -> Pressed {
+/// that fit, the chat field editing the draft, and the chat's menu over
+/// the panel while it is open (the panel under it takes no press).
+pub fn show(ui: &mut Ui, area: Rect, c: &Content, chat: Chat) -> Pressed {
     ui::panel(area);
-    let l: PanelLayout = layout::panel(area, &c.spec(chat.len()));
+    let l: PanelLayout = layout::panel(area, &c.spec(chat.lines.len()));
+    let mut pressed = if chat.menu {
+        ui.without_input(|ui| body(ui, c, &l, chat.lines))
+    } else {
+        body(ui, c, &l, chat.lines)
+    };
+    let Some(row) = l.chat_field else {
+        return pressed;
+    };
+    if chat.menu {
+        let items = menu_buttons(&chat);
+        let (menu, rects) = layout::chat_menu(area, &row, items.len());
+        draw_rectangle(menu.x, menu.y, menu.w, menu.h, colors::PANEL);
+        draw_rectangle_lines(menu.x, menu.y, menu.w, menu.h, 1.5, colors::ACCENT);
+        for ((name, label), r) in items.iter().zip(rects) {
+            let on = match name.as_str() {
+                "mute-players" => chat.mute.players,
+                "mute-spectators" => chat.mute.spectators,
+                _ => false,
+            };
+            if ui.button_styled(name, label, r, true, on) {
+                match name.as_str() {
+                    "mute-players" => pressed.buttons.push("mute-players"),
+                    "mute-spectators" => pressed.buttons.push("mute-spectators"),
+                    other => {
+                        pressed.phrase = other.strip_prefix("phrase-").and_then(Phrase::from_code);
+                    }
+                }
+            }
+        }
+    }
+    let entered = ui.text_field(
+        "chat",
+        chat.draft,
+        row.field,
+        &t!("play-chat-placeholder"),
+        MAX_CHAT_CHARS,
+    );
+    let label = if chat.menu {
+        t!("chat-close")
+    } else {
+        t!("chat-phrases")
+    };
+    if ui.button_styled("chat-phrases", &label, row.phrases, true, chat.menu) {
+        pressed.buttons.push("chat-phrases");
+    }
+    let send = ui.button("chat-send", &t!("play-chat-send"), row.send);
+    if (entered || send) && !chat.draft.trim().is_empty() {
+        pressed.chat = Some(std::mem::take(chat.draft));
+    }
+    pressed
+}
+
+/// The panel above the chat's row: its lines, players, buttons, the shot
+/// log and the chat's lines.
+fn body(ui: &mut Ui, c: &Content, l: &PanelLayout, chat: &[String]) -> Pressed {
     let text = |line: &Line, r: Rect| {
         ui::text(
             &ui::fit(&line.text, line.size, r.w),
@@ -420,22 +516,9 @@ pub fn show(ui: &mut Ui, area: Rect, c: &Content, chat: &[&String], draft: &mut 
     for (line, r) in c.log.iter().zip(&l.log) {
         text(line, *r);
     }
-    // Chat between the seats (spectators read it), above its field.
+    // The chat of players and spectators, above its row.
     for (s, r) in chat.iter().skip(chat.len() - l.chat.len()).zip(&l.chat) {
         ui::text(&ui::fit(s, 14.0, r.w), r.x, r.y, 14.0, colors::TEXT);
-    }
-    if let Some((field, send)) = l.chat_field {
-        let entered = ui.text_field(
-            "chat",
-            draft,
-            field,
-            &t!("play-chat-placeholder"),
-            MAX_CHAT_CHARS,
-        );
-        let send = ui.button("chat-send", &t!("play-chat-send"), send);
-        if (entered || send) && !draft.trim().is_empty() {
-            pressed.chat = Some(std::mem::take(draft));
-        }
     }
     pressed
 }
@@ -483,11 +566,35 @@ mod tests {
     }
 
     #[test]
-    fn a_spectator_gets_no_resign_rematch_or_chat() {
+    fn a_spectator_gets_no_resign_or_rematch_but_the_chat() {
         let c = content(&seated(None), &cx(false));
         assert_eq!(names(&c), ["lobby", "help", "sound"]);
-        assert!(!c.chat_field);
+        assert!(c.chat_field);
         assert!(c.head[1].text.starts_with("Watching"));
+    }
+
+    #[test]
+    fn the_chat_menu_offers_every_phrase_and_names_the_mute_switch_by_role() {
+        let mut draft = String::new();
+        let mut chat = Chat {
+            lines: &[],
+            draft: &mut draft,
+            menu: true,
+            mute: Mute::default(),
+            seated: true,
+        };
+        let b = menu_buttons(&chat);
+        assert_eq!(b.len(), Phrase::ALL.len() + 2);
+        assert!(b
+            .iter()
+            .any(|(n, l)| n == "phrase-good-shot" && l == "Good shot!"));
+        assert_eq!(b[b.len() - 2].1, "Mute opponent");
+        chat.seated = false;
+        chat.mute.players = true;
+        chat.mute.spectators = true;
+        let b = menu_buttons(&chat);
+        assert_eq!(b[b.len() - 2].1, "Unmute players");
+        assert_eq!(b[b.len() - 1].1, "Unmute spectators");
     }
 
     #[test]

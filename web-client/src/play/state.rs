@@ -11,16 +11,69 @@ use crate::highlight;
 use crate::i18n::t;
 use crate::platform::Sound;
 use crate::story::{self, Score};
-use game::protocol::{Players, ServerMessage};
+use game::protocol::{Phrase, Players, ServerMessage};
 use game::{MatchView, Seat, ShotOutcome, Side};
 use std::collections::VecDeque;
 
-/// Most chat lines kept.
-pub const CHAT_LINES: usize = 6;
+/// Most chat lines kept (muted ones included, so unmuting shows them).
+pub const CHAT_LINES: usize = 40;
 /// Most shot-log lines kept.
 pub const LOG_LINES: usize = 4;
 /// How long a notice shows, in seconds.
 const NOTICE: f64 = 5.0;
+
+/// A line of the chat as the server sent it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ChatLine {
+    /// The seat that said it (none: a spectator).
+    pub from: Option<Seat>,
+    pub name: String,
+    pub text: String,
+    /// The quick phrase it is, shown in the reader's language.
+    pub phrase: Option<Phrase>,
+}
+
+/// Whose chat this page hides.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Mute {
+    /// The seated players' chat (for a player: the opponent's; a player's
+    /// own lines always show).
+    pub players: bool,
+    /// The spectators' chat.
+    pub spectators: bool,
+}
+
+/// A quick phrase in the reader's language.
+pub fn phrase_text(p: Phrase) -> String {
+    match p {
+        Phrase::Hello => t!("phrase-hello"),
+        Phrase::GoodLuck => t!("phrase-good-luck"),
+        Phrase::GoodShot => t!("phrase-good-shot"),
+        Phrase::Oops => t!("phrase-oops"),
+        Phrase::WellPlayed => t!("phrase-well-played"),
+        Phrase::Thanks => t!("phrase-thanks"),
+        Phrase::Gg => t!("phrase-gg"),
+        Phrase::Rematch => t!("phrase-rematch"),
+    }
+}
+
+/// A seat's name as the reader reads it: the computer's seat (the
+/// server names it `bot (LEVEL)`, a name no person may take) by its level
+/// in the reader's language, anyone else's as it came.
+pub fn seat_name(raw: &str) -> String {
+    match raw
+        .strip_prefix("bot (")
+        .and_then(|rest| rest.strip_suffix(')'))
+    {
+        Some(level) if !level.is_empty() && level.chars().all(|c| c.is_ascii_lowercase()) => {
+            t!(
+                "computer-level",
+                level = crate::lobby::state::level_name(level)
+            )
+        }
+        _ => raw.to_string(),
+    }
+}
 
 /// The match as this page knows it.
 #[derive(Default)]
@@ -39,7 +92,7 @@ pub struct MatchState {
     /// Whose turn the clock counts and when it runs out (on [`Self::now`]'s clock).
     pub clock: Option<(Seat, Side, f64)>,
     /// The chat, oldest first, at most [`CHAT_LINES`].
-    pub chat: VecDeque<String>,
+    pub chat: VecDeque<ChatLine>,
     /// A line shown over the board, and until when.
     pub notice: Option<(String, f64)>,
     /// A shot was sent; waiting for the server's answer.
@@ -74,7 +127,30 @@ impl MatchState {
             Seat::First => &self.players.first,
             Seat::Second => &self.players.second,
         };
-        n.clone().unwrap_or_else(|| t!("play-seat-waiting"))
+        n.as_deref()
+            .map_or_else(|| t!("play-seat-waiting"), seat_name)
+    }
+
+    /// The newest chat lines that `mute` leaves, at most `max`, as the
+    /// reader reads them: a phrase in the reader's language, a spectator
+    /// marked as one.
+    pub fn chat_shown(&self, mute: Mute, max: usize) -> Vec<String> {
+        let shown: Vec<String> = self
+            .chat
+            .iter()
+            .filter(|l| match l.from {
+                None => !mute.spectators,
+                Some(seat) => Some(seat) == self.you || !mute.players,
+            })
+            .map(|l| {
+                let text = l.phrase.map_or_else(|| l.text.clone(), phrase_text);
+                match l.from {
+                    Some(seat) => t!("chat-line", name = self.name_of(seat), text = text),
+                    None => t!("chat-line-spectator", name = l.name.as_str(), text = text),
+                }
+            })
+            .collect();
+        shown[shown.len().saturating_sub(max)..].to_vec()
     }
 
     /// Whether announcements are still being shown.
@@ -163,8 +239,18 @@ impl MatchState {
                 }
             }
             ServerMessage::RematchStarted { match_id } => return Some(match_id),
-            ServerMessage::Chat { name, text, .. } => {
-                self.chat.push_back(format!("{name}: {text}"));
+            ServerMessage::Chat {
+                from,
+                name,
+                text,
+                phrase,
+            } => {
+                self.chat.push_back(ChatLine {
+                    from,
+                    name,
+                    text,
+                    phrase,
+                });
                 while self.chat.len() > CHAT_LINES {
                     self.chat.pop_front();
                 }
@@ -497,13 +583,67 @@ pub(crate) mod tests {
                 from: Some(Seat::First),
                 name: "Anka".into(),
                 text: format!("line {i}"),
+                phrase: None,
             });
         }
         assert_eq!(s.chat.len(), CHAT_LINES);
         assert_eq!(
-            s.chat.back().unwrap(),
-            &format!("Anka: line {}", CHAT_LINES + 2)
+            s.chat_shown(Mute::default(), 1),
+            [format!("Anka: line {}", CHAT_LINES + 2)]
         );
+    }
+
+    fn chat(s: &mut MatchState, from: Option<Seat>, name: &str, phrase: Option<Phrase>) {
+        s.receive(ServerMessage::Chat {
+            from,
+            name: name.into(),
+            text: phrase.map_or("hi", Phrase::english).into(),
+            phrase,
+        });
+    }
+
+    #[test]
+    fn a_phrase_reads_in_the_readers_language_and_a_spectator_is_marked() {
+        let mut s = seated(Some(Seat::First));
+        chat(&mut s, Some(Seat::Second), "Petka", Some(Phrase::GoodShot));
+        chat(&mut s, None, "Furmanov", None);
+        assert_eq!(
+            s.chat_shown(Mute::default(), 6),
+            ["Petka: Good shot!", "Furmanov (watching): hi"]
+        );
+    }
+
+    #[test]
+    fn muting_hides_the_opponents_or_the_spectators_lines_never_ones_own() {
+        let mut s = seated(Some(Seat::First));
+        chat(&mut s, Some(Seat::First), "Anka", None);
+        chat(&mut s, Some(Seat::Second), "Petka", Some(Phrase::Gg));
+        chat(&mut s, None, "Furmanov", Some(Phrase::WellPlayed));
+        let players = Mute {
+            players: true,
+            spectators: false,
+        };
+        assert_eq!(
+            s.chat_shown(players, 6),
+            ["Anka: hi", "Furmanov (watching): Well played!"]
+        );
+        let spectators = Mute {
+            players: false,
+            spectators: true,
+        };
+        assert_eq!(s.chat_shown(spectators, 6), ["Anka: hi", "Petka: gg"]);
+        // Unmuted, everything said shows again.
+        assert_eq!(s.chat_shown(Mute::default(), 6).len(), 3);
+    }
+
+    #[test]
+    fn the_computers_seat_reads_as_the_computer_of_its_level() {
+        assert_eq!(seat_name("bot (easy)"), "computer (easy)");
+        assert_eq!(seat_name("Petka"), "Petka");
+        assert_eq!(seat_name("bot (Petka)"), "bot (Petka)");
+        let mut s = seated(None);
+        s.players.second = Some("bot (hard)".into());
+        assert_eq!(s.name_of(Seat::Second), "computer (hard)");
     }
 
     #[test]

@@ -269,12 +269,18 @@ pub fn playback_bar(s: &mut State, ui: &mut Ui, r: Rect, compact: bool) {
     if ui.button_styled("play", &label, l.play, true, s.sim.playing) {
         s.toggle_play();
     }
-    for (&speed, rect) in SPEEDS.iter().zip(&l.speeds) {
-        let name = format!("speed-{speed}");
-        let selected = s.sim.speed == speed;
-        if ui.button_styled(&name, &speed_label(speed), *rect, true, selected) {
-            s.set_speed(speed);
-        }
+    // One label size for the row ("0.01x" as large as "1x" can be).
+    let labels: Vec<String> = SPEEDS.iter().map(|&v| speed_label(v)).collect();
+    if let Some(&first) = l.speeds.first() {
+        ui.even_labels(&labels, first, |ui| {
+            for ((&speed, rect), label) in SPEEDS.iter().zip(&l.speeds).zip(&labels) {
+                let name = format!("speed-{speed}");
+                let selected = s.sim.speed == speed;
+                if ui.button_styled(&name, label, *rect, true, selected) {
+                    s.set_speed(speed);
+                }
+            }
+        });
     }
     let (start, hi) = s.time_range();
     let t = ui.slider("time", s.sim.t, start, hi, l.slider);

@@ -38,15 +38,23 @@ impl From<WireRefusal> for Refusal {
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(tag = "as", rename_all = "kebab-case")]
 pub(super) enum WireClaim {
-    Watch,
-    Token { token: String },
-    Account { account: String },
+    /// A spectator, with the name it chats under (none from an older node).
+    Watch {
+        #[serde(default)]
+        name: String,
+    },
+    Token {
+        token: String,
+    },
+    Account {
+        account: String,
+    },
 }
 
 impl From<&Claim> for WireClaim {
     fn from(c: &Claim) -> WireClaim {
         match c {
-            Claim::Watch => WireClaim::Watch,
+            Claim::Watch(name) => WireClaim::Watch { name: name.clone() },
             Claim::Token(t) => WireClaim::Token {
                 token: t.expose().to_string(),
             },
@@ -58,7 +66,7 @@ impl From<&Claim> for WireClaim {
 impl From<WireClaim> for Claim {
     fn from(c: WireClaim) -> Claim {
         match c {
-            WireClaim::Watch => Claim::Watch,
+            WireClaim::Watch { name } => Claim::Watch(name),
             WireClaim::Token { token } => Claim::Token(SeatToken::new(token)),
             WireClaim::Account { account } => Claim::Account(account),
         }
@@ -255,7 +263,7 @@ mod tests {
         assert!(matches!(
             watch,
             Envelope::Connect {
-                claim: WireClaim::Watch,
+                claim: WireClaim::Watch { .. },
                 ..
             }
         ));
@@ -279,7 +287,7 @@ mod tests {
     fn every_claim_crosses_as_what_it_claims() {
         let token = SeatToken::new("540a0bf048fe73e1505aeb84de7f0fcd");
         let cases = [
-            Claim::Watch,
+            Claim::Watch("Furmanov".into()),
             Claim::Token(token.clone()),
             Claim::Account("anka".into()),
         ];
@@ -288,7 +296,7 @@ mod tests {
             let text = serde_json::to_string(&wire).unwrap();
             let back = Claim::from(serde_json::from_str::<WireClaim>(&text).unwrap());
             match (c, back) {
-                (Claim::Watch, Claim::Watch) => {}
+                (Claim::Watch(a), Claim::Watch(b)) => assert_eq!(a, b),
                 (Claim::Token(a), Claim::Token(b)) => assert_eq!(a.expose(), b.expose()),
                 (Claim::Account(a), Claim::Account(b)) => assert_eq!(a, b),
                 (a, b) => panic!("{a:?} came back as {b:?}"),
