@@ -163,6 +163,9 @@ pub struct End {
 
 /// Events that moved nothing (see [`CRAWL`]), counted block by block.
 pub(crate) struct Crawl {
+    /// From the eighth revision: the block's motion is that of the discs
+    /// its latest events involve, not that of the fastest disc anywhere.
+    local: bool,
     /// When the current block began.
     since: f64,
     /// Events in the current block.
@@ -176,8 +179,11 @@ pub(crate) struct Crawl {
 
 impl Crawl {
     /// No events yet, the first block beginning at `t`.
-    pub(crate) fn new(t: f64) -> Self {
+    /// With `local` (the eighth revision on), a block is measured on the
+    /// discs of its latest events (see [`Watched::fastest_and_smallest_of`]).
+    pub(crate) fn new(t: f64, local: bool) -> Self {
         Crawl {
+            local,
             since: t,
             events: 0,
             still: 0,
@@ -211,7 +217,11 @@ impl Crawl {
         if self.events < CRAWL_EVENTS {
             return None;
         }
-        let (speed, radius) = world.fastest_and_smallest(t);
+        let (speed, radius) = if self.local {
+            world.fastest_and_smallest_of(&self.recent, t)
+        } else {
+            world.fastest_and_smallest(t)
+        };
         let still = (t - self.since) * speed <= CRAWL * radius;
         self.since = t;
         self.events = 0;
@@ -351,6 +361,12 @@ pub(crate) trait Watched {
 
     /// The speed of the fastest live disc at `t` and the smallest radius.
     fn fastest_and_smallest(&self, t: f64) -> (f64, f64);
+
+    /// The same among the live discs of `slots` (`usize::MAX`, an
+    /// obstacle, is passed over): from the eighth revision, what a block of
+    /// the crawl is measured on, so that a pile hitting itself ever closer
+    /// is seen as still while a disc elsewhere keeps moving.
+    fn fastest_and_smallest_of(&self, slots: &[usize], t: f64) -> (f64, f64);
 
     /// The restitution of a hit between the discs in slots `a` and `b`
     /// (the smaller of theirs), or of `a` on an obstacle (`b` = `None`).

@@ -107,16 +107,25 @@ pub enum Revision {
     /// them and with obstacles) is not taken to a plastic limit: an
     /// elastic chain loses no energy, and one pinned between two walls,
     /// which has no finite answer, ends `stuck` with its energy.
-    #[default]
     R7,
+    /// The eighth, as the seventh but the crawl of events that move nothing
+    /// (`limits::CRAWL`) is measured on the discs the block's latest events
+    /// involve, not on the fastest disc of the whole scene: a pile whose
+    /// hits come ever closer (a frictionless plastic disc sliding between
+    /// braking ones) is seen as still while an elastic disc crosses the
+    /// box; and where a still block follows one already taken as a
+    /// collapse, its discs, which moved less than `limits::CRAWL` of a
+    /// radius in two blocks of events, come to rest (`World::crawl_rest`).
+    #[default]
+    R8,
 }
 
 impl Revision {
     /// The revision new computations use.
-    pub const LATEST: Revision = Revision::R7;
+    pub const LATEST: Revision = Revision::R8;
 
     /// Every revision, oldest first.
-    pub const ALL: [Revision; 7] = [
+    pub const ALL: [Revision; 8] = [
         Revision::R1,
         Revision::R2,
         Revision::R3,
@@ -124,6 +133,7 @@ impl Revision {
         Revision::R5,
         Revision::R6,
         Revision::R7,
+        Revision::R8,
     ];
 
     /// Whether this revision has the second revision's rules.
@@ -155,6 +165,12 @@ impl Revision {
     /// clock and its collapse rule for elastic clusters).
     pub fn at_least_r7(self) -> bool {
         self >= Revision::R7
+    }
+
+    /// Whether this revision has the eighth revision's rules (the crawl
+    /// measured on the discs involved, and their rest).
+    pub fn at_least_r8(self) -> bool {
+        self >= Revision::R8
     }
 }
 

@@ -31,8 +31,9 @@ use crate::id::{BodyId, LineId, PointId};
 use crate::impulse;
 use crate::instant::same_instant;
 use crate::limits::{
-    snap, Crawl, Repeats, Watched, COLLAPSE_EVENTS, COLLAPSE_WINDOW, FAR_FUTURE, MAX_COLLAPSE,
-    MAX_COORDINATE, PRESS_ROUNDS, PRESS_SWEEPS, SETTLE, SNAP, STUCK_EVENTS, STUCK_EVENTS_PER_BODY,
+    snap, Crawl, Repeats, Watched, COLLAPSE_EVENTS, COLLAPSE_WINDOW, CRAWL_EVENTS, FAR_FUTURE,
+    MAX_COLLAPSE, MAX_COORDINATE, PRESS_ROUNDS, PRESS_SWEEPS, SETTLE, SNAP, STUCK_EVENTS,
+    STUCK_EVENTS_PER_BODY,
 };
 use crate::obstacle::{Line, LineGeom, Point};
 use crate::push;
@@ -257,6 +258,22 @@ impl Watched for World {
         for s in self.slots.iter().filter(|s| s.alive) {
             speed = speed.max(s.traj.velocity(t).length());
             radius = radius.min(s.radius);
+        }
+        (speed, radius)
+    }
+
+    fn fastest_and_smallest_of(&self, slots: &[usize], t: f64) -> (f64, f64) {
+        let mut speed: f64 = 0.0;
+        let mut radius = f64::INFINITY;
+        for s in slots.iter().filter_map(|&c| self.slots.get(c)) {
+            if s.alive {
+                speed = speed.max(s.traj.velocity(t).length());
+                radius = radius.min(s.radius);
+            }
+        }
+        if radius == f64::INFINITY {
+            // No live disc among them: the whole scene decides.
+            return self.fastest_and_smallest(t);
         }
         (speed, radius)
     }
@@ -509,13 +526,16 @@ impl World {
         let stuck_after = STUCK_EVENTS + STUCK_EVENTS_PER_BODY * self.slots.len() as u64;
         // Worked out only once events have shared an instant.
         let mut tick: Option<f64> = None;
-        let mut crawl = Crawl::new(self.last_event_t);
+        let mut crawl = Crawl::new(self.last_event_t, self.config.revision.at_least_r8());
         let r5 = self.config.revision.at_least_r5();
         let mut repeats = Repeats::default();
         // From the seventh revision: the fine clock (see `clock`), and the
         // current instant's tick (see `World::instant_tick`), worked out
         // only once an event comes near it.
         let fine = self.config.revision.at_least_r7();
+        // From the eighth revision, a crawl that outlasts its collapse
+        // comes to rest (see `World::crawl_rest`).
+        let crawl_rest = self.config.revision.at_least_r8();
         let mut until = self.clock.working(limits.until);
         let mut instant_tick: Option<f64> = None;
         loop {
@@ -589,7 +609,11 @@ impl World {
                             handler.on_event(self, &event);
                             return self.end_on(EndReason::Stuck);
                         }
-                        self.collapse(&mut latest, t);
+                        if crawl_rest && crawl.still() > CRAWL_EVENTS {
+                            self.crawl_rest(&mut latest, t);
+                        } else {
+                            self.collapse(&mut latest, t);
+                        }
                     }
                 }
                 events_left -= 1;
@@ -692,6 +716,56 @@ impl World {
             || (self.config.revision.at_least_r2() && self.collapse_cluster(recent, t))
             || (self.config.revision.at_least_r7() && self.collapse_recent(recent, t));
         self.stats.collapses += taken as u64;
+    }
+
+    /// From the eighth revision, the second block in a row of
+    /// [`CRAWL_EVENTS`] events that moved none of the discs its latest
+    /// events involve by more than `limits::CRAWL` of the smallest radius
+    /// (the first was taken as a collapse, which did not end it): those
+    /// discs (`recent`, slots; `usize::MAX` for an obstacle) come to rest
+    /// where they are, and whatever touches them and would run into them
+    /// (a heavy frictionless disc pushing the pile) is stopped against
+    /// them, as against a wall: the plastic limit of the touching cluster
+    /// with them held still. Such a pile has no plastic limit that ends
+    /// it: a frictionless plastic disc sliding along braking ones, pressed
+    /// against them by its own curvature, bounces off each in turn ever
+    /// faster, the approximated pressing contact (see `push`) parting it
+    /// again every time, while over two thousand events it slides less
+    /// than a billionth of a radius. The same two blocks at one instant (a
+    /// packed plastic pile struck, whose plastic limit neither the
+    /// projection nor the exact solve finds) stop the discs hitting there
+    /// whatever their speed: an approximation that loses energy and
+    /// momentum, where the earlier revisions ended `stuck`. Where every
+    /// disc touching them is elastic nothing is stopped: they lose no
+    /// energy, and the run ends `stuck` if it goes on. Counted as a
+    /// collapse.
+    fn crawl_rest(&mut self, recent: &mut Vec<usize>, t: f64) {
+        recent.retain(|&c| c != usize::MAX && self.slots.get(c).is_some_and(|s| s.alive));
+        recent.sort_unstable();
+        recent.dedup();
+        if recent.is_empty() || self.all_elastic(recent, t) {
+            return;
+        }
+        let (members, mut contacts) = self.touching_cluster(recent.clone(), t);
+        let (vel, inv) = self.motion(&members, t);
+        let still: Vec<bool> = members.iter().map(|c| recent.contains(c)).collect();
+        let mut held = vel.clone();
+        let mut inv_held = inv;
+        for k in (0..members.len()).filter(|&k| still[k]) {
+            (held[k], inv_held[k]) = (DVec2::ZERO, 0.0);
+        }
+        contacts.retain(|c| !still[c.a] || c.b.is_some_and(|b| !still[b]));
+        let after = if contacts.is_empty() {
+            None
+        } else {
+            collapse::resolve(&held, &inv_held, &contacts, PRESS_SWEEPS)
+        };
+        let after = after.unwrap_or(held);
+        let changed = self.set_velocities(&members, &vel, &after, t);
+        for &c in &changed {
+            self.predict(c, true);
+        }
+        self.stats.collapses += !changed.is_empty() as u64;
     }
 
     /// From the seventh revision, where the plastic limit of the whole

@@ -1354,17 +1354,13 @@ mod tests {
         assert!(World::new(&h.scene, WorldConfig::default()).is_ok());
     }
 
-    /// Scenes among the first 40 seeds of each kind that still fail (none
-    /// of the first thirteen kinds since revision 3; the last, cluster 38,
-    /// ran its pressed bounces into the event cap): mixed-box 36 runs into
-    /// the event cap under revisions 6 and 7 alike (a frictionless plastic
-    /// disc creeping against braking ones in a pile, its hits ever slower
-    /// and closer, while an elastic disc crosses the box, so no guard sees
-    /// the pile as still). Mixed-box 8 and 10, which revision 7 ended
-    /// `stuck`, pass since its pressed pairs rest again within the rounding
-    /// of the absolute time (`engine::push`).
-    /// A fix shrinks this list; any other failure is a regression.
-    const KNOWN_OPEN: &[(Kind, &[u64])] = &[(Kind::MixedBox, &[36])];
+    /// Scenes among the first seeds of each kind that still fail: none
+    /// since revision 8 (the last, mixed-box 36, a frictionless plastic
+    /// disc creeping in a pile while an elastic disc crosses the box, ran
+    /// into the event cap under revisions 6 and 7; it is kept in the
+    /// engine's `tests/hostile/` and run by its `tests/revisions.rs`).
+    /// A failure here is a regression.
+    const KNOWN_OPEN: &[(Kind, &[u64])] = &[];
 
     /// Seeds run of each kind: plastic piles of up to 40 discs cost about
     /// a second of CPU each (the `hostile` binary runs many more).
