@@ -156,6 +156,13 @@ fn fold(name: &str) -> String {
     unicode_security::skeleton(&lower).collect()
 }
 
+/// Whether `a` and `b` pass for one another on screen: equal once folded
+/// (confusables' skeleton, case), so `Anka`, `АNKA` and `Ankа` (with
+/// Cyrillic letters) are one name.
+pub fn passes_for(a: &str, b: &str) -> bool {
+    fold(a) == fold(b)
+}
+
 /// Whether `name` passes for one of the computer's names: once folded, it
 /// is one of [`RESERVED_WORDS`] or starts with one followed by something
 /// other than a letter or digit (`bot (hard)`, `Computer-Easy`, `B0T`,

@@ -889,7 +889,21 @@ impl Session {
                     Seat::Second => "second".into(),
                 })
             }
-            None => self.spectators.get(&conn).cloned().ok_or_else(not_seated)?,
+            None => {
+                let name = self.spectators.get(&conn).ok_or_else(not_seated)?;
+                // A spectator never chats under a name that passes for a
+                // player's: its lines would read as the player's own.
+                let players = self.players();
+                let impostor = [players.first, players.second]
+                    .iter()
+                    .flatten()
+                    .any(|player| crate::name::passes_for(name, player));
+                if impostor {
+                    SPECTATOR.to_string()
+                } else {
+                    name.clone()
+                }
+            }
         };
         self.broadcast(ServerMessage::Chat {
             from: seat,
@@ -1690,6 +1704,36 @@ mod tests {
             );
         }
         assert_eq!(spectator_name(" Ｆurmanov "), "Furmanov");
+    }
+
+    #[test]
+    fn a_spectator_named_like_a_player_chats_as_spectator() {
+        // The players of `live()` are Petka and Anka; the third
+        // impostor writes Anka with a Cyrillic "А".
+        for raw in ["Anka", "anka", "\u{410}nka", "PETKA"] {
+            let mut s = live();
+            s.handle(
+                Input::Connect {
+                    conn: WATCHER,
+                    token: None,
+                    name: raw.to_string(),
+                },
+                at(0),
+            );
+            let e = say(
+                &mut s,
+                WATCHER,
+                ClientMessage::Chat { text: "hi".into() },
+                10,
+            );
+            assert!(
+                matches!(
+                    &e[..],
+                    [Effect::Send { msg: ServerMessage::Chat { name, from: None, .. }, .. }] if name == SPECTATOR
+                ),
+                "{raw:?}: {e:?}"
+            );
+        }
     }
 
     #[test]
