@@ -12,84 +12,23 @@
 
 mod common;
 
-use common::{http_with, shot, Server};
+use common::modules::{self, account, as_key, json, starter};
+use common::{shot, Server};
 use game::decide::DecideRequest;
 use game::{MatchRecord, NoiseKey, RecordedMove, Replay, Side};
 use serde_json::Value;
-use std::path::Path;
-use std::process::Command;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-fn json(text: &str) -> Value {
-    serde_json::from_str(text).unwrap_or_else(|e| panic!("{e}: {text}"))
-}
-
-async fn as_key(s: &Server, method: &str, path: &str, key: &str, body: &str) -> (u16, String) {
-    http_with(
-        &s.addr,
-        method,
-        path,
-        &format!("Authorization: Bearer {key}\r\n"),
-        body,
-    )
-    .await
-}
-
 async fn bot_account(s: &Server, name: &str) -> String {
-    let (status, text) = s
-        .http(
-            "POST",
-            "/api/accounts",
-            &format!(r#"{{"name":"{name}","bot":true}}"#),
-        )
-        .await;
-    assert_eq!(status, 201, "{text}");
-    json(&text)["key"].as_str().unwrap().to_string()
+    account(s, name, true).await
 }
 
 /// Uploads `bytes` as the account's module; its hash.
 async fn upload(s: &Server, key: &str, bytes: Vec<u8>) -> String {
-    let url = format!("http://{}/api/accounts/me/module", s.addr);
-    let auth = format!("Bearer {key}");
-    let (status, text) = tokio::task::spawn_blocking(move || {
-        let answer = match ureq::put(&url)
-            .set("Content-Type", "application/wasm")
-            .set("Authorization", &auth)
-            .send_bytes(&bytes)
-        {
-            Ok(a) => a,
-            Err(ureq::Error::Status(_, a)) => a,
-            Err(e) => panic!("no answer to PUT {url}: {e}"),
-        };
-        (answer.status(), answer.into_string().unwrap())
-    })
-    .await
-    .unwrap();
+    let (status, text) = modules::upload(s, key, bytes).await;
     assert!(status == 200 || status == 201, "{status} {text}");
     json(&text)["hash"].as_str().unwrap().to_string()
-}
-
-/// The starter bot (`bots/wasm-starter`) built for wasm32 in release, as
-/// its author would, into this workspace's target folder.
-fn starter() -> Vec<u8> {
-    let target = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .parent()
-        .expect("the temporary folder is inside the target folder")
-        .to_path_buf();
-    let status = Command::new(env!("CARGO"))
-        .args(["build", "-p", "chapaev-starter-bot", "--release"])
-        .args(["--target", "wasm32-unknown-unknown", "--target-dir"])
-        .arg(&target)
-        .current_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join(".."))
-        .status()
-        .expect("cargo runs");
-    assert!(
-        status.success(),
-        "building the starter bot failed (it needs `rustup target add wasm32-unknown-unknown`)"
-    );
-    std::fs::read(target.join("wasm32-unknown-unknown/release/chapaev_starter_bot.wasm"))
-        .expect("the starter's wasm was built")
 }
 
 /// A module that answers `answer` at once (its own bytes for each `k`).

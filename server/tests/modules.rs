@@ -10,14 +10,8 @@
 
 mod common;
 
-use common::{http_with, Server};
-use serde_json::Value;
-use std::path::Path;
-use std::process::Command;
-
-fn json(text: &str) -> Value {
-    serde_json::from_str(text).unwrap_or_else(|e| panic!("{e}: {text}"))
-}
+use common::modules::{account, as_key, json, put_bytes, starter, upload};
+use common::Server;
 
 fn code(text: &str) -> String {
     json(text)["code"].as_str().unwrap_or_default().to_string()
@@ -35,68 +29,6 @@ fn module(k: u32) -> Vec<u8> {
             (func (export "chapaev_decide") (param i32 i32) (result i64) i64.const 17))"#
     ))
     .unwrap()
-}
-
-/// `PUT`s `bytes` as the body, with extra headers; the status and body.
-async fn put_bytes(
-    s: &Server,
-    path: &str,
-    headers: &[(&str, &str)],
-    bytes: Vec<u8>,
-) -> (u16, String) {
-    let url = format!("http://{}{path}", s.addr);
-    let headers: Vec<(String, String)> = headers
-        .iter()
-        .map(|(k, v)| (k.to_string(), v.to_string()))
-        .collect();
-    tokio::task::spawn_blocking(move || {
-        let mut req = ureq::put(&url).set("Content-Type", "application/wasm");
-        for (k, v) in &headers {
-            req = req.set(k, v);
-        }
-        let answer = match req.send_bytes(&bytes) {
-            Ok(a) => a,
-            Err(ureq::Error::Status(_, a)) => a,
-            Err(e) => panic!("no answer to PUT {url}: {e}"),
-        };
-        (answer.status(), answer.into_string().unwrap())
-    })
-    .await
-    .unwrap()
-}
-
-async fn upload(s: &Server, key: &str, bytes: Vec<u8>) -> (u16, String) {
-    let auth = format!("Bearer {key}");
-    put_bytes(
-        s,
-        "/api/accounts/me/module",
-        &[("Authorization", &auth)],
-        bytes,
-    )
-    .await
-}
-
-async fn as_key(s: &Server, method: &str, path: &str, key: &str, body: &str) -> (u16, String) {
-    http_with(
-        &s.addr,
-        method,
-        path,
-        &format!("Authorization: Bearer {key}\r\n"),
-        body,
-    )
-    .await
-}
-
-async fn account(s: &Server, name: &str, bot: bool) -> String {
-    let (status, text) = s
-        .http(
-            "POST",
-            "/api/accounts",
-            &format!(r#"{{"name":"{name}","bot":{bot}}}"#),
-        )
-        .await;
-    assert_eq!(status, 201, "{text}");
-    json(&text)["key"].as_str().unwrap().to_string()
 }
 
 /// The account's versions as (hash, active), newest first.
@@ -288,28 +220,6 @@ async fn on_postgresql_a_bot_uploads_lists_and_activates_versions_and_hostile_up
         return;
     };
     uploads_and_versions(&[&format!("--database-url={url}")]).await;
-}
-
-/// The starter bot (`bots/wasm-starter`) built for wasm32 in release, as
-/// its author would, into this workspace's target folder.
-fn starter() -> Vec<u8> {
-    let target = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .parent()
-        .expect("the temporary folder is inside the target folder")
-        .to_path_buf();
-    let status = Command::new(env!("CARGO"))
-        .args(["build", "-p", "chapaev-starter-bot", "--release"])
-        .args(["--target", "wasm32-unknown-unknown", "--target-dir"])
-        .arg(&target)
-        .current_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join(".."))
-        .status()
-        .expect("cargo runs");
-    assert!(
-        status.success(),
-        "building the starter bot failed (it needs `rustup target add wasm32-unknown-unknown`)"
-    );
-    std::fs::read(target.join("wasm32-unknown-unknown/release/chapaev_starter_bot.wasm"))
-        .expect("the starter's wasm was built")
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

@@ -7,6 +7,7 @@
 mod loopback;
 
 pub mod cluster;
+pub mod modules;
 
 use futures_util::{SinkExt, StreamExt};
 use game::protocol::{ClientMessage, ServerMessage};
