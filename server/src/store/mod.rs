@@ -254,8 +254,9 @@ pub struct StoredMatch {
     pub physics: u32,
     pub status: Status,
     /// The built-in bots: a level (`easy`, `medium`, `hard`) for a bot in
-    /// the second seat, or `FIRST/SECOND` for an exhibition where both
-    /// seats are bots ([`StoredMatch::bots`] reads it).
+    /// the second seat, or `FIRST/SECOND` (either side empty where no
+    /// computer sits) when the first seat is a computer's
+    /// ([`StoredMatch::bots`] reads it).
     pub bot: Option<String>,
     pub turn_seconds: u64,
     pub seats: [StoredSeat; 2],
@@ -272,7 +273,8 @@ impl StoredMatch {
             [None, None] => None,
             [None, Some(l)] => Some(l.as_str().to_string()),
             [Some(a), Some(b)] => Some(format!("{a}/{b}")),
-            // A bot only ever takes the first seat in an exhibition.
+            // The first seat's level alone: the bot ladder seats a
+            // computer level first against an account.
             [Some(a), None] => Some(format!("{a}/")),
         }
     }
