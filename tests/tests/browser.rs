@@ -1439,12 +1439,20 @@ async fn shots_clack_as_their_pieces_meet_and_the_sound_button_silences_them_for
             click_button(client, "sound").await?;
             state_until(client, "sound off", 10, |s| s["sound"] == false).await?;
             client.refresh().await?;
+            // The match may be over by now (a computer that knocks a piece
+            // off shoots again, and sometimes sweeps the board): then a new one.
             let back = state_until(client, "the page again after the reload", 30, |s| {
                 s["screen"] == "lobby"
+                    || s["end_screen"] == true
                     || (s["screen"] == "play" && s["my_turn"] == true && s["animating"] == false)
             })
             .await?;
             let muted = if back["screen"] == "lobby" {
+                against_the_computer(client).await?
+            } else if back["end_screen"] == true {
+                eprintln!("e2e: the computer ended the match; a new one, still muted");
+                click_button(client, "lobby").await?;
+                state_until(client, "the lobby", 15, |s| s["screen"] == "lobby").await?;
                 against_the_computer(client).await?
             } else {
                 back
