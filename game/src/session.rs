@@ -1676,31 +1676,40 @@ mod tests {
         assert_eq!(s.game().shots(), 0);
     }
 
+    /// What a spectator connected under `raw` sends when it says "hi" in a
+    /// live match: the chat line everyone receives, and its author's seat.
+    fn watcher_chats_as(raw: &str) -> (String, Option<Seat>) {
+        let mut s = live();
+        s.handle(
+            Input::Connect {
+                conn: WATCHER,
+                token: None,
+                name: raw.to_string(),
+            },
+            at(0),
+        );
+        let e = say(
+            &mut s,
+            WATCHER,
+            ClientMessage::Chat { text: "hi".into() },
+            10,
+        );
+        match &e[..] {
+            [Effect::Send {
+                msg: ServerMessage::Chat { name, from, .. },
+                ..
+            }] => (name.clone(), *from),
+            _ => panic!("{raw:?}: not one chat line: {e:?}"),
+        }
+    }
+
     #[test]
     fn a_spectator_whose_name_breaks_the_rule_chats_as_spectator() {
         for raw in ["bot (hard)", "", "Pet\u{202E}ka", &"x".repeat(41)] {
-            let mut s = live();
-            let name = raw.to_string();
-            s.handle(
-                Input::Connect {
-                    conn: WATCHER,
-                    token: None,
-                    name,
-                },
-                at(0),
-            );
-            let e = say(
-                &mut s,
-                WATCHER,
-                ClientMessage::Chat { text: "hi".into() },
-                10,
-            );
-            assert!(
-                matches!(
-                    &e[..],
-                    [Effect::Send { msg: ServerMessage::Chat { name, .. }, .. }] if name == SPECTATOR
-                ),
-                "{raw:?}: {e:?}"
+            assert_eq!(
+                watcher_chats_as(raw),
+                (SPECTATOR.to_string(), None),
+                "{raw:?}"
             );
         }
         assert_eq!(spectator_name(" Ｆurmanov "), "Furmanov");
@@ -1711,27 +1720,10 @@ mod tests {
         // The players of `live()` are Petka and Anka; the third
         // impostor writes Anka with a Cyrillic "А".
         for raw in ["Anka", "anka", "\u{410}nka", "PETKA"] {
-            let mut s = live();
-            s.handle(
-                Input::Connect {
-                    conn: WATCHER,
-                    token: None,
-                    name: raw.to_string(),
-                },
-                at(0),
-            );
-            let e = say(
-                &mut s,
-                WATCHER,
-                ClientMessage::Chat { text: "hi".into() },
-                10,
-            );
-            assert!(
-                matches!(
-                    &e[..],
-                    [Effect::Send { msg: ServerMessage::Chat { name, from: None, .. }, .. }] if name == SPECTATOR
-                ),
-                "{raw:?}: {e:?}"
+            assert_eq!(
+                watcher_chats_as(raw),
+                (SPECTATOR.to_string(), None),
+                "{raw:?}"
             );
         }
     }
