@@ -344,3 +344,72 @@ async fn the_page_health_metrics_and_match_listing_answer() {
         assert!(metrics.contains(line), "{line} in\n{metrics}");
     }
 }
+
+#[tokio::test]
+async fn a_casual_match_created_with_a_seed_draws_the_seeds_noise_and_shows_the_seed() {
+    let dir = tempfile::tempdir().unwrap();
+    let server = Server::start(dir.path(), &[]);
+    let secret = game::NoiseSecret::from_seed(42);
+    // Our first shot, the same in three matches against the computer
+    // under the standard rules (which have noise): two seeded with 42 and
+    // one with 43.
+    let mut outcomes = Vec::new();
+    for seed in [42, 42, 43] {
+        let (id, token) = server
+            .create(&format!(
+                r#"{{"name":"Petka","opponent":"bot","bot_level":"easy","rules":"standard","seed":{seed}}}"#
+            ))
+            .await;
+        let (status, summary) = server.http("GET", &format!("/api/matches/{id}"), "").await;
+        assert_eq!(status, 200);
+        let summary: serde_json::Value = serde_json::from_str(&summary).unwrap();
+        assert_eq!(summary["seed"], seed, "{summary}");
+        let commitment = game::NoiseSecret::from_seed(seed).commitment().to_hex();
+        assert_eq!(summary["noise_commitment"], commitment.as_str());
+        let mut me = server.ws(&id, Some(&token)).await;
+        view(me.next().await);
+        me.send(&shot(4, 0.0, 2.0)).await;
+        let ServerMessage::ShotPlayed { outcome, .. } = me.next_of("shot-played").await else {
+            unreachable!()
+        };
+        outcomes.push(serde_json::to_string(&outcome).unwrap());
+        if seed == 42 {
+            // The record reveals the secret the seed makes, as anyone can.
+            me.send(&ClientMessage::Resign).await;
+            me.next_of("match-over").await;
+            let (status, record) = server
+                .http("GET", &format!("/api/matches/{id}/record"), "")
+                .await;
+            assert_eq!(status, 200, "{record}");
+            let record: serde_json::Value = serde_json::from_str(&record).unwrap();
+            assert_eq!(record["noise"]["secret"], secret.to_hex().as_str());
+        }
+    }
+    assert_eq!(outcomes[0], outcomes[1], "one seed, one noise");
+    assert_ne!(outcomes[0], outcomes[2], "another seed, other noise");
+    // The noise `bots match --seed 42` and `game::Game::new(config, 42)`
+    // draw locally, to the bit.
+    let mut local = game::Game::new(game::Preset::Standard.config(), 42).unwrap();
+    let piece = game::PieceId::new(Side::White, 4).unwrap();
+    let aim = game::Shot::new(piece, glam::DVec2::new(0.0, 2.0), local.config()).unwrap();
+    let played = local.play(Side::White, aim).unwrap();
+    assert_eq!(serde_json::to_string(&played.outcome).unwrap(), outcomes[0]);
+
+    // A match without a seed shows none; a rated match takes none; a seed
+    // past what JSON keeps exact is refused.
+    let (id, _) = server.create(r#"{"name":"Petka"}"#).await;
+    let (_, summary) = server.http("GET", &format!("/api/matches/{id}"), "").await;
+    assert!(!summary.contains("\"seed\""), "{summary}");
+    for (body, why) in [
+        (
+            r#"{"name":"Petka","rules":"standard","rated":true,"seed":1}"#,
+            "rated",
+        ),
+        (r#"{"name":"Petka","seed":9007199254740992}"#, "at most"),
+        (r#"{"name":"Petka","seed":-1}"#, "u64"),
+    ] {
+        let (status, text) = server.http("POST", "/api/matches", body).await;
+        assert_eq!(status, 400, "{body}: {text}");
+        assert!(text.contains(why), "{body}: {text}");
+    }
+}

@@ -102,6 +102,7 @@ mod tests {
             ],
             rematch_of: None,
             rated: false,
+            seed: None,
         };
         store.create(&m).unwrap();
         let result = MatchResult::Won {

@@ -78,6 +78,44 @@ pub struct NewMatch {
     /// Whether the result moves the ratings (both seats need accounts: a
     /// built-in level plays as its computer account).
     pub rated: bool,
+    /// A public seed for the match's noise (casual matches only: see
+    /// [`Stakes::Seeded`]).
+    pub seed: Option<u64>,
+}
+
+/// What a new match is played for, and so where its noise comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stakes {
+    /// Casual, with a secret nobody knows until the end.
+    Casual,
+    /// Casual, with the secret `NoiseSecret::from_seed(seed)`: anyone who
+    /// knows the seed can draw its noise, the way `bots match --seed`
+    /// does locally, and the computer seats are seeded from it too.
+    Seeded(u64),
+    /// Rated: a secret, and the result moves both accounts' ratings.
+    Rated,
+}
+
+impl Stakes {
+    /// Casual or rated, with a secret.
+    pub fn secret(rated: bool) -> Stakes {
+        if rated {
+            Stakes::Rated
+        } else {
+            Stakes::Casual
+        }
+    }
+
+    pub fn rated(self) -> bool {
+        self == Stakes::Rated
+    }
+
+    pub fn seed(self) -> Option<u64> {
+        match self {
+            Stakes::Seeded(seed) => Some(seed),
+            Stakes::Casual | Stakes::Rated => None,
+        }
+    }
 }
 
 /// Who plays one seat of a match being started.
@@ -250,7 +288,14 @@ impl Hub {
             }
         }
         let id = self
-            .start(slot, None, config, turn_seconds, seats, rated)
+            .start(
+                slot,
+                None,
+                config,
+                turn_seconds,
+                seats,
+                Stakes::secret(rated),
+            )
             .await?;
         Ok((id, tokens))
     }
@@ -454,6 +499,16 @@ impl Hub {
         let slot = self.reserve()?;
         let turn_seconds = self.turn_seconds(req.turn_seconds)?;
         let token = random(token::seat_token())?;
+        let stakes = match (req.rated, req.seed) {
+            (true, Some(_)) => {
+                return Err(Refusal::new(
+                    ErrorCode::BadMessage,
+                    "a rated match takes no seed: its noise stays secret to both players",
+                ))
+            }
+            (rated, None) => Stakes::secret(rated),
+            (false, Some(seed)) => Stakes::Seeded(seed),
+        };
         if req.rated && req.account.is_none() {
             return Err(Refusal::new(
                 ErrorCode::BadKey,
@@ -475,7 +530,7 @@ impl Hub {
             second,
         ];
         let id = self
-            .start(slot, None, req.config, turn_seconds, seats, req.rated)
+            .start(slot, None, req.config, turn_seconds, seats, stakes)
             .await?;
         Ok(SeatGrant {
             match_id: id,
@@ -502,7 +557,7 @@ impl Hub {
             config,
             turn_seconds,
             [seat(first), seat(second)],
-            false,
+            Stakes::Casual,
         )
         .await
     }
@@ -531,7 +586,8 @@ impl Hub {
             config,
             turn.as_secs(),
             seats,
-            rated,
+            // A seeded match's rematch gets a secret of its own.
+            Stakes::secret(rated),
         )
         .await
     }
@@ -543,9 +599,12 @@ impl Hub {
         config: Config,
         turn_seconds: u64,
         seats: [NewSeat; 2],
-        rated: bool,
+        stakes: Stakes,
     ) -> Result<String, Refusal> {
-        let noise = NoiseKey::ChaCha20(random(token::noise_secret())?);
+        let noise = match stakes.seed() {
+            Some(seed) => NoiseKey::from(seed),
+            None => NoiseKey::ChaCha20(random(token::noise_secret())?),
+        };
         let game = Game::new(config.clone(), noise)
             .map_err(|e| Refusal::new(ErrorCode::BadConfig, e.to_string()))?;
         let id = random(token::match_id())?;
@@ -569,7 +628,8 @@ impl Hub {
                 module: s.module,
             }),
             rematch_of,
-            rated,
+            rated: stakes.rated(),
+            seed: stakes.seed(),
         };
         let store = self.inner.store.clone();
         let row = stored.clone();
@@ -1123,6 +1183,7 @@ mod tests {
             config: Config::default(),
             turn_seconds: None,
             rated: false,
+            seed: None,
         }
     }
 

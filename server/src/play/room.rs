@@ -323,7 +323,16 @@ impl<H: RoomHost> Room<H> {
             },
         };
         let seats = [seat(0), seat(1)];
-        let bots = levels.map(|l| std::sync::Mutex::new(l.map(|l| l.bot(bot_seed()))));
+        // A seeded match seeds its computers as `bots match --seed` does
+        // (the first seat's from the seed, the second's from the next).
+        let mut seat_index = 0u64;
+        let bots = levels.map(|l| {
+            let seed = stored
+                .seed
+                .map_or_else(bot_seed, |s| s.wrapping_add(seat_index));
+            seat_index += 1;
+            std::sync::Mutex::new(l.map(|l| l.bot(seed)))
+        });
         let l = host.limits();
         let limits = SessionLimits {
             turn: Duration::from_secs(stored.turn_seconds.max(1)),
@@ -1038,6 +1047,7 @@ mod tests {
             seats: [seat("Petka", "tok-a"), seat("Anka", "tok-b")],
             rematch_of: None,
             rated: false,
+            seed: None,
         };
         host.store.create(&stored).unwrap();
         let game = Game::new(stored.config.clone(), stored.noise).unwrap();

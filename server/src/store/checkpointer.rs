@@ -183,6 +183,7 @@ mod tests {
                 seats: [StoredSeat::default(), StoredSeat::default()],
                 rematch_of: None,
                 rated: false,
+                seed: None,
             })
             .unwrap();
         let after = AfterMove {

@@ -263,6 +263,10 @@ pub struct StoredMatch {
     pub rematch_of: Option<String>,
     /// Whether the result moves the two accounts' ratings.
     pub rated: bool,
+    /// The public seed a casual match was created with: its secret is
+    /// `NoiseSecret::from_seed(seed)`, so anyone who knows the seed can
+    /// draw its noise (`None`: a secret nobody knows until the end).
+    pub seed: Option<u64>,
 }
 
 impl StoredMatch {
@@ -321,6 +325,10 @@ pub struct Summary {
     /// Absent for a match begun before secrets (keyed by a plain seed).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub noise_commitment: Option<game::NoiseCommitment>,
+    /// The public seed of a seeded casual match: its noise is known to
+    /// anyone from the start (absent: a secret until the end).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub seed: Option<u64>,
 }
 
 /// An account's rating as a listing shows it next to a seat.

@@ -148,6 +148,8 @@ CREATE UNIQUE INDEX bot_modules_one_active ON bot_modules (account_key) WHERE ac
     "ALTER TABLE matches ADD COLUMN first_module TEXT, ADD COLUMN second_module TEXT;",
     // Where clients reach each node (`--public-url`; NULL: not given).
     "ALTER TABLE cluster_nodes ADD COLUMN public_url TEXT;",
+    // The public seed of a seeded casual match (NULL: a secret one).
+    "ALTER TABLE matches ADD COLUMN public_seed BIGINT;",
 ];
 
 type Pool = r2d2::Pool<PostgresConnectionManager<NoTls>>;
@@ -222,6 +224,7 @@ fn stored_match(r: &Row) -> Result<StoredMatch, StoreError> {
         rematch_of: r.get(11),
         physics: physics_of(&id, r.get(12))?,
         rated: r.get(15),
+        seed: r.get::<_, Option<i64>>(19).map(|s| s as u64),
         id,
     })
 }
@@ -232,6 +235,7 @@ fn summary(r: &Row) -> Result<Summary, StoreError> {
     let result: Option<String> = r.get(9);
     Ok(Summary {
         noise_commitment: super::commitment_of(&id, r.get(16))?,
+        seed: r.get::<_, Option<i64>>(17).map(|s| s as u64),
         physics,
         playable: game::PhysicsVersion::from_number(physics).is_ok(),
         status: status_of(&id, r.get(1))?,
@@ -407,9 +411,9 @@ impl Store for PostgresStore {
             "INSERT INTO matches (id, created_at, updated_at, config, seed, status, bot, turn_seconds,
                                   first_name, first_token_hash, second_name, second_token_hash, rematch_of,
                                   physics, first_account, second_account, rated, noise_secret,
-                                  first_module, second_module)
+                                  first_module, second_module, public_seed)
              VALUES ($1, $2, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14, $15, $16, $17,
-                     $18, $19)",
+                     $18, $19, $20)",
             &[
                 &m.id,
                 &t,
@@ -430,6 +434,7 @@ impl Store for PostgresStore {
                 &secret,
                 &m.seats[0].module,
                 &m.seats[1].module,
+                &m.seed.map(|s| s as i64),
             ],
         )?;
         Ok(())

@@ -230,7 +230,9 @@ fn add_account_columns(conn: &Connection) -> Result<(), StoreError> {
     add_column(conn, "noise_secret", "TEXT")?;
     // The hosted module version playing each seat (NULL: none).
     add_column(conn, "first_module", "TEXT")?;
-    add_column(conn, "second_module", "TEXT")
+    add_column(conn, "second_module", "TEXT")?;
+    // The public seed of a seeded casual match (NULL: a secret one).
+    add_column(conn, "public_seed", "INTEGER")
 }
 
 /// Adds `column` to the `matches` table unless it has it.
@@ -388,6 +390,7 @@ impl SqliteStore {
                 accounts: [row.get(13)?, row.get(14)?],
                 modules: [row.get(17)?, row.get(18)?],
                 rated: row.get(15)?,
+                public_seed: row.get(19)?,
             },
             row.get(2)?,
         ))
@@ -417,13 +420,13 @@ impl SqliteStore {
 /// reads them.
 pub(crate) const MATCH_COLUMNS: &str = "id, created_at, config, seed, status, bot, turn_seconds,
     first_name, first_token_hash, second_name, second_token_hash, rematch_of, physics,
-    first_account, second_account, rated, noise_secret, first_module, second_module";
+    first_account, second_account, rated, noise_secret, first_module, second_module, public_seed";
 
 /// A summary's columns, read from `matches` joined to the seats' accounts
 /// (`a` and `b`).
 pub(crate) const SUMMARY_COLUMNS: &str = "m.id, m.status, m.created_at, m.updated_at, m.first_name,
     m.second_name, m.bot, m.shots, m.turn_seconds, m.result, m.physics, m.rated,
-    a.rating, a.deviation, b.rating, b.deviation, m.noise_secret";
+    a.rating, a.deviation, b.rating, b.deviation, m.noise_secret, m.public_seed";
 
 /// The tables a summary reads.
 const SUMMARY_FROM: &str = "matches m
@@ -457,9 +460,9 @@ impl Store for SqliteStore {
             "INSERT INTO matches (id, created_at, updated_at, config, seed, status, bot, turn_seconds,
                                   first_name, first_token_hash, second_name, second_token_hash, rematch_of,
                                   physics, first_account, second_account, rated, noise_secret,
-                                  first_module, second_module)
+                                  first_module, second_module, public_seed)
              VALUES (?1, ?2, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17,
-                     ?18, ?19)",
+                     ?18, ?19, ?20)",
             params![
                 m.id,
                 t as i64,
@@ -480,6 +483,7 @@ impl Store for SqliteStore {
                 secret,
                 m.seats[0].module,
                 m.seats[1].module,
+                m.seed.map(|s| s as i64),
             ],
         )?;
         self.log_grew();
@@ -929,6 +933,7 @@ struct SummaryRaw {
     /// Each seat's account's rating and deviation.
     ratings: [(Option<f64>, Option<f64>); 2],
     noise_secret: Option<String>,
+    public_seed: Option<i64>,
 }
 
 impl SummaryRaw {
@@ -948,6 +953,7 @@ impl SummaryRaw {
             rated: r.get(11)?,
             ratings: [(r.get(12)?, r.get(13)?), (r.get(14)?, r.get(15)?)],
             noise_secret: r.get(16)?,
+            public_seed: r.get(17)?,
         })
     }
 
@@ -956,6 +962,7 @@ impl SummaryRaw {
         let noise_commitment = super::commitment_of(&self.id, self.noise_secret)?;
         Ok(Summary {
             noise_commitment,
+            seed: self.public_seed.map(|s| s as u64),
             physics,
             playable: game::PhysicsVersion::from_number(physics).is_ok(),
             status: status_of(&self.id, &self.status)?,
@@ -992,6 +999,7 @@ struct StoredMatchRaw {
     accounts: [Option<String>; 2],
     modules: [Option<String>; 2],
     rated: bool,
+    public_seed: Option<i64>,
 }
 
 impl StoredMatchRaw {
@@ -1026,6 +1034,7 @@ impl StoredMatchRaw {
             ],
             rematch_of: self.rematch_of,
             rated: self.rated,
+            seed: self.public_seed.map(|s| s as u64),
             id: self.id,
         })
     }

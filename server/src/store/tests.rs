@@ -102,6 +102,7 @@ macro_rules! on_both_backends {
 on_both_backends!(
     a_match_and_its_moves_come_back_as_a_replayable_record,
     a_match_begun_before_secrets_comes_back_keyed_by_its_seed,
+    a_seeded_match_keeps_its_public_seed_and_shows_it_in_its_summary,
     moves_written_at_once_from_many_threads_all_land_and_a_bad_one_fails_alone,
     a_move_index_is_written_once_and_a_failed_move_changes_nothing,
     the_second_seat_is_taken_once_and_listing_filters_by_status,
@@ -144,6 +145,7 @@ pub(super) fn stored(id: &str) -> StoredMatch {
         ],
         rematch_of: None,
         rated: false,
+        seed: None,
     }
 }
 
@@ -194,6 +196,23 @@ fn a_match_begun_before_secrets_comes_back_keyed_by_its_seed(b: Backend) {
     assert_eq!(record.seed, Some(u64::MAX - 5));
     assert_eq!(record.noise, None);
     assert_eq!(record.key(), Ok(NoiseKey::SplitMix64(u64::MAX - 5)));
+}
+
+fn a_seeded_match_keeps_its_public_seed_and_shows_it_in_its_summary(b: Backend) {
+    let store = b.store;
+    // The largest seed the API takes, and one past i64 (kept bit for bit).
+    for (id, seed) in [("s1", (1u64 << 53) - 1), ("s2", u64::MAX - 7)] {
+        let mut m = stored(id);
+        m.noise = NoiseKey::from(seed);
+        m.seed = Some(seed);
+        store.create(&m).unwrap();
+        let (back, _) = store.load(id).unwrap().unwrap();
+        assert_eq!((back.seed, back.noise), (Some(seed), NoiseKey::from(seed)));
+        assert_eq!(store.summary(id).unwrap().unwrap().seed, Some(seed));
+    }
+    store.create(&stored("s3")).unwrap();
+    assert_eq!(store.load("s3").unwrap().unwrap().0.seed, None);
+    assert_eq!(store.summary("s3").unwrap().unwrap().seed, None);
 }
 
 fn moves_written_at_once_from_many_threads_all_land_and_a_bad_one_fails_alone(b: Backend) {

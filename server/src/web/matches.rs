@@ -97,6 +97,9 @@ struct CreateBody {
     /// `standard` rules).
     #[serde(default)]
     rated: bool,
+    /// A public seed for the noise (casual matches only): the same noise
+    /// as `bots match --seed` draws locally, and known to anyone.
+    seed: Option<u64>,
 }
 
 /// The rules of a new match: a preset by name, or a configuration (not
@@ -113,6 +116,21 @@ fn rules(rules: Option<&str>, config: Option<Config>) -> Result<Config, Refusal>
             .ok_or_else(|| Refusal::new(ErrorCode::BadConfig, "rules are casual or standard")),
         (None, None) => Ok(Config::default()),
     }
+}
+
+/// The largest seed a match takes: the largest integer a JSON number
+/// carries exactly everywhere (a JavaScript `Number`).
+pub const MAX_SEED: u64 = (1 << 53) - 1;
+
+/// A seed asked for, checked: one a JSON client can read back unchanged.
+fn public_seed(seed: u64) -> Result<u64, Refusal> {
+    if seed > MAX_SEED {
+        return Err(Refusal::new(
+            ErrorCode::BadMessage,
+            format!("a seed is at most {MAX_SEED}, which every JSON reader keeps exact"),
+        ));
+    }
+    Ok(seed)
 }
 
 fn level(name: Option<&str>) -> Result<Level, Refusal> {
@@ -183,6 +201,7 @@ pub(crate) async fn create(
             config,
             turn_seconds: b.turn_seconds,
             rated: b.rated,
+            seed: b.seed.map(public_seed).transpose()?,
         };
         hub.create(req).await
     }
@@ -338,7 +357,8 @@ curl -s -XPOST localhost:8080/api/matches -d '{"name":"Petka","opponent":"bot","
 curl -s -XPOST localhost:8080/api/matches -d '{"name":"MyBot","rules":"standard"}'</pre>
 <p>Computer levels: <code>easy</code>, <code>medium</code>, <code>hard</code>, <code>adaptive</code> (tunes its hand to keep the match even). Rules: <code>casual</code> (the default: shots
 played as aimed) or <code>standard</code> (competitive play and bot against bot: execution noise on every shot and
-the pie rule).</p>
+the pie rule). A casual match may take a public <code>"seed":N</code>: the same noise as
+<code>bots match --seed N</code> draws locally, known to anyone (its summary shows the seed).</p>
 <p>The answer holds the <code>match_id</code>, your <code>seat</code> and a secret <code>token</code>:
 only that token can shoot for your seat. Share the match id (never the token) with your opponent.</p>
 <h2>2. Join the empty seat</h2>
