@@ -122,6 +122,7 @@ fn measure(backend: &Backend, moves: &[RecordedMove], group: usize) -> [f64; ROU
                     seats: [StoredSeat::default(), StoredSeat::default()],
                     rematch_of: None,
                     rated: false,
+                    seed: None,
                 })
                 .expect("a match row");
         }
