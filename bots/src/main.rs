@@ -157,6 +157,11 @@ struct PlayArgs {
     /// The bot's seed.
     #[arg(long, default_value_t = 1)]
     seed: u64,
+    /// A public seed for a created match's noise: the noise `bots match
+    /// --seed` draws locally with the same seed (the server refuses it for
+    /// a rated match).
+    #[arg(long)]
+    match_seed: Option<u64>,
 }
 
 #[derive(clap::Args, Debug)]
@@ -446,6 +451,7 @@ fn play_command(args: PlayArgs) -> Result<(), Box<dyn std::error::Error>> {
             opponent,
             config: args.rules.config(),
             turn_seconds: args.turn_seconds,
+            seed: args.match_seed,
         };
         let grant = match (&args.how.join, &args.how.against) {
             (Some(id), _) => runner.join(id, Some(&name)).await?,

@@ -100,6 +100,9 @@ pub struct CreateMatch {
     pub config: Config,
     /// The match's turn clock (the server's default: 60 s).
     pub turn_seconds: Option<u64>,
+    /// A public seed for the match's noise (casual matches): the noise of
+    /// `bots match --seed` with the same seed.
+    pub seed: Option<u64>,
 }
 
 impl CreateMatch {
@@ -110,6 +113,7 @@ impl CreateMatch {
             opponent: Opponent::Person,
             config,
             turn_seconds: None,
+            seed: None,
         }
     }
 
@@ -135,6 +139,9 @@ impl CreateMatch {
         }
         if let Some(t) = self.turn_seconds {
             body["turn_seconds"] = t.into();
+        }
+        if let Some(seed) = self.seed {
+            body["seed"] = seed.into();
         }
         body
     }
@@ -936,6 +943,9 @@ mod tests {
         assert_eq!(b["turn_seconds"], 2);
         assert_eq!(b["name"], "Petka");
         assert!(b.get("bot_level").is_none());
+        assert!(b.get("seed").is_none());
+        open.seed = Some(42);
+        assert_eq!(open.body()["seed"], 42);
     }
 
     #[test]

@@ -231,6 +231,7 @@ async fn a_refused_shot_is_reported_with_its_code_and_the_match_plays_on_to_its_
         opponent: Opponent::Level("easy".into()),
         config: Config::default(),
         turn_seconds: Some(2),
+        seed: None,
     };
     // A refused shot loses that turn, and a computer that knocks a piece
     // off shoots again: now and then it sweeps the match before our second

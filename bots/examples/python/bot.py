@@ -259,6 +259,8 @@ def main() -> int:
     ap.add_argument("--rules", default="standard", help="casual or standard")
     ap.add_argument("--turn-seconds", type=int, default=None)
     ap.add_argument("--seed", type=int, default=1, help="the seed of the bot's own noise draws")
+    ap.add_argument("--match-seed", type=int, default=None,
+                    help="a public seed for the created match's noise (as 'bots match --seed')")
     ap.add_argument("--draws", type=int, default=4, help="noise draws per candidate")
     ap.add_argument("--budget", type=float, default=2.0, help="seconds of search per shot at most")
     ap.add_argument("--stdio", action="store_true",
@@ -273,6 +275,8 @@ def main() -> int:
         body: Message = {"name": "python-example", "opponent": "bot", "bot_level": args.level, "rules": args.rules}
         if args.turn_seconds:
             body["turn_seconds"] = args.turn_seconds
+        if args.match_seed is not None:
+            body["seed"] = args.match_seed
         grant = post(args.server, "/api/matches", body)
     # The first line on stdout: the match id (for scripts and tests).
     print(json.dumps({"match_id": grant["match_id"], "seat": grant["seat"]}), flush=True)
