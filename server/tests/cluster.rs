@@ -14,7 +14,8 @@
 mod common;
 
 use common::cluster::{
-    node, reconnect, reconnect_following, routed_node, services, until_shots, LEASE,
+    node, reconnect, reconnect_following, record, routed_node, services, three_shots, until_shots,
+    LEASE,
 };
 use common::{shot, view, Client};
 use game::protocol::{ClientMessage, ServerMessage};
@@ -133,12 +134,7 @@ async fn when_the_node_playing_a_match_is_killed_another_takes_it_over_and_no_ac
     let mut black = b.ws(&id, Some(&black_token)).await;
     view(white.next().await);
     view(black.next().await);
-    white.send(&shot(4, 0.0, 2.0)).await;
-    white.send(&shot(2, 0.0, 0.5)).await;
-    until_shots(&mut black, 2).await;
-    black.send(&shot(10, 0.0, -0.5)).await;
-    // Three shots acknowledged (broadcast after they were stored).
-    until_shots(&mut white, 3).await;
+    three_shots(&mut white, &mut black).await;
 
     a.kill();
     let killed = Instant::now();
@@ -162,11 +158,7 @@ async fn when_the_node_playing_a_match_is_killed_another_takes_it_over_and_no_ac
     assert_eq!(outcome.number, 3);
     black.send(&ClientMessage::Resign).await;
     white.next_of("match-over").await;
-    let (status, record) = b
-        .http("GET", &format!("/api/matches/{id}/record"), "")
-        .await;
-    assert_eq!(status, 200, "{record}");
-    let record: game::MatchRecord = serde_json::from_str(&record).unwrap();
+    let record = record(&b, &id).await;
     assert_eq!(record.moves.len(), 5, "four shots and the resignation");
     let replay = game::Replay::new(record).unwrap();
     assert_eq!(replay.game().view().shots, 4);
@@ -232,20 +224,12 @@ async fn a_client_asking_another_node_for_a_match_is_sent_to_the_node_playing_it
         Some(1)
     );
     // Played to the end on node A.
-    white.send(&shot(4, 0.0, 2.0)).await;
-    white.send(&shot(2, 0.0, 0.5)).await;
-    until_shots(&mut black, 2).await;
-    black.send(&shot(10, 0.0, -0.5)).await;
-    until_shots(&mut white, 3).await;
+    three_shots(&mut white, &mut black).await;
     black.send(&ClientMessage::Resign).await;
     for c in [&mut white, &mut black, &mut watcher, &mut relayed] {
         c.next_of("match-over").await;
     }
-    let (status, record) = a
-        .http("GET", &format!("/api/matches/{id}/record"), "")
-        .await;
-    assert_eq!(status, 200, "{record}");
-    let record: game::MatchRecord = serde_json::from_str(&record).unwrap();
+    let record = record(&a, &id).await;
     assert_eq!(record.moves.len(), 4, "three shots and the resignation");
 }
 
@@ -269,11 +253,7 @@ async fn a_client_sent_to_a_node_that_is_killed_reaches_the_node_that_takes_the_
     assert_eq!([&white_at, &black_at], [&a.addr; 2]);
     view(white.next().await);
     view(black.next().await);
-    white.send(&shot(4, 0.0, 2.0)).await;
-    white.send(&shot(2, 0.0, 0.5)).await;
-    until_shots(&mut black, 2).await;
-    black.send(&shot(10, 0.0, -0.5)).await;
-    until_shots(&mut white, 3).await;
+    three_shots(&mut white, &mut black).await;
 
     a.kill();
     let killed = Instant::now();
@@ -298,10 +278,6 @@ async fn a_client_sent_to_a_node_that_is_killed_reaches_the_node_that_takes_the_
     until_shots(&mut black, 1).await;
     black.send(&ClientMessage::Resign).await;
     white.next_of("match-over").await;
-    let (status, record) = b
-        .http("GET", &format!("/api/matches/{id}/record"), "")
-        .await;
-    assert_eq!(status, 200, "{record}");
-    let record: game::MatchRecord = serde_json::from_str(&record).unwrap();
+    let record = record(&b, &id).await;
     assert_eq!(record.moves.len(), 5, "four shots and the resignation");
 }

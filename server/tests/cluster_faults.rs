@@ -28,7 +28,7 @@
 mod common;
 
 use common::cluster::{
-    node, private_postgres, private_redis, reconnect, reconnect_any, until_shots, LEASE,
+    node, private_postgres, private_redis, reconnect, reconnect_any, record, three_shots, LEASE,
 };
 use common::{shot, view, Client, Server};
 use game::outcome::ShotOutcome;
@@ -85,11 +85,7 @@ async fn opening(a: &Server, b: &Server) -> (String, String, String, Client, Cli
     view(black.next().await);
     // White knocks a piece off and shoots again, then passes the turn;
     // Black answers.
-    white.send(&shot(4, 0.0, 2.0)).await;
-    white.send(&shot(2, 0.0, 0.5)).await;
-    until_shots(&mut black, 2).await;
-    black.send(&shot(10, 0.0, -0.5)).await;
-    until_shots(&mut white, 3).await;
+    three_shots(&mut white, &mut black).await;
     (id, white_token, black_token, white, black)
 }
 
@@ -154,11 +150,7 @@ async fn resume_and_judge(
     white.next_of("match-over").await;
     ledger.take(&white);
     ledger.take(&black);
-    let (status, record) = nodes[0]
-        .http("GET", &format!("/api/matches/{id}/record"), "")
-        .await;
-    assert_eq!(status, 200, "{record}");
-    let record: game::MatchRecord = serde_json::from_str(&record).unwrap();
+    let record = record(nodes[0], id).await;
     let replay = game::Replay::new(record.clone()).expect("the record replays");
     assert!(replay.game().result().is_some(), "the match ended");
     let lost = ledger.lost_in(&record);

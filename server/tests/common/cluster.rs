@@ -15,26 +15,17 @@ pub const LEASE: u64 = 2;
 /// A node of a cluster on `db` and `redis`, named `node` (unique on its
 /// Redis).
 pub fn node(dir: &std::path::Path, db: &str, redis: &str, node: &str) -> Server {
-    let lease = LEASE.to_string();
-    Server::start(
-        dir,
-        &[
-            "--database-url",
-            db,
-            "--redis-url",
-            redis,
-            "--node-id",
-            node,
-            "--lease-seconds",
-            &lease,
-        ],
-    )
+    start_node(dir, db, redis, node, false)
 }
 
 /// A node like [`node`] that tells the others where its clients reach
 /// it (`--public-url`, its own address), so that they send them there.
 pub fn routed_node(dir: &std::path::Path, db: &str, redis: &str, node: &str) -> Server {
-    // A free port, known before the node starts: it is in its URL.
+    start_node(dir, db, redis, node, true)
+}
+
+fn start_node(dir: &std::path::Path, db: &str, redis: &str, node: &str, public: bool) -> Server {
+    // A free port, known before the node starts: it may be in its URL.
     let port = std::net::TcpListener::bind("127.0.0.1:0")
         .and_then(|l| l.local_addr())
         .map(|a| a.port())
@@ -42,22 +33,40 @@ pub fn routed_node(dir: &std::path::Path, db: &str, redis: &str, node: &str) -> 
     let addr = format!("127.0.0.1:{port}");
     let lease = LEASE.to_string();
     let url = format!("http://{addr}");
-    Server::start_on(
-        dir,
-        &addr,
-        &[
-            "--database-url",
-            db,
-            "--redis-url",
-            redis,
-            "--node-id",
-            node,
-            "--lease-seconds",
-            &lease,
-            "--public-url",
-            &url,
-        ],
-    )
+    let mut args = vec![
+        "--database-url",
+        db,
+        "--redis-url",
+        redis,
+        "--node-id",
+        node,
+        "--lease-seconds",
+        &lease,
+    ];
+    if public {
+        args.extend(["--public-url", &url]);
+    }
+    Server::start_on(dir, &addr, &args)
+}
+
+/// The opening every cluster test plays: White knocks a piece off and
+/// shoots again, then passes the turn; Black answers. Returns once White
+/// has the three shots (broadcast after they were stored: acknowledged).
+pub async fn three_shots(white: &mut Client, black: &mut Client) {
+    white.send(&super::shot(4, 0.0, 2.0)).await;
+    white.send(&super::shot(2, 0.0, 0.5)).await;
+    until_shots(black, 2).await;
+    black.send(&super::shot(10, 0.0, -0.5)).await;
+    until_shots(white, 3).await;
+}
+
+/// The record of the finished match `id`, as `node` serves it.
+pub async fn record(node: &Server, id: &str) -> game::MatchRecord {
+    let (status, record) = node
+        .http("GET", &format!("/api/matches/{id}/record"), "")
+        .await;
+    assert_eq!(status, 200, "{record}");
+    serde_json::from_str(&record).expect("a record")
 }
 
 /// A fresh database and the shared Redis, or `None` (skipped). (They
