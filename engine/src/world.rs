@@ -1840,8 +1840,7 @@ impl World {
                     mover,
                     &sj.traj,
                     s,
-                    now,
-                    self.clock.origin(),
+                    contact::When::new(now, self.clock.origin()),
                     &self.config.solver,
                     self.config.revision,
                 );
