@@ -298,7 +298,7 @@ pub(crate) fn centre_crossing(m: &Mover, line: &LineGeom, inside: bool) -> Optio
 /// The first time `>= now` at which two discs at centre distance `s` touch
 /// while approaching. `mi` is the path of the first disc if it moves;
 /// `solver` finds the roots of the quartic when both move with friction.
-#[inline]
+#[inline(always)]
 pub(crate) fn disc_disc(
     ti: &Trajectory,
     mi: Option<&Mover>,
@@ -322,6 +322,7 @@ pub(crate) fn disc_disc(
 
 /// Both move without friction: relative motion is linear, the contact
 /// equation quadratic.
+#[inline(always)]
 fn linear_pair(
     pi: DVec2,
     ti: &Trajectory,

@@ -1746,6 +1746,7 @@ impl World {
     }
 
     /// The earliest real event of body `i` from the current time.
+    #[inline(always)]
     fn earliest(
         &self,
         i: usize,
