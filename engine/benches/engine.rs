@@ -16,9 +16,13 @@
 //! * `box_friction_{100,10000}`: the same boxes with mu = 0.1, run to rest.
 //! * `solver_choice`: the break shot with each root-finding method.
 //!
-//! Rates are printed as elements/s, where an element is one event.
+//! Rates are printed as elements/s, where an element is one event. Before
+//! criterion's Galperin group, a table times the engine and the bare loop
+//! interleaved in CPU time (see [`galperin_cpu_table`]): the figures to
+//! compare on a loaded machine.
 //! Run with `cargo bench -p engine --bench engine`.
 
+use cpu_time::ThreadTime;
 use criterion::{
     black_box, criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion, SamplingMode,
     Throughput,
@@ -191,10 +195,55 @@ fn solver_choice(c: &mut Criterion) {
     group.finish();
 }
 
+/// Rounds of the interleaved CPU-time table of [`galperin_cpu_table`], per `n`.
+const GALPERIN_ROUNDS: [(u32, usize); 2] = [(7, 9), (8, 3)];
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// Galperin's billiard through `World` and in the bare loop, one after the
+/// other round after round in one process, in CPU time of this thread (the
+/// hypervisor's steal and the wall clock's drift are not counted): the
+/// fair comparison of the two rates on a loaded machine. Prints the median
+/// round of each, as events per CPU second, and the engine's share of the
+/// bare loop's rate.
+fn galperin_cpu_table() {
+    println!("Galperin: events per CPU second, median of interleaved rounds");
+    println!("| n | rounds | engine | bare loop | engine / bare |");
+    println!("|---|---:|---:|---:|---:|");
+    for (n, rounds) in GALPERIN_ROUNDS {
+        if !selected(&format!("galperin/n{n}")) {
+            continue;
+        }
+        let scene = galperin_scene(n);
+        let (mut engine, mut bare) = (Vec::new(), Vec::new());
+        for _ in 0..rounds {
+            let start = ThreadTime::now();
+            let (counter, _) = run_galperin(black_box(&scene));
+            engine.push(counter.events as f64 / start.elapsed().as_secs_f64());
+            assert_eq!(counter.collisions, engine::presets::pi_digits(n));
+            let start = ThreadTime::now();
+            let events = bare_galperin(black_box(n));
+            bare.push(events as f64 / start.elapsed().as_secs_f64());
+            assert_eq!(events, engine::presets::pi_digits(n));
+        }
+        let (e, b) = (median(engine), median(bare));
+        println!(
+            "| {n} | {rounds} | {:.2} M/s | {:.2} M/s | {:.0} % |",
+            e * 1e-6,
+            b * 1e-6,
+            100.0 * e / b
+        );
+    }
+}
+
 fn galperin(c: &mut Criterion) {
     if !selected("galperin") {
         return;
     }
+    galperin_cpu_table();
     let mut group = c.benchmark_group("galperin");
     group.sample_size(10).sampling_mode(SamplingMode::Flat);
     for (n, digits) in [(7u32, 3_141_592u64), (8, 31_415_926)] {

@@ -6,6 +6,9 @@
 //! A last group times `roots_in(c, 0, 10)` on the contact batch, the form
 //! the engine itself uses (every contact before a stop time).
 //!
+//! With `-- --hard-table`, the table is followed by each hard quartic
+//! timed on its own (ours and kurbo) instead of criterion's groups.
+//!
 //! First of all, before criterion's groups, a table of the same
 //! `first_root` queries timed the way this machine allows a fair
 //! comparison: every solver in turn on one batch, round after round in one
@@ -302,9 +305,48 @@ fn cpu_table(batches: &[(&str, Vec<[f64; 5]>)]) {
     }
 }
 
+/// Rounds and repetitions per round of [`hard_table`].
+const HARD_ROUNDS: usize = 31;
+const HARD_REPS: usize = 2000;
+
+/// Each hard quartic on its own: the median round's CPU time per query of
+/// `production` and `kurbo`, interleaved, and `production`'s first root
+/// (where the hard batch's time goes).
+fn hard_table(hard: &[[f64; 5]]) {
+    let ours = solvers()[0].1;
+    let kurbo = solvers()[3].1;
+    println!("hard quartics one by one: CPU time per query, median of {HARD_ROUNDS} rounds");
+    println!("| # | production | kurbo | kurbo / production | first root |");
+    println!("|---:|---:|---:|---:|---|");
+    for (k, c) in hard.iter().enumerate() {
+        let (mut t_ours, mut t_kurbo) = (Vec::new(), Vec::new());
+        for _ in 0..HARD_ROUNDS {
+            for (query, t) in [(ours, &mut t_ours), (kurbo, &mut t_kurbo)] {
+                let start = ThreadTime::now();
+                for _ in 0..HARD_REPS {
+                    black_box(query(black_box(c)));
+                }
+                t.push(start.elapsed().as_secs_f64() / HARD_REPS as f64);
+            }
+        }
+        let (a, b) = (median(t_ours), median(t_kurbo));
+        println!(
+            "| {k} | {:.1} ns | {:.1} ns | {:.2} | {:?} |",
+            a * 1e9,
+            b * 1e9,
+            b / a,
+            ours(c)
+        );
+    }
+}
+
 fn main() {
     let batches = batches();
     cpu_table(&batches);
+    if std::env::args().any(|a| a == "--hard-table") {
+        hard_table(&batches[1].1);
+        return;
+    }
     let mut c = Criterion::default()
         .sample_size(30)
         .warm_up_time(std::time::Duration::from_millis(500))

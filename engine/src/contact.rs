@@ -30,6 +30,24 @@ const TOUCH: f64 = 1e-12;
 /// a few units in the last place of each coordinate.
 const COORDINATE_NOISE: f64 = 8.0 * f64::EPSILON;
 
+/// The moment a prediction is made from: the world's working time `now`
+/// and the origin of its clock (see `clock`), which together give the
+/// absolute time that the pressing test reads.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct When {
+    /// Working time: seconds since `origin`.
+    pub now: f64,
+    /// The clock's origin (rounded to one `f64`).
+    pub origin: f64,
+}
+
+impl When {
+    /// `now` from the origin `origin`.
+    pub(crate) fn new(now: f64, origin: f64) -> When {
+        When { now, origin }
+    }
+}
+
 /// A moving disc's path from time `now`, worked out once per prediction:
 /// position `pos + w l`, where `l` is time (frictionless, `w` the velocity)
 /// or distance travelled (with friction, `w` the unit direction).
@@ -234,19 +252,31 @@ pub(crate) fn disc_line_body(m: &Mover, line: &LineGeom, r: f64, rev: Revision) 
     let gap = side * h - r;
     let l = if gap > 0.0 {
         gap / (-side * rate)
-    } else if side * rate <= -APPROACH * m.w.length() {
-        0.0
-    } else if rev.at_least_r3() {
-        // Touching, approaching below rounding noise: meets DRIFT inside
-        // the contact distance (see DRIFT).
-        (side * h - r * (1.0 - DRIFT)).max(0.0) / (-side * rate)
     } else {
-        return None; // touching, approaching by no more than rounding noise
+        touching_line(m, side * h, side * rate, r, rev)?
     };
     if line.is_bounded() && !line.covers(m.pos + m.w * l) {
         return None; // passes beyond the extent; the ends are checked as points
     }
     m.time_at(l)
+}
+
+/// The path parameter of a contact with a line the disc touches now (its
+/// distance from the line `h <= r`, approaching it at `rate < 0`): at once,
+/// unless the approach is rounding noise. Kept out of line: it is rare, and
+/// inlined, the length of `m.w` was computed on every prediction.
+#[cold]
+#[inline(never)]
+fn touching_line(m: &Mover, h: f64, rate: f64, r: f64, rev: Revision) -> Option<f64> {
+    if rate <= -APPROACH * m.w.length() {
+        Some(0.0)
+    } else if rev.at_least_r3() {
+        // Touching, approaching below rounding noise: meets DRIFT inside
+        // the contact distance (see DRIFT).
+        Some((h - r * (1.0 - DRIFT)).max(0.0) / -rate)
+    } else {
+        None // touching, approaching by no more than rounding noise
+    }
 }
 
 /// The first time `>= now` at which the moving centre crosses the sensor
@@ -268,19 +298,17 @@ pub(crate) fn centre_crossing(m: &Mover, line: &LineGeom, inside: bool) -> Optio
 /// The first time `>= now` at which two discs at centre distance `s` touch
 /// while approaching. `mi` is the path of the first disc if it moves;
 /// `solver` finds the roots of the quartic when both move with friction.
-#[inline]
-// The clock's origin travels with the time it offsets.
-#[allow(clippy::too_many_arguments)]
+#[inline(always)]
 pub(crate) fn disc_disc(
     ti: &Trajectory,
     mi: Option<&Mover>,
     tj: &Trajectory,
     s: f64,
-    now: f64,
-    origin: f64,
+    when: When,
     solver: &impl RootSolver,
     rev: Revision,
 ) -> Option<f64> {
+    let now = when.now;
     match (mi, tj.is_moving_at(now)) {
         (None, false) => None,
         (Some(m), false) => disc_point(m, tj.position(now), s, rev),
@@ -288,12 +316,13 @@ pub(crate) fn disc_disc(
         (Some(m), true) if ti.is_frictionless() && tj.is_frictionless() => {
             linear_pair(m.pos, ti, tj, s, now, rev)
         }
-        (Some(m), true) => curved_pair(m.pos, ti, tj, s, now, origin, solver, rev),
+        (Some(m), true) => curved_pair(m.pos, ti, tj, s, when, solver, rev),
     }
 }
 
 /// Both move without friction: relative motion is linear, the contact
 /// equation quadratic.
+#[inline(always)]
 fn linear_pair(
     pi: DVec2,
     ti: &Trajectory,
@@ -332,18 +361,16 @@ fn linear_pair(
 
 /// At least one of two moving discs slows down: solve the quartic on the
 /// interval until the first of them stops.
-// The clock's origin travels with the time it offsets.
-#[allow(clippy::too_many_arguments)]
 fn curved_pair(
     pi: DVec2,
     ti: &Trajectory,
     tj: &Trajectory,
     s: f64,
-    now: f64,
-    origin: f64,
+    when: When,
     solver: &impl RootSolver,
     rev: Revision,
 ) -> Option<f64> {
+    let now = when.now;
     let pj = tj.position(now);
     let horizon = ti.stop_time().min(tj.stop_time()) - now;
     if paths_never_within(ti, pi, tj, pj, s, now) {
@@ -373,7 +400,7 @@ fn curved_pair(
     if touching
         && rev.at_least_r2()
         && c1 < -min_slope
-        && pressing(ti, tj, dp, s, now, origin, -min_slope, rev)
+        && pressing(ti, tj, dp, s, when, -min_slope, rev)
     {
         // Neither approaching nor parting, and pressed together obliquely:
         // the approximated contact, now (see `push::pressing_kick`).
@@ -418,25 +445,23 @@ fn curved_pair(
 /// distance `s`) are pressed together obliquely, so that the approximated
 /// contact would part them faster than `noise` (in units of `2 s` times a
 /// speed, as the slope of the squared gap).
-// The clock's origin travels with the time it offsets.
-#[allow(clippy::too_many_arguments)]
 fn pressing(
     ti: &Trajectory,
     tj: &Trajectory,
     dp: DVec2,
     s: f64,
-    now: f64,
-    origin: f64,
+    when: When,
     noise: f64,
     rev: Revision,
 ) -> bool {
+    let now = when.now;
     if !ti.is_moving_at(now) || !tj.is_moving_at(now) {
         return false;
     }
     let (vi, vj) = (ti.velocity(now), tj.velocity(now));
     let n = dp.normalize_or_zero();
     let accelerations = [ti.acceleration(now), tj.acceleration(now)];
-    match push::pressing_kick([vi, vj], accelerations, n, s, origin + now, rev) {
+    match push::pressing_kick([vi, vj], accelerations, n, s, when.origin + now, rev) {
         Some(push::Press::Part(dw)) => 2.0 * s * ((vi - vj).dot(n).max(0.0) + dw) > noise,
         Some(push::Press::Rest) => true,
         None => false,
@@ -519,8 +544,7 @@ mod tests {
             Mover::new(a, 0.0).as_ref(),
             b,
             s,
-            0.0,
-            0.0,
+            When::new(0.0, 0.0),
             &Production,
             Revision::LATEST,
         )

@@ -39,7 +39,7 @@ pub(crate) fn weights(m_i: f64, m_j: f64) -> (f64, f64) {
 
 /// New velocities of two discs after an impulse along `n` (from `j` to `i`).
 /// Returns the velocities unchanged if they are not approaching.
-#[inline]
+#[inline(always)]
 pub(crate) fn body_body(
     v_i: DVec2,
     v_j: DVec2,

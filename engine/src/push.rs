@@ -47,6 +47,11 @@ pub(crate) const TOUCHING: f64 = 2e-9;
 /// rounding) along the line of their centres, and their braking presses
 /// them together (the rear one brakes less).
 pub(crate) fn pushing(ti: &Trajectory, pi: DVec2, tj: &Trajectory, pj: DVec2, now: f64) -> bool {
+    // Cheapest test first: without braking nothing presses (the last test
+    // below compares zero with zero), and the lengths are never needed.
+    if ti.alpha() == 0.0 && tj.alpha() == 0.0 {
+        return false;
+    }
     if !ti.is_moving_at(now) || !tj.is_moving_at(now) {
         return false;
     }

@@ -1746,6 +1746,7 @@ impl World {
     }
 
     /// The earliest real event of body `i` from the current time.
+    #[inline(always)]
     fn earliest(
         &self,
         i: usize,
@@ -1840,8 +1841,7 @@ impl World {
                     mover,
                     &sj.traj,
                     s,
-                    now,
-                    self.clock.origin(),
+                    contact::When::new(now, self.clock.origin()),
                     &self.config.solver,
                     self.config.revision,
                 );

@@ -288,6 +288,49 @@ fn four_clustered_roots_first_root_is_the_first_exact_root() {
     check_cluster(&[1.006011006, -4.018022006, 6.018011, -4.006, 1.0]);
 }
 
+/// A fourfold cluster `2, 2 + h, 2 + 2h, 2 + 3h` with `h = 2^-10` (about
+/// the `1e-3` spacing of `2, 2.001, 2.002, 2.003`) whose coefficients are
+/// exact in `f64` (integers over powers of two below `2^53`), so that the
+/// exact roots are known without a reference: every search finds them
+/// bit for bit, the first one not late by a single ulp.
+#[test]
+fn fourfold_cluster_with_exact_coefficients_gives_its_exact_first_root() {
+    let n: [i128; 4] = [2048, 2049, 2050, 2051]; // roots n / 1024
+                                                 // Elementary symmetric sums, exactly, then the coefficients of
+                                                 // prod (x - n_k / 1024) = sum (-1)^j e_j x^(4 - j) / 1024^j.
+    let mut e = [1i128, 0, 0, 0, 0];
+    for &r in &n {
+        for j in (1..=4).rev() {
+            e[j] += e[j - 1] * r;
+        }
+    }
+    let mut c = [0.0; 5];
+    for (j, &ej) in e.iter().enumerate() {
+        assert!(ej < 1 << 53, "e_{j} is exact in an f64");
+        let sign = if j % 2 == 0 { 1.0 } else { -1.0 };
+        c[4 - j] = sign * ej as f64 / 1024f64.powi(j as i32);
+    }
+    let roots: Vec<f64> = n.iter().map(|&k| k as f64 / 1024.0).collect();
+    assert_eq!(Production.first_root(&c, 0.0, f64::INFINITY), Some(2.0));
+    assert_eq!(
+        Production.roots_in(&c, 0.0, f64::INFINITY).as_slice(),
+        &roots[..]
+    );
+    // From inside the cluster: the next exact root each time.
+    for k in 0..4 {
+        let lo = roots[k].next_up();
+        let want = roots.get(k + 1).copied();
+        assert_eq!(
+            Production.first_root(&c, lo, f64::INFINITY),
+            want,
+            "from {lo}"
+        );
+    }
+    // The same cluster as the reference sees it: the f64 polynomial's own
+    // roots (here the exact ones) to the last bit.
+    assert_eq!(reference_roots(&c), roots);
+}
+
 fn check_cluster(c: &[f64; 5]) {
     {
         let exact = reference_roots(c);
