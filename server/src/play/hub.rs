@@ -20,7 +20,7 @@ use crate::play::room::{Claim, Command, Connected, FinishedMatch, MatchListener,
 use crate::refusal::Refusal;
 #[cfg(test)]
 use crate::store::SqliteStore;
-use crate::store::{Status, Store, StoreError, StoredMatch, StoredSeat};
+use crate::store::{HostedCreated, Status, Store, StoreError, StoredMatch, StoredSeat};
 use crate::token::{self, SeatToken, TokenHash};
 use bots::Level;
 use game::protocol::ErrorCode;
@@ -231,14 +231,19 @@ impl Hub {
     /// Stores and starts a match whose seats are both decided now (a
     /// challenge accepted, two seekers or two ladder bots paired): a seat
     /// with an account but no bot gets a fresh token, returned for its
-    /// player (and only there; the store keeps its hash).
+    /// player (and only there; the store keeps its hash). A ladder match
+    /// (`ladder`) claims its hosted bots in the store: one that plays a
+    /// ladder match not finished yet, on any node, is refused with
+    /// `server-busy`.
     pub async fn create_between(
         &self,
         mut seats: [NewSeat; 2],
         config: Config,
         turn_seconds: Option<u64>,
         rated: bool,
+        ladder: bool,
     ) -> Result<(String, [Option<SeatToken>; 2]), Refusal> {
+        let begun = if ladder { Begun::Ladder } else { Begun::Fresh };
         let slot = self.reserve()?;
         let turn_seconds = self.turn_seconds(turn_seconds)?;
         let mut tokens = [None, None];
@@ -250,7 +255,7 @@ impl Hub {
             }
         }
         let id = self
-            .start(slot, None, config, turn_seconds, seats, rated)
+            .start(slot, begun, config, turn_seconds, seats, rated)
             .await?;
         Ok((id, tokens))
     }
@@ -475,7 +480,14 @@ impl Hub {
             second,
         ];
         let id = self
-            .start(slot, None, req.config, turn_seconds, seats, req.rated)
+            .start(
+                slot,
+                Begun::Fresh,
+                req.config,
+                turn_seconds,
+                seats,
+                req.rated,
+            )
             .await?;
         Ok(SeatGrant {
             match_id: id,
@@ -498,7 +510,7 @@ impl Hub {
         let seat = |l: Level| NewSeat::computer(l, format!("bot ({l})"), false);
         self.start(
             slot,
-            None,
+            Begun::Fresh,
             config,
             turn_seconds,
             [seat(first), seat(second)],
@@ -527,7 +539,7 @@ impl Hub {
         };
         self.start(
             slot,
-            Some(of.to_string()),
+            Begun::Rematch(of.to_string()),
             config,
             turn.as_secs(),
             seats,
@@ -539,7 +551,7 @@ impl Hub {
     async fn start(
         &self,
         slot: Slot,
-        rematch_of: Option<String>,
+        begun: Begun,
         config: Config,
         turn_seconds: u64,
         seats: [NewSeat; 2],
@@ -568,7 +580,10 @@ impl Hub {
                 account: s.account,
                 module: s.module,
             }),
-            rematch_of,
+            rematch_of: match &begun {
+                Begun::Rematch(of) => Some(of.clone()),
+                Begun::Fresh | Begun::Ladder => None,
+            },
             rated,
         };
         let store = self.inner.store.clone();
@@ -577,11 +592,26 @@ impl Hub {
         if let Some(c) = &cluster {
             c.ensure_reachable()?;
         }
+        let hosted = row.seats.iter().any(|s| s.module.is_some());
+        let ladder = matches!(begun, Begun::Ladder);
         tokio::task::spawn_blocking(move || {
-            store.create(&row)?;
+            if hosted {
+                match store.create_hosted(&row, ladder)? {
+                    HostedCreated::Created => {}
+                    HostedCreated::Busy(bot) => return Ok(Err(hosted_busy(&bot))),
+                    HostedCreated::NoVersion(bot) => {
+                        return Ok(Err(Refusal::new(
+                            ErrorCode::NoSuchVersion,
+                            format!("{bot}'s module version was deleted"),
+                        )))
+                    }
+                }
+            } else {
+                store.create(&row)?;
+            }
             // A node of a cluster holds the new match's lease from the start.
             match cluster.map(|c| c.acquire(&row.id)).transpose()? {
-                None | Some(Lease::Ours) => Ok(()),
+                None | Some(Lease::Ours) => Ok(Ok(())),
                 Some(Lease::Theirs(node)) => Err(StoreError::Corrupt(format!(
                     "a new match's lease is held by node {node}"
                 ))),
@@ -592,7 +622,7 @@ impl Hub {
             error!(error = %e, "store task failed");
             Refusal::internal()
         })?
-        .map_err(store_failed)?;
+        .map_err(store_failed)??;
         self.spawn(&stored, game, slot);
         info!(match_id = %id, bot = ?stored.bot, "match created");
         Ok(id)
@@ -1068,6 +1098,23 @@ impl Drop for AddressGuard {
             }
         }
     }
+}
+
+/// How a match comes to be, as far as storing it goes.
+enum Begun {
+    /// Made, challenged or paired (not on the ladder).
+    Fresh,
+    /// The rematch of this match.
+    Rematch(String),
+    /// Paired on the ladder: its hosted bots are claimed.
+    Ladder,
+}
+
+fn hosted_busy(bot: &str) -> Refusal {
+    Refusal::new(
+        ErrorCode::ServerBusy,
+        format!("{bot} plays a ladder match already"),
+    )
 }
 
 fn no_such_match(id: &str) -> Refusal {
