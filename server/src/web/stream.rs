@@ -146,10 +146,12 @@ impl Streams {
             Ok(input) => streams.feed(input),
             Err(e) => warn!(error = %e, "reading the hosted bots failed"),
         }
-        let timer = streams.clone();
-        tokio::spawn(async move { timer.run_timer().await });
+        // Both tasks hold the streams before either runs: each ends once
+        // only the tasks and the hub's listener hold them, which must not
+        // be the case while the other is being spawned.
         let every = limits_refresh(&streams);
-        let refresher = streams.clone();
+        let (timer, refresher) = (streams.clone(), streams.clone());
+        tokio::spawn(async move { timer.run_timer().await });
         tokio::spawn(async move { refresher.refresh_hosted(every).await });
         streams
     }

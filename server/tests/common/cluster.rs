@@ -15,20 +15,30 @@ pub const LEASE: u64 = 2;
 /// A node of a cluster on `db` and `redis`, named `node` (unique on its
 /// Redis).
 pub fn node(dir: &std::path::Path, db: &str, redis: &str, node: &str) -> Server {
+    node_with(dir, db, redis, node, &[])
+}
+
+/// A node like [`node`] with `extra` flags.
+pub fn node_with(
+    dir: &std::path::Path,
+    db: &str,
+    redis: &str,
+    node: &str,
+    extra: &[&str],
+) -> Server {
     let lease = LEASE.to_string();
-    Server::start(
-        dir,
-        &[
-            "--database-url",
-            db,
-            "--redis-url",
-            redis,
-            "--node-id",
-            node,
-            "--lease-seconds",
-            &lease,
-        ],
-    )
+    let mut flags = vec![
+        "--database-url",
+        db,
+        "--redis-url",
+        redis,
+        "--node-id",
+        node,
+        "--lease-seconds",
+        &lease,
+    ];
+    flags.extend_from_slice(extra);
+    Server::start(dir, &flags)
 }
 
 /// A node like [`node`] that tells the others where its clients reach
