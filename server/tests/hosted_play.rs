@@ -328,11 +328,7 @@ async fn a_hosted_match_resumed_after_a_restart_is_played_on_by_its_version_from
     // match resumes with it.
     let v2 = upload(&s, &key, answering(r#"{"type":"resign"}"#, 2)).await;
     assert_ne!(v1, v2);
-    let (status, text) = delete_version(&s, &key, &v1).await;
-    assert_eq!(
-        (status, json(&text)["code"].clone()),
-        (409, "module-in-use".into())
-    );
+    delete_in_use(&s, &key, &v1, &id).await;
     s.kill();
     let s = Server::start(dir.path(), &flags);
     // Round after round (one a second), the bot is not paired again while
