@@ -347,7 +347,11 @@ async fn a_hosted_match_resumed_after_a_restart_is_played_on_by_its_version_from
         if m["status"] == "finished" {
             break m;
         }
-        assert_eq!(unfinished, [id.clone()], "paired while its match resumes");
+        assert_eq!(
+            unfinished,
+            std::slice::from_ref(&id),
+            "paired while its match resumes"
+        );
         assert!(Instant::now() < deadline, "match {id} not over");
         tokio::time::sleep(Duration::from_millis(200)).await;
     };

@@ -369,7 +369,7 @@ async fn a_hosted_bot_mid_match_at_a_restart_keeps_its_version_and_is_not_paired
     // the bot, whose match resumes, is not paired.
     let s = Server::start(dir.path(), &["--ladder-seconds", "1"]);
     tokio::time::sleep(Duration::from_secs(4)).await;
-    assert_eq!(match_ids(&s, "Wasm").await, [match_id.clone()]);
+    assert_eq!(match_ids(&s, "Wasm").await, std::slice::from_ref(&match_id));
     // Its seat is played by v1, from the store: it resigns at once.
     let mut m = Client::connect(&s.addr, &match_id, Some(&token)).await;
     m.send(&common::shot(4, 0.0, 2.0)).await;
