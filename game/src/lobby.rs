@@ -6,8 +6,11 @@
 //! A hosted bot (a bot account whose WebAssembly module the server plays
 //! itself) is always online: it is on the ladder and accepts every
 //! challenge at once, without a stream, as long as fewer than
-//! [`LobbyLimits::max_hosted_seats`] seats of the lobby's matches are
-//! played by hosted bots.
+//! [`LobbyLimits::max_hosted_seats`] seats are played by hosted bots.
+//! Which hosted bots are mid-match comes from two places: the matches this
+//! lobby started, and the store's unfinished matches as the driver reads
+//! them with the hosted bots ([`Input::Hosted`]'s `busy`: the matches of
+//! every node of a cluster, and those from before a restart).
 //!
 //! It is a state machine without I/O, like a match's session:
 //! [`Lobby::handle`] takes an [`Input`] and the time, and returns the
@@ -36,10 +39,11 @@ pub struct LobbyLimits {
     pub ladder_every: Duration,
     /// Two rated seekers are paired when their ratings are this close.
     pub seek_rating_gap: f64,
-    /// Most seats of the lobby's unfinished matches that hosted bots play
-    /// at once (a match between two hosted bots takes two): the ladder
-    /// pairs no more of them, and a challenge to one is refused with
-    /// `server-busy`.
+    /// Most seats of unfinished matches that hosted bots play at once (a
+    /// match between two hosted bots takes two), counting per bot the
+    /// larger of its seats in this lobby's matches and in the store's
+    /// (`busy`): the ladder pairs no more of them, and a challenge to one
+    /// is refused with `server-busy`.
     pub max_hosted_seats: usize,
 }
 
@@ -131,8 +135,13 @@ pub enum Input<L> {
     /// Time passed (expire challenges, pair the ladder).
     Tick,
     /// The hosted bots now (every bot account with an active module, at
-    /// its rating): they replace the ones known before.
-    Hosted { bots: Vec<Member> },
+    /// its rating), and the account of each hosted seat of the store's
+    /// unfinished matches (`busy`, a name per seat): they replace the ones
+    /// known before.
+    Hosted {
+        bots: Vec<Member>,
+        busy: Vec<String>,
+    },
 }
 
 struct Online {
@@ -171,6 +180,9 @@ pub struct Lobby<L> {
     computers: Vec<(L, f64)>,
     /// The hosted bots, by lower-case name.
     hosted: BTreeMap<String, Member>,
+    /// Seats of the store's unfinished matches per hosted bot (lower-case
+    /// name), as last read.
+    busy: HashMap<String, u32>,
     next_challenge: u64,
     next_ladder: Moment,
     /// Which of an odd number of ladder bots sits out (turns round).
@@ -202,6 +214,7 @@ impl<L: ComputerLevel> Lobby<L> {
             playing: HashMap::new(),
             computers,
             hosted: BTreeMap::new(),
+            busy: HashMap::new(),
             next_challenge: 1,
             rounds: 0,
             rng: crate::noise::SplitMix64::new(seed),
@@ -273,8 +286,12 @@ impl<L: ComputerLevel> Lobby<L> {
                 }
             }
             Input::Tick => self.tick(now),
-            Input::Hosted { bots } => {
+            Input::Hosted { bots, busy } => {
                 self.hosted = bots.into_iter().map(|m| (key(&m.name), m)).collect();
+                self.busy.clear();
+                for name in busy {
+                    *self.busy.entry(key(&name)).or_insert(0) += 1;
+                }
             }
         }
         std::mem::take(&mut self.out)
@@ -292,13 +309,24 @@ impl<L: ComputerLevel> Lobby<L> {
         self.hosted.contains_key(&key(account))
     }
 
-    /// Seats of the lobby's unfinished matches that hosted bots play.
+    /// Seats of unfinished matches that hosted bots play: per bot, the
+    /// larger of the lobby's count and the store's (which lags the lobby's
+    /// own starts, and has every node's and those from before a restart).
     fn hosted_seats(&self) -> usize {
         self.hosted
             .keys()
-            .filter_map(|k| self.playing.get(k))
-            .map(|&n| n as usize)
+            .map(|k| {
+                let here = self.playing.get(k).copied().unwrap_or(0);
+                let stored = self.busy.get(k).copied().unwrap_or(0);
+                here.max(stored) as usize
+            })
             .sum()
+    }
+
+    /// Whether hosted bot `k` (lower-case) is mid-match, as far as the
+    /// lobby or the store knows.
+    fn hosted_busy(&self, k: &str) -> bool {
+        self.playing.contains_key(k) || self.busy.contains_key(k)
     }
 
     fn done_playing(&mut self, account: &str) {
@@ -662,7 +690,7 @@ impl<L: ComputerLevel> Lobby<L> {
             if room == 0 {
                 break;
             }
-            if !self.playing.contains_key(k) && seen.insert(k.clone()) {
+            if !self.hosted_busy(k) && seen.insert(k.clone()) {
                 pool.push((Player::Hosted(m.name.clone()), m.rating));
                 room -= 1;
             }
@@ -998,6 +1026,7 @@ mod tests {
         let mut l = lobby();
         let hosted = Input::Hosted {
             bots: vec![member("Wasm", true, 1500.0)],
+            busy: Vec::new(),
         };
         assert!(l.handle(hosted, at(0)).is_empty());
         assert!(l.is_hosted("wasm"));
@@ -1013,7 +1042,13 @@ mod tests {
         l.handle(finished, at(21));
         assert_eq!(starts(&l.handle(Input::Tick, at(30))).len(), 1);
         // Gone from the list (its module deleted): off the ladder.
-        l.handle(Input::Hosted { bots: Vec::new() }, at(31));
+        l.handle(
+            Input::Hosted {
+                bots: Vec::new(),
+                busy: Vec::new(),
+            },
+            at(31),
+        );
         l.handle(
             Input::Finished {
                 ratings: vec![("Wasm".into(), 1600.0), ("computer-easy".into(), 1400.0)],
@@ -1034,6 +1069,7 @@ mod tests {
         l.handle(
             Input::Hosted {
                 bots: vec![member("Wasm", true, 1600.0)],
+                busy: Vec::new(),
             },
             at(0),
         );
@@ -1057,6 +1093,7 @@ mod tests {
         l.handle(
             Input::Hosted {
                 bots: vec![member("Wasm", true, 1500.0)],
+                busy: Vec::new(),
             },
             at(0),
         );
@@ -1082,6 +1119,61 @@ mod tests {
         let fx = say(&mut l, a, white, 2);
         assert_eq!(error_code(&fx), Some(ErrorCode::ServerBusy));
         assert!(l.handle(Input::Tick, at(10)).is_empty());
+    }
+
+    #[test]
+    fn a_hosted_bot_the_store_has_mid_match_is_not_paired_and_its_seats_count_until_it_is_not() {
+        let mut l = Lobby::new(
+            LobbyLimits {
+                max_hosted_seats: 2,
+                ..LobbyLimits::default()
+            },
+            vec![(Level::Easy, 1500.0)],
+            at(0),
+            7,
+        );
+        let bots = vec![member("Wasm", true, 1500.0), member("Asm", true, 1500.0)];
+        // After a restart (or on another node) Wasm plays a match this
+        // lobby did not start: only Asm is paired.
+        l.handle(
+            Input::Hosted {
+                bots: bots.clone(),
+                busy: vec!["wasm".into()],
+            },
+            at(0),
+        );
+        let paired = starts(&l.handle(Input::Tick, at(10)));
+        assert_eq!(paired.len(), 1, "{paired:?}");
+        assert!(paired[0].contains(&Player::Hosted("Asm".into())));
+        // Both hosted seats are taken (Wasm's in the store, Asm's here):
+        // a challenge to Wasm is refused.
+        let a = online(&mut l, 1, member("Anka", false, 1500.0));
+        let challenge = StreamClientMessage::Challenge {
+            to: "Wasm".into(),
+            rated: false,
+            rules: None,
+            turn_seconds: None,
+            color: None,
+        };
+        let fx = say(&mut l, a, challenge, 11);
+        assert_eq!(error_code(&fx), Some(ErrorCode::ServerBusy));
+        // Both matches are over, in the store too: Wasm is paired again.
+        l.handle(
+            Input::Finished {
+                ratings: vec![("Asm".into(), 1500.0), ("computer-easy".into(), 1500.0)],
+            },
+            at(12),
+        );
+        l.handle(
+            Input::Hosted {
+                bots,
+                busy: Vec::new(),
+            },
+            at(13),
+        );
+        let paired = starts(&l.handle(Input::Tick, at(20)));
+        assert_eq!(paired.len(), 1, "{paired:?}");
+        assert!(paired[0].contains(&Player::Hosted("Wasm".into())));
     }
 
     #[test]

@@ -92,6 +92,10 @@ pub enum ErrorCode {
     NoSuchVersion,
     /// The account keeps as many module versions as it may.
     TooManyVersions,
+    /// The module version plays a seat of a match not finished yet (the
+    /// match resumes with it after a restart): it can be deleted once
+    /// that match ends.
+    ModuleInUse,
 }
 
 impl ErrorCode {
@@ -141,6 +145,7 @@ impl ErrorCode {
             ErrorCode::NotABot => "not-a-bot",
             ErrorCode::NoSuchVersion => "no-such-version",
             ErrorCode::TooManyVersions => "too-many-versions",
+            ErrorCode::ModuleInUse => "module-in-use",
         }
     }
 }

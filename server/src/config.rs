@@ -190,17 +190,20 @@ pub struct Config {
     #[arg(long, env = "CHAPAEV_LADDER_SECONDS", default_value_t = 10, value_parser = clap::value_parser!(u64).range(1..=24 * 3600))]
     pub ladder_seconds: u64,
 
-    /// Hosted bots' decisions that may run at once, server-wide, each on a
-    /// blocking thread of its own (default: a quarter of the cores, at
-    /// least one); the others wait their turn, so hosted bots never take
-    /// more than these cores from people's matches.
+    /// Hosted bots' decisions that may run at once, server-wide (on a
+    /// cluster, on this node), each on a blocking thread of its own
+    /// (default: a quarter of the cores, at least one); the others wait
+    /// their turn, so hosted bots never take more than these cores from
+    /// people's matches.
     #[arg(long, env = "CHAPAEV_HOSTED_WORKERS", default_value_t = default_hosted_workers(), value_parser = clap::value_parser!(u16).range(1..=256))]
     pub hosted_workers: u16,
 
     /// Most seats of ladder matches and challenges that hosted bots play
     /// at once (a match between two hosted bots takes two); past it the
     /// ladder pairs no more of them and a challenge to one is refused
-    /// with `server-busy`.
+    /// with `server-busy`. The seats are counted from the store too, so on
+    /// a cluster this bounds all its nodes' seats together (give every
+    /// node the same value).
     #[arg(long, env = "CHAPAEV_HOSTED_MATCHES", default_value_t = 16, value_parser = clap::value_parser!(u32).range(0..=100_000))]
     pub hosted_matches: u32,
 

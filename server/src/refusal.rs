@@ -28,7 +28,8 @@ impl HttpStatus for Refusal {
             | ErrorCode::MatchNotOver
             | ErrorCode::SameAccount
             | ErrorCode::UnsupportedPhysics
-            | ErrorCode::TooManyVersions => 409,
+            | ErrorCode::TooManyVersions
+            | ErrorCode::ModuleInUse => 409,
             ErrorCode::BadToken
             | ErrorCode::ForbiddenOrigin
             | ErrorCode::BotKeyInBrowser

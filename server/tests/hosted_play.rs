@@ -4,11 +4,13 @@
 //! match to the end against a computer level, and its rating moves; the
 //! match's record names the module version that played, and running that
 //! module again on the record's positions gives every one of its moves
-//! bit for bit. A version made active (and the old one deleted) during a
-//! match plays from the next match on; a match resumed after a restart is
-//! played on by its own version, read back from the store. A hostile
-//! module (an endless loop) loses on time while a match between people
-//! goes on.
+//! bit for bit. A version made active during a match plays from the next
+//! match on, and the one playing cannot be deleted until its match ends;
+//! a match resumed after a restart is played on by its own version, read
+//! back from the store, and the bot is not paired again until it ends. On
+//! a cluster, the bot plays one ladder match at a time across its nodes.
+//! A hostile module (an endless loop) loses on time while a match between
+//! people goes on.
 
 mod common;
 
@@ -57,6 +59,27 @@ fn endless() -> Vec<u8> {
                 i64.const 0))"#,
     )
     .unwrap()
+}
+
+/// `DELETE`s the account's version `hash`; the status and body.
+async fn delete_version(s: &Server, key: &str, hash: &str) -> (u16, String) {
+    let path = format!("/api/accounts/me/modules/{hash}");
+    as_key(s, "DELETE", &path, key, "").await
+}
+
+/// Tries to delete version `hash`, which match `id` plays with: refused
+/// with `module-in-use` while the match is not over (with no bot delay, a
+/// computer may end it first: then it is deleted). Whether it was.
+async fn delete_in_use(s: &Server, key: &str, hash: &str, id: &str) -> bool {
+    let (status, text) = delete_version(s, key, hash).await;
+    if status == 204 {
+        let (_, m) = s.http("GET", &format!("/api/matches/{id}"), "").await;
+        assert_eq!(json(&m)["status"], "finished", "deleted while in use");
+        return true;
+    }
+    assert_eq!(status, 409, "{text}");
+    assert_eq!(json(&text)["code"], "module-in-use", "{text}");
+    false
 }
 
 /// The matches `account` played, newest first.
@@ -210,22 +233,18 @@ async fn starter_on_the_ladder(extra: &[&str]) {
         .to_string();
     assert!(opponent.starts_with("computer-"), "{live}");
 
-    // A new version, made active during the match, and the one playing
-    // deleted: the match goes on with the version it started with.
+    // A new version, made active during the match: the match goes on with
+    // the version it started with, which is kept until the match ends.
     let resigner = answering(r#"{"type":"resign"}"#, 1);
     let v2 = upload(&s, &key, resigner.clone()).await;
     assert_ne!(v1, v2);
-    let (status, text) = as_key(
-        &s,
-        "DELETE",
-        &format!("/api/accounts/me/modules/{v1}"),
-        &key,
-        "",
-    )
-    .await;
-    assert_eq!(status, 204, "{text}");
+    let deleted = delete_in_use(&s, &key, &v1, &id).await;
 
     let over = wait_finished(&s, &id, Duration::from_secs(600)).await;
+    if !deleted {
+        let (status, text) = delete_version(&s, &key, &v1).await;
+        assert_eq!(status, 204, "once its match is over: {text}");
+    }
     assert!(over["result"].is_object(), "{over}");
     let first = record(&s, &id).await;
     let mut named = [None, None];
@@ -305,11 +324,37 @@ async fn a_hosted_match_resumed_after_a_restart_is_played_on_by_its_version_from
         assert!(Instant::now() < deadline, "no shots in match {id}");
         tokio::time::sleep(Duration::from_millis(100)).await;
     }
-    s.kill();
-    let s = Server::start(dir.path(), &flags);
+    // A new version is active, and the one playing cannot be deleted: the
+    // match resumes with it.
     let v2 = upload(&s, &key, answering(r#"{"type":"resign"}"#, 2)).await;
     assert_ne!(v1, v2);
-    let over = wait_finished(&s, &id, Duration::from_secs(600)).await;
+    delete_in_use(&s, &key, &v1, &id).await;
+    s.kill();
+    let s = Server::start(dir.path(), &flags);
+    // Round after round (one a second), the bot is not paired again while
+    // its resumed match is not over.
+    let deadline = Instant::now() + Duration::from_secs(600);
+    let over = loop {
+        let unfinished: Vec<String> = matches_of(&s, "Starter")
+            .await
+            .into_iter()
+            .filter(|m| m["status"] != "finished")
+            .map(|m| m["match_id"].as_str().unwrap().to_string())
+            .collect();
+        let (status, text) = s.http("GET", &format!("/api/matches/{id}"), "").await;
+        assert_eq!(status, 200, "{text}");
+        let m = json(&text);
+        if m["status"] == "finished" {
+            break m;
+        }
+        assert_eq!(
+            unfinished,
+            std::slice::from_ref(&id),
+            "paired while its match resumes"
+        );
+        assert!(Instant::now() < deadline, "match {id} not over");
+        tokio::time::sleep(Duration::from_millis(200)).await;
+    };
     assert!(over["result"].is_object(), "{over}");
     let r = record(&s, &id).await;
     let mut named = [None, None];
@@ -321,7 +366,45 @@ async fn a_hosted_match_resumed_after_a_restart_is_played_on_by_its_version_from
             .any(|m| matches!(m, RecordedMove::Resign { .. } | RecordedMove::Pass { .. })),
         "the resumed match was played on by its own version, every decision answered"
     );
-    assert!(replay_hosted_moves(&r, seat, &starter) >= 2);
+    // A computer that sweeps the board may end the match after one move
+    // of the starter's.
+    assert!(replay_hosted_moves(&r, seat, &starter) >= 1);
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn on_a_cluster_a_hosted_bot_plays_one_ladder_match_at_a_time_across_its_nodes() {
+    let test = "hosted_play_on_a_cluster";
+    let Some((db, redis)) = common::cluster::services(test) else {
+        return;
+    };
+    let starter = tokio::task::block_in_place(starter);
+    let dirs = [tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap()];
+    let flags = ["--ladder-seconds", "1", "--hosted-workers", "1"];
+    let nodes: Vec<Server> = ["hosted-a", "hosted-b"]
+        .iter()
+        .zip(&dirs)
+        .map(|(name, dir)| common::cluster::node_with(dir.path(), &db, &redis, name, &flags))
+        .collect();
+    let key = bot_account(&nodes[0], "Starter").await;
+    upload(&nodes[0], &key, starter).await;
+    // Both nodes' ladders pair it every second; whichever node asks, it is
+    // in one unfinished match at most, until it has played three.
+    let deadline = Instant::now() + Duration::from_secs(600);
+    let mut k = 0;
+    loop {
+        let listed = matches_of(&nodes[k % 2], "Starter").await;
+        k += 1;
+        let unfinished: Vec<&Value> = listed
+            .iter()
+            .filter(|m| m["status"] != "finished")
+            .collect();
+        assert!(unfinished.len() <= 1, "{unfinished:?}");
+        if listed.len() - unfinished.len() >= 3 {
+            break;
+        }
+        assert!(Instant::now() < deadline, "{listed:?}");
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

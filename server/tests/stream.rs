@@ -2,8 +2,10 @@
 //! picture, challenges (refused, made, accepted once, played with the
 //! seat tokens the stream hands over, finished with the new rating), the
 //! ladder pairing a bot with a computer level, a challenge to a hosted bot
-//! (accepted at once, its seat played by the server), and hostile openings
-//! (a wrong key, a bot's key from a web page) refused with a stable code.
+//! (accepted at once, its seat played by the server, and after a restart
+//! in the middle of that match, not paired on the ladder until it ends),
+//! and hostile openings (a wrong key, a bot's key from a web page) refused
+//! with a stable code.
 
 mod common;
 
@@ -268,16 +270,131 @@ async fn a_stream_with_a_wrong_key_or_a_bot_key_from_a_web_page_is_refused() {
     assert_eq!(junk.error().await, ErrorCode::NoHello);
 }
 
-/// A module that resigns at every decision.
-fn resigning_module() -> Vec<u8> {
-    wat::parse_str(
+/// Uploads `module` as the bot's (`key`) active one; its hash.
+async fn upload(s: &Server, key: &str, module: Vec<u8>) -> String {
+    let url = format!("http://{}/api/accounts/me/module", s.addr);
+    let bearer = format!("Bearer {key}");
+    let (status, text) = tokio::task::spawn_blocking(move || {
+        ureq::put(&url)
+            .set("Authorization", &bearer)
+            .send_bytes(&module)
+            .map(|a| (a.status(), a.into_string().unwrap_or_default()))
+            .unwrap_or_else(|e| panic!("{e}"))
+    })
+    .await
+    .unwrap();
+    assert_eq!(status, 201, "{text}");
+    common::modules::json(&text)["hash"]
+        .as_str()
+        .unwrap()
+        .to_string()
+}
+
+/// The ids of the matches `account` played, newest first.
+async fn match_ids(s: &Server, account: &str) -> Vec<String> {
+    let (status, text) = s
+        .http("GET", &format!("/api/accounts/{account}/matches"), "")
+        .await;
+    assert_eq!(status, 200, "{text}");
+    let listed: serde_json::Value = serde_json::from_str(&text).unwrap();
+    listed
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m["match_id"].as_str().unwrap().to_string())
+        .collect()
+}
+
+/// A module that resigns at every decision, its bytes (so its hash) its
+/// own for each `k`.
+fn resigning_version(k: u32) -> Vec<u8> {
+    wat::parse_str(format!(
         r#"(module
             (memory (export "memory") 1)
-            (data (i32.const 0) "{\"type\":\"resign\"}")
+            (data (i32.const 0) "{{\"type\":\"resign\"}}")
+            (global i32 (i32.const {k}))
             (func (export "chapaev_alloc") (param i32) (result i32) i32.const 1024)
-            (func (export "chapaev_decide") (param i32 i32) (result i64) i64.const 17))"#,
-    )
+            (func (export "chapaev_decide") (param i32 i32) (result i64) i64.const 17))"#
+    ))
     .unwrap()
+}
+
+/// `DELETE`s the bot's (`key`) version `hash`: the status and the code.
+async fn delete_version(s: &Server, key: &str, hash: &str) -> (u16, String) {
+    let path = format!("/api/accounts/me/modules/{hash}");
+    let (status, text) = common::modules::as_key(s, "DELETE", &path, key, "").await;
+    let code = match status {
+        204 => String::new(),
+        _ => common::modules::json(&text)["code"]
+            .as_str()
+            .unwrap_or_default()
+            .to_string(),
+    };
+    (status, code)
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_hosted_bot_mid_match_at_a_restart_keeps_its_version_and_is_not_paired_until_the_match_ends(
+) {
+    let dir = tempfile::tempdir().unwrap();
+    // No ladder round yet: the bot plays only the challenge.
+    let mut s = Server::start(dir.path(), &["--ladder-seconds", "600"]);
+    let bot = account(&s, "Wasm", true).await;
+    let v1 = upload(&s, &bot, resigning_version(1)).await;
+    let key = account(&s, "Anka", false).await;
+    let mut anka = Stream::open(&s.addr, &key).await;
+    anka.next().await;
+    // The lobby reads the hosted bots at most 5 s apart.
+    tokio::time::sleep(Duration::from_millis(5500)).await;
+    anka.send(&StreamClientMessage::Challenge {
+        to: "wasm".into(),
+        rated: true,
+        rules: None,
+        turn_seconds: None,
+        color: Some(game::Side::White),
+    })
+    .await;
+    // Anka moves first, and does not yet: the match waits on her.
+    let (match_id, token, _) = started(anka.next().await);
+    drop(anka);
+    // Another version made active; the one the match plays with stays.
+    let v2 = upload(&s, &bot, resigning_version(2)).await;
+    assert_ne!(v1, v2);
+    assert_eq!(
+        delete_version(&s, &bot, &v1).await,
+        (409, "module-in-use".to_string())
+    );
+    s.kill();
+    // Back with a ladder round every second, and computer levels idle:
+    // the bot, whose match resumes, is not paired.
+    let s = Server::start(dir.path(), &["--ladder-seconds", "1"]);
+    tokio::time::sleep(Duration::from_secs(4)).await;
+    assert_eq!(match_ids(&s, "Wasm").await, std::slice::from_ref(&match_id));
+    // Its seat is played by v1, from the store: it resigns at once.
+    let mut m = Client::connect(&s.addr, &match_id, Some(&token)).await;
+    m.send(&common::shot(4, 0.0, 2.0)).await;
+    m.next_of("match-over").await;
+    let (_, text) = s
+        .http("GET", &format!("/api/matches/{match_id}/record"), "")
+        .await;
+    let record = game::MatchRecord::from_json(&text).unwrap();
+    assert_eq!(record.hosted, Some([None, Some(v1.clone())]));
+    assert!(matches!(
+        record.moves.last(),
+        Some(game::RecordedMove::Resign {
+            side: game::Side::Black
+        })
+    ));
+    // The match over, the version may go, and the ladder pairs the bot.
+    assert_eq!(delete_version(&s, &bot, &v1).await, (204, String::new()));
+    let deadline = std::time::Instant::now() + Duration::from_secs(20);
+    while match_ids(&s, "Wasm").await.len() < 2 {
+        assert!(
+            std::time::Instant::now() < deadline,
+            "not paired after its match"
+        );
+        tokio::time::sleep(Duration::from_millis(200)).await;
+    }
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -285,17 +402,7 @@ async fn a_challenge_to_a_hosted_bot_is_accepted_at_once_and_the_server_plays_it
     let dir = tempfile::tempdir().unwrap();
     let s = Server::start(dir.path(), &["--ladder-seconds", "1"]);
     let bot = account(&s, "Wasm", true).await;
-    let url = format!("http://{}/api/accounts/me/module", s.addr);
-    let status = tokio::task::spawn_blocking(move || {
-        ureq::put(&url)
-            .set("Authorization", &format!("Bearer {bot}"))
-            .send_bytes(&resigning_module())
-            .map(|a| a.status())
-            .unwrap_or_else(|e| panic!("{e}"))
-    })
-    .await
-    .unwrap();
-    assert_eq!(status, 201);
+    upload(&s, &bot, resigning_version(0)).await;
     let key = account(&s, "Anka", false).await;
     let mut anka = Stream::open(&s.addr, &key).await;
     anka.next().await;

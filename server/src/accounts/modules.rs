@@ -118,7 +118,8 @@ impl dyn Store {
         })
     }
 
-    /// Deletes `account`'s version `hash`, which must not be the active one.
+    /// Deletes `account`'s version `hash`, which must not be the active one
+    /// nor play a seat of a match not finished yet.
     pub fn delete_version(&self, account: &Profile, hash: &str) -> Result<(), AccountError> {
         must_be_bot(account)?;
         let hash = parse_hash(hash)?;
@@ -127,6 +128,10 @@ impl dyn Store {
             ModuleDeleted::Active => Err(refused(
                 ErrorCode::BadMessage,
                 "the active version cannot be deleted: make another one active first",
+            )),
+            ModuleDeleted::InUse => Err(refused(
+                ErrorCode::ModuleInUse,
+                "a match not finished yet plays with this version: delete it once the match ends",
             )),
             ModuleDeleted::Missing => Err(refused(
                 ErrorCode::NoSuchVersion,

@@ -9,10 +9,10 @@
 //! waits with it (a bot seat has no turn clock), the other matches do not.
 //!
 //! A match's module is compiled once, when the match starts, and kept by
-//! its room until the room goes: an author activating another version (or
-//! deleting an old one) changes the next match, never the one being
-//! played. A match resumed after a restart compiles its seat's version
-//! again from the store.
+//! its room until the room goes: an author activating another version
+//! changes the next match, never the one being played. A match resumed
+//! after a restart compiles its seat's version again from the store, which
+//! keeps it until the match is finished (deleting it is refused before).
 
 use crate::store::{Store, StoreError};
 use bots::hosted_bot::HostedBot;

@@ -20,7 +20,7 @@ use crate::play::room::{Claim, Command, Connected, FinishedMatch, MatchListener,
 use crate::refusal::Refusal;
 #[cfg(test)]
 use crate::store::SqliteStore;
-use crate::store::{Status, Store, StoreError, StoredMatch, StoredSeat};
+use crate::store::{HostedCreated, Status, Store, StoreError, StoredMatch, StoredSeat};
 use crate::token::{self, SeatToken, TokenHash};
 use bots::Level;
 use game::protocol::ErrorCode;
@@ -269,14 +269,19 @@ impl Hub {
     /// Stores and starts a match whose seats are both decided now (a
     /// challenge accepted, two seekers or two ladder bots paired): a seat
     /// with an account but no bot gets a fresh token, returned for its
-    /// player (and only there; the store keeps its hash).
+    /// player (and only there; the store keeps its hash). A ladder match
+    /// (`ladder`) claims its hosted bots in the store: one that plays a
+    /// ladder match not finished yet, on any node, is refused with
+    /// `server-busy`.
     pub async fn create_between(
         &self,
         mut seats: [NewSeat; 2],
         config: Config,
         turn_seconds: Option<u64>,
         rated: bool,
+        ladder: bool,
     ) -> Result<(String, [Option<SeatToken>; 2]), Refusal> {
+        let begun = if ladder { Begun::Ladder } else { Begun::Fresh };
         let slot = self.reserve()?;
         let turn_seconds = self.turn_seconds(turn_seconds)?;
         let mut tokens = [None, None];
@@ -290,7 +295,7 @@ impl Hub {
         let id = self
             .start(
                 slot,
-                None,
+                begun,
                 config,
                 turn_seconds,
                 seats,
@@ -530,7 +535,7 @@ impl Hub {
             second,
         ];
         let id = self
-            .start(slot, None, req.config, turn_seconds, seats, stakes)
+            .start(slot, Begun::Fresh, req.config, turn_seconds, seats, stakes)
             .await?;
         Ok(SeatGrant {
             match_id: id,
@@ -553,7 +558,7 @@ impl Hub {
         let seat = |l: Level| NewSeat::computer(l, format!("bot ({l})"), false);
         self.start(
             slot,
-            None,
+            Begun::Fresh,
             config,
             turn_seconds,
             [seat(first), seat(second)],
@@ -582,7 +587,7 @@ impl Hub {
         };
         self.start(
             slot,
-            Some(of.to_string()),
+            Begun::Rematch(of.to_string()),
             config,
             turn.as_secs(),
             seats,
@@ -595,7 +600,7 @@ impl Hub {
     async fn start(
         &self,
         slot: Slot,
-        rematch_of: Option<String>,
+        begun: Begun,
         config: Config,
         turn_seconds: u64,
         seats: [NewSeat; 2],
@@ -627,7 +632,10 @@ impl Hub {
                 account: s.account,
                 module: s.module,
             }),
-            rematch_of,
+            rematch_of: match &begun {
+                Begun::Rematch(of) => Some(of.clone()),
+                Begun::Fresh | Begun::Ladder => None,
+            },
             rated: stakes.rated(),
             seed: stakes.seed(),
         };
@@ -637,11 +645,26 @@ impl Hub {
         if let Some(c) = &cluster {
             c.ensure_reachable()?;
         }
+        let hosted = row.seats.iter().any(|s| s.module.is_some());
+        let ladder = matches!(begun, Begun::Ladder);
         tokio::task::spawn_blocking(move || {
-            store.create(&row)?;
+            if hosted {
+                match store.create_hosted(&row, ladder)? {
+                    HostedCreated::Created => {}
+                    HostedCreated::Busy(bot) => return Ok(Err(hosted_busy(&bot))),
+                    HostedCreated::NoVersion(bot) => {
+                        return Ok(Err(Refusal::new(
+                            ErrorCode::NoSuchVersion,
+                            format!("{bot}'s module version was deleted"),
+                        )))
+                    }
+                }
+            } else {
+                store.create(&row)?;
+            }
             // A node of a cluster holds the new match's lease from the start.
             match cluster.map(|c| c.acquire(&row.id)).transpose()? {
-                None | Some(Lease::Ours) => Ok(()),
+                None | Some(Lease::Ours) => Ok(Ok(())),
                 Some(Lease::Theirs(node)) => Err(StoreError::Corrupt(format!(
                     "a new match's lease is held by node {node}"
                 ))),
@@ -652,7 +675,7 @@ impl Hub {
             error!(error = %e, "store task failed");
             Refusal::internal()
         })?
-        .map_err(store_failed)?;
+        .map_err(store_failed)??;
         self.spawn(&stored, game, slot);
         info!(match_id = %id, bot = ?stored.bot, "match created");
         Ok(id)
@@ -1128,6 +1151,23 @@ impl Drop for AddressGuard {
             }
         }
     }
+}
+
+/// How a match comes to be, as far as storing it goes.
+enum Begun {
+    /// Made, challenged or paired (not on the ladder).
+    Fresh,
+    /// The rematch of this match.
+    Rematch(String),
+    /// Paired on the ladder: its hosted bots are claimed.
+    Ladder,
+}
+
+fn hosted_busy(bot: &str) -> Refusal {
+    Refusal::new(
+        ErrorCode::ServerBusy,
+        format!("{bot} plays a ladder match already"),
+    )
 }
 
 fn no_such_match(id: &str) -> Refusal {

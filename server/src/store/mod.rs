@@ -171,8 +171,24 @@ pub enum ModuleDeleted {
     Deleted,
     /// It is the active version: kept (make another one active first).
     Active,
+    /// A match not finished yet plays a seat with it (it resumes with it
+    /// after a restart): kept until that match ends.
+    InUse,
     /// The account has no such version.
     Missing,
+}
+
+/// What storing a match with hosted seats did ([`Store::create_hosted`]).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum HostedCreated {
+    /// The match is stored (and, on the ladder, its hosted bots claimed).
+    Created,
+    /// This hosted bot (its account) plays a ladder match not finished
+    /// yet: nothing was written.
+    Busy(String),
+    /// This hosted bot's version was deleted since the match was paired:
+    /// nothing was written.
+    NoVersion(String),
 }
 
 /// What storing an uploaded module did.
@@ -190,6 +206,19 @@ pub enum ModuleStored {
 pub use group_commit::MoveWrite;
 pub use postgres::PostgresStore;
 pub use sqlite::SqliteStore;
+
+/// The hosted seats of `m`: each one's account and module version.
+pub(crate) fn hosted_accounts(m: &StoredMatch) -> Vec<(&str, &str)> {
+    let mut seats: Vec<(&str, &str)> = m
+        .seats
+        .iter()
+        .filter_map(|s| Some((s.account.as_deref()?, s.module.as_deref()?)))
+        .collect();
+    // In one order on every node, so that two claims never wait on each
+    // other's.
+    seats.sort_by_key(|(a, _)| a.to_ascii_lowercase());
+    seats
+}
 
 /// A store operation failed.
 #[derive(Debug, thiserror::Error)]
@@ -577,7 +606,10 @@ pub trait Store: Send + Sync {
         hash: &str,
     ) -> Result<Option<ModuleVersion>, StoreError>;
 
-    /// Deletes `account`'s version `hash` unless it is the active one.
+    /// Deletes `account`'s version `hash` unless it is the active one or
+    /// a match not finished yet plays a seat with it
+    /// ([`ModuleDeleted::InUse`]: a match resumed after a restart reads its
+    /// version from the store).
     fn delete_module(&self, account: &str, hash: &str) -> Result<ModuleDeleted, StoreError>;
 
     /// `account`'s active version and its bytes, if it has one.
@@ -589,6 +621,22 @@ pub trait Store: Send + Sync {
     /// The bot accounts with an active module (the hosted bots), as their
     /// profiles, at most `limit` of them.
     fn hosted_bots(&self, limit: usize) -> Result<Vec<Profile>, StoreError>;
+
+    /// Stores a new match whose seats include hosted ones (each seat's
+    /// `module` names its version), in one transaction with the hosted
+    /// rules: each seat's version must still be stored (the match keeps
+    /// it from being deleted until it ends); and for a ladder match
+    /// (`ladder`), each hosted bot is claimed for it. A bot holds one
+    /// ladder claim at a time, until the match it was claimed for is
+    /// finished: whichever node plays that match (it outlives the node
+    /// that started it, as the match does) and across restarts. Nothing
+    /// is written unless everything is.
+    fn create_hosted(&self, m: &StoredMatch, ladder: bool) -> Result<HostedCreated, StoreError>;
+
+    /// The account of each hosted seat of the matches not finished yet
+    /// (an account in two such matches is named twice), at most `limit`:
+    /// who is mid-match, on every node and from before a restart.
+    fn hosted_seats(&self, limit: usize) -> Result<Vec<String>, StoreError>;
 
     // --- operations ---
 

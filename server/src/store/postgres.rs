@@ -21,7 +21,8 @@ use super::{
     now, physics_of, seat_rating, status_of, token_of, AfterMove, MoveWrite, Status, Store,
     StoreError, StoredMatch, StoredSeat, Summary,
 };
-use crate::store::{ModuleDeleted, ModuleStored, ModuleVersion, Profile, MAX_LEADERBOARD};
+use crate::store::MAX_LEADERBOARD;
+use crate::store::{HostedCreated, ModuleDeleted, ModuleStored, ModuleVersion, Profile};
 use crate::store::{RatingPoint, MAX_LISTED};
 use ::postgres::{Client, GenericClient, NoTls, Row, Statement};
 use game::name::AccountName;
@@ -148,6 +149,16 @@ CREATE UNIQUE INDEX bot_modules_one_active ON bot_modules (account_key) WHERE ac
     "ALTER TABLE matches ADD COLUMN first_module TEXT, ADD COLUMN second_module TEXT;",
     // Where clients reach each node (`--public-url`; NULL: not given).
     "ALTER TABLE cluster_nodes ADD COLUMN public_url TEXT;",
+    // The hosted bots' ladder claims: one row per bot ever paired on the
+    // ladder, naming the match it was last claimed for; a claim whose
+    // match is finished is free to take again (`Store::create_hosted`).
+    // No foreign keys: a claim locks no account row.
+    "
+CREATE TABLE hosted_ladder (
+    account_key TEXT PRIMARY KEY,
+    match_id TEXT NOT NULL
+);
+",
     // The public seed of a seeded casual match (NULL: a secret one).
     "ALTER TABLE matches ADD COLUMN public_seed BIGINT;",
 ];
@@ -295,6 +306,27 @@ fn lock_account_module(
     Ok(row.as_ref().map(module_version))
 }
 
+/// Whether a match not finished yet plays a seat with `account`'s version
+/// `hash`: the version's row locked first, so that a match being stored
+/// with it ([`Store::create_hosted`]) is waited for and then seen.
+fn module_in_use(
+    tx: &mut impl GenericClient,
+    account: &str,
+    hash: &str,
+) -> Result<bool, StoreError> {
+    tx.query_opt(
+        "SELECT 1 FROM bot_modules WHERE account_key = lower($1) AND hash = $2 FOR UPDATE",
+        &[&account, &hash],
+    )?;
+    let row = tx.query_one(
+        "SELECT EXISTS (SELECT 1 FROM matches WHERE status <> 'finished'
+             AND ((lower(first_account) = lower($1) AND first_module = $2)
+               OR (lower(second_account) = lower($1) AND second_module = $2)))",
+        &[&account, &hash],
+    )?;
+    Ok(row.get(0))
+}
+
 /// Applies the migrations `client`'s database lacks, each in its own
 /// transaction, under an advisory lock; then makes sure the computer
 /// levels' accounts exist.
@@ -340,6 +372,43 @@ fn migrate(client: &mut Client) -> Result<(), StoreError> {
         )?;
     }
     tx.commit()?;
+    Ok(())
+}
+
+/// Inserts a new match's row (no moves yet).
+fn insert_match(client: &mut impl GenericClient, m: &StoredMatch) -> Result<(), StoreError> {
+    let (seed, secret) = super::noise_columns(&m.noise);
+    let t = now() as i64;
+    client.execute(
+        "INSERT INTO matches (id, created_at, updated_at, config, seed, status, bot, turn_seconds,
+                              first_name, first_token_hash, second_name, second_token_hash, rematch_of,
+                              physics, first_account, second_account, rated, noise_secret,
+                              first_module, second_module, public_seed)
+         VALUES ($1, $2, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14, $15, $16, $17,
+                 $18, $19, $20)",
+        &[
+            &m.id,
+            &t,
+            &serde_json::to_string(&m.config)?,
+            &seed,
+            &m.status.as_str(),
+            &m.bot,
+            &(m.turn_seconds as i64),
+            &m.seats[0].name,
+            &m.seats[0].token.map(|h| h.to_hex()),
+            &m.seats[1].name,
+            &m.seats[1].token.map(|h| h.to_hex()),
+            &m.rematch_of,
+            &i64::from(m.physics),
+            &m.seats[0].account,
+            &m.seats[1].account,
+            &m.rated,
+            &secret,
+            &m.seats[0].module,
+            &m.seats[1].module,
+            &m.seed.map(|s| s as i64),
+        ],
+    )?;
     Ok(())
 }
 
@@ -405,39 +474,61 @@ impl Store for PostgresStore {
     }
 
     fn create(&self, m: &StoredMatch) -> Result<(), StoreError> {
-        let (seed, secret) = super::noise_columns(&m.noise);
-        let t = now() as i64;
-        self.conn()?.execute(
-            "INSERT INTO matches (id, created_at, updated_at, config, seed, status, bot, turn_seconds,
-                                  first_name, first_token_hash, second_name, second_token_hash, rematch_of,
-                                  physics, first_account, second_account, rated, noise_secret,
-                                  first_module, second_module, public_seed)
-             VALUES ($1, $2, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14, $15, $16, $17,
-                     $18, $19, $20)",
-            &[
-                &m.id,
-                &t,
-                &serde_json::to_string(&m.config)?,
-                &seed,
-                &m.status.as_str(),
-                &m.bot,
-                &(m.turn_seconds as i64),
-                &m.seats[0].name,
-                &m.seats[0].token.map(|h| h.to_hex()),
-                &m.seats[1].name,
-                &m.seats[1].token.map(|h| h.to_hex()),
-                &m.rematch_of,
-                &i64::from(m.physics),
-                &m.seats[0].account,
-                &m.seats[1].account,
-                &m.rated,
-                &secret,
-                &m.seats[0].module,
-                &m.seats[1].module,
-                &m.seed.map(|s| s as i64),
-            ],
+        insert_match(&mut *self.conn()?, m)
+    }
+
+    fn create_hosted(&self, m: &StoredMatch, ladder: bool) -> Result<HostedCreated, StoreError> {
+        let mut conn = self.conn()?;
+        let mut tx = conn.transaction()?;
+        let hosted = super::hosted_accounts(m);
+        for (account, hash) in &hosted {
+            // Holds the version until the commit: a deletion waits, then
+            // sees this match (and one that came first leaves no row).
+            let kept = tx.query_opt(
+                "SELECT 1 FROM bot_modules WHERE account_key = lower($1) AND hash = $2
+                 FOR KEY SHARE",
+                &[account, hash],
+            )?;
+            if kept.is_none() {
+                return Ok(HostedCreated::NoVersion(account.to_string()));
+            }
+        }
+        insert_match(&mut tx, m)?;
+        if ladder {
+            for (account, _) in &hosted {
+                // A claim being taken by another node is waited for; its
+                // match, not yet in this statement's snapshot, counts as
+                // not finished.
+                let claimed = tx.execute(
+                    "INSERT INTO hosted_ladder (account_key, match_id) VALUES (lower($1), $2)
+                     ON CONFLICT (account_key) DO UPDATE SET match_id = EXCLUDED.match_id
+                     WHERE EXISTS (SELECT 1 FROM matches f
+                                   WHERE f.id = hosted_ladder.match_id AND f.status = 'finished')",
+                    &[account, &m.id],
+                )?;
+                if claimed != 1 {
+                    return Ok(HostedCreated::Busy(account.to_string()));
+                }
+            }
+        }
+        tx.commit()?;
+        Ok(HostedCreated::Created)
+    }
+
+    fn hosted_seats(&self, limit: usize) -> Result<Vec<String>, StoreError> {
+        let limit = i64::try_from(limit).unwrap_or(i64::MAX);
+        let rows = self.conn()?.query(
+            "SELECT first_account FROM matches
+              WHERE status IN ('open', 'live') AND first_module IS NOT NULL
+                AND first_account IS NOT NULL
+             UNION ALL
+             SELECT second_account FROM matches
+              WHERE status IN ('open', 'live') AND second_module IS NOT NULL
+                AND second_account IS NOT NULL
+             LIMIT $1",
+            &[&limit],
         )?;
-        Ok(())
+        Ok(rows.iter().map(|r| r.get(0)).collect())
     }
 
     fn seat_second(
@@ -722,6 +813,7 @@ impl Store for PostgresStore {
         let deleted = match lock_account_module(&mut tx, account, hash)? {
             None => ModuleDeleted::Missing,
             Some(v) if v.active => ModuleDeleted::Active,
+            Some(_) if module_in_use(&mut tx, account, hash)? => ModuleDeleted::InUse,
             Some(_) => {
                 tx.execute(
                     "DELETE FROM bot_modules WHERE account_key = lower($1) AND hash = $2",

@@ -10,11 +10,11 @@
 //! (token hashes, the physics column, the account columns).
 
 use super::group_commit::{BatchWriter, GroupCommit, QueuedMove};
+use super::{hosted_accounts, HostedCreated, ModuleDeleted, ModuleStored, ModuleVersion, Profile};
 use super::{
     now, physics_of, seat_rating, status_of, token_of, AfterMove, MoveWrite, Status, Store,
     StoreError, StoredMatch, StoredSeat, Summary,
 };
-use super::{ModuleDeleted, ModuleStored, ModuleVersion, Profile};
 use crate::config::SyncMode;
 use crate::store::checkpointer::{Checkpointer, Nudge};
 use crate::store::readers::{Readers, READERS};
@@ -258,6 +258,7 @@ fn migrate(conn: &Connection) -> Result<(), StoreError> {
     conn.execute_batch(ACCOUNT_TABLES)?;
     conn.execute_batch(RATING_TABLES)?;
     conn.execute_batch(MODULE_TABLES)?;
+    conn.execute_batch(HOSTED_TABLES)?;
     let start = RatingSystem::default().start;
     for name in crate::store::computer_accounts() {
         conn.execute(
@@ -447,47 +448,115 @@ fn profile(row: &rusqlite::Row<'_>) -> rusqlite::Result<Profile> {
     ))
 }
 
+/// Inserts a new match's row (no moves yet).
+fn insert_match(conn: &Connection, m: &StoredMatch) -> Result<(), StoreError> {
+    let (seed, secret) = super::noise_columns(&m.noise);
+    let t = now();
+    conn.execute(
+        "INSERT INTO matches (id, created_at, updated_at, config, seed, status, bot, turn_seconds,
+                              first_name, first_token_hash, second_name, second_token_hash, rematch_of,
+                              physics, first_account, second_account, rated, noise_secret,
+                              first_module, second_module, public_seed)
+         VALUES (?1, ?2, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17,
+                 ?18, ?19, ?20)",
+        params![
+            m.id,
+            t as i64,
+            serde_json::to_string(&m.config)?,
+            seed,
+            m.status.as_str(),
+            m.bot,
+            m.turn_seconds as i64,
+            m.seats[0].name,
+            m.seats[0].token.map(|h| h.to_hex()),
+            m.seats[1].name,
+            m.seats[1].token.map(|h| h.to_hex()),
+            m.rematch_of,
+            m.physics,
+            m.seats[0].account,
+            m.seats[1].account,
+            m.rated,
+            secret,
+            m.seats[0].module,
+            m.seats[1].module,
+            m.seed.map(|s| s as i64),
+        ],
+    )?;
+    Ok(())
+}
+
+/// The hosted bots' ladder claims: one row per bot ever paired on the
+/// ladder, naming the match it was last claimed for; a claim whose match
+/// is finished is free to take again ([`Store::create_hosted`]).
+const HOSTED_TABLES: &str = "
+CREATE TABLE IF NOT EXISTS hosted_ladder (
+    account TEXT PRIMARY KEY COLLATE NOCASE,
+    match_id TEXT NOT NULL
+);
+";
+
+/// Whether a match not finished yet plays a seat with version `?2` of
+/// account `?1`'s module.
+const MODULE_IN_USE: &str = "SELECT EXISTS (SELECT 1 FROM matches WHERE status <> 'finished'
+    AND ((lower(first_account) = lower(?1) AND first_module = ?2)
+      OR (lower(second_account) = lower(?1) AND second_module = ?2)))";
+
+/// The accounts of the hosted seats of the matches not finished yet.
+const HOSTED_SEATS: &str = "
+    SELECT first_account FROM matches
+     WHERE status IN ('open', 'live') AND first_module IS NOT NULL AND first_account IS NOT NULL
+    UNION ALL
+    SELECT second_account FROM matches
+     WHERE status IN ('open', 'live') AND second_module IS NOT NULL AND second_account IS NOT NULL
+    LIMIT ?1";
+
 impl Store for SqliteStore {
     fn backend(&self) -> &'static str {
         "sqlite"
     }
 
     fn create(&self, m: &StoredMatch) -> Result<(), StoreError> {
-        let (seed, secret) = super::noise_columns(&m.noise);
-        let conn = self.lock()?;
-        let t = now();
-        conn.execute(
-            "INSERT INTO matches (id, created_at, updated_at, config, seed, status, bot, turn_seconds,
-                                  first_name, first_token_hash, second_name, second_token_hash, rematch_of,
-                                  physics, first_account, second_account, rated, noise_secret,
-                                  first_module, second_module, public_seed)
-             VALUES (?1, ?2, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17,
-                     ?18, ?19, ?20)",
-            params![
-                m.id,
-                t as i64,
-                serde_json::to_string(&m.config)?,
-                seed,
-                m.status.as_str(),
-                m.bot,
-                m.turn_seconds as i64,
-                m.seats[0].name,
-                m.seats[0].token.map(|h| h.to_hex()),
-                m.seats[1].name,
-                m.seats[1].token.map(|h| h.to_hex()),
-                m.rematch_of,
-                m.physics,
-                m.seats[0].account,
-                m.seats[1].account,
-                m.rated,
-                secret,
-                m.seats[0].module,
-                m.seats[1].module,
-                m.seed.map(|s| s as i64),
-            ],
-        )?;
+        insert_match(&*self.lock()?, m)?;
         self.log_grew();
         Ok(())
+    }
+
+    fn create_hosted(&self, m: &StoredMatch, ladder: bool) -> Result<HostedCreated, StoreError> {
+        let mut conn = self.lock()?;
+        let tx = conn.transaction()?;
+        let hosted = hosted_accounts(m);
+        for (account, hash) in &hosted {
+            if module_version(&tx, account, hash)?.is_none() {
+                return Ok(HostedCreated::NoVersion(account.to_string()));
+            }
+        }
+        insert_match(&tx, m)?;
+        if ladder {
+            for (account, _) in &hosted {
+                let claimed = tx.execute(
+                    "INSERT INTO hosted_ladder (account, match_id) VALUES (?1, ?2)
+                     ON CONFLICT (account) DO UPDATE SET match_id = excluded.match_id
+                     WHERE EXISTS (SELECT 1 FROM matches f
+                                   WHERE f.id = hosted_ladder.match_id AND f.status = 'finished')",
+                    params![account, m.id],
+                )?;
+                if claimed != 1 {
+                    return Ok(HostedCreated::Busy(account.to_string()));
+                }
+            }
+        }
+        tx.commit()?;
+        self.log_grew();
+        Ok(HostedCreated::Created)
+    }
+
+    fn hosted_seats(&self, limit: usize) -> Result<Vec<String>, StoreError> {
+        let conn = self.read()?;
+        let mut stmt = conn.prepare(HOSTED_SEATS)?;
+        let rows = stmt
+            .query_map(params![limit as i64], |r| r.get(0))?
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(rows)
     }
 
     fn seat_second(
@@ -852,6 +921,13 @@ impl Store for SqliteStore {
         let deleted = match module_version(&tx, account, hash)? {
             None => ModuleDeleted::Missing,
             Some(v) if v.active => ModuleDeleted::Active,
+            Some(_)
+                if tx.query_row(MODULE_IN_USE, params![account, hash], |r| {
+                    r.get::<_, bool>(0)
+                })? =>
+            {
+                ModuleDeleted::InUse
+            }
             Some(_) => {
                 tx.execute(
                     "DELETE FROM bot_modules WHERE account = ?1 AND hash = ?2",

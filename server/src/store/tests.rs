@@ -122,6 +122,9 @@ on_both_backends!(
     module_versions_are_kept_by_hash_with_one_active_and_a_refused_change_writes_nothing,
     only_a_bots_account_uploads_a_module_and_one_the_runtime_refuses_is_not_stored,
     the_hosted_bots_are_the_bots_with_an_active_module_and_a_seat_keeps_its_version,
+    a_version_an_unfinished_match_plays_with_is_kept_until_the_match_ends,
+    a_hosted_bot_holds_one_ladder_claim_at_a_time_until_its_match_is_finished,
+    of_ladder_claims_on_one_bot_made_at_once_from_many_connections_one_wins,
 );
 
 pub(super) fn stored(id: &str) -> StoredMatch {
@@ -784,4 +787,133 @@ fn stored_plain(store: &dyn Store) -> String {
     let m = stored("00000000000000aa");
     store.create(&m).unwrap();
     m.id
+}
+
+/// A live match whose second seat `bot` plays with its version `version`.
+fn hosted_match(id: &str, bot: &str, version: &str) -> StoredMatch {
+    let mut m = stored(id);
+    m.status = Status::Live;
+    m.seats[1] = StoredSeat {
+        name: Some(bot.into()),
+        token: None,
+        account: Some(bot.into()),
+        module: Some(version.into()),
+    };
+    m.noise = NoiseKey::ChaCha20(game::NoiseSecret::from_hex(&hash(7)).unwrap());
+    m
+}
+
+fn a_version_an_unfinished_match_plays_with_is_kept_until_the_match_ends(b: Backend) {
+    let store = b.store;
+    let (bot, _) = store.create_account(&name("Furmanov"), true).unwrap();
+    store
+        .insert_module("Furmanov", &hash(1), b"one", 3)
+        .unwrap();
+    let m = hosted_match("m1", "Furmanov", &hash(1));
+    assert_eq!(
+        store.create_hosted(&m, false).unwrap(),
+        HostedCreated::Created
+    );
+    store
+        .insert_module("Furmanov", &hash(2), b"two", 3)
+        .unwrap();
+    // Not active any more, but m1 (which a restart resumes with it) is
+    // not over: kept, with a code that says why.
+    assert_eq!(
+        store.delete_module("furmanov", &hash(1)).unwrap(),
+        ModuleDeleted::InUse
+    );
+    let refused = store.delete_version(&bot, &hash(1)).unwrap_err();
+    assert_eq!(code(refused), ErrorCode::ModuleInUse);
+    assert_eq!(
+        store.module_bytes("Furmanov", &hash(1)).unwrap(),
+        Some(b"one".to_vec())
+    );
+    // Over: it may go; a match paired with it since then is refused, and
+    // nothing of that match is stored.
+    resign_first(&*store, "m1", 0).unwrap();
+    store.delete_version(&bot, &hash(1)).unwrap();
+    assert_eq!(store.module_bytes("Furmanov", &hash(1)).unwrap(), None);
+    let late = hosted_match("m2", "Furmanov", &hash(1));
+    assert_eq!(
+        store.create_hosted(&late, true).unwrap(),
+        HostedCreated::NoVersion("Furmanov".into())
+    );
+    assert_eq!(store.get("m2").unwrap(), None);
+}
+
+fn a_hosted_bot_holds_one_ladder_claim_at_a_time_until_its_match_is_finished(b: Backend) {
+    let store = b.store;
+    store.create_account(&name("Furmanov"), true).unwrap();
+    store
+        .insert_module("Furmanov", &hash(1), b"one", 3)
+        .unwrap();
+    assert!(store.hosted_seats(10).unwrap().is_empty());
+    let ladder = |id: &str| store.create_hosted(&hosted_match(id, "Furmanov", &hash(1)), true);
+    assert_eq!(ladder("m1").unwrap(), HostedCreated::Created);
+    // A second ladder match (another node's pairing, or one after a
+    // restart) while m1 is not over: refused, nothing stored.
+    let mut other = hosted_match("m2", "FURMANOV", &hash(1));
+    other.seats[1].account = Some("FURMANOV".into());
+    assert_eq!(
+        store.create_hosted(&other, true).unwrap(),
+        HostedCreated::Busy("FURMANOV".into())
+    );
+    assert_eq!(store.get("m2").unwrap(), None);
+    // A challenge is no ladder match: it plays beside.
+    let challenge = hosted_match("m3", "Furmanov", &hash(1));
+    assert_eq!(
+        store.create_hosted(&challenge, false).unwrap(),
+        HostedCreated::Created
+    );
+    assert_eq!(store.hosted_seats(10).unwrap(), ["Furmanov", "Furmanov"]);
+    // m1 over: the next ladder match is the bot's.
+    resign_first(&*store, "m1", 0).unwrap();
+    assert_eq!(ladder("m4").unwrap(), HostedCreated::Created);
+    assert_eq!(
+        ladder("m5").unwrap(),
+        HostedCreated::Busy("Furmanov".into())
+    );
+    resign_first(&*store, "m3", 0).unwrap();
+    resign_first(&*store, "m4", 0).unwrap();
+    assert!(store.hosted_seats(10).unwrap().is_empty());
+}
+
+/// What several nodes do when each pairs the same bot in the same
+/// instant: every claim on its own connection, at once.
+fn of_ladder_claims_on_one_bot_made_at_once_from_many_connections_one_wins(b: Backend) {
+    let store = b.store;
+    store.create_account(&name("Furmanov"), true).unwrap();
+    store
+        .insert_module("Furmanov", &hash(1), b"one", 3)
+        .unwrap();
+    for round in 0..3 {
+        let start = Arc::new(std::sync::Barrier::new(8));
+        let claims: Vec<_> = (0..8)
+            .map(|k| {
+                let (store, start) = (store.clone(), start.clone());
+                std::thread::spawn(move || {
+                    let m = hosted_match(&format!("r{round}m{k}"), "Furmanov", &hash(1));
+                    start.wait();
+                    (m.id.clone(), store.create_hosted(&m, true).unwrap())
+                })
+            })
+            .collect();
+        let results: Vec<(String, HostedCreated)> =
+            claims.into_iter().map(|t| t.join().unwrap()).collect();
+        let won: Vec<&String> = results
+            .iter()
+            .filter(|(_, r)| *r == HostedCreated::Created)
+            .map(|(id, _)| id)
+            .collect();
+        assert_eq!(won.len(), 1, "round {round}: {results:?}");
+        for (id, r) in &results {
+            if r != &HostedCreated::Created {
+                assert_eq!(r, &HostedCreated::Busy("Furmanov".into()));
+                assert_eq!(store.get(id).unwrap(), None, "{id} was not stored");
+            }
+        }
+        assert_eq!(store.hosted_seats(10).unwrap(), ["Furmanov"]);
+        resign_first(&*store, won[0], 0).unwrap();
+    }
 }

@@ -7,7 +7,9 @@
 //! players in `match-start`.
 //!
 //! The driver also keeps the lobby's list of hosted bots (the bot
-//! accounts with an active module) fresh from the store, and starts a
+//! accounts with an active module) fresh from the store, with who of them
+//! is mid-match there (read once before the lobby's first round, so that
+//! a match resumed after a restart is known), and starts a
 //! hosted bot's match with its active module, compiled before the match
 //! starts (a module that no longer loads starts no match).
 //!
@@ -26,6 +28,23 @@ type Lobby = game::lobby::Lobby<bots::Level>;
 type Effect = game::lobby::Effect<bots::Level>;
 type Input = game::lobby::Input<bots::Level>;
 type Player = game::lobby::Player<bots::Level>;
+
+/// The hosted bots (bot accounts with an active module) and who of them is
+/// mid-match (a seat of an unfinished match: on any node of a cluster, or
+/// from before a restart), from the store, for the lobby.
+fn read_hosted(store: &dyn crate::store::Store) -> Result<Input, crate::store::StoreError> {
+    let bots = store
+        .hosted_bots(MAX_HOSTED_BOTS)?
+        .into_iter()
+        .map(|p| Member {
+            name: p.name,
+            bot: true,
+            rating: p.rating as f64,
+        })
+        .collect();
+    let busy = store.hosted_seats(MAX_HOSTED_BOTS)?;
+    Ok(Input::Hosted { bots, busy })
+}
 
 /// How often the hosted bots are read from the store: every ladder round,
 /// at most [`HOSTED_REFRESH`] apart.
@@ -121,10 +140,18 @@ impl Streams {
             }),
         };
         hub.set_listener(Arc::new(streams.clone()));
-        let timer = streams.clone();
-        tokio::spawn(async move { timer.run_timer().await });
+        // Before any pairing: which hosted bots are mid-match (matches
+        // resumed after a restart, or played on other nodes).
+        match read_hosted(hub.store().as_ref()) {
+            Ok(input) => streams.feed(input),
+            Err(e) => warn!(error = %e, "reading the hosted bots failed"),
+        }
+        // Both tasks hold the streams before either runs: each ends once
+        // only the tasks and the hub's listener hold them, which must not
+        // be the case while the other is being spawned.
         let every = limits_refresh(&streams);
-        let refresher = streams.clone();
+        let (timer, refresher) = (streams.clone(), streams.clone());
+        tokio::spawn(async move { timer.run_timer().await });
         tokio::spawn(async move { refresher.refresh_hosted(every).await });
         streams
     }
@@ -134,20 +161,8 @@ impl Streams {
     async fn refresh_hosted(self, every: Duration) {
         loop {
             let store = self.inner.hub.store().clone();
-            let read =
-                tokio::task::spawn_blocking(move || store.hosted_bots(MAX_HOSTED_BOTS)).await;
-            match read {
-                Ok(Ok(profiles)) => {
-                    let bots = profiles
-                        .into_iter()
-                        .map(|p| Member {
-                            name: p.name,
-                            bot: true,
-                            rating: p.rating as f64,
-                        })
-                        .collect();
-                    self.feed(Input::Hosted { bots });
-                }
+            match tokio::task::spawn_blocking(move || read_hosted(store.as_ref())).await {
+                Ok(Ok(input)) => self.feed(input),
                 Ok(Err(e)) => warn!(error = %e, "reading the hosted bots failed"),
                 Err(e) => warn!(error = %e, "the task reading the hosted bots failed"),
             }
@@ -290,7 +305,13 @@ impl Streams {
         let made = self
             .inner
             .hub
-            .create_between([first, second], rules.config(), turn_seconds, rated)
+            .create_between(
+                [first, second],
+                rules.config(),
+                turn_seconds,
+                rated,
+                why == Pairing::Ladder,
+            )
             .await;
         drop(modules);
         let (id, tokens) = match made {

@@ -15,16 +15,34 @@ pub const LEASE: u64 = 2;
 /// A node of a cluster on `db` and `redis`, named `node` (unique on its
 /// Redis).
 pub fn node(dir: &std::path::Path, db: &str, redis: &str, node: &str) -> Server {
-    start_node(dir, db, redis, node, false)
+    node_with(dir, db, redis, node, &[])
+}
+
+/// A node like [`node`] with `extra` flags.
+pub fn node_with(
+    dir: &std::path::Path,
+    db: &str,
+    redis: &str,
+    node: &str,
+    extra: &[&str],
+) -> Server {
+    start_node(dir, db, redis, node, false, extra)
 }
 
 /// A node like [`node`] that tells the others where its clients reach
 /// it (`--public-url`, its own address), so that they send them there.
 pub fn routed_node(dir: &std::path::Path, db: &str, redis: &str, node: &str) -> Server {
-    start_node(dir, db, redis, node, true)
+    start_node(dir, db, redis, node, true, &[])
 }
 
-fn start_node(dir: &std::path::Path, db: &str, redis: &str, node: &str, public: bool) -> Server {
+fn start_node(
+    dir: &std::path::Path,
+    db: &str,
+    redis: &str,
+    node: &str,
+    public: bool,
+    extra: &[&str],
+) -> Server {
     // A free port, known before the node starts: it may be in its URL.
     let port = std::net::TcpListener::bind("127.0.0.1:0")
         .and_then(|l| l.local_addr())
@@ -46,6 +64,7 @@ fn start_node(dir: &std::path::Path, db: &str, redis: &str, node: &str, public: 
     if public {
         args.extend(["--public-url", &url]);
     }
+    args.extend_from_slice(extra);
     Server::start_on(dir, &addr, &args)
 }
 
