@@ -56,6 +56,7 @@ lobby-return-no = Остаться
 lobby-sign-out-title = Выйти?
 lobby-sign-out-body = Ключ — единственный способ вернуться в этот аккаунт. Сначала скопируйте его и сохраните в надёжном месте, иначе аккаунт пропадёт.
 lobby-tagline = щёлкайте по своим шашкам, сбивайте чужие с доски
+lobby-tagline-short = щёлкайте по своим, сбивайте чужие
 lobby-quick-match = Быстрая игра
 lobby-computer-easy = Компьютер: лёгкий
 lobby-computer-medium = Компьютер: средний
