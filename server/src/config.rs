@@ -134,7 +134,9 @@ pub struct Config {
 
     /// Origins besides the server's own (scheme and `Host`) whose pages may
     /// create, join and play matches, comma-separated (e.g. the public
-    /// address of a proxy in front: `https://chapaev.example`).
+    /// address of a proxy in front: `https://chapaev.example`). A node of
+    /// a cluster also accepts the origins of the live nodes' `--public-url`s
+    /// without being told.
     #[arg(long, env = "CHAPAEV_ALLOWED_ORIGINS", value_delimiter = ',')]
     pub allowed_origins: Vec<String>,
 

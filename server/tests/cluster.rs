@@ -7,7 +7,11 @@
 //! acknowledged shot is in its record. A client that asks a node with
 //! `follow=1` is sent (`307`) to the node that plays its match when that
 //! node has a public URL, plays there instead of being relayed, and after
-//! that node dies it reaches the node that took the match over. Skipped (with a note) where the
+//! that node dies it reaches the node that took the match over. A
+//! browser, which cannot follow a redirect, asks a node for the socket of
+//! the node that plays its match (`/api/matches/ID/socket`), and that node
+//! accepts the socket from a page the other node served (its origin).
+//! Skipped (with a note) where the
 //! machine has no PostgreSQL or Redis, unless `CHAPAEV_REQUIRE_POSTGRES`
 //! / `CHAPAEV_REQUIRE_REDIS` say they must be there.
 
@@ -280,4 +284,58 @@ async fn a_client_sent_to_a_node_that_is_killed_reaches_the_node_that_takes_the_
     white.next_of("match-over").await;
     let record = record(&b, &id).await;
     assert_eq!(record.moves.len(), 5, "four shots and the resignation");
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_browser_asking_another_node_is_told_the_owners_socket_which_accepts_that_nodes_page() {
+    let Some((db, redis)) = services("cluster_socket") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let a = routed_node(dir.path(), &db, &redis, "socket-a");
+    let b = routed_node(dir.path(), &db, &redis, "socket-b");
+    let (id, white_token) = a.create(r#"{"name":"Petka"}"#).await;
+    let black_token = b.join(&id).await;
+    let socket = |node: &common::Server| {
+        let path = format!("/api/matches/{id}/socket");
+        let node = node.addr.clone();
+        async move {
+            let (status, body) = common::http(&node, "GET", &path, "").await;
+            assert_eq!(status, 200, "{body}");
+            serde_json::from_str::<serde_json::Value>(&body).unwrap()
+        }
+    };
+    // Node B names node A's socket; node A, which plays it, none.
+    let owner = format!("ws://{}/ws?match={id}", a.addr);
+    assert_eq!(socket(&b).await["url"], owner.as_str());
+    assert_eq!(socket(&a).await["url"], serde_json::Value::Null);
+    assert_eq!(
+        gauge(&b, "chapaev_cluster_connections_routed").await,
+        Some(1)
+    );
+    let (status, body) = b.http("GET", "/api/matches/no%20such/socket", "").await;
+    assert_eq!(status, 400, "{body}");
+    // A page node B served opens node A's socket and plays there.
+    let page_of_b = format!("http://{}", b.addr);
+    let mut white = Client::try_connect_from(&owner, &page_of_b, Some(&white_token))
+        .await
+        .unwrap();
+    let mut black = Client::try_connect_from(&owner, &page_of_b, Some(&black_token))
+        .await
+        .unwrap();
+    assert_eq!(view(white.next().await), view(black.next().await));
+    white.send(&shot(4, 0.0, 2.0)).await;
+    until_shots(&mut black, 1).await;
+    assert_eq!(gauge(&a, "chapaev_connections").await, Some(2));
+    assert_eq!(
+        gauge(&b, "chapaev_cluster_connections_relayed").await,
+        Some(0)
+    );
+    // A page of a site outside the cluster is still refused (403).
+    let stranger = Client::try_connect_from(&owner, "http://evil.example", None).await;
+    match stranger {
+        Err(tokio_tungstenite::tungstenite::Error::Http(r)) => assert_eq!(r.status(), 403),
+        Err(e) => panic!("refused, but not as expected: {e}"),
+        Ok(_) => panic!("a foreign page opened node A's socket"),
+    }
 }

@@ -6,12 +6,17 @@
 //! Every main screen (lobby, rules, leaderboard, account, quick match, play
 //! against the computer, the end of the match, the replay, the sandbox) is
 //! visited in both languages, at a laptop's and a phone's size, and on each
-//! the client reports no button whose label had to be cut; each is saved as
+//! the client reports no button whose label had to be cut, no text cut
+//! short (a title, a heading) and, in every row of buttons, one size for
+//! all their labels; each is saved as
 //! a screenshot (`lobby-ru.png`, `lobby-en.png`, `lobby-ru-phone.png`, ...)
 //! in the artifacts folder (`target/e2e-artifacts` or
 //! `$CHAPAEV_E2E_ARTIFACTS`). The page's loader, shown before the game
 //! has loaded, speaks the same language, and the computer's seat in a
-//! match reads as the computer of its level in it.
+//! match reads as the computer of its level in it. On a phone held
+//! sideways (844 x 390 at three device pixels a CSS pixel) the sandbox
+//! leaves the world most of the window, its side panel opens and closes
+//! over it, and every control stays inside the window.
 
 use e2e::browser::{self, Driver};
 use e2e::process::Server;
@@ -44,6 +49,13 @@ const PHONE: Window = Window {
     width: 390,
     height: 844,
     dpr: 2,
+};
+
+const SIDEWAYS: Window = Window {
+    suffix: "-sideways",
+    width: 844,
+    height: 390,
+    dpr: 3,
 };
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
@@ -90,6 +102,25 @@ async fn a_russian_browser_gets_russian_the_switch_turns_it_to_english_and_a_rel
         }
         let _ = client.close().await;
     }
+    let profile = scratch.path().join("profile-languages-sideways");
+    let extra = [
+        "--lang=ru".to_string(),
+        "--accept-lang=ru-RU,ru".to_string(),
+        format!("--window-size={},{}", SIDEWAYS.width, SIDEWAYS.height),
+        format!("--force-device-scale-factor={}", SIDEWAYS.dpr),
+    ];
+    let client = driver
+        .session_with(&programs, &profile, &extra)
+        .await
+        .unwrap_or_else(|e| panic!("{e}"));
+    if let Err(e) = sandbox_sideways(&client, &server, &artifacts).await {
+        let _ = browser::screenshot(&client, &artifacts.join("failure-sandbox-sideways.png")).await;
+        if let Ok(state) = browser::eval(&client, STATE).await {
+            eprintln!("e2e: chapaev_state at the failure: {state}");
+        }
+        failures.push(format!("844x390: {e}"));
+    }
+    let _ = client.close().await;
     drop(driver);
     drop(server);
     assert!(
@@ -193,13 +224,7 @@ async fn tour(client: &Client, artifacts: &Path, window: &Window, lang: &str) ->
         let file = format!("{name}-{lang}{}.png", window.suffix);
         let png = browser::screenshot(client, &artifacts.join(&file)).await?;
         picture::stats(&png)?.check_drawn(&file, 8, 0.001)?;
-        let cut = state["cut"].as_array().cloned().unwrap_or_default();
-        if !cut.is_empty() {
-            return Err(E2eError::Check(format!(
-                "{file}: labels cut on {}: {cut:?} (labels {})",
-                state["screen"], state["labels"]
-            )));
-        }
+        whole_and_even(&state, &file)?;
         Ok::<Value, E2eError>(state)
     };
     snap("lobby").await?;
@@ -296,6 +321,120 @@ async fn tour(client: &Client, artifacts: &Path, window: &Window, lang: &str) ->
     }
     click_button(client, "lobby").await?;
     lobby_in(client, lang).await?;
+    Ok(())
+}
+
+/// Checks the screen `state` reports (saved as `file`): no button's label
+/// cut, no other text cut short, and one label size in each row of
+/// buttons (buttons of one height whose tops are level).
+fn whole_and_even(state: &Value, file: &str) -> Result<()> {
+    let cut = state["cut"].as_array().cloned().unwrap_or_default();
+    if !cut.is_empty() {
+        return Err(E2eError::Check(format!(
+            "{file}: labels cut on {}: {cut:?} (labels {})",
+            state["screen"], state["labels"]
+        )));
+    }
+    let texts = state["cut_texts"].as_array().cloned().unwrap_or_default();
+    if !texts.is_empty() {
+        return Err(E2eError::Check(format!(
+            "{file}: texts cut short on {}: {texts:?}",
+            state["screen"]
+        )));
+    }
+    // Each row by its top and height (tenths of a pixel), with its
+    // buttons' names and label sizes.
+    type Row = Vec<(String, f64)>;
+    let mut rows: Vec<((f64, f64), Row)> = Vec::new();
+    let sizes = state["label_sizes"]
+        .as_object()
+        .cloned()
+        .unwrap_or_default();
+    for (name, size) in &sizes {
+        let rect = &state["buttons"][name];
+        let (Some(y), Some(h), Some(size)) = (rect[1].as_f64(), rect[3].as_f64(), size.as_f64())
+        else {
+            continue;
+        };
+        let key = ((y * 10.0).round(), (h * 10.0).round());
+        match rows.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, row)) => row.push((name.clone(), size)),
+            None => rows.push((key, vec![(name.clone(), size)])),
+        }
+    }
+    for (_, row) in &rows {
+        if row.iter().any(|(_, s)| (s - row[0].1).abs() > 0.01) {
+            return Err(E2eError::Check(format!(
+                "{file}: one row of buttons on {} has labels of different sizes: {row:?}",
+                state["screen"]
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The sandbox on a phone held sideways: the world takes most of the
+/// window (at least 600 x 270 CSS pixels), every button stays inside the
+/// window, the side panel opens over the world's right part and leaves
+/// some of it in sight, and closes again.
+async fn sandbox_sideways(client: &Client, server: &Server, artifacts: &Path) -> Result<()> {
+    browser::fit_viewport(client, SIDEWAYS.width, SIDEWAYS.height).await?;
+    client.goto(&server.url("/#/sandbox")).await?;
+    state_until(client, "the sandbox with its bodies", 30, |s| {
+        s["screen"] == "sandbox" && s["bodies"].as_u64().is_some_and(|n| n > 0)
+    })
+    .await?;
+    let inside = |state: &Value, file: &str| -> Result<()> {
+        let buttons = state["buttons"].as_object().cloned().unwrap_or_default();
+        for (name, r) in &buttons {
+            let n = |i: usize| r[i].as_f64().unwrap_or(f64::NAN);
+            let (w, h) = (f64::from(SIDEWAYS.width), f64::from(SIDEWAYS.height));
+            if !(n(0) >= -0.01
+                && n(1) >= -0.01
+                && n(0) + n(2) <= w + 0.01
+                && n(1) + n(3) <= h + 0.01)
+            {
+                return Err(E2eError::Check(format!(
+                    "{file}: {name} {r} is outside the window"
+                )));
+            }
+        }
+        whole_and_even(state, file)
+    };
+    let closed = settle(client, "ru").await?;
+    let png = browser::screenshot(client, &artifacts.join("sandbox-ru-sideways.png")).await?;
+    picture::stats(&png)?.check_drawn("sandbox-ru-sideways.png", 8, 0.001)?;
+    inside(&closed, "sandbox-ru-sideways.png")?;
+    let world = &closed["world"];
+    let (ww, wh) = (
+        world[2].as_f64().unwrap_or(0.0),
+        world[3].as_f64().unwrap_or(0.0),
+    );
+    eprintln!("e2e: the sandbox's world on a phone held sideways: {ww} x {wh} CSS pixels");
+    if ww < 600.0 || wh < 270.0 {
+        return Err(E2eError::Check(format!(
+            "the sandbox's world is {ww} x {wh} on a phone held sideways, not at least 600 x 270"
+        )));
+    }
+    click_button(client, "panel").await?;
+    let open = settle(client, "ru").await?;
+    browser::screenshot(client, &artifacts.join("sandbox-panel-ru-sideways.png")).await?;
+    inside(&open, "sandbox-panel-ru-sideways.png")?;
+    let side = &open["side"];
+    let seen = side[0].as_f64().unwrap_or(0.0) - world[0].as_f64().unwrap_or(0.0);
+    if open["panel_open"] != true || !open["buttons"]["preset-brownian"].is_array() || seen < 150.0
+    {
+        return Err(E2eError::Check(format!(
+            "the open panel ({side}) should show the presets and leave 150 px of the world ({world}) in sight"
+        )));
+    }
+    click_button(client, "panel").await?;
+    let again = settle(client, "ru").await?;
+    if again["panel_open"] != false || !again["buttons"]["play"].is_array() {
+        return Err(E2eError::Check(
+            "the panel did not close, or the bar did not come back".into(),
+        ));
+    }
     Ok(())
 }
 

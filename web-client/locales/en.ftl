@@ -53,6 +53,7 @@ lobby-return-no = Stay here
 lobby-sign-out-title = Sign out?
 lobby-sign-out-body = The key is the only way back into this account. Copy it and keep it somewhere safe first, or the account is lost.
 lobby-tagline = flick your checkers, knock theirs off the board
+lobby-tagline-short = flick yours, knock theirs off
 lobby-quick-match = Quick match
 lobby-computer-easy = Computer: easy
 lobby-computer-medium = Computer: medium

@@ -56,6 +56,7 @@ lobby-return-no = Остаться
 lobby-sign-out-title = Выйти?
 lobby-sign-out-body = Ключ — единственный способ вернуться в этот аккаунт. Сначала скопируйте его и сохраните в надёжном месте, иначе аккаунт пропадёт.
 lobby-tagline = щёлкайте по своим шашкам, сбивайте чужие с доски
+lobby-tagline-short = щёлкайте по своим, сбивайте чужие
 lobby-quick-match = Быстрая игра
 lobby-computer-easy = Компьютер: лёгкий
 lobby-computer-medium = Компьютер: средний
@@ -199,7 +200,7 @@ play-result = { $viewer ->
     }
 }
 play-row-of = ряд { $row } из 8
-play-chat-placeholder = напишите что-нибудь...
+play-chat-placeholder = сообщение...
 play-chat-send = Отправить
 page-loading = Загружается «Чапаев»…
 chat-line = { $name }: { $text }

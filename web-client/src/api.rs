@@ -53,6 +53,15 @@ fn playable_by_default() -> bool {
     true
 }
 
+/// Where to open a match's socket (`GET /api/matches/{id}/socket`): the
+/// socket of the node of a cluster that plays it, or `None` (the page's
+/// own node).
+#[derive(Clone, Debug, Deserialize)]
+pub struct SocketAt {
+    #[serde(default)]
+    pub url: Option<String>,
+}
+
 /// A listing: `{"matches": [...]}` or the bare array.
 #[derive(Deserialize)]
 #[serde(untagged)]
@@ -221,6 +230,12 @@ impl Api {
     /// `GET /api/matches/{id}`: one match's summary (its players).
     pub fn summary(&self, match_id: &str) -> Pending<Summary> {
         let url = format!("{}/api/matches/{match_id}", self.origin);
+        Pending::start("GET", &url, None, None, json)
+    }
+
+    /// `GET /api/matches/{id}/socket`: where to open the match's socket.
+    pub fn socket(&self, match_id: &str) -> Pending<SocketAt> {
+        let url = format!("{}/api/matches/{match_id}/socket", self.origin);
         Pending::start("GET", &url, None, None, json)
     }
 

@@ -350,9 +350,18 @@ impl Lobby {
         }
         ui::text(&name, tx, y, title, colors::ACCENT);
         // The tagline: one line, or two on a phone, under the title.
-        let size = if narrow { 13.0 } else { 18.0 };
+        // Smaller (down to 11 units) rather than cut.
         let lines = if narrow { 2 } else { 1 };
-        let tagline = crate::help::wrap_lines(&t!("lobby-tagline"), size, room, lines);
+        let words = if narrow {
+            t!("lobby-tagline-short")
+        } else {
+            t!("lobby-tagline")
+        };
+        let mut size: f32 = if narrow { 13.0 } else { 18.0 };
+        while size > 11.0 && crate::help::wrap(&words, size, room).len() > lines {
+            size -= 1.0;
+        }
+        let tagline = crate::help::wrap_lines(&words, size, room, lines);
         for (i, line) in tagline.iter().enumerate() {
             let ly = y + title + 4.0 + i as f32 * (size + 2.0);
             ui::text(line, tx + 2.0, ly, size, colors::MUTED);

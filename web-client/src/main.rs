@@ -116,6 +116,8 @@ async fn main() {
         state.insert("buttons".into(), ui.layout());
         state.insert("labels".into(), ui.labels());
         state.insert("cut".into(), ui.cut());
+        state.insert("label_sizes".into(), ui.label_sizes());
+        state.insert("cut_texts".into(), ui.cut_texts());
         state.insert("hovered".into(), ui.hovered().into());
         state.insert("lang".into(), i18n::current().code().into());
         state

@@ -15,7 +15,7 @@ pub mod layout;
 pub mod panel;
 pub mod state;
 
-use crate::api::{token_key, Api, Pending, SeatGrant};
+use crate::api::{token_key, Api, Pending, SeatGrant, SocketAt};
 use crate::connection::{Connection, Link};
 use crate::highlight;
 use crate::i18n::t;
@@ -53,6 +53,9 @@ pub struct Play {
     name: String,
     token: Option<String>,
     setup: Setup,
+    /// Asking the page's node where the match's socket is (on a cluster,
+    /// the node that plays it), before connecting.
+    locating: Option<Pending<SocketAt>>,
     conn: Option<Connection>,
     /// The match as this page follows it.
     state: MatchState,
@@ -120,6 +123,7 @@ impl Play {
             name,
             token,
             setup,
+            locating: None,
             conn: None,
             state: MatchState::default(),
             chat_draft: String::new(),
@@ -144,10 +148,22 @@ impl Play {
         p
     }
 
+    /// Asks where the match's socket is; [`Play::connected_to`] opens it.
     fn connect(&mut self) {
-        let url = format!("{}/ws?match={}", ws_origin(&self.api.origin), self.match_id);
+        self.locating = Some(self.api.socket(&self.match_id));
+    }
+
+    /// Opens the socket `direct` (another node's; none: this page's
+    /// node's), falling back on this page's node.
+    fn connected_to(&mut self, direct: Option<String>) {
+        let own = format!("{}/ws?match={}", ws_origin(&self.api.origin), self.match_id);
         let token = self.token.clone().map(SeatToken::new);
-        self.conn = Some(Connection::open(url, self.name.clone(), token));
+        self.conn = Some(Connection::open_preferring(
+            direct,
+            own,
+            self.name.clone(),
+            token,
+        ));
     }
 
     fn connected(&self) -> bool {
@@ -229,6 +245,9 @@ impl Play {
 
     /// The connection's status line and its colour.
     fn link(&self) -> (String, Color) {
+        if self.locating.is_some() {
+            return (t!("play-link-connecting"), colors::MUTED);
+        }
         match self.conn.as_ref().map(Connection::link) {
             Some(Link::Open) => (t!("play-link-open"), colors::GOOD),
             Some(Link::Connecting) => (t!("play-link-connecting"), colors::MUTED),
@@ -466,6 +485,11 @@ impl Screen for Play {
             }
             return None;
         }
+        if let Some(answer) = self.locating.as_mut().and_then(Pending::poll) {
+            // No answer (an older server, a fault): this page's node.
+            self.locating = None;
+            self.connected_to(answer.ok().and_then(|s| s.url));
+        }
         let mut go = None;
         if let Some(c) = &mut self.conn {
             for m in c.poll(self.state.now) {
@@ -568,6 +592,10 @@ impl Screen for Play {
         m.insert(
             "connected".into(),
             self.conn.as_ref().is_some_and(Connection::is_open).into(),
+        );
+        m.insert(
+            "socket".into(),
+            self.conn.as_ref().map(|c| c.url().to_string()).into(),
         );
         m.insert(
             "shots".into(),

@@ -26,6 +26,15 @@ pub const SPEEDS: [f64; 7] = [-1.0, 0.1, 0.25, 0.5, 1.0, 2.0, 4.0];
 /// How many best shots are listed.
 const BEST: usize = 3;
 
+/// The title's size (its lines are three units apart).
+const TITLE_SIZE: f32 = 19.0;
+
+/// The title in lines at most `width` wide (word by word), so a narrow
+/// window shows it whole instead of cutting it.
+fn title_lines(title: &str, width: f32) -> Vec<String> {
+    crate::help::wrap(title, TITLE_SIZE, width)
+}
+
 struct Loaded {
     replay: GameReplay,
     clips: Vec<Clip>,
@@ -182,10 +191,9 @@ impl Screen for Replay {
         }
         let (w, h) = crate::scale::size().into();
         // Two rows of controls under the timeline when the window is narrow.
-        // (The wide bar's controls end 812 units from the left.)
-        let narrow = w < 820.0;
+        // (The wide bar's controls end 916 units from the left.)
+        let narrow = w < 930.0;
         let bar_h = if narrow { 170.0 } else { 118.0 };
-        let head_h = if narrow { 70.0 } else { 60.0 };
         let lobby = Rect::new(w - 98.0, 8.0, 90.0, ui::TOUCH);
         let l = match &self.state {
             State::Ready(l) => l,
@@ -226,6 +234,36 @@ impl Screen for Replay {
                 self.playing = false;
             }
         }
+        // The title beside the buttons, in as many lines as it takes
+        // (a narrow window: the heading's lines below the buttons).
+        let lang_w = if narrow { 48.0 } else { 110.0 };
+        let lang = Rect::new(lobby.x - 8.0 - lang_w, lobby.y, lang_w, ui::TOUCH);
+        let text_w = lang.x - 20.0;
+        let title = match &self.players {
+            Some(players) => t!(
+                "replay-title-players",
+                players = players.as_str(),
+                fairness = l.fairness.as_str()
+            ),
+            None => t!(
+                "replay-title",
+                id = self.match_id.as_str(),
+                fairness = l.fairness.as_str()
+            ),
+        };
+        let title = title_lines(&title, text_w);
+        let (title_size, title_step) = (TITLE_SIZE, TITLE_SIZE + 3.0);
+        let title_end = 8.0 + title.len() as f32 * title_step;
+        let heading_y = if narrow {
+            title_end.max(lobby.y + lobby.h) + 2.0
+        } else {
+            title_end + 4.0
+        };
+        let head_h = if narrow {
+            heading_y + 2.0 * 18.0 + 2.0
+        } else {
+            (heading_y + 22.0).max(60.0)
+        };
         let (view, frame, shot) = at(l, self.t);
         // The board between the heading and the control bar.
         let board = Rect::new(0.0, head_h, w, h - bar_h - head_h);
@@ -260,29 +298,16 @@ impl Screen for Replay {
         // The heading stays above the board (the board is drawn first, so
         // a piece sliding off it goes under the heading and the bar).
         draw_rectangle(0.0, 0.0, w, head_h, colors::BACKGROUND);
-        let lang_w = if narrow { 48.0 } else { 110.0 };
-        let lang = Rect::new(lobby.x - 8.0 - lang_w, lobby.y, lang_w, ui::TOUCH);
         crate::i18n::switch(ui, lang, narrow);
-        let text_w = lang.x - 20.0;
-        let title = match &self.players {
-            Some(players) => t!(
-                "replay-title-players",
-                players = players.as_str(),
-                fairness = l.fairness.as_str()
-            ),
-            None => t!(
-                "replay-title",
-                id = self.match_id.as_str(),
-                fairness = l.fairness.as_str()
-            ),
-        };
-        ui::text(
-            &ui::fit(&title, 19.0, text_w),
-            12.0,
-            8.0,
-            19.0,
-            colors::ACCENT,
-        );
+        for (i, line) in title.iter().enumerate() {
+            ui::text(
+                &ui::fit(line, title_size, text_w),
+                12.0,
+                8.0 + i as f32 * title_step,
+                title_size,
+                colors::ACCENT,
+            );
+        }
         // The heading in one line, or two where the window is narrow.
         let parts: Vec<&str> = head.splitn(3, " · ").collect();
         if narrow && parts.len() >= 2 {
@@ -292,16 +317,16 @@ impl Screen for Replay {
                 _ => (head.clone(), ""),
             };
             ui::text(
-                &ui::fit(&first, 14.0, text_w),
+                &ui::fit(&first, 14.0, w - 24.0),
                 12.0,
-                32.0,
+                heading_y,
                 14.0,
                 colors::TEXT,
             );
             ui::text(
                 &ui::fit(rest, 14.0, w - 24.0),
                 12.0,
-                50.0,
+                heading_y + 18.0,
                 14.0,
                 colors::TEXT,
             );
@@ -310,7 +335,7 @@ impl Screen for Replay {
             ui::text(
                 &ui::fit(&head, 15.0, text_w),
                 12.0,
-                34.0,
+                heading_y,
                 15.0,
                 colors::TEXT,
             );
@@ -367,9 +392,10 @@ impl Screen for Replay {
             x += wdt + 8.0;
             r
         };
-        // The shot jumps say what they do (narrower on a phone, where
-        // their words take two lines).
-        let jump_w = if narrow { 72.0 } else { 64.0 };
+        // The shot jumps say what they do (on one line where the window is
+        // wide; on a phone their words take two). The row's labels share
+        // one size, so a cramped jump would shrink the speeds too.
+        let jump_w = if narrow { 72.0 } else { 116.0 };
         if ui.button("previous-shot", &t!("replay-previous-shot"), next(jump_w)) {
             self.t = l.timeline.previous_shot(self.t);
         }

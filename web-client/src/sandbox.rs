@@ -114,14 +114,17 @@ impl Screen for Sandbox {
     fn frame(&mut self, ui: &mut Ui, dt: f64) -> Option<Route> {
         self.s.tick(dt);
         let (w, h) = crate::scale::size().into();
+        let areas = layout::areas(w, h);
         let layout::Areas {
             compact,
+            sideways,
             top,
             bottom,
             world,
             side,
             bar,
-        } = layout::areas(w, h);
+            ..
+        } = areas;
         if !compact {
             self.s.panel_open = false;
         }
@@ -149,7 +152,16 @@ impl Screen for Sandbox {
         let scene = self.s.sim.scene();
         self.s.tally = self.s.sim.tally();
 
+        // Sideways, the open panel covers the world's right part: the view
+        // is drawn moved left, its centre in the middle of what is seen.
+        let covered = if sideways && self.s.panel_open {
+            (world.x + world.w - side.x).max(0.0)
+        } else {
+            0.0
+        };
+        self.s.view.anchor.x -= covered / 2.0;
         world::draw(&self.s, world, &scene);
+        self.s.view.anchor.x += covered / 2.0;
         if !compact {
             overlays::stats(&self.s, world, &scene);
         }
@@ -167,11 +179,16 @@ impl Screen for Sandbox {
             h,
             colors::BACKGROUND,
         );
-        let route = controls::toolbar(&mut self.s, ui, w, compact);
+        // Sideways, the tools' columns left of the world.
+        draw_rectangle(0.0, 0.0, world.x, h, colors::BACKGROUND);
+        let route = controls::toolbar(&mut self.s, ui, &areas);
         if !compact || self.s.panel_open {
             controls::side_panel(&mut self.s, ui, side, &scene);
         }
-        controls::playback_bar(&mut self.s, ui, bar, compact);
+        // Sideways, the open panel takes the bar's place.
+        if !(sideways && self.s.panel_open) {
+            controls::playback_bar(&mut self.s, ui, bar, compact);
+        }
         route
     }
 
@@ -206,6 +223,17 @@ impl Screen for Sandbox {
         m.insert("preset".into(), self.s.kind.name().into());
         m.insert("selected".into(), self.s.selected.map(|b| b.0).into());
         m.insert("panel_open".into(), self.s.panel_open.into());
+        // The world's rectangle, and the open panel's, in CSS pixels.
+        let (w, h) = crate::scale::size().into();
+        let a = layout::areas(w, h);
+        let css = |r: Rect| {
+            let r = crate::scale::css(r);
+            serde_json::json!([r.x, r.y, r.w, r.h])
+        };
+        m.insert("world".into(), css(a.world));
+        if a.compact && self.s.panel_open {
+            m.insert("side".into(), css(a.side));
+        }
         if let Some((text, error, _)) = &self.s.message {
             m.insert("message".into(), text.clone().into());
             m.insert("error".into(), (*error).into());

@@ -227,6 +227,12 @@ pub struct Ui {
     hovered: Option<String>,
     /// Inside [`Ui::even_labels`]: the size no label may start above.
     label_cap: Option<f32>,
+    /// Each button's label this frame: the size it would take alone, and
+    /// the size drawn (by name).
+    sizes: BTreeMap<String, (f32, f32)>,
+    /// Each button's rectangle and the one size of its group, from the
+    /// last frame ([`even_groups`]).
+    groups: Vec<(Rect, f32)>,
 }
 
 /// Draws `text` with its top-left corner near `(x, y)` at `size` pixels.
@@ -263,11 +269,19 @@ pub fn text_in(s: &str, x: f32, y: f32, size: f32, width: f32, color: Color) {
     text(&fit(s, sz, width), x, y + (size - sz) * 0.5, sz, color);
 }
 
+thread_local! {
+    /// The texts [`fit`] had to cut since [`Ui::begin`] (for the test
+    /// report: a text a screen shows cut is a layout to fix).
+    static CUT_TEXTS: std::cell::RefCell<std::collections::BTreeSet<String>> =
+        const { std::cell::RefCell::new(std::collections::BTreeSet::new()) };
+}
+
 /// `s` cut (with an ellipsis) to at most `width` units at `size`.
 pub fn fit(s: &str, size: f32, width: f32) -> String {
     if text_width(s, size) <= width {
         return s.to_string();
     }
+    CUT_TEXTS.with(|c| c.borrow_mut().insert(s.to_string()));
     let mut cut: String = s.to_string();
     while !cut.is_empty() {
         cut.pop();
@@ -289,36 +303,133 @@ pub fn split_in_two(label: &str) -> Option<(&str, &str)> {
         .map(|(i, _)| (label[..i].trim_end(), label[i + 1..].trim_start()))
 }
 
-/// Draws a button's `label` in `r`: one line, smaller as needed down to
-/// 12 units; a label still too wide takes two lines where the button is
-/// finger-tall; whatever is left too wide ends with an ellipsis, so no
-/// label ever runs past its button. Whether the label shows whole.
-fn label_in(label: &str, r: Rect, color: Color, cap: Option<f32>) -> bool {
+/// How a button's label is set in its button.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Setting {
+    /// One line at this size.
+    Line(f32),
+    /// Two lines (split at a space) at this size.
+    Lines(f32),
+}
+
+impl Setting {
+    fn size(self) -> f32 {
+        match self {
+            Setting::Line(s) | Setting::Lines(s) => s,
+        }
+    }
+}
+
+/// How `label` is set in a button of `r`, no larger than `cap`: one line,
+/// smaller as needed down to 12 units; a label still too wide takes two
+/// lines where the button is finger-tall; whatever is left too wide ends
+/// with an ellipsis (down to 10 units). `width` measures a text at a size.
+fn setting(label: &str, r: Rect, cap: f32, width: impl Fn(&str, f32) -> f32) -> Setting {
     let room = label_room(r);
-    let fits = |s: &str, size: f32| text_width(s, size) <= room;
-    let mut size = label_start(r).min(cap.unwrap_or(f32::INFINITY));
+    let fits = |s: &str, size: f32| width(s, size) <= room;
+    let mut size = label_start(r).min(cap);
     while size > 12.0 && !fits(label, size) {
         size -= 1.0;
     }
     if !fits(label, size) && r.h >= 40.0 {
         if let Some((a, b)) = split_in_two(label) {
-            let mut small = (r.h * 0.34).clamp(10.0, 16.0);
+            let mut small = (r.h * 0.34).clamp(10.0, 16.0).min(cap.max(10.0));
             while small > 10.0 && !(fits(a, small) && fits(b, small)) {
                 small -= 1.0;
             }
-            let line = small * 1.1;
-            let top = Rect::new(r.x, r.y + r.h / 2.0 - line, r.w, line);
-            let bottom = Rect::new(r.x, r.y + r.h / 2.0, r.w, line);
-            text_centred(&fit(a, small, room), top, small, color);
-            text_centred(&fit(b, small, room), bottom, small, color);
-            return fits(a, small) && fits(b, small);
+            return Setting::Lines(small);
         }
     }
     while size > 10.0 && !fits(label, size) {
         size -= 1.0;
     }
-    text_centred(&fit(label, size, room), r, size, color);
-    fits(label, size)
+    Setting::Line(size)
+}
+
+/// Draws a button's `label` in `r` as [`setting`] sets it, so no label
+/// ever runs past its button. Whether the label shows whole, and its size.
+fn label_in(label: &str, r: Rect, color: Color, cap: f32) -> (bool, f32) {
+    let room = label_room(r);
+    let fits = |s: &str, size: f32| text_width(s, size) <= room;
+    let set = setting(label, r, cap, text_width);
+    match (set, split_in_two(label)) {
+        (Setting::Lines(small), Some((a, b))) => {
+            let line = small * 1.1;
+            let top = Rect::new(r.x, r.y + r.h / 2.0 - line, r.w, line);
+            let bottom = Rect::new(r.x, r.y + r.h / 2.0, r.w, line);
+            text_centred(&fit(a, small, room), top, small, color);
+            text_centred(&fit(b, small, room), bottom, small, color);
+            (fits(a, small) && fits(b, small), small)
+        }
+        (set, _) => {
+            let size = set.size();
+            text_centred(&fit(label, size, room), r, size, color);
+            (fits(label, size), size)
+        }
+    }
+}
+
+/// The groups of buttons drawn in a frame, from each button's rectangle
+/// and the size its label would take alone: buttons of one height whose
+/// tops are level form a row, buttons of one width whose left edges are
+/// level a column, and rows and columns that share a button one group (a
+/// grid of buttons is one group). Each button's rectangle with its
+/// group's size, the smallest of the group's.
+fn even_groups(buttons: &[(Rect, f32)]) -> Vec<(Rect, f32)> {
+    let n = buttons.len();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    for i in 0..n {
+        for j in i + 1..n {
+            let (a, b) = (buttons[i].0, buttons[j].0);
+            if same_row(a, b) || same_column(a, b) {
+                let (ri, rj) = (root(&mut parent, i), root(&mut parent, j));
+                parent[ri] = rj;
+            }
+        }
+    }
+    let mut size = vec![f32::INFINITY; n];
+    for (i, (_, alone)) in buttons.iter().enumerate() {
+        let r = root(&mut parent, i);
+        size[r] = size[r].min(*alone);
+    }
+    (0..n)
+        .map(|i| (buttons[i].0, size[root(&mut parent, i)]))
+        .collect()
+}
+
+/// Whether `a` and `b` stand in one row (level tops, one height, to a
+/// tenth of a unit).
+fn same_row(a: Rect, b: Rect) -> bool {
+    (a.y - b.y).abs() < 0.1 && (a.h - b.h).abs() < 0.1
+}
+
+/// Whether `a` and `b` stand in one column (level left edges, one width
+/// and one height, to a tenth of a unit).
+fn same_column(a: Rect, b: Rect) -> bool {
+    (a.x - b.x).abs() < 0.1 && (a.w - b.w).abs() < 0.1 && (a.h - b.h).abs() < 0.1
+}
+
+/// The size the group of a button at `r` takes (from `groups`, the last
+/// frame's): that of the button drawn there, else that of its row or
+/// column; none (infinite) for a button new there.
+fn group_size(groups: &[(Rect, f32)], r: Rect) -> f32 {
+    let same = |a: Rect| (a.x - r.x).abs() < 0.1 && (a.w - r.w).abs() < 0.1 && same_row(a, r);
+    groups
+        .iter()
+        .find(|(a, _)| same(*a))
+        .or_else(|| {
+            groups
+                .iter()
+                .find(|(a, _)| same_row(*a, r) || same_column(*a, r))
+        })
+        .map_or(f32::INFINITY, |(_, size)| *size)
 }
 
 /// The width a button of `r` gives its label: a narrow button (the
@@ -359,9 +470,18 @@ impl Ui {
             self.press_at = Some(input.pointer);
         }
         self.input = input;
+        // The groups of the last frame set this frame's sizes.
+        let drawn: Vec<(Rect, f32)> = self
+            .buttons
+            .iter()
+            .filter_map(|(name, r)| Some((*r, self.sizes.get(name)?.0)))
+            .collect();
+        self.groups = even_groups(&drawn);
         self.buttons.clear();
         self.labels.clear();
         self.cut.clear();
+        self.sizes.clear();
+        CUT_TEXTS.with(|c| c.borrow_mut().clear());
         self.captured = false;
         self.hovered = None;
         // Native inputs not laid over a field last frame go away.
@@ -434,6 +554,22 @@ impl Ui {
         self.hovered.as_deref()
     }
 
+    /// The size each button's label was drawn at this frame, as
+    /// `{"name": size}` in layout units.
+    pub fn label_sizes(&self) -> serde_json::Value {
+        serde_json::Value::Object(
+            self.sizes
+                .iter()
+                .map(|(k, (_, drawn))| (k.clone(), f64::from(*drawn).into()))
+                .collect(),
+        )
+    }
+
+    /// The texts cut to fit this frame (buttons' labels and the rest).
+    pub fn cut_texts(&self) -> serde_json::Value {
+        CUT_TEXTS.with(|c| c.borrow().iter().cloned().collect::<Vec<_>>().into())
+    }
+
     /// The names of the buttons whose label was cut this frame.
     pub fn cut(&self) -> serde_json::Value {
         self.cut.iter().cloned().collect::<Vec<_>>().into()
@@ -480,9 +616,16 @@ impl Ui {
             colors::TEXT
         };
         self.labels.insert(name.to_string(), label.to_string());
-        if !label_in(label, r, tc, self.label_cap) {
+        // As large as its group allows (the smallest size of the group's
+        // labels last frame), within an even row's cap.
+        let alone = setting(label, r, f32::INFINITY, text_width).size();
+        let group = group_size(&self.groups, r);
+        let cap = group.min(self.label_cap.unwrap_or(f32::INFINITY));
+        let (whole, drawn) = label_in(label, r, tc, cap);
+        if !whole {
             self.cut.insert(name.to_string());
         }
+        self.sizes.insert(name.to_string(), (alone, drawn));
         if hot && self.input.pressed {
             self.captured = true;
         }
@@ -542,13 +685,19 @@ impl Ui {
         };
         draw_rectangle_lines(r.x, r.y, r.w, r.h, 1.5, border);
         let size = (r.h * 0.45).clamp(12.0, 20.0);
-        let (shown, color) = if value.is_empty() && !focused {
-            (placeholder.to_string(), colors::MUTED)
-        } else {
-            (value.clone(), colors::TEXT)
-        };
         let y = r.y + (r.h - size) / 2.0;
-        text(&fit(&shown, size, r.w - 16.0), r.x + 8.0, y, size, color);
+        if value.is_empty() && !focused {
+            // The placeholder smaller (down to 12 units) rather than cut.
+            text_in(placeholder, r.x + 8.0, y, size, r.w - 16.0, colors::MUTED);
+        } else {
+            text(
+                &fit(value, size, r.w - 16.0),
+                r.x + 8.0,
+                y,
+                size,
+                colors::TEXT,
+            );
+        }
         if focused && (get_time() * 2.0) as i64 % 2 == 0 {
             let x = r.x + 9.0 + text_width(value, size);
             draw_line(x, y, x, y + size, 1.5, colors::TEXT);
@@ -615,6 +764,44 @@ mod tests {
         // size stops at the smallest.
         assert_eq!(even_size(&["1x", "2x"], r, width), label_start(r));
         assert_eq!(even_size(&["a label far too long"], r, width), 12.0);
+    }
+
+    #[test]
+    fn the_buttons_of_a_row_or_a_grid_share_the_smallest_size_and_others_keep_theirs() {
+        let width = |s: &str, size: f32| s.chars().count() as f32 * size * 0.6;
+        let alone = |label: &str, r: Rect| setting(label, r, f32::INFINITY, width).size();
+        // A 2 x 2 grid whose one long label is bottom right, and a button
+        // elsewhere.
+        let grid = [
+            Rect::new(0.0, 10.0, 120.0, TOUCH),
+            Rect::new(130.0, 10.0, 120.0, TOUCH),
+            Rect::new(0.0, 60.0, 120.0, TOUCH),
+            Rect::new(130.0, 60.0, 120.0, TOUCH),
+        ];
+        let apart = Rect::new(300.0, 200.0, 90.0, TOUCH);
+        let labels = ["Lobby", "Rules", "Sound", "Computer: adaptive"];
+        let mut drawn: Vec<(Rect, f32)> = grid
+            .iter()
+            .zip(labels)
+            .map(|(r, l)| (*r, alone(l, *r)))
+            .collect();
+        drawn.push((apart, alone("Import", apart)));
+        let long = alone("Computer: adaptive", grid[3]);
+        assert!(long < alone("Lobby", grid[0]), "the long label shrinks");
+        let groups = even_groups(&drawn);
+        // The top left button shares no row or column with the long one,
+        // but the grid is one group.
+        for r in grid {
+            assert_eq!(group_size(&groups, r), long, "{r:?}");
+        }
+        assert_eq!(group_size(&groups, apart), label_start(apart));
+        assert_eq!(group_size(&[], apart), f32::INFINITY);
+        // Drawn within the group's size, a short label matches the long one.
+        assert_eq!(setting("Lobby", grid[0], long, width).size(), long);
+        // A label set on two lines gives its group that smaller size.
+        let narrow = Rect::new(0.0, 0.0, 60.0, TOUCH);
+        let two = setting("Play the computer", narrow, f32::INFINITY, width);
+        assert!(matches!(two, Setting::Lines(_)), "{two:?}");
     }
 
     #[test]

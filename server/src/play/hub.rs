@@ -938,6 +938,26 @@ impl Hub {
         }
     }
 
+    /// On a node of a cluster, the public URLs of its live nodes (read at
+    /// most once a second); none elsewhere or when they cannot be read.
+    pub async fn cluster_urls(&self) -> Vec<String> {
+        let Some(cluster) = self.cluster().cloned() else {
+            return Vec::new();
+        };
+        let read = tokio::task::spawn_blocking(move || cluster.public_urls(Duration::from_secs(1)));
+        match read.await {
+            Ok(Ok(urls)) => urls,
+            Ok(Err(e)) => {
+                warn!(error = %e, "reading the cluster's public URLs failed");
+                Vec::new()
+            }
+            Err(e) => {
+                error!(error = %e, "public URLs task failed");
+                Vec::new()
+            }
+        }
+    }
+
     /// Admits a connection to `id`, which this node plays (a connection
     /// relayed from another node of the cluster).
     pub async fn connect_owned(

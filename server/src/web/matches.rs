@@ -379,6 +379,7 @@ A dropped player keeps the seat for a grace period and reconnects with the same 
 <ul><li><code>GET /</code> &mdash; the game in the browser; <code>GET /api</code> &mdash; this page</li>
 <li><code>GET /api/matches?status=open|live|finished</code> &mdash; list matches</li>
 <li><code>GET /api/matches/ID</code> &mdash; one match's summary</li>
+<li><code>GET /api/matches/ID/socket</code> &mdash; where to open the match's WebSocket: <code>{"url": null}</code> (this server's <code>/ws</code>) or, on a cluster, the socket of the node that plays it</li>
 <li><code>GET /api/matches/ID/record</code> &mdash; the record of a finished match, for replay</li>
 <li><code>POST /api/exhibitions</code> with <code>{"first":"medium","second":"hard"}</code> &mdash; two computer
 levels play each other (standard rules) for anyone to watch</li>

@@ -48,6 +48,10 @@ pub fn routes(cfg: &mut web::ServiceConfig) {
         .route("/api/matches", web::get().to(matches::list))
         .route("/api/matches/{id}", web::get().to(matches::summary))
         .route("/api/matches/{id}/join", web::post().to(matches::join))
+        .route(
+            "/api/matches/{id}/socket",
+            web::get().to(crate::web::ws::socket),
+        )
         .route("/api/exhibitions", web::post().to(matches::exhibition))
         .route(
             "/api/simulate",

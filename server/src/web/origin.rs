@@ -3,10 +3,13 @@
 //! origin in an `Origin` header on every POST and WebSocket opening; the
 //! server accepts its own origin (the scheme and the `Host` the request was
 //! sent to), any listed with `--allowed-origins` (a proxy's public address,
-//! say), and requests without the header (bots, curl: no browser, no
-//! visitor to abuse). Reads (`GET`, but the WebSocket) are not checked: a
-//! foreign page cannot read their answers anyway.
+//! say), on a node of a cluster the origins of its live nodes' public URLs
+//! (`--public-url`: a page one node served opens its match's socket on the
+//! node that plays it), and requests without the header (bots, curl: no
+//! browser, no visitor to abuse). Reads (`GET`, but the WebSocket) are not
+//! checked: a foreign page cannot read their answers anyway.
 
+use crate::play::hub::Hub;
 use crate::refusal::Refusal;
 use crate::web::reply::refused;
 use actix_web::body::MessageBody;
@@ -51,6 +54,27 @@ impl Origins {
     }
 }
 
+/// The origin (scheme, host and port, lower case) of a URL such as
+/// `https://Play.example/n/node-1`: `https://play.example`.
+fn origin_of(url: &str) -> Option<String> {
+    let url = url.trim().to_ascii_lowercase();
+    let (scheme, rest) = url.split_once("://")?;
+    if scheme != "http" && scheme != "https" {
+        return None;
+    }
+    let authority = rest.split(['/', '?', '#']).next().unwrap_or_default();
+    (!authority.is_empty()).then(|| format!("{scheme}://{authority}"))
+}
+
+/// Whether `origin` is that of one of the cluster's public URLs `urls`.
+fn of_the_cluster(origin: &str, urls: &[String]) -> bool {
+    let Some(origin) = origin_of(origin) else {
+        return false;
+    };
+    urls.iter()
+        .any(|u| origin_of(u).as_deref() == Some(origin.as_str()))
+}
+
 /// The middleware: refuses a POST or a WebSocket opening from a foreign
 /// origin with `403 forbidden-origin`.
 pub async fn check(
@@ -64,10 +88,16 @@ pub async fn check(
                 .get(name)
                 .and_then(|v: &header::HeaderValue| v.to_str().ok())
         };
-        let allowed = match req.app_data::<web::Data<Origins>>() {
-            Some(origins) => origins.allows(header(header::ORIGIN), header(header::HOST)),
+        let origin = header(header::ORIGIN).map(str::to_string);
+        let mut allowed = match req.app_data::<web::Data<Origins>>() {
+            Some(origins) => origins.allows(origin.as_deref(), header(header::HOST)),
             None => true,
         };
+        if let (false, Some(origin), Some(hub)) =
+            (allowed, &origin, req.app_data::<web::Data<Hub>>())
+        {
+            allowed = of_the_cluster(origin, &hub.cluster_urls().await);
+        }
         if !allowed {
             let r = Refusal::new(
                 ErrorCode::ForbiddenOrigin,
@@ -96,5 +126,21 @@ mod tests {
         assert!(!o.allows(Some("null"), host));
         assert!(!o.allows(Some("http://127.0.0.1:8081"), host));
         assert!(!o.allows(Some("http://127.0.0.1:8080"), None));
+    }
+
+    #[test]
+    fn a_page_of_another_node_of_the_cluster_is_allowed_by_its_public_urls_origin() {
+        let urls = [
+            "https://Play.example/n/node-1".to_string(),
+            "http://10.0.0.5:8080".to_string(),
+        ];
+        assert!(of_the_cluster("https://play.example", &urls));
+        assert!(of_the_cluster("http://10.0.0.5:8080/", &urls));
+        assert!(!of_the_cluster("http://play.example", &urls));
+        assert!(!of_the_cluster("http://10.0.0.5:8081", &urls));
+        assert!(!of_the_cluster("null", &urls));
+        assert!(!of_the_cluster("https://play.example.evil", &urls));
+        assert_eq!(origin_of("ftp://x"), None);
+        assert_eq!(origin_of("https://"), None);
     }
 }

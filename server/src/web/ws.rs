@@ -1,7 +1,9 @@
 //! The WebSocket endpoint `/ws?match=ID`. On a node of a cluster, a
 //! client that adds `&follow=1` is answered `307` to the node that plays
 //! its match when that node has a public URL (`--public-url`), instead of
-//! being relayed to it. The client's first message is a
+//! being relayed to it; a browser, whose WebSocket cannot follow a
+//! redirect, asks `GET /api/matches/ID/socket` ([`socket`]) for that
+//! node's socket first and opens it itself. The client's first message is a
 //! `hello` carrying the seat token (none: a spectator); the token never
 //! travels in the URL, which proxies and browsers write down. A session
 //! admits the connection to its match room once the hello has come
@@ -61,15 +63,57 @@ pub struct WsQuery {
 /// its public URL, `http` becoming `ws` and `https` `wss`), still asking
 /// to be sent on should the match have moved again.
 fn sent_to(base: &str, match_id: &str) -> HttpResponse {
-    let ws = match base.strip_prefix("https://") {
-        Some(rest) => format!("wss://{rest}"),
-        None => format!("ws://{}", base.strip_prefix("http://").unwrap_or(base)),
-    };
-    let location = format!("{ws}/ws?match={match_id}&follow=1");
+    let location = format!("{}&follow=1", socket_url(base, match_id));
     HttpResponse::TemporaryRedirect()
         .insert_header((actix_web::http::header::LOCATION, location))
         .insert_header((actix_web::http::header::CACHE_CONTROL, "no-store"))
         .finish()
+}
+
+/// The socket of match `match_id` on the node whose public URL is `base`
+/// (`http` becoming `ws` and `https` `wss`).
+fn socket_url(base: &str, match_id: &str) -> String {
+    let ws = match base.strip_prefix("https://") {
+        Some(rest) => format!("wss://{rest}"),
+        None => format!("ws://{}", base.strip_prefix("http://").unwrap_or(base)),
+    };
+    format!("{ws}/ws?match={match_id}")
+}
+
+/// The answer of [`socket`].
+#[derive(Debug, serde::Serialize)]
+struct SocketAt {
+    match_id: String,
+    /// The owner's socket, or `None`: connect to this node's `/ws`.
+    url: Option<String>,
+}
+
+/// `GET /api/matches/{id}/socket`: where a browser had better open its
+/// socket for the match. On a node of a cluster, when another node plays
+/// the match and has a public URL, that node's socket (`{"url":
+/// "wss://.../ws?match=ID"}`, counted as a client routed there); otherwise
+/// `{"url": null}`: this node's own `/ws` (it plays the match, takes it,
+/// or relays to its owner). A malformed id is refused (`bad-message`).
+pub async fn socket(hub: web::Data<Hub>, id: web::Path<String>) -> HttpResponse {
+    let match_id = id.into_inner();
+    if !crate::token::is_match_id(&match_id) {
+        return http_refusal(&Refusal::new(
+            ErrorCode::BadMessage,
+            "a match id is 1 to 64 letters, digits and dashes",
+        ));
+    }
+    let url = hub
+        .route(&match_id)
+        .await
+        .map(|base| socket_url(&base, &match_id));
+    let mut answer =
+        crate::web::reply::json(actix_web::http::StatusCode::OK, &SocketAt { match_id, url });
+    // The owner changes when a node stops: never cached.
+    answer.headers_mut().insert(
+        actix_web::http::header::CACHE_CONTROL,
+        actix_web::http::header::HeaderValue::from_static("no-store"),
+    );
+    answer
 }
 
 /// Counts an open connection for as long as it lives.
@@ -448,5 +492,17 @@ mod tests {
         );
         let r = sent_to("http://10.0.0.5:8080", "m123");
         assert_eq!(location(&r), "ws://10.0.0.5:8080/ws?match=m123&follow=1");
+    }
+
+    #[test]
+    fn a_browser_is_given_the_owners_socket_without_the_follow_flag() {
+        assert_eq!(
+            socket_url("https://play.example/n/node-1", "m123"),
+            "wss://play.example/n/node-1/ws?match=m123"
+        );
+        assert_eq!(
+            socket_url("http://10.0.0.5:8080", "m123"),
+            "ws://10.0.0.5:8080/ws?match=m123"
+        );
     }
 }

@@ -275,6 +275,43 @@ impl Client {
         Ok((c, at))
     }
 
+    /// Opens the socket `url` (`ws://host/ws?match=ID`) as a page of
+    /// `origin` does (the `Origin` header a browser sends), and says hello
+    /// with `token` (none: watch).
+    pub async fn try_connect_from(
+        url: &str,
+        origin: &str,
+        token: Option<&str>,
+    ) -> Result<Client, tokio_tungstenite::tungstenite::Error> {
+        use tokio_tungstenite::tungstenite::client::IntoClientRequest;
+        let mut request = url.into_client_request()?;
+        let origin = origin.parse().map_err(|_| {
+            tokio_tungstenite::tungstenite::Error::Url(
+                tokio_tungstenite::tungstenite::error::UrlError::UnableToConnect(origin.into()),
+            )
+        })?;
+        request.headers_mut().insert("origin", origin);
+        let (ws, _) = tokio_tungstenite::connect_async(request).await?;
+        let mut c = Client {
+            ws,
+            received: Vec::new(),
+            sent: Vec::new(),
+            pending: None,
+        };
+        c.send(&ClientMessage::Hello {
+            protocol: game::protocol::PROTOCOL_VERSION,
+            name: "test".into(),
+            token: token.map(game::token::SeatToken::new),
+            key: None,
+        })
+        .await;
+        match c.try_next().await {
+            Some(ServerMessage::Welcome { .. }) => {}
+            other => c.pending = other,
+        }
+        Ok(c)
+    }
+
     /// Connects without saying anything.
     pub async fn connect_silent(
         addr: &str,

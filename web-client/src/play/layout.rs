@@ -15,8 +15,9 @@ const PLAYER_H: f32 = 36.0;
 const PLAYER_STEP: f32 = 40.0;
 /// A chat line's height.
 const CHAT_LINE: f32 = 18.0;
-/// The chat's send button's width.
-const SEND_W: f32 = 70.0;
+/// The chat's send button's width (room for "Отправить" at a size near
+/// its neighbours': a row's labels share the smallest size).
+const SEND_W: f32 = 96.0;
 /// The width of the chat's button that opens the quick phrases.
 const PHRASES_W: f32 = 84.0;
 

@@ -465,14 +465,9 @@ pub fn show(ui: &mut Ui, area: Rect, c: &Content, chat: Chat) -> Pressed {
 /// The panel above the chat's row: its lines, players, buttons, the shot
 /// log and the chat's lines.
 fn body(ui: &mut Ui, c: &Content, l: &PanelLayout, chat: &[String]) -> Pressed {
+    // Smaller (down to 12 units) rather than cut.
     let text = |line: &Line, r: Rect| {
-        ui::text(
-            &ui::fit(&line.text, line.size, r.w),
-            r.x,
-            r.y,
-            line.size,
-            line.color,
-        );
+        ui::text_in(&line.text, r.x, r.y, line.size, r.w, line.color);
     };
     for (line, r) in c.head.iter().zip(&l.head) {
         text(line, *r);
@@ -482,21 +477,28 @@ fn body(ui: &mut Ui, c: &Content, l: &PanelLayout, chat: &[String]) -> Pressed {
         let color = if p.turn { colors::ACCENT } else { colors::TEXT };
         let count = format!("{}/8", p.left);
         let cw = ui::text_width(&count, 18.0);
-        ui::text(
-            &ui::fit(&p.name, 18.0, r.w - 30.0 - cw),
-            r.x + 22.0,
-            r.y,
-            18.0,
-            color,
-        );
-        ui::text(&count, r.x + r.w - cw, r.y, 18.0, colors::TEXT);
-        ui::text(
-            &ui::fit(&t!("play-row-of", row = p.row), 13.0, r.w - 22.0),
-            r.x + 22.0,
-            r.y + 21.0,
-            13.0,
-            colors::MUTED,
-        );
+        let row = t!("play-row-of", row = p.row);
+        // The count beside the name, or (a name too long for that, in a
+        // narrow panel) beside the row below it, the name taking the
+        // whole width; the name smaller rather than cut.
+        if ui::text_width(&p.name, 14.0) <= r.w - 30.0 - cw {
+            ui::text_in(&p.name, r.x + 22.0, r.y, 18.0, r.w - 30.0 - cw, color);
+            ui::text(&count, r.x + r.w - cw, r.y, 18.0, colors::TEXT);
+            ui::text_in(
+                &row,
+                r.x + 22.0,
+                r.y + 21.0,
+                13.0,
+                r.w - 22.0,
+                colors::MUTED,
+            );
+        } else {
+            ui::text_in(&p.name, r.x + 22.0, r.y, 18.0, r.w - 22.0, color);
+            let small = ui::text_width(&count, 13.0);
+            ui::text(&count, r.x + r.w - small, r.y + 21.0, 13.0, colors::TEXT);
+            let room = r.w - 30.0 - small;
+            ui::text_in(&row, r.x + 22.0, r.y + 21.0, 13.0, room, colors::MUTED);
+        }
     }
     for (line, r) in c.body.iter().zip(&l.body) {
         text(line, *r);

@@ -20,8 +20,8 @@ use ::glam::DVec2;
 use engine::{Action, LineKind, Scene};
 use macroquad::prelude::Rect;
 
-/// The toolbar in a window `w` wide; the route to take, if one was asked.
-pub fn toolbar(s: &mut State, ui: &mut Ui, w: f32, compact: bool) -> Option<Route> {
+/// The toolbar of the layout `a`; the route to take, if one was asked.
+pub fn toolbar(s: &mut State, ui: &mut Ui, a: &layout::Areas) -> Option<Route> {
     // (name, label, selected), in the order of [`layout::toolbar`].
     let mut items: Vec<(String, String, bool)> = vec![("lobby".into(), t!("lobby"), false)];
     for tool in TOOLS {
@@ -43,16 +43,16 @@ pub fn toolbar(s: &mut State, ui: &mut Ui, w: f32, compact: bool) -> Option<Rout
         t!("sandbox-wall")
     };
     items.push(("sensor".into(), sensor, s.sensor));
-    if compact {
+    if a.compact {
         items.push(("panel".into(), t!("sandbox-panel"), s.panel_open));
     }
     items.push(("export".into(), t!("sandbox-export"), false));
     items.push(("import".into(), t!("sandbox-import"), false));
-    if let Some(r) = layout::language(w, compact) {
+    if let Some(r) = layout::language(a) {
         crate::i18n::switch(ui, r, true);
     }
     let mut go = None;
-    for ((name, label, selected), r) in items.iter().zip(layout::toolbar(w, compact)) {
+    for ((name, label, selected), r) in items.iter().zip(layout::toolbar(a)) {
         if !ui.button_styled(name, label, r, true, *selected) {
             continue;
         }
@@ -168,6 +168,9 @@ pub fn side_panel(s: &mut State, ui: &mut Ui, r: Rect, scene: &Scene) {
     s.drag_gravity(g_now, g, ui.input.down, scene);
 
     let l = layout::side_panel(r, s.selected_body(scene).is_some());
+    // The new discs and the selection (a second column's, if two).
+    let x = l.x2;
+    let heading = |t: &str, y: f32| ui::text(t, x, y, 17.0, colors::ACCENT);
     if let Some(d) = l.new_discs {
         new_disc_controls(s, ui, x, d);
     }

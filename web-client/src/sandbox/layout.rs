@@ -4,9 +4,12 @@
 //! bar; every button of the toolbar, the side panel and the bar; the
 //! overlays over the world; and the view that fits a scene into the
 //! world. A window narrower than a desktop's (a phone) gets the compact
-//! layout: the tools wrap in rows above the world, the playback bar takes
-//! two rows below it and the side panel opens over the world. Nothing here
-//! draws, so all of it is tested natively.
+//! layout: held upright, the tools wrap in rows above the world, the
+//! playback bar takes two rows below it and the side panel opens over the
+//! world; held sideways (wider than tall), where height is short, the
+//! tools stand in columns down the left edge, the bar lies below the world
+//! right of them, and the side panel opens over the world's right part in
+//! two columns. Nothing here draws, so all of it is tested natively.
 
 use super::sim::SPEEDS;
 use super::tools::TOOLS;
@@ -38,17 +41,30 @@ pub const STATS_W: f32 = 248.0;
 /// Where a slider of a side panel row starts, right of its label.
 const SLIDER_AT: f32 = 118.0;
 
+/// Width of a button of the sideways layout's columns of tools.
+const RAIL_BUTTON: f32 = 68.0;
+
+/// Width of a column of the side panel in two columns.
+const SIDE_COLUMN: f32 = 244.0;
+
 /// The screen's parts in a window.
 #[derive(Clone, Copy, Debug)]
 pub struct Areas {
+    /// The window's size.
+    pub w: f32,
+    pub h: f32,
     /// The compact (phone) layout.
     pub compact: bool,
+    /// The compact layout of a window wider than tall (a phone on its
+    /// side): the tools in columns at the left.
+    pub sideways: bool,
     /// Heights of the toolbar's and the playback bar's bands.
     pub top: f32,
     pub bottom: f32,
     /// Where the scene shows.
     pub world: Rect,
-    /// The side panel (over the world in the compact layout).
+    /// The side panel (over the world in the compact layout, and over
+    /// the bar too when sideways).
     pub side: Rect,
     /// The playback bar.
     pub bar: Rect,
@@ -57,6 +73,25 @@ pub struct Areas {
 /// The parts of a `w` x `h` window.
 pub fn areas(w: f32, h: f32) -> Areas {
     let compact = w < MIN_WIDTH;
+    if compact && w > h {
+        let rail = rail_width(h);
+        let bottom = 2.0 * (TOUCH + GAP) + 12.0;
+        let world = Rect::new(rail, 0.0, w - rail, h - bottom);
+        // Two columns at the right, the window's height (over the bar,
+        // which hides while the panel is open).
+        let side_w = (2.0 * SIDE_COLUMN).min(world.w - 8.0);
+        return Areas {
+            w,
+            h,
+            compact,
+            sideways: true,
+            top: 0.0,
+            bottom,
+            world,
+            side: Rect::new(w - side_w - 4.0, 4.0, side_w, h - 8.0),
+            bar: Rect::new(rail, h - bottom, w - rail - 4.0, bottom - 4.0),
+        };
+    }
     let (top, bottom) = if compact {
         let rows = toolbar_rows(w);
         (6.0 + rows * (TOUCH + GAP) + 2.0, 2.0 * (TOUCH + GAP) + 12.0)
@@ -75,13 +110,45 @@ pub fn areas(w: f32, h: f32) -> Areas {
     };
     let bar = Rect::new(4.0, h - bottom, w - 8.0, bottom - 4.0);
     Areas {
+        w,
+        h,
         compact,
+        sideways: false,
         top,
         bottom,
         world,
         side,
         bar,
     }
+}
+
+/// The columns of tools of the sideways layout in a window `h` tall:
+/// as few as hold the toolbar's buttons and the language switch, in rows
+/// of finger-sized buttons from the top.
+fn rail_columns(h: f32) -> (usize, usize) {
+    let slots = TOOLBAR_BUTTONS + 1;
+    let fit = (((h - 6.0) / (TOUCH + GAP)).floor() as usize).max(1);
+    let columns = slots.div_ceil(fit);
+    (columns, slots.div_ceil(columns))
+}
+
+/// Width the columns of tools take in a window `h` tall (with margins).
+fn rail_width(h: f32) -> f32 {
+    let (columns, _) = rail_columns(h);
+    8.0 + columns as f32 * RAIL_BUTTON + (columns - 1) as f32 * GAP + 8.0
+}
+
+/// The place of slot `i` of the sideways layout's columns of tools, row
+/// by row.
+fn rail_slot(h: f32, i: usize) -> Rect {
+    let (columns, _) = rail_columns(h);
+    let (c, r) = ((i % columns) as f32, (i / columns) as f32);
+    Rect::new(
+        8.0 + c * (RAIL_BUTTON + GAP),
+        6.0 + r * (TOUCH + GAP),
+        RAIL_BUTTON,
+        TOUCH,
+    )
 }
 
 /// How many buttons a row of the compact toolbar holds in a window `w`
@@ -95,11 +162,16 @@ fn toolbar_rows(w: f32) -> f32 {
     TOOLBAR_BUTTONS.div_ceil(toolbar_per_row(w)) as f32
 }
 
-/// The toolbar's buttons in a window `w` wide, in order: Lobby, the tools
+/// The toolbar's buttons in the window of `a`, in order: Lobby, the tools
 /// (as [`TOOLS`]), Wall/Edge, Panel (compact only), Export, Import. On a
 /// desktop they stand in one row, Export and Import at the right; in the
-/// compact layout they wrap in rows of equal width.
-pub fn toolbar(w: f32, compact: bool) -> Vec<Rect> {
+/// compact layout they wrap in rows of equal width, or, sideways, fill
+/// the columns at the left row by row.
+pub fn toolbar(a: &Areas) -> Vec<Rect> {
+    let (w, compact) = (a.w, a.compact);
+    if a.sideways {
+        return (0..TOOLBAR_BUTTONS).map(|i| rail_slot(a.h, i)).collect();
+    }
     let (h, y) = (TOUCH, 6.0);
     if compact {
         let per_row = toolbar_per_row(w);
@@ -133,9 +205,14 @@ pub fn toolbar(w: f32, compact: bool) -> Vec<Rect> {
 }
 
 /// The language switch in the toolbar, where there is room for it: a
-/// spare place at the end of the compact toolbar's last row, or the room
-/// between Wall/Edge and Import on a desktop wide enough (`None` else).
-pub fn language(w: f32, compact: bool) -> Option<Rect> {
+/// spare place at the end of the compact toolbar's last row (sideways:
+/// the place after the last button), or the room between Wall/Edge and
+/// Import on a desktop wide enough (`None` else).
+pub fn language(a: &Areas) -> Option<Rect> {
+    let (w, compact) = (a.w, a.compact);
+    if a.sideways {
+        return Some(rail_slot(a.h, TOOLBAR_BUTTONS));
+    }
     let (h, y, lw) = (TOUCH, 6.0, 52.0);
     if compact {
         let per_row = toolbar_per_row(w);
@@ -149,7 +226,7 @@ pub fn language(w: f32, compact: bool) -> Option<Rect> {
         );
         return Some(Rect::new(8.0 + c * (bw + GAP), y + r * (h + GAP), bw, h));
     }
-    let t = toolbar(w, false);
+    let t = toolbar(a);
     let wall_end = t[TOOLS.len() + 1].right();
     let import = t[t.len() - 1].x;
     (import - wall_end - 2.0 * 14.0 >= lw).then(|| Rect::new(import - 14.0 - lw, y, lw, h))
@@ -258,6 +335,9 @@ pub struct BodyControls {
 pub struct SidePanel {
     /// The text's left edge.
     pub x: f32,
+    /// The left edge of the new discs' and the selection's text (a second
+    /// column's in a panel wide enough for two).
+    pub x2: f32,
     /// The presets' heading's top and their buttons.
     pub presets: f32,
     pub galperin: Rect,
@@ -280,10 +360,14 @@ pub struct SidePanel {
 
 /// The side panel in `r`, with the selected body's controls if `body`.
 /// Without the room for both (a panel under 720 tall), a body's controls
-/// replace those of new discs.
+/// replace those of new discs. A panel wide enough for two columns (the
+/// sideways layout's) has the presets and the world in the first, the
+/// new discs and the selection in the second.
 pub fn side_panel(r: Rect, body: bool) -> SidePanel {
+    let two = r.w >= 2.0 * SIDE_COLUMN - 1e-3;
+    let column = if two { r.w / 2.0 } else { r.w };
     let x = r.x + 10.0;
-    let w = r.w - 20.0;
+    let w = column - 20.0;
     let h = TOUCH;
     let row = |y: f32| Rect::new(x, y, w, h);
     let mut y = r.y + 8.0;
@@ -303,6 +387,11 @@ pub fn side_panel(r: Rect, body: bool) -> SidePanel {
     y += 22.0;
     let gravity = row(y);
     y += ROW;
+    let x2 = if two { x + column } else { x };
+    if two {
+        y = r.y + 8.0;
+    }
+    let row = |y: f32| Rect::new(x2, y, w, h);
     let compact = r.h < 720.0;
     let new_discs = (!(compact && body)).then(|| {
         let heading = y;
@@ -328,12 +417,13 @@ pub fn side_panel(r: Rect, body: bool) -> SidePanel {
             mass: row(y + ROW),
             mu: row(y + 2.0 * ROW),
             e: row(y + 3.0 * ROW),
-            stop: Rect::new(x, buttons, half, h),
-            delete: Rect::new(x + half + 4.0, buttons, half, h),
+            stop: Rect::new(x2, buttons, half, h),
+            delete: Rect::new(x2 + half + 4.0, buttons, half, h),
         }
     });
     SidePanel {
         x,
+        x2,
         presets,
         galperin,
         galperin_less,
@@ -361,10 +451,17 @@ pub fn galperin_counter(world: Rect) -> Rect {
     Rect::new(world.x + world.w - w - 8.0, world.y + 8.0, w, 112.0)
 }
 
-/// The message's box at the world's bottom for a text `text_w` wide.
-pub fn message(world: Rect, text_w: f32) -> Rect {
+/// From one line of the message to the next, at `size`.
+pub fn line_step(size: f32) -> f32 {
+    size + 3.0
+}
+
+/// The message's box at the world's bottom for `lines` lines of text at
+/// `size`, the widest `text_w` wide.
+pub fn message(world: Rect, text_w: f32, lines: usize, size: f32) -> Rect {
     let w = text_w.min(world.w - 24.0) + 20.0;
-    Rect::new(world.x + 8.0, world.y + world.h - 36.0, w, 28.0)
+    let h = 8.0 + lines.max(1) as f32 * line_step(size);
+    Rect::new(world.x + 8.0, world.y + world.h - 8.0 - h, w, h)
 }
 
 /// A view that shows the whole scene (and the board) in `area`, leaving
@@ -416,6 +513,8 @@ mod tests {
     use crate::test_geometry::{inside, overlap, PHONES};
 
     const DESKTOPS: [(f32, f32); 2] = [(1280.0, 720.0), (1920.0, 1080.0)];
+    /// Phones on their side besides [`PHONES`]' (a small one, a tall one).
+    const SIDEWAYS: [(f32, f32); 2] = [(568.0, 320.0), (915.0, 412.0)];
 
     fn apart(what: &str, rects: &[Rect]) {
         for (i, a) in rects.iter().enumerate() {
@@ -484,15 +583,17 @@ mod tests {
             (1280.0, false),
             (1920.0, false),
         ] {
-            let lang = language(w, compact).expect("room for the switch");
+            let a = areas(w, 900.0);
+            assert_eq!(a.compact, compact);
+            let lang = language(&a).expect("room for the switch");
             assert!(inside(lang, Rect::new(0.0, 0.0, w, 200.0)), "{w}: {lang:?}");
             assert!(lang.h >= TOUCH);
-            for r in toolbar(w, compact) {
+            for r in toolbar(&a) {
                 assert!(!overlap(lang, r), "{w}: {lang:?} overlaps {r:?}");
             }
         }
         // No room: a desktop at its narrowest.
-        assert_eq!(language(1000.0, false), None);
+        assert_eq!(language(&areas(1000.0, 900.0)), None);
     }
 
     #[test]
@@ -506,7 +607,7 @@ mod tests {
             assert_eq!(a.side.w, SIDE);
             assert!(a.bar.y >= a.world.y + a.world.h, "{w}x{h}");
             // One row of tools, Export and Import at the right.
-            let t = toolbar(w, false);
+            let t = toolbar(&a);
             assert_eq!(t.len(), TOOLBAR_BUTTONS - 1);
             assert!(t.iter().all(|r| r.y == 6.0));
             assert_eq!(t[t.len() - 2].x + t[t.len() - 2].w, w - 8.0);
@@ -521,7 +622,7 @@ mod tests {
             assert_eq!((a.world.x, a.world.w), (0.0, w));
             assert!(inside(a.side, a.world), "{w}x{h}");
             // The toolbar wraps in rows above the world, Panel among them.
-            let t = toolbar(w, true);
+            let t = toolbar(&a);
             assert_eq!(t.len(), TOOLBAR_BUTTONS);
             assert!(t.iter().any(|r| r.y > 6.0));
             assert!(t.iter().all(|r| r.y + r.h < a.world.y));
@@ -542,7 +643,9 @@ mod tests {
             }
             assert!(!overlap(a.world, a.bar), "{w}x{h}");
             assert!(a.compact || !overlap(a.world, a.side), "{w}x{h}");
-            let tools = toolbar(w, a.compact);
+            assert_eq!(a.sideways, a.compact && w > h, "{w}x{h}");
+            let mut tools = toolbar(&a);
+            tools.extend(language(&a));
             let p = playback(a.bar, a.compact);
             let mut bar = vec![p.rewind, p.play, p.slider];
             bar.extend(&p.speeds);
@@ -563,9 +666,13 @@ mod tests {
 
     #[test]
     fn the_side_panels_controls_fit_it_apart_with_or_without_a_body() {
-        // A phone on its side is left out: its panel (174 tall) is shorter
-        // than its controls, which run under the playback bar.
-        for (w, h) in PHONES.into_iter().take(2).chain(DESKTOPS) {
+        // The smallest phone on its side (568 x 320) is left out: its tools
+        // take three columns, and the room right of them holds one of the
+        // panel's columns, not two.
+        for (w, h) in PHONES.into_iter().chain(SIDEWAYS).chain(DESKTOPS) {
+            if (w, h) == (568.0, 320.0) {
+                continue;
+            }
             let a = areas(w, h);
             for body in [false, true] {
                 let p = side_panel(a.side, body);
@@ -591,11 +698,38 @@ mod tests {
     }
 
     #[test]
+    fn a_phone_on_its_side_has_its_tools_in_columns_at_the_left_and_a_world_600_wide() {
+        let a = areas(844.0, 390.0);
+        assert!(a.compact && a.sideways);
+        // The world: most of the window, not a strip under two rows of
+        // tools (it was 844 x 178, the panel over all of it).
+        assert!(a.world.w >= 600.0 && a.world.h >= 270.0, "{:?}", a.world);
+        let mut tools = toolbar(&a);
+        assert_eq!(tools.len(), TOOLBAR_BUTTONS);
+        tools.extend(language(&a));
+        for r in &tools {
+            assert!(r.x + r.w <= a.world.x, "{r:?} over the world");
+            assert!(r.w >= 60.0 && r.h >= TOUCH, "{r:?}");
+        }
+        apart("sideways tools", &tools);
+        // The panel: two columns at the right, the world's left part seen.
+        let p = side_panel(a.side, true);
+        assert!(p.x2 > p.x + 200.0, "{p:?}");
+        assert!(a.side.x - a.world.x >= 180.0, "{:?}", a.side);
+        for (w, h) in PHONES.into_iter().chain(SIDEWAYS) {
+            let a = areas(w, h);
+            assert_eq!(a.sideways, w > h, "{w}x{h}");
+            let tools = toolbar(&a);
+            assert!(tools.iter().all(|r| inside(*r, Rect::new(0.0, 0.0, w, h))));
+        }
+    }
+
+    #[test]
     fn the_overlays_stay_inside_the_world_and_apart() {
         for (w, h) in PHONES.into_iter().chain(DESKTOPS) {
             let a = areas(w, h);
             let counter = galperin_counter(a.world);
-            let msg = message(a.world, 300.0);
+            let msg = message(a.world, 300.0, 3, 17.0);
             let mut shown = vec![counter, msg];
             // The statistics panel shows in the desktop layout only.
             if !a.compact {

@@ -143,8 +143,20 @@ pub fn message(s: &State, area: Rect) {
         return;
     }
     let alpha = (1.0 - ((age - MESSAGE_SECS + 1.0).max(0.0))) as f32;
-    let size = 17.0;
-    let r = layout::message(area, ui::text_width(text, size));
+    // In as many lines as the world's width needs (smaller, down to 12
+    // units, rather than more than three).
+    let room = area.w - 24.0;
+    let mut size: f32 = 17.0;
+    let mut lines = crate::help::wrap(text, size, room);
+    while size > 12.0 && lines.len() > 3 {
+        size -= 1.0;
+        lines = crate::help::wrap(text, size, room);
+    }
+    let widest = lines
+        .iter()
+        .map(|l| ui::text_width(l, size))
+        .fold(0.0, f32::max);
+    let r = layout::message(area, widest, lines.len(), size);
     draw_rectangle(
         r.x,
         r.y,
@@ -153,11 +165,13 @@ pub fn message(s: &State, area: Rect) {
         Color::new(0.1, 0.07, 0.05, 0.85 * alpha),
     );
     let c = if *error { colors::DANGER } else { colors::TEXT };
-    ui::text(
-        &ui::fit(text, size, area.w - 24.0),
-        r.x + 10.0,
-        r.y + 6.0,
-        size,
-        Color::new(c.r, c.g, c.b, alpha),
-    );
+    for (i, line) in lines.iter().enumerate() {
+        ui::text(
+            &ui::fit(line, size, room),
+            r.x + 10.0,
+            r.y + 6.0 + i as f32 * layout::line_step(size),
+            size,
+            Color::new(c.r, c.g, c.b, alpha),
+        );
+    }
 }

@@ -61,6 +61,9 @@ pub struct Cluster {
     public_url: Option<String>,
     /// How many clients [`Cluster::route`] sent to another node.
     routed: AtomicU64,
+    /// The live nodes' public URLs as last read ([`Cluster::public_urls`])
+    /// and when.
+    known_urls: Mutex<(Vec<String>, Option<std::time::Instant>)>,
     pool: r2d2::Pool<PostgresConnectionManager<postgres::NoTls>>,
     /// Reconnects after Redis restarts (meanwhile, publishing fails).
     publisher: redis::aio::ConnectionManager,
@@ -175,6 +178,7 @@ impl Cluster {
             lease,
             public_url,
             routed: AtomicU64::new(0),
+            known_urls: Mutex::default(),
             pool,
             publisher,
             redis,
@@ -286,6 +290,28 @@ impl Cluster {
             self.routed.fetch_add(1, Ordering::Relaxed);
         }
         Ok(url)
+    }
+
+    /// The public URLs of the cluster's live nodes (this one's included),
+    /// read again when the last reading is older than `fresh` (marked read
+    /// before asking, so that a burst of callers asks once). (Blocking
+    /// when it reads.)
+    pub fn public_urls(&self, fresh: Duration) -> Result<Vec<String>, ClusterError> {
+        {
+            let mut known = lock(&self.known_urls);
+            if known.1.is_some_and(|at| at.elapsed() < fresh) {
+                return Ok(known.0.clone());
+            }
+            known.1 = Some(std::time::Instant::now());
+        }
+        let rows = self.db()?.query(
+            "SELECT public_url FROM cluster_nodes WHERE public_url IS NOT NULL
+             AND seen_at >= now() - $1 * interval '1 millisecond'",
+            &[&self.lease_ms()],
+        )?;
+        let urls: Vec<String> = rows.iter().map(|r| r.get(0)).collect();
+        lock(&self.known_urls).0.clone_from(&urls);
+        Ok(urls)
     }
 
     /// How many clients this node sent to the node playing their match.
