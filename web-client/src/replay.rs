@@ -511,7 +511,9 @@ mod tests {
         use crate::test_geometry::font_width;
         for lang in [Lang::En, Lang::Ru] {
             for play in ["replay-play", "replay-pause"] {
-                let (jump, play_w, speed) = bar_widths(1280.0, false);
+                // A 1280 x 800 browser window, in layout units.
+                let w = 1280.0 / crate::scale::zoom_for(1280.0, 800.0);
+                let (jump, play_w, speed) = bar_widths(w, false);
                 let text = |id: &str| message_in(lang, id).expect("the message exists");
                 let mut labels = vec![
                     (text("replay-previous-shot"), jump),
@@ -530,12 +532,12 @@ mod tests {
                     .collect();
                 let sizes = ui::group_label_sizes(&buttons, font_width);
                 eprintln!(
-                    "replay 1280 {lang:?} {play}: the bar's labels at {}",
+                    "replay {w} units wide {lang:?} {play}: the bar's labels at {}",
                     sizes[0]
                 );
                 assert!(sizes.iter().all(|s| *s >= 16.0), "{lang:?}: {sizes:?}");
                 // The bar with the clock's room fits the window.
-                assert!(x + 120.0 <= 1280.0);
+                assert!(x + 120.0 <= w);
             }
         }
     }

@@ -230,7 +230,9 @@ mod tests {
     fn the_matches_to_start_read_at_a_comfortable_size_on_a_desktop_in_both_languages() {
         // The bound for the desktop; a phone's two columns are as wide as
         // its buttons can be, and only have to stay legible.
-        for (w, h) in DESKTOPS.into_iter().chain([(1280.0, 800.0)]) {
+        // A 1280 x 800 browser window, in layout units.
+        let z = crate::scale::zoom_for(1280.0, 800.0);
+        for (w, h) in DESKTOPS.into_iter().chain([(1280.0 / z, 800.0 / z)]) {
             for lang in [Lang::En, Lang::Ru] {
                 let size = choice_label_size(w, h, lang);
                 eprintln!("lobby {w}x{h} {lang:?}: the matches to start at {size} units");

@@ -168,16 +168,17 @@ fn toolbar_rows(w: f32) -> f32 {
 /// wide: Lobby, a tool, Wall/Edge, Export and Import. The row shares one
 /// label size, set by its most cramped label ("Скорость"), so the buttons
 /// widen with the window from 1044 units (where the language switch
-/// first fits between Wall/Edge and Import) to 1274, the room they take
-/// growing more slowly than the window's, so the switch keeps its place.
+/// first fits between Wall/Edge and Import) to 1216 (a 1280 x 800
+/// browser window), the room they take growing more slowly than the
+/// window's, so the switch keeps its place.
 fn toolbar_widths(w: f32) -> (f32, f32, f32, f32) {
-    let k = ((w - 1044.0) / 230.0).clamp(0.0, 1.0);
+    let k = ((w - 1044.0) / 172.0).clamp(0.0, 1.0);
     let grow = |from: f32, to: f32| from + (to - from) * k;
     (
-        grow(70.0, 86.0),
-        grow(74.0, 96.0),
-        grow(58.0, 72.0),
-        grow(74.0, 86.0),
+        grow(70.0, 83.0),
+        grow(74.0, 93.0),
+        grow(58.0, 64.0),
+        grow(74.0, 83.0),
     )
 }
 
@@ -606,7 +607,9 @@ mod tests {
     fn the_toolbar_and_the_playback_bar_read_at_a_comfortable_size_on_a_desktop_in_both_languages()
     {
         use crate::i18n::{message_in, Lang};
-        let (w, h) = (1280.0, 800.0);
+        // A 1280 x 800 browser window, in layout units.
+        let z = crate::scale::zoom_for(1280.0, 800.0);
+        let (w, h) = (1280.0 / z, 800.0 / z);
         let a = areas(w, h);
         assert!(!a.compact);
         for lang in [Lang::En, Lang::Ru] {
