@@ -342,6 +342,10 @@ fn whole_and_even(state: &Value, file: &str) -> Result<()> {
             state["screen"]
         )));
     }
+    eprintln!(
+        "e2e: {file}: label sizes {}, buttons {}",
+        state["label_sizes"], state["buttons"]
+    );
     // Each row by its top and height (tenths of a pixel), with its
     // buttons' names and label sizes.
     type Row = Vec<(String, f64)>;

@@ -145,6 +145,13 @@ fn format_in(lang: Lang, id: &str, args: Option<&FluentArgs>) -> Option<String> 
     })
 }
 
+/// Message `id` of `lang` without arguments, if `lang` has it (for the
+/// layout tests, which check the labels of both languages).
+#[cfg(test)]
+pub fn message_in(lang: Lang, id: &str) -> Option<String> {
+    format_in(lang, id, None)
+}
+
 /// Message `id` in the current language with `args` (name, value), falling
 /// back to English, then to the id itself.
 pub fn text(id: &str, args: &[(&str, FluentValue)]) -> String {

@@ -379,7 +379,7 @@ impl Lobby {
         if let Some(r) = self.account_row(ui, x0, l.account_y, col, label_w, narrow) {
             go = Some(r);
         }
-        // The matches to start: one row, or a grid of two columns.
+        // The matches to start: a grid of four columns, or two on a phone.
         let choices: [(&str, String); layout::CHOICES] = [
             ("quick-match", t!("lobby-quick-match")),
             ("vs-computer-easy", t!("lobby-computer-easy")),

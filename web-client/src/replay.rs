@@ -26,6 +26,22 @@ pub const SPEEDS: [f64; 7] = [-1.0, 0.1, 0.25, 0.5, 1.0, 2.0, 4.0];
 /// How many best shots are listed.
 const BEST: usize = 3;
 
+/// The widths of the control bar's buttons in a window `w` units wide:
+/// a shot jump, play/pause and a speed. The bar's row of buttons shares
+/// one label size, set by the most cramped of them ("Пред. щелчок",
+/// "0.25x"), so a wide window (1200 units and more) gives them the room
+/// it has; the wide bar's controls then end 1126 units from the left.
+/// On a phone the jumps' words take two lines.
+fn bar_widths(w: f32, narrow: bool) -> (f32, f32, f32) {
+    if narrow {
+        (72.0, 80.0, 56.0)
+    } else if w >= 1200.0 {
+        (160.0, 90.0, 72.0)
+    } else {
+        (116.0, 80.0, 56.0)
+    }
+}
+
 /// The title's size (its lines are three units apart).
 const TITLE_SIZE: f32 = 19.0;
 
@@ -395,7 +411,7 @@ impl Screen for Replay {
         // The shot jumps say what they do (on one line where the window is
         // wide; on a phone their words take two). The row's labels share
         // one size, so a cramped jump would shrink the speeds too.
-        let jump_w = if narrow { 72.0 } else { 116.0 };
+        let (jump_w, play_w, speed_w) = bar_widths(w, narrow);
         if ui.button("previous-shot", &t!("replay-previous-shot"), next(jump_w)) {
             self.t = l.timeline.previous_shot(self.t);
         }
@@ -404,7 +420,7 @@ impl Screen for Replay {
         } else {
             t!("replay-play")
         };
-        if ui.button("play-pause", &label, next(80.0)) {
+        if ui.button("play-pause", &label, next(play_w)) {
             if !self.playing && self.speed > 0.0 && self.t >= l.timeline.total() {
                 self.t = 0.0;
             }
@@ -430,7 +446,7 @@ impl Screen for Replay {
             let sw = ((w - 24.0 - 6.0 * (SPEEDS.len() - 1) as f32) / SPEEDS.len() as f32).min(60.0);
             (12.0, y + ui::TOUCH + 8.0, sw)
         } else {
-            (clock.x + 120.0, y, 56.0)
+            (clock.x + 120.0, y, speed_w)
         };
         // One label size for the row, so "0.25x" is not smaller than "1x".
         let labels = SPEEDS.map(|s| format!("{s}x"));
@@ -488,6 +504,43 @@ mod tests {
     use super::*;
     use ::glam::DVec2;
     use game::{Config, Game, PieceId, Shot};
+
+    #[test]
+    fn the_control_bar_reads_at_a_comfortable_size_on_a_desktop_in_both_languages() {
+        use crate::i18n::{message_in, Lang};
+        use crate::test_geometry::font_width;
+        for lang in [Lang::En, Lang::Ru] {
+            for play in ["replay-play", "replay-pause"] {
+                // A 1280 x 800 browser window, in layout units.
+                let w = 1280.0 / crate::scale::zoom_for(1280.0, 800.0);
+                let (jump, play_w, speed) = bar_widths(w, false);
+                let text = |id: &str| message_in(lang, id).expect("the message exists");
+                let mut labels = vec![
+                    (text("replay-previous-shot"), jump),
+                    (text(play), play_w),
+                    (text("replay-next-shot"), jump),
+                ];
+                labels.extend(SPEEDS.map(|s| (format!("{s}x"), speed)));
+                let mut x = 20.0;
+                let buttons: Vec<(&str, Rect)> = labels
+                    .iter()
+                    .map(|(label, w)| {
+                        let r = Rect::new(x, 700.0, *w, ui::TOUCH);
+                        x += w + 8.0;
+                        (label.as_str(), r)
+                    })
+                    .collect();
+                let sizes = ui::group_label_sizes(&buttons, font_width);
+                eprintln!(
+                    "replay {w} units wide {lang:?} {play}: the bar's labels at {}",
+                    sizes[0]
+                );
+                assert!(sizes.iter().all(|s| *s >= 16.0), "{lang:?}: {sizes:?}");
+                // The bar with the clock's room fits the window.
+                assert!(x + 120.0 <= w);
+            }
+        }
+    }
 
     /// Two shots of White straight up the board, each knocking a piece
     /// off, as clips on their timeline.

@@ -404,6 +404,22 @@ fn even_groups(buttons: &[(Rect, f32)]) -> Vec<(Rect, f32)> {
         .collect()
 }
 
+/// The size each of `buttons` (label, rectangle) draws its label at when
+/// they are drawn in one frame: its group's ([`even_groups`]), with
+/// `width` measuring a text at a size. For the screens' layout tests.
+#[cfg(test)]
+pub fn group_label_sizes(buttons: &[(&str, Rect)], width: impl Fn(&str, f32) -> f32) -> Vec<f32> {
+    let alone: Vec<(Rect, f32)> = buttons
+        .iter()
+        .map(|(label, r)| (*r, setting(label, *r, f32::INFINITY, &width).size()))
+        .collect();
+    even_groups(&alone)
+        .iter()
+        .zip(buttons)
+        .map(|((r, group), (label, _))| setting(label, *r, *group, &width).size())
+        .collect()
+}
+
 /// Whether `a` and `b` stand in one row (level tops, one height, to a
 /// tenth of a unit).
 fn same_row(a: Rect, b: Rect) -> bool {

@@ -4,6 +4,12 @@
 //! row, the message, the footer and the three match lists (side by side
 //! on a wide screen, stacked on a narrow one). Nothing here draws, so it
 //! is tested natively.
+//!
+//! The matches to start stand in a grid: two columns on a phone, four on
+//! a wide screen. The grid shares one label size (the smallest its labels
+//! fit at), so eight buttons in one row would shrink every label to the
+//! size of the longest ("Компьютер: адаптивный") in an eighth of the
+//! column; four to a row leave room for it at a size that reads easily.
 
 use crate::ui::TOUCH;
 use macroquad::prelude::Rect;
@@ -19,8 +25,8 @@ pub struct Layout {
     /// The column's left edge and width.
     pub x0: f32,
     pub col: f32,
-    /// A narrow column (a phone): smaller title, a grid of two columns,
-    /// stacked lists.
+    /// A narrow column (a phone): smaller title, a grid of two columns
+    /// (four on a wide screen), stacked lists.
     pub narrow: bool,
     /// The title row's top.
     pub title_y: f32,
@@ -69,8 +75,8 @@ pub fn layout(w: f32, h: f32, message: bool) -> Layout {
     let account_y = title_y + if narrow { 62.0 } else { 86.0 };
     let label_w = if narrow { 98.0 } else { 100.0 };
     let mut y = account_y + row + 12.0;
-    // The matches to start: one row, or a grid of two columns.
-    let per_row = if narrow { 2 } else { CHOICES };
+    // The matches to start: a grid of four columns, or two on a phone.
+    let per_row = if narrow { 2 } else { 4 };
     let bw = (col - GAP * (per_row - 1) as f32) / per_row as f32;
     let bh = if narrow { row } else { 52.0 };
     let choices = std::array::from_fn(|i| {
@@ -127,6 +133,12 @@ pub fn layout(w: f32, h: f32, message: bool) -> Layout {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::i18n::{message_in, Lang};
+    use crate::test_geometry::font_width;
+    use crate::ui::group_label_sizes;
+
+    /// The smallest label size of the lobby's main choices on a desktop.
+    const COMFORTABLE: f32 = 16.0;
 
     const PHONES: [(f32, f32); 2] = [(390.0, 844.0), (412.0, 915.0)];
     const DESKTOPS: [(f32, f32); 3] = [(1100.0, 760.0), (1280.0, 720.0), (1440.0, 900.0)];
@@ -163,14 +175,76 @@ mod tests {
     }
 
     #[test]
-    fn a_desktop_sets_the_lists_side_by_side_and_the_choices_in_one_row() {
+    fn a_desktop_sets_the_lists_side_by_side_and_the_choices_in_two_rows_of_four() {
         for (w, h) in DESKTOPS {
             let l = layout(w, h, false);
             assert!(!l.narrow);
             assert_eq!(l.lists[0].y, l.lists[2].y);
             assert!(l.lists[0].x + l.lists[0].w < l.lists[1].x);
-            assert!(l.choices.iter().all(|c| c.y == l.choices[0].y));
+            assert!(l.choices[..4].iter().all(|c| c.y == l.choices[0].y));
+            assert!(l.choices[4..].iter().all(|c| c.y == l.choices[4].y));
+            assert!(l.choices[4].y > l.choices[0].y);
+            assert_eq!(l.choices[4].x, l.choices[0].x);
             assert!(l.col <= 980.0);
+        }
+    }
+
+    /// The messages of the matches to start, in the lobby's order.
+    const CHOICE_MESSAGES: [&str; CHOICES] = [
+        "lobby-quick-match",
+        "lobby-computer-easy",
+        "lobby-computer-medium",
+        "lobby-computer-hard",
+        "lobby-computer-adaptive",
+        "lobby-friend",
+        "lobby-sandbox",
+        "leaderboard",
+    ];
+
+    /// The size the matches to start share in a `w` x `h` window in
+    /// `lang`, measured in the client's font.
+    fn choice_label_size(w: f32, h: f32, lang: Lang) -> f32 {
+        let l = layout(w, h, false);
+        let labels: Vec<String> = CHOICE_MESSAGES
+            .iter()
+            .map(|id| message_in(lang, id).expect("the message exists"))
+            .collect();
+        let buttons: Vec<(&str, Rect)> = labels.iter().map(String::as_str).zip(l.choices).collect();
+        let sizes = group_label_sizes(&buttons, font_width);
+        // Every label shows whole at that size: on one line, or on two.
+        for ((label, r), size) in buttons.iter().zip(&sizes) {
+            let lines = match crate::ui::split_in_two(label) {
+                Some((a, b)) if font_width(label, *size) > r.w => vec![a, b],
+                _ => vec![*label],
+            };
+            assert!(
+                lines.iter().all(|l| font_width(l, *size) <= r.w),
+                "{w}x{h} {lang:?}: {label} runs past its button"
+            );
+        }
+        assert!(sizes.iter().all(|s| *s == sizes[0]), "{sizes:?}");
+        sizes[0]
+    }
+
+    #[test]
+    fn the_matches_to_start_read_at_a_comfortable_size_on_a_desktop_in_both_languages() {
+        // The bound for the desktop; a phone's two columns are as wide as
+        // its buttons can be, and only have to stay legible.
+        // A 1280 x 800 browser window, in layout units.
+        let z = crate::scale::zoom_for(1280.0, 800.0);
+        for (w, h) in DESKTOPS.into_iter().chain([(1280.0 / z, 800.0 / z)]) {
+            for lang in [Lang::En, Lang::Ru] {
+                let size = choice_label_size(w, h, lang);
+                eprintln!("lobby {w}x{h} {lang:?}: the matches to start at {size} units");
+                assert!(size >= COMFORTABLE, "{w}x{h} {lang:?}: {size}");
+            }
+        }
+        for (w, h) in PHONES {
+            for lang in [Lang::En, Lang::Ru] {
+                let size = choice_label_size(w, h, lang);
+                eprintln!("lobby {w}x{h} {lang:?}: the matches to start at {size} units");
+                assert!(size >= 12.0, "{w}x{h} {lang:?}: {size}");
+            }
         }
     }
 

@@ -26,6 +26,8 @@ const SIDE: f32 = 262.0;
 /// The narrowest window the desktop layout fits (narrower ones get the
 /// compact layout).
 const MIN_WIDTH: f32 = 1000.0;
+/// The width from which a desktop's playback bar takes wider buttons.
+const WIDE: f32 = 1200.0;
 /// Gap between controls.
 pub const GAP: f32 = 4.0;
 /// The compact toolbar's buttons: Lobby, the tools, Wall/Edge, Panel,
@@ -162,6 +164,24 @@ fn toolbar_rows(w: f32) -> f32 {
     TOOLBAR_BUTTONS.div_ceil(toolbar_per_row(w)) as f32
 }
 
+/// The widths of the desktop toolbar's buttons in a window `w` units
+/// wide: Lobby, a tool, Wall/Edge, Export and Import. The row shares one
+/// label size, set by its most cramped label ("Скорость"), so the buttons
+/// widen with the window from 1044 units (where the language switch
+/// first fits between Wall/Edge and Import) to 1216 (a 1280 x 800
+/// browser window), the room they take growing more slowly than the
+/// window's, so the switch keeps its place.
+fn toolbar_widths(w: f32) -> (f32, f32, f32, f32) {
+    let k = ((w - 1044.0) / 172.0).clamp(0.0, 1.0);
+    let grow = |from: f32, to: f32| from + (to - from) * k;
+    (
+        grow(70.0, 83.0),
+        grow(74.0, 93.0),
+        grow(58.0, 64.0),
+        grow(74.0, 83.0),
+    )
+}
+
 /// The toolbar's buttons in the window of `a`, in order: Lobby, the tools
 /// (as [`TOOLS`]), Wall/Edge, Panel (compact only), Export, Import. On a
 /// desktop they stand in one row, Export and Import at the right; in the
@@ -183,22 +203,23 @@ pub fn toolbar(a: &Areas) -> Vec<Rect> {
             })
             .collect();
     }
+    let (lobby_w, tool_w, wall_w, file_w) = toolbar_widths(w);
     let mut rects = Vec::with_capacity(TOOLBAR_BUTTONS - 1);
     // Lobby, set apart from the tools.
     let mut x = 8.0;
-    rects.push(Rect::new(x, y, 70.0, h));
-    x += 70.0 + 14.0;
+    rects.push(Rect::new(x, y, lobby_w, h));
+    x += lobby_w + 14.0;
     for i in 0..TOOLS.len() {
-        rects.push(Rect::new(x, y, 74.0, h));
+        rects.push(Rect::new(x, y, tool_w, h));
         // The last tool (Delete) is set apart from Wall/Edge.
-        x += 74.0 + if i + 1 == TOOLS.len() { 14.0 } else { GAP };
+        x += tool_w + if i + 1 == TOOLS.len() { 14.0 } else { GAP };
     }
-    rects.push(Rect::new(x, y, 58.0, h));
+    rects.push(Rect::new(x, y, wall_w, h));
     // Export, then Import left of it, at the right.
     let mut right = w - 8.0;
     for _ in 0..2 {
-        right -= 74.0;
-        rects.push(Rect::new(right, y, 74.0, h));
+        right -= file_w;
+        rects.push(Rect::new(right, y, file_w, h));
         right -= GAP;
     }
     rects
@@ -253,15 +274,22 @@ pub fn playback(r: Rect, compact: bool) -> Playback {
     let mut x = r.x + 8.0;
     let rewind = Rect::new(x, y, h, h);
     x += h + GAP;
-    let play = Rect::new(x, y, 70.0, h);
+    // Wider where the bar is (the row shares one label size, set by its
+    // speeds' "-0.1x" and "0.25x").
+    let (play_w, speed_w) = if r.w >= WIDE {
+        (84.0, 56.0)
+    } else {
+        (70.0, 44.0)
+    };
+    let play = Rect::new(x, y, play_w, h);
     // Room for the slider's knob beside Play.
-    x += 70.0 + 24.0;
+    x += play_w + 24.0;
     let n = SPEEDS.len() as f32;
     let (mut sx, sy, sw) = if compact {
         let sw = (r.w - 16.0 - GAP / 2.0 * (n - 1.0)) / n;
         (r.x + 8.0, y + h + GAP, sw)
     } else {
-        (x, y, 44.0)
+        (x, y, speed_w)
     };
     let speeds = SPEEDS
         .iter()
@@ -567,6 +595,51 @@ mod tests {
         }
     }
 
+    /// The size the labels of one row of `buttons` (label, rectangle)
+    /// share, measured in the client's font.
+    fn row_size(buttons: &[(String, Rect)]) -> f32 {
+        let buttons: Vec<(&str, Rect)> = buttons.iter().map(|(l, r)| (l.as_str(), *r)).collect();
+        let sizes = crate::ui::group_label_sizes(&buttons, crate::test_geometry::font_width);
+        sizes.iter().copied().fold(f32::INFINITY, f32::min)
+    }
+
+    #[test]
+    fn the_toolbar_and_the_playback_bar_read_at_a_comfortable_size_on_a_desktop_in_both_languages()
+    {
+        use crate::i18n::{message_in, Lang};
+        // A 1280 x 800 browser window, in layout units.
+        let z = crate::scale::zoom_for(1280.0, 800.0);
+        let (w, h) = (1280.0 / z, 800.0 / z);
+        let a = areas(w, h);
+        assert!(!a.compact);
+        for lang in [Lang::En, Lang::Ru] {
+            let text = |id: &str| message_in(lang, id).expect("the message exists");
+            let mut labels: Vec<String> = std::iter::once("lobby".to_string())
+                .chain(TOOLS.map(|t| format!("sandbox-tool-{}", t.name())))
+                .chain(["sandbox-wall", "sandbox-export", "sandbox-import"].map(String::from))
+                .map(|id| text(&id))
+                .collect();
+            let mut rects = toolbar(&a);
+            if let Some(lang_r) = language(&a) {
+                labels.push(lang.other().code().to_uppercase());
+                rects.push(lang_r);
+            }
+            let bar: Vec<(String, Rect)> = labels.into_iter().zip(rects).collect();
+            let top = row_size(&bar);
+            let p = playback(a.bar, false);
+            let mut row = vec![("|<".to_string(), p.rewind), (text("replay-pause"), p.play)];
+            row.extend(
+                SPEEDS
+                    .iter()
+                    .map(|s| crate::sandbox::format::speed_label(*s))
+                    .zip(p.speeds),
+            );
+            let bottom = row_size(&row);
+            eprintln!("sandbox {w}x{h} {lang:?}: toolbar at {top}, playback at {bottom}");
+            assert!(top >= 16.0 && bottom >= 16.0, "{lang:?}: {top}, {bottom}");
+        }
+    }
+
     #[test]
     fn the_compact_toolbar_takes_three_rows_on_a_phone_and_one_on_a_wide_window() {
         assert_eq!(toolbar_rows(390.0), 3.0);
@@ -594,6 +667,14 @@ mod tests {
         }
         // No room: a desktop at its narrowest.
         assert_eq!(language(&areas(1000.0, 900.0)), None);
+        // Wider buttons on a wider window leave the switch its place.
+        for w in (1044..=1400).step_by(2) {
+            let a = areas(w as f32, 900.0);
+            let lang = language(&a).unwrap_or_else(|| panic!("{w}: no room for the switch"));
+            for r in toolbar(&a) {
+                assert!(!overlap(lang, r), "{w}: {lang:?} overlaps {r:?}");
+            }
+        }
     }
 
     #[test]
