@@ -416,3 +416,26 @@ fn a_struck_plastic_pile_without_a_plastic_limit_ends_instead_of_sticking() {
     );
     assert!(out.collapses > 0);
 }
+
+#[test]
+fn a_struck_pile_with_more_contacts_than_its_discs_can_move_collapses_to_its_plastic_limit() {
+    // A disc strikes a packed pile of 26 plastic discs on a line. The
+    // plastic limit of the pile's contacts has no answer projected
+    // Gauss-Seidel finds, and the exact solve of those it pushes is
+    // singular (the pile has more contacts than its discs can move
+    // independently), so revision 8 takes the limit of the two discs hit
+    // last alone; the chain behind them, still driving them, hits them
+    // again at once, 2,000 events each time, until it ends `stuck` after
+    // 22,702 events at one instant. Revision 9 finds the pile's limit by
+    // the active-set method and the pile comes to rest.
+    let old = run("plastic-lines-71", Revision::R8);
+    assert!(old.events > 20_000, "{} events", old.events);
+    let out = fixed_in(
+        Revision::R9,
+        "plastic-lines-71",
+        EndReason::Stuck,
+        EndReason::Rest,
+    );
+    assert!(out.collapses > 0);
+    assert!(out.events < 10_000, "{} events", out.events);
+}
