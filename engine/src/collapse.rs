@@ -115,8 +115,10 @@ fn project(
 /// exactly, and drops from it any whose impulse would turn into a pull,
 /// until none approaches. A contact that depends on those pushing already
 /// (a packed pile on a line has more contacts than its discs can move
-/// independently) never approaches once they are solved, so it never joins
-/// the set and the exact solves stay regular; where projected Gauss–Seidel
+/// independently) approaches by no more than their rounding once they are
+/// solved; where that rounding still lets it join, the set's solve is
+/// singular and the contact is left out for good (the answer is checked
+/// against every contact at the end). Where projected Gauss–Seidel
 /// stalls on such a pile and the exact solve of its pushing contacts is
 /// singular, this finds the limit in as many steps as contacts push.
 /// `None` where a solve is singular anyway, or the answer leaves a contact
@@ -133,6 +135,7 @@ pub(crate) fn active_set(
     let k_all = contacts.len();
     let mut impulse = vec![0.0f64; k_all];
     let mut pushing: Vec<usize> = Vec::new();
+    let mut dependent: Vec<usize> = Vec::new();
     let apply = |imp: &[f64]| {
         let mut v = vel.to_vec();
         for (c, &p) in contacts.iter().zip(imp) {
@@ -150,7 +153,7 @@ pub(crate) fn active_set(
         // The contact approaching fastest (or parting slowest under its
         // bias) beyond the tolerance, not pushing yet.
         let next = (0..k_all)
-            .filter(|k| !pushing.contains(k))
+            .filter(|k| !pushing.contains(k) && !dependent.contains(k))
             .map(|k| (k, contacts[k].bias - solver.normal(&v, &contacts[k])))
             .filter(|&(_, w)| w > solver.tolerance)
             .max_by(|x, y| x.1.total_cmp(&y.1));
@@ -160,7 +163,13 @@ pub(crate) fn active_set(
         pushing.push(j);
         // Solve the pushing set; step back where an impulse would pull.
         for _ in 0..k_all + 1 {
-            let z = solver.equalities(&pushing)?;
+            let Some(z) = solver.equalities(&pushing) else {
+                // The contact just added depends on those pushing (it
+                // approaches by their rounding only): left out, for good.
+                pushing.retain(|&k| k != j);
+                dependent.push(j);
+                break;
+            };
             if z.iter().all(|&p| p > 0.0) {
                 for (&k, &p) in pushing.iter().zip(&z) {
                     impulse[k] = p;

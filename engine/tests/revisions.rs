@@ -439,3 +439,20 @@ fn a_struck_pile_with_more_contacts_than_its_discs_can_move_collapses_to_its_pla
     assert!(out.collapses > 0);
     assert!(out.events < 10_000, "{} events", out.events);
 }
+
+#[test]
+fn a_struck_pile_whose_contacts_depend_on_each_other_to_rounding_collapses_too() {
+    // As plastic-lines 71, a pile of 24 plastic discs struck on a line:
+    // revision 8 ends `stuck` after 22,502 events at one instant. Here a
+    // contact that depends on those already pushing still approaches by
+    // their rounding; the active-set method leaves it out (its exact solve
+    // would be singular) and checks the answer against it at the end.
+    let out = fixed_in(
+        Revision::R9,
+        "plastic-lines-2285",
+        EndReason::Stuck,
+        EndReason::Rest,
+    );
+    assert!(out.collapses > 0);
+    assert!(out.events < 5_000, "{} events", out.events);
+}
