@@ -176,10 +176,24 @@ pub(crate) fn active_set(
                 }
                 break;
             }
-            let mut step = f64::INFINITY;
+            // The contact just added would not push at all (rounding let
+            // it join): left out, for good.
+            if pushing
+                .iter()
+                .zip(&z)
+                .any(|(&k, &p)| k == j && impulse[k] == 0.0 && p <= 0.0)
+            {
+                pushing.retain(|&k| k != j);
+                dependent.push(j);
+                break;
+            }
+            // Every other contact of the set pushes: step towards `z` as
+            // far as they all still do.
+            let mut step = 1.0f64;
             for (&k, &p) in pushing.iter().zip(&z) {
-                if p <= 0.0 {
-                    step = step.min(impulse[k] / (impulse[k] - p));
+                let fall = impulse[k] - p;
+                if p <= 0.0 && fall > 0.0 {
+                    step = step.min(impulse[k] / fall);
                 }
             }
             for (&k, &p) in pushing.iter().zip(&z) {
@@ -402,6 +416,9 @@ impl<'a> Solver<'a> {
         let tolerance = self
             .tolerance
             .max(EXACT_ROUNDING * set.len() as f64 * change);
+        if !change.is_finite() || v.iter().any(|u| !u.is_finite()) {
+            return None;
+        }
         if self
             .contacts
             .iter()

@@ -456,3 +456,17 @@ fn a_struck_pile_whose_contacts_depend_on_each_other_to_rounding_collapses_too()
     assert!(out.collapses > 0);
     assert!(out.events < 5_000, "{} events", out.events);
 }
+
+#[test]
+fn a_contact_that_rounding_lets_join_the_active_set_but_cannot_push_is_left_out() {
+    // In mixed-box 19568 the active-set method of revision 9 adds a
+    // contact whose exact solve then gives it no push at all: stepping
+    // back from it divided zero by zero in a draft, and the discs of the
+    // collapse were given velocities that were not numbers. It is left out
+    // instead, and the box comes to rest (as it does under revision 8).
+    let old = holds(Revision::R8, "mixed-box-19568", EndReason::Rest);
+    assert!(old.moved.is_finite());
+    let new = run("mixed-box-19568", Revision::R9);
+    assert!(new.collapses > 0);
+    assert!(new.moved.is_finite(), "moved {}", new.moved);
+}
