@@ -107,6 +107,112 @@ fn project(
     None
 }
 
+/// From the engine's ninth revision, the same limit as [`resolve`] by an
+/// active-set method (Lawson and Hanson's, for non-negative least squares):
+/// the plastic limit is the velocities of least kinetic energy that
+/// non-negative contact impulses reach, and the method adds the contact
+/// approaching fastest to the set of those pushing, solves that set
+/// exactly, and drops from it any whose impulse would turn into a pull,
+/// until none approaches. A contact that depends on those pushing already
+/// (a packed pile on a line has more contacts than its discs can move
+/// independently) approaches by no more than their rounding once they are
+/// solved; where that rounding still lets it join, the set's solve is
+/// singular and the contact is left out for good (the answer is checked
+/// against every contact at the end). Where projected Gauss–Seidel
+/// stalls on such a pile and the exact solve of its pushing contacts is
+/// singular, this finds the limit in as many steps as contacts push.
+/// `None` where a solve is singular anyway, or the answer leaves a contact
+/// approaching beyond rounding.
+pub(crate) fn active_set(
+    vel: &[DVec2],
+    inv_mass: &[f64],
+    contacts: &[Contact],
+) -> Option<Vec<DVec2>> {
+    let solver = match Solver::new(vel, inv_mass, contacts) {
+        Ok(s) => s,
+        Err(known) => return Some(known),
+    };
+    let k_all = contacts.len();
+    let mut impulse = vec![0.0f64; k_all];
+    let mut pushing: Vec<usize> = Vec::new();
+    let mut dependent: Vec<usize> = Vec::new();
+    let apply = |imp: &[f64]| {
+        let mut v = vel.to_vec();
+        for (c, &p) in contacts.iter().zip(imp) {
+            if p != 0.0 {
+                v[c.a] += c.n * (p * inv_mass[c.a]);
+                if let Some(b) = c.b {
+                    v[b] -= c.n * (p * inv_mass[b]);
+                }
+            }
+        }
+        v
+    };
+    for _ in 0..3 * k_all + 8 {
+        let v = apply(&impulse);
+        // The contact approaching fastest (or parting slowest under its
+        // bias) beyond the tolerance, not pushing yet.
+        let next = (0..k_all)
+            .filter(|k| !pushing.contains(k) && !dependent.contains(k))
+            .map(|k| (k, contacts[k].bias - solver.normal(&v, &contacts[k])))
+            .filter(|&(_, w)| w > solver.tolerance)
+            .max_by(|x, y| x.1.total_cmp(&y.1));
+        let Some((j, _)) = next else {
+            return solver.accept(v, &pushing, &impulse);
+        };
+        pushing.push(j);
+        // Solve the pushing set; step back where an impulse would pull.
+        for _ in 0..k_all + 1 {
+            let Some(z) = solver.equalities(&pushing) else {
+                // The contact just added depends on those pushing (it
+                // approaches by their rounding only): left out, for good.
+                pushing.retain(|&k| k != j);
+                dependent.push(j);
+                break;
+            };
+            if z.iter().all(|&p| p > 0.0) {
+                for (&k, &p) in pushing.iter().zip(&z) {
+                    impulse[k] = p;
+                }
+                break;
+            }
+            // The contact just added would not push at all (rounding let
+            // it join): left out, for good.
+            if pushing
+                .iter()
+                .zip(&z)
+                .any(|(&k, &p)| k == j && impulse[k] == 0.0 && p <= 0.0)
+            {
+                pushing.retain(|&k| k != j);
+                dependent.push(j);
+                break;
+            }
+            // Every other contact of the set pushes: step towards `z` as
+            // far as they all still do.
+            let mut step = 1.0f64;
+            for (&k, &p) in pushing.iter().zip(&z) {
+                let fall = impulse[k] - p;
+                if p <= 0.0 && fall > 0.0 {
+                    step = step.min(impulse[k] / fall);
+                }
+            }
+            for (&k, &p) in pushing.iter().zip(&z) {
+                impulse[k] += step * (p - impulse[k]);
+            }
+            for &k in &pushing {
+                if impulse[k] <= 0.0 {
+                    impulse[k] = 0.0;
+                }
+            }
+            pushing.retain(|&k| impulse[k] > 0.0);
+            if pushing.is_empty() {
+                break;
+            }
+        }
+    }
+    None
+}
+
 /// Projected Gauss–Seidel on the contact impulses.
 struct Solver<'a> {
     vel: &'a [DVec2],
@@ -257,6 +363,73 @@ impl<'a> Solver<'a> {
         true
     }
 
+    /// The impulses of the contacts `set` (indices) solved as equalities
+    /// (each contact parting at its bias) from the velocities before;
+    /// `None` if that system is singular to rounding.
+    fn equalities(&self, set: &[usize]) -> Option<Vec<f64>> {
+        let m = set.len();
+        let mut a = vec![0.0f64; m * (m + 1)];
+        for (r, &kr) in set.iter().enumerate() {
+            let ck = &self.contacts[kr];
+            for (q, &kq) in set.iter().enumerate() {
+                a[r * (m + 1) + q] = self.effect(ck, &self.contacts[kq]);
+            }
+            a[r * (m + 1) + m] = ck.bias - self.normal(self.vel, ck);
+        }
+        solve(&mut a, m)
+    }
+
+    /// The change of contact `k`'s normal velocity per unit impulse of
+    /// contact `l`.
+    fn effect(&self, k: &Contact, l: &Contact) -> f64 {
+        let mut w = 0.0;
+        if k.a == l.a {
+            w += self.inv_mass[l.a];
+        }
+        if k.b == Some(l.a) {
+            w -= self.inv_mass[l.a];
+        }
+        if let Some(lb) = l.b {
+            if k.a == lb {
+                w -= self.inv_mass[lb];
+            }
+            if k.b == Some(lb) {
+                w += self.inv_mass[lb];
+            }
+        }
+        w * k.n.dot(l.n)
+    }
+
+    /// The velocities `v` that the impulses `impulse` of the contacts
+    /// `set` reach, where no contact is left approaching beyond the
+    /// rounding of those impulses (as [`Solver::exact`] checks), with what
+    /// is left slower than rounding stopped (see [`Solver::finish`]).
+    fn accept(mut self, v: Vec<DVec2>, set: &[usize], impulse: &[f64]) -> Option<Vec<DVec2>> {
+        let change = set
+            .iter()
+            .map(|&k| {
+                let c = &self.contacts[k];
+                let b = c.b.map_or(0.0, |b| self.inv_mass[b]);
+                impulse[k] * self.inv_mass[c.a].max(b)
+            })
+            .fold(0.0, f64::max);
+        let tolerance = self
+            .tolerance
+            .max(EXACT_ROUNDING * set.len() as f64 * change);
+        if !change.is_finite() || v.iter().any(|u| !u.is_finite()) {
+            return None;
+        }
+        if self
+            .contacts
+            .iter()
+            .any(|c| self.normal(&v, c) < c.bias - tolerance)
+        {
+            return None;
+        }
+        self.v = v;
+        Some(self.finish())
+    }
+
     /// The velocities, with what the collapse left moving slower than
     /// rounding of the speeds it began with stopped (a disc in a plastic
     /// wedge).
@@ -375,6 +548,34 @@ mod tests {
         // Parted to the rounding of the impulses (45 m/s of changes on the
         // light disc cancel).
         assert!(rel.dot(contacts[0].n).abs() < 1e-12, "{v:?}");
+    }
+
+    #[test]
+    fn the_active_set_limit_of_redundant_contacts_is_the_plastic_limit() {
+        // A disc driven down onto two others that rest on a floor, every
+        // contact given twice: the exact solve of the doubled contacts is
+        // singular, the active-set method takes each once.
+        let (c, s) = (0.5f64, 0.75f64.sqrt());
+        let mut contacts = vec![
+            Contact::plastic(0, Some(1), DVec2::new(c, s)),
+            Contact::plastic(0, Some(2), DVec2::new(-c, s)),
+            Contact::plastic(1, None, DVec2::Y),
+            Contact::plastic(2, None, DVec2::Y),
+        ];
+        contacts.extend(contacts.clone());
+        let vel = [DVec2::new(0.3, -2.0), DVec2::ZERO, DVec2::ZERO];
+        let inv = [1.0, 2.0, 0.5];
+        let v = active_set(&vel, &inv, &contacts).unwrap();
+        let projected = plastic(&vel, &inv, &contacts[..4]).unwrap();
+        for (a, b) in v.iter().zip(&projected) {
+            assert!((*a - *b).length() < 1e-12, "{v:?} against {projected:?}");
+        }
+        for c in &contacts {
+            let rel = v[c.a] - c.b.map_or(DVec2::ZERO, |b| v[b]);
+            assert!(rel.dot(c.n) >= -1e-15, "{v:?}");
+        }
+        let energy = |v: &[DVec2]| (0..3).map(|k| v[k].length_squared() / inv[k]).sum::<f64>();
+        assert!(energy(&v) < energy(&vel));
     }
 
     #[test]

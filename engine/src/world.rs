@@ -921,7 +921,16 @@ impl World {
         let (vel, inv) = self.motion(members, t);
         let r3 = self.config.revision.at_least_r3();
         let plastic = if r3 {
-            collapse::resolve(&vel, &inv, &contacts, collapse::MAX_SWEEPS)
+            collapse::resolve(&vel, &inv, &contacts, collapse::MAX_SWEEPS).or_else(|| {
+                // From the ninth revision, where the projection stalls and
+                // the exact solve of what it pushes is singular (a packed
+                // pile), the active-set method finds the limit.
+                self.config
+                    .revision
+                    .at_least_r9()
+                    .then(|| collapse::active_set(&vel, &inv, &contacts))
+                    .flatten()
+            })
         } else {
             collapse::plastic(&vel, &inv, &contacts)
         };

@@ -63,7 +63,10 @@ fn a_failing_scene_fails_the_run_unless_tolerated_and_is_written_out() {
 #[test]
 fn bad_arguments_are_refused_with_a_message_naming_them() {
     for (args, says) in [
-        (&["--revision", "r9"][..], "no engine revision named \"r9\""),
+        (
+            &["--revision", "r99"][..],
+            "no engine revision named \"r99\"",
+        ),
         (
             &["--tolerate", "sloth"][..],
             "--tolerate \"sloth\": no such failure",
