@@ -303,35 +303,7 @@ impl<'a> Solver<'a> {
         if m == 0 || m > MAX_EXACT {
             return false;
         }
-        // Row k: d(normal velocity of contact k) / d(impulse of contact l).
-        let effect = |k: &Contact, l: &Contact| {
-            let mut w = 0.0;
-            let side = |x: usize, y: Option<usize>| y == Some(x);
-            if k.a == l.a {
-                w += self.inv_mass[l.a];
-            }
-            if side(l.a, k.b) {
-                w -= self.inv_mass[l.a];
-            }
-            if let Some(lb) = l.b {
-                if k.a == lb {
-                    w -= self.inv_mass[lb];
-                }
-                if k.b == Some(lb) {
-                    w += self.inv_mass[lb];
-                }
-            }
-            w * k.n.dot(l.n)
-        };
-        let mut a = vec![0.0f64; m * (m + 1)];
-        for (r, &kr) in active.iter().enumerate() {
-            let ck = &self.contacts[kr];
-            for (q, &kq) in active.iter().enumerate() {
-                a[r * (m + 1) + q] = effect(ck, &self.contacts[kq]);
-            }
-            a[r * (m + 1) + m] = ck.bias - self.normal(self.vel, ck);
-        }
-        let Some(x) = solve(&mut a, m) else {
+        let Some(x) = self.equalities(&active) else {
             return false;
         };
         if x.iter().any(|&p| !(p >= 0.0)) {

@@ -333,6 +333,22 @@ async fn delete_version(s: &Server, key: &str, hash: &str) -> (u16, String) {
     (status, code)
 }
 
+/// `challenger` challenges the hosted bot "Wasm" to a rated match,
+/// playing White; the bot accepts at once: the new match's id, the
+/// challenger's token and the opponent's name.
+async fn challenge_wasm_as_white(challenger: &mut Stream) -> (String, String, String) {
+    challenger
+        .send(&StreamClientMessage::Challenge {
+            to: "wasm".into(),
+            rated: true,
+            rules: None,
+            turn_seconds: None,
+            color: Some(game::Side::White),
+        })
+        .await;
+    started(challenger.next().await)
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_hosted_bot_mid_match_at_a_restart_keeps_its_version_and_is_not_paired_until_the_match_ends(
 ) {
@@ -346,16 +362,8 @@ async fn a_hosted_bot_mid_match_at_a_restart_keeps_its_version_and_is_not_paired
     anka.next().await;
     // The lobby reads the hosted bots at most 5 s apart.
     tokio::time::sleep(Duration::from_millis(5500)).await;
-    anka.send(&StreamClientMessage::Challenge {
-        to: "wasm".into(),
-        rated: true,
-        rules: None,
-        turn_seconds: None,
-        color: Some(game::Side::White),
-    })
-    .await;
     // Anka moves first, and does not yet: the match waits on her.
-    let (match_id, token, _) = started(anka.next().await);
+    let (match_id, token, _) = challenge_wasm_as_white(&mut anka).await;
     drop(anka);
     // Another version made active; the one the match plays with stays.
     let v2 = upload(&s, &bot, resigning_version(2)).await;
@@ -408,15 +416,7 @@ async fn a_challenge_to_a_hosted_bot_is_accepted_at_once_and_the_server_plays_it
     anka.next().await;
     // The lobby reads the hosted bots every ladder round.
     tokio::time::sleep(Duration::from_millis(2500)).await;
-    anka.send(&StreamClientMessage::Challenge {
-        to: "wasm".into(),
-        rated: true,
-        rules: None,
-        turn_seconds: None,
-        color: Some(game::Side::White),
-    })
-    .await;
-    let (match_id, token, opponent) = started(anka.next().await);
+    let (match_id, token, opponent) = challenge_wasm_as_white(&mut anka).await;
     assert_eq!(opponent, "Wasm");
     let mut m = Client::connect(&s.addr, &match_id, Some(&token)).await;
     m.send(&common::shot(4, 0.0, 2.0)).await;

@@ -226,18 +226,7 @@ impl Client {
         id: &str,
         token: Option<&str>,
     ) -> Result<Client, tokio_tungstenite::tungstenite::Error> {
-        let mut c = Client::connect_silent(addr, id).await?;
-        c.send(&ClientMessage::Hello {
-            protocol: game::protocol::PROTOCOL_VERSION,
-            name: "test".into(),
-            token: token.map(game::token::SeatToken::new),
-            key: None,
-        })
-        .await;
-        match c.try_next().await {
-            Some(ServerMessage::Welcome { .. }) => {}
-            other => c.pending = other,
-        }
+        let c = Client::connect_silent(addr, id).await?.hello(token).await;
         Ok(c)
     }
 
@@ -255,23 +244,7 @@ impl Client {
             .and_then(|u| u.split('/').next())
             .unwrap_or_default()
             .to_string();
-        let mut c = Client {
-            ws,
-            received: Vec::new(),
-            sent: Vec::new(),
-            pending: None,
-        };
-        c.send(&ClientMessage::Hello {
-            protocol: game::protocol::PROTOCOL_VERSION,
-            name: "test".into(),
-            token: token.map(game::token::SeatToken::new),
-            key: None,
-        })
-        .await;
-        match c.try_next().await {
-            Some(ServerMessage::Welcome { .. }) => {}
-            other => c.pending = other,
-        }
+        let c = Client::on(ws).hello(token).await;
         Ok((c, at))
     }
 
@@ -292,23 +265,7 @@ impl Client {
         })?;
         request.headers_mut().insert("origin", origin);
         let (ws, _) = tokio_tungstenite::connect_async(request).await?;
-        let mut c = Client {
-            ws,
-            received: Vec::new(),
-            sent: Vec::new(),
-            pending: None,
-        };
-        c.send(&ClientMessage::Hello {
-            protocol: game::protocol::PROTOCOL_VERSION,
-            name: "test".into(),
-            token: token.map(game::token::SeatToken::new),
-            key: None,
-        })
-        .await;
-        match c.try_next().await {
-            Some(ServerMessage::Welcome { .. }) => {}
-            other => c.pending = other,
-        }
+        let c = Client::on(ws).hello(token).await;
         Ok(c)
     }
 
@@ -319,12 +276,34 @@ impl Client {
     ) -> Result<Client, tokio_tungstenite::tungstenite::Error> {
         let (ws, _) =
             tokio_tungstenite::connect_async(format!("ws://{addr}/ws?match={id}")).await?;
-        Ok(Client {
+        Ok(Client::on(ws))
+    }
+
+    /// A client on the open socket `ws`, nothing said yet.
+    fn on(ws: WebSocketStream<MaybeTlsStream<TcpStream>>) -> Client {
+        Client {
             ws,
             received: Vec::new(),
             sent: Vec::new(),
             pending: None,
+        }
+    }
+
+    /// Says hello with `token` (none: watch); the `welcome` is taken,
+    /// anything else (a refusal) is left to read.
+    async fn hello(mut self, token: Option<&str>) -> Client {
+        self.send(&ClientMessage::Hello {
+            protocol: game::protocol::PROTOCOL_VERSION,
+            name: "test".into(),
+            token: token.map(game::token::SeatToken::new),
+            key: None,
         })
+        .await;
+        match self.try_next().await {
+            Some(ServerMessage::Welcome { .. }) => {}
+            other => self.pending = other,
+        }
+        self
     }
 
     pub async fn send_text(&mut self, text: impl Into<String>) {
