@@ -7,7 +7,9 @@
 //! meeting at a corner), mixed radii/masses/friction/restitution, grazing
 //! shots, hits from a million metres away, shots at 10^4–10^6 m/s,
 //! inelastic bouncing between two walls (event times that grow without
-//! bound), Galperin's billiard in a random frame, and game-like boards. A
+//! bound), Galperin's billiard in a random frame, game-like boards, elastic
+//! cradles pinned between walls, mixed 0/1 restitution in a box and
+//! plastic piles on lines. A
 //! scene is a pure function of its kind and seed (a SplitMix64 stream), so
 //! a failure is reproduced from the two numbers alone.
 //!
@@ -16,11 +18,15 @@
 //! times; no overlap with any other disc, solid line or point beyond
 //! `OVERLAP` of the contact distance (plus the floating-point resolution of
 //! the coordinates); no centre crossing a solid line; time never going
-//! back. At the end: every pair again, the end reason (an event cap is a
-//! livelock; `stuck` is accepted only where the model has no finite answer),
-//! the kind's own expectation (a hit that must happen, Galperin's count)
-//! and the run's CPU time against [`SLOW`] (CPU time of its thread: the
-//! wall clock of a shared machine counts other processes too).
+//! back; kinetic energy not gained beyond rounding ([`ENERGY`]; at a
+//! pressing hit, beyond its documented bounce, [`PRESS_GAIN`]), and, where
+//! nothing outside acts, momentum kept. At the end: every pair again, the
+//! energy of an elastic, frictionless run kept, the end reason (an event
+//! cap is a livelock; `stuck` and `out-of-range` are accepted only where
+//! their definitions in docs/model.md hold), the kind's own expectation (a
+//! hit that must happen, Galperin's count) and the run's CPU time against
+//! [`SLOW`] (CPU time of its thread: the wall clock of a shared machine
+//! counts other processes too).
 
 use cpu_time::ThreadTime;
 use engine::obstacle::LineGeom;

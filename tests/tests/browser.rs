@@ -944,7 +944,7 @@ fn centre(rect: &Value) -> Result<(f64, f64)> {
     }
 }
 
-// ---- The defects a player found (issue 34), each at phone and desktop size.
+// ---- The defects a player found, each at phone and desktop size.
 
 /// The two windows the defects are checked in: a phone held upright and a
 /// laptop.

@@ -38,7 +38,7 @@ struct Args {
     /// not fail the run: `--tolerate stuck,livelock`.
     #[arg(long, value_delimiter = ',')]
     tolerate: Vec<String>,
-    /// The engine revision to run: `r1` (as before issue 15's fixes of
+    /// The engine revision to run: `r1` (as before the fixes of
     /// pressed contacts, far hits and collapses), `r2`, `r3`, ...; the
     /// latest (`engine::Revision::LATEST`) when not given.
     #[arg(long)]
