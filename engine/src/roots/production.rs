@@ -50,6 +50,10 @@
 //!   with `|x| >= 1` are found as reciprocals of the roots of the reversed
 //!   polynomial (so roots up to about `1e300` are handled; only the
 //!   underflow of sums like `sum |a_k|` is out of range).
+//! * Where the processor has the fused multiply-add, everything past the
+//!   shortcuts runs compiled for it (chosen at run time): its error-free
+//!   products take one instruction instead of Dekker's seventeen flops,
+//!   and give the same bits (see `poly::Product`).
 //! * No allocation: everything lives in fixed arrays on the stack.
 
 use super::poly::{
@@ -740,27 +744,59 @@ fn certain_value<const N: usize, P: Product>(p: &Coeffs, x: f64) -> (f64, f64) {
 /// tightly. `d` estimates `p'` near the root.
 #[inline(always)]
 fn polish<const N: usize, P: Product>(p: &Coeffs, x: f64, a: f64, b: f64, fa: f64, d: f64) -> f64 {
-    polish_with(|x| certain_value::<N, P>(p, x), x, a, b, fa, d)
+    let value = Value::<N, P> {
+        p,
+        product: PhantomData,
+    };
+    polish_with(&value, x, a, b, fa, d)
 }
 
-/// [`polish`] for any function whose value at a point comes with a sign
-/// that can be trusted and an error bound (`value`, as [`certain_value`];
-/// a value of exactly `0.0` means "at the root within what `value` can
-/// tell"): the root of that function in `(a, b)`, where `fa` is its value
-/// at `a` and `d` estimates its derivative near the root.
+/// A function whose value at a point comes with a sign that can be trusted
+/// and a bound on its error (as [`certain_value`]; a value of exactly `0.0`
+/// means "at the root within what it can tell"): what [`polish_with`]
+/// refines a root of. A trait with an always-inlined method rather than a
+/// closure, so that the evaluation is compiled into the walk that calls
+/// it, with the walk's instructions (see [`general`]); a closure the
+/// compiler kept out of line took its fused multiply-adds as library calls.
+trait Certain {
+    fn at(&self, x: f64) -> (f64, f64);
+}
+
+/// `p` by [`certain_value`].
+struct Value<'a, const N: usize, P> {
+    p: &'a Coeffs,
+    product: PhantomData<P>,
+}
+
+impl<const N: usize, P: Product> Certain for Value<'_, N, P> {
+    #[inline(always)]
+    fn at(&self, x: f64) -> (f64, f64) {
+        certain_value::<N, P>(self.p, x)
+    }
+}
+
+/// The derivative `d` of the quartic `p` by [`certain_slope`].
+struct Slope<'a> {
+    p: &'a Coeffs,
+    d: &'a Coeffs,
+}
+
+impl Certain for Slope<'_> {
+    #[inline(always)]
+    fn at(&self, x: f64) -> (f64, f64) {
+        certain_slope::<Native>(self.p, self.d, x)
+    }
+}
+
+/// [`polish`] for any [`Certain`] function `value`: its root in `(a, b)`,
+/// where `fa` is its value at `a` and `d` estimates its derivative near
+/// the root.
 #[inline(always)]
-fn polish_with(
-    value: impl Fn(f64) -> (f64, f64),
-    x: f64,
-    mut a: f64,
-    mut b: f64,
-    fa: f64,
-    d: f64,
-) -> f64 {
+fn polish_with(value: &impl Certain, x: f64, mut a: f64, mut b: f64, fa: f64, d: f64) -> f64 {
     let neg_a = fa < 0.0;
     let mut x = x;
     let mut d = d;
-    let (mut v, mut e) = value(x);
+    let (mut v, mut e) = value.at(x);
     let mut mult = 1.0;
     for _ in 0..100 {
         if v == 0.0 {
@@ -809,7 +845,7 @@ fn polish_with(
                 }
             }
         }
-        let (vn, en) = value(xn);
+        let (vn, en) = value.at(xn);
         let slope = (vn - v) / (xn - x);
         if slope.is_finite() && slope != 0.0 && (slope < 0.0) == (d < 0.0) {
             d = slope;
@@ -837,13 +873,7 @@ fn polish_with(
 /// Falls back to `x` when the bracket is not finite.
 #[cold]
 #[inline(never)]
-fn bisect_bracket(
-    value: impl Fn(f64) -> (f64, f64),
-    mut a: f64,
-    mut b: f64,
-    neg_a: bool,
-    x: f64,
-) -> f64 {
+fn bisect_bracket(value: &impl Certain, mut a: f64, mut b: f64, neg_a: bool, x: f64) -> f64 {
     if !(a.is_finite() && b.is_finite() && a < b) {
         return x;
     }
@@ -853,7 +883,7 @@ fn bisect_bracket(
         if !(m > a && m < b) {
             break;
         }
-        let v = value(m).0;
+        let v = value.at(m).0;
         if v == 0.0 {
             return m;
         }
@@ -1158,14 +1188,7 @@ fn certified_critical_point(p: &Coeffs, d: &Coeffs, bracket: (f64, f64), g_lo: f
     if !(y > bracket.0 && y < bracket.1 && dg.is_finite() && dg != 0.0) {
         return y;
     }
-    polish_with(
-        |x| certain_slope::<Native>(p, d, x),
-        y,
-        bracket.0,
-        bracket.1,
-        g_lo,
-        dg,
-    )
+    polish_with(&Slope { p, d }, y, bracket.0, bracket.1, g_lo, dg)
 }
 
 /// `p'(x)` of the quartic `p` (`d` = [`derivative`] of it) with a sign that
