@@ -134,7 +134,8 @@ pub(super) enum Split {}
 
 /// [`Product`] by one fused multiply-add. Only fast in code compiled for
 /// a processor that has it (elsewhere `mul_add` is a library call, exact
-/// but slow).
+/// but slow), so only built where the solver can pick it.
+#[cfg(any(test, target_arch = "x86_64", target_feature = "fma"))]
 pub(super) enum Fused {}
 
 /// The [`Product`] the target was compiled for.
@@ -153,6 +154,7 @@ impl Product for Split {
     }
 }
 
+#[cfg(any(test, target_arch = "x86_64", target_feature = "fma"))]
 impl Product for Fused {
     #[inline(always)]
     fn two_prod(a: f64, b: f64) -> (f64, f64) {
