@@ -116,26 +116,54 @@ pub(super) fn two_sum(a: f64, b: f64) -> (f64, f64) {
     (s, e)
 }
 
-/// Error-free product: `a * b == p + e` exactly (barring over/underflow).
-/// Uses the fused multiply-add when the target has one, Dekker's splitting
-/// otherwise; both give bit-identical results.
-#[inline(always)]
-pub(super) fn two_prod(a: f64, b: f64) -> (f64, f64) {
-    let p = a * b;
-    #[cfg(target_feature = "fma")]
-    {
-        (p, a.mul_add(b, -p))
-    }
-    #[cfg(not(target_feature = "fma"))]
-    {
+/// How the error-free product `a * b == p + e` is formed:
+/// Dekker's splitting ([`Split`], any processor) or one fused multiply-add
+/// ([`Fused`]). Both give the exact error `a * b - p`, so the same bits,
+/// whenever that error is a normal number and `|a|`, `|b|` stay below
+/// `2^996` (where the splitting overflows): every product the solvers form
+/// after [`super::production`] balances the coefficients. The solver
+/// picks `Fused` at run time where the processor has the instruction.
+pub(super) trait Product {
+    /// `(p, e)` with `p = a * b` rounded and `a * b == p + e` exactly.
+    fn two_prod(a: f64, b: f64) -> (f64, f64);
+}
+
+/// [`Product`] by Veltkamp/Dekker splitting: 17 flops, no special
+/// instruction.
+pub(super) enum Split {}
+
+/// [`Product`] by one fused multiply-add. Only fast in code compiled for
+/// a processor that has it (elsewhere `mul_add` is a library call, exact
+/// but slow), so only built where the solver can pick it.
+#[cfg(any(test, target_arch = "x86_64", target_feature = "fma"))]
+pub(super) enum Fused {}
+
+/// The [`Product`] the target was compiled for.
+#[cfg(target_feature = "fma")]
+pub(super) type Native = Fused;
+#[cfg(not(target_feature = "fma"))]
+pub(super) type Native = Split;
+
+impl Product for Split {
+    #[inline(always)]
+    fn two_prod(a: f64, b: f64) -> (f64, f64) {
+        let p = a * b;
         let (ah, al) = split(a);
         let (bh, bl) = split(b);
         (p, al * bl - (((p - ah * bh) - al * bh) - ah * bl))
     }
 }
 
+#[cfg(any(test, target_arch = "x86_64", target_feature = "fma"))]
+impl Product for Fused {
+    #[inline(always)]
+    fn two_prod(a: f64, b: f64) -> (f64, f64) {
+        let p = a * b;
+        (p, a.mul_add(b, -p))
+    }
+}
+
 /// Veltkamp/Dekker splitting of `a` into two 26-bit halves.
-#[cfg(not(target_feature = "fma"))]
 #[inline(always)]
 fn split(a: f64) -> (f64, f64) {
     const FACTOR: f64 = 134_217_729.0; // 2^27 + 1
@@ -149,7 +177,7 @@ fn split(a: f64) -> (f64, f64) {
 /// `|value - p(x)| <= bound` (Langlois & Louvet 2007:
 /// `u |p(x)| + gamma(2N)^2 p~(|x|)`, plus slack for computing the bound).
 #[inline(always)]
-pub(super) fn horner_comp<const N: usize>(a: &Coeffs, x: f64) -> (f64, f64) {
+pub(super) fn horner_comp<const N: usize, P: Product>(a: &Coeffs, x: f64) -> (f64, f64) {
     let ax = x.abs();
     let mut s = a[N];
     let mut c = 0.0;
@@ -157,7 +185,7 @@ pub(super) fn horner_comp<const N: usize>(a: &Coeffs, x: f64) -> (f64, f64) {
     let mut i = N;
     while i > 0 {
         i -= 1;
-        let (p, pi) = two_prod(s, x);
+        let (p, pi) = P::two_prod(s, x);
         let (t, sigma) = two_sum(p, a[i]);
         s = t;
         c = c * x + (pi + sigma);
@@ -176,7 +204,7 @@ pub(super) fn horner_comp<const N: usize>(a: &Coeffs, x: f64) -> (f64, f64) {
 /// it is only the last resort when the compensated bound cannot decide.
 #[cold]
 #[inline(never)]
-pub(super) fn horner_exact<const N: usize>(a: &Coeffs, x: f64) -> f64 {
+pub(super) fn horner_exact<const N: usize, P: Product>(a: &Coeffs, x: f64) -> f64 {
     // Horner on expansions: lengths grow 1, 3, 7, 15, 31 at most.
     let mut e = [0.0f64; 32];
     let mut len = 1;
@@ -187,13 +215,13 @@ pub(super) fn horner_exact<const N: usize>(a: &Coeffs, x: f64) -> f64 {
         i -= 1;
         // h = e * x (scale-expansion with zero elimination)
         let mut hl = 0;
-        let (mut q, hh) = two_prod(e[0], x);
+        let (mut q, hh) = P::two_prod(e[0], x);
         if hh != 0.0 {
             h[hl] = hh;
             hl += 1;
         }
         for &ej in &e[1..len] {
-            let (t1, t0) = two_prod(ej, x);
+            let (t1, t0) = P::two_prod(ej, x);
             let (q2, hh) = two_sum(q, t0);
             if hh != 0.0 {
                 h[hl] = hh;
@@ -358,10 +386,33 @@ mod tests {
         let (s, e) = two_sum(1.0, 1e-20);
         assert_eq!((s, e), (1.0, 1e-20));
         let a = 1.0 + f64::EPSILON;
-        let (p, e) = two_prod(a, a);
-        // (1+eps)^2 = 1 + 2 eps + eps^2
-        assert_eq!(p, 1.0 + 2.0 * f64::EPSILON);
-        assert_eq!(e, f64::EPSILON * f64::EPSILON);
+        for (p, e) in [Split::two_prod(a, a), Fused::two_prod(a, a)] {
+            // (1+eps)^2 = 1 + 2 eps + eps^2
+            assert_eq!(p, 1.0 + 2.0 * f64::EPSILON);
+            assert_eq!(e, f64::EPSILON * f64::EPSILON);
+        }
+    }
+
+    #[test]
+    fn split_and_fused_products_give_the_same_bits() {
+        // Random operands over the exponent range the balanced solver
+        // works in (coefficients within 2^±600, points within their
+        // bounds), products whose error is a normal number: the two ways
+        // of forming it agree to the bit, so the solver's answer does not
+        // depend on the processor.
+        let mut rng = crate::rng::Rng::xorshift64(0x5eed_f00d_1234_5678);
+        for _ in 0..200_000 {
+            let e1 = (rng.symmetric() * 450.0) as i32;
+            let e2 = (rng.symmetric() * 450.0) as i32;
+            let a = rng.symmetric() * pow2(e1);
+            let b = rng.symmetric() * pow2(e2);
+            let (s, f) = (Split::two_prod(a, b), Fused::two_prod(a, b));
+            assert_eq!(
+                (s.0.to_bits(), s.1.to_bits()),
+                (f.0.to_bits(), f.1.to_bits()),
+                "{a:e} * {b:e}"
+            );
+        }
     }
 
     #[test]
@@ -371,7 +422,7 @@ mod tests {
         let a = [1.0, -4.0, 6.0, -4.0, 1.0];
         let x = 1.0 + 1.0 / 1024.0;
         let exact = (1.0f64 / 1024.0).powi(4);
-        let (v, bound) = horner_comp::<4>(&a, x);
+        let (v, bound) = horner_comp::<4, Native>(&a, x);
         assert!((v - exact).abs() <= bound);
         assert!((v - exact).abs() <= 2.0 * U * exact);
         let (pv, pbound) = horner_bounded::<4>(&a, x);
@@ -384,14 +435,14 @@ mod tests {
         // compensated bound but exact evaluation recovers it.
         let a = [1.0, -4.0, 6.0, -4.0, 1.0];
         let x = 1.0 + 2f64.powi(-30);
-        assert_eq!(horner_exact::<4>(&a, x), 2f64.powi(-120));
-        let (_, bound) = horner_comp::<4>(&a, x);
+        assert_eq!(horner_exact::<4, Native>(&a, x), 2f64.powi(-120));
+        let (_, bound) = horner_comp::<4, Native>(&a, x);
         assert!(bound > 2f64.powi(-120));
-        assert_eq!(horner_exact::<4>(&a, 1.0), 0.0);
+        assert_eq!(horner_exact::<4, Native>(&a, 1.0), 0.0);
         // Where compensated Horner is decisive the two agree.
         let b = [0.1, -0.7, 0.3, 0.0, 0.0];
-        let (vc, ec) = horner_comp::<2>(&b, 3.0);
-        assert!((horner_exact::<2>(&b, 3.0) - vc).abs() <= ec);
+        let (vc, ec) = horner_comp::<2, Native>(&b, 3.0);
+        assert!((horner_exact::<2, Native>(&b, 3.0) - vc).abs() <= ec);
     }
 
     #[test]

@@ -50,13 +50,18 @@
 //!   with `|x| >= 1` are found as reciprocals of the roots of the reversed
 //!   polynomial (so roots up to about `1e300` are handled; only the
 //!   underflow of sums like `sum |a_k|` is out of range).
+//! * Where the processor has the fused multiply-add, everything past the
+//!   shortcuts runs compiled for it (chosen at run time): its error-free
+//!   products take one instruction instead of Dekker's seventeen flops,
+//!   and give the same bits (see `poly::Product`).
 //! * No allocation: everything lives in fixed arrays on the stack.
 
 use super::poly::{
     derivative, exponent_above, gamma, horner_bounded, horner_comp, horner_d, horner_exact,
-    normalize, root_bound, split_point, two_prod, Coeffs, U,
+    normalize, root_bound, split_point, Coeffs, Native, Product, U,
 };
 use super::{RootSolver, Roots};
+use core::marker::PhantomData;
 
 /// Certified shortcuts, lazy critical-point walk, safeguarded Halley and
 /// compensated polishing (the engine's default).
@@ -176,7 +181,7 @@ fn low_degree(a: &[f64], lo: f64, hi: f64, out: &mut Roots) {
     let (k, r) = if a.len() == 2 {
         (1, [-a[0] / a[1] + 0.0, 0.0])
     } else {
-        quadratic(a[0], a[1], a[2])
+        quadratic::<Native>(a[0], a[1], a[2])
     };
     for &x in &r[..k] {
         if lo <= x && x < hi {
@@ -220,23 +225,54 @@ fn deflated(a: &Coeffs, n: usize, lo: f64, hi: f64, first: bool) -> Roots {
 }
 
 /// Everything past the fast paths: root bound, range safety, and the
-/// general walks (kept out of line so the fast paths stay small).
+/// general walks (kept out of line so the fast paths stay small). Where the
+/// processor has the fused multiply-add, the walk runs compiled for it
+/// (see [`Product`]: the same bits, its error-free products in one
+/// instruction instead of seventeen).
 #[inline(never)]
 fn general(a: &Coeffs, n: usize, lo: f64, hi: f64, first: bool, single: bool, out: &mut Roots) {
+    #[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
+    if std::arch::is_x86_feature_detected!("fma") {
+        // SAFETY: the processor has the one feature `walk_fused` is
+        // compiled for (checked just above).
+        unsafe { walk_fused(a, n, lo, hi, first, single, out) };
+        return;
+    }
+    walk::<Native>(a, n, lo, hi, first, single, out);
+}
+
+/// [`walk`] compiled for processors with the fused multiply-add.
+#[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
+#[target_feature(enable = "fma")]
+fn walk_fused(a: &Coeffs, n: usize, lo: f64, hi: f64, first: bool, single: bool, out: &mut Roots) {
+    walk::<super::poly::Fused>(a, n, lo, hi, first, single, out);
+}
+
+/// The body of [`general`], with error-free products formed by `P`.
+#[inline(always)]
+fn walk<P: Product>(
+    a: &Coeffs,
+    n: usize,
+    lo: f64,
+    hi: f64,
+    first: bool,
+    single: bool,
+    out: &mut Roots,
+) {
     let r = root_bound(a, n);
     let (a, extreme) = balanced(a, n, r);
     if extreme {
         split_at_unit_circle(&a, n, lo, hi, first, out);
     } else if single {
         if n == 3 {
-            single_positive_root::<3>(&a, r, hi, out);
+            single_positive_root::<3, P>(&a, r, hi, out);
         } else {
-            single_positive_root::<4>(&a, r, hi, out);
+            single_positive_root::<4, P>(&a, r, hi, out);
         }
     } else if n == 3 {
-        cubic(&a, r, lo, hi, first, out);
+        cubic::<P>(&a, r, lo, hi, first, out);
     } else {
-        quartic(&a, r, lo, hi, first, out);
+        quartic::<P>(&a, r, lo, hi, first, out);
     }
 }
 
@@ -319,8 +355,8 @@ fn solve_bounded(a: &Coeffs, n: usize, lo: f64, hi: f64) -> Roots {
     }
     match n {
         1 | 2 => low_degree(&a[..=n], lo, hi, &mut out),
-        3 => cubic(a, root_bound(a, 3), lo, hi, false, &mut out),
-        _ => quartic(a, root_bound(a, 4), lo, hi, false, &mut out),
+        3 => cubic::<Native>(a, root_bound(a, 3), lo, hi, false, &mut out),
+        _ => quartic::<Native>(a, root_bound(a, 4), lo, hi, false, &mut out),
     }
     out
 }
@@ -488,13 +524,13 @@ fn no_real_roots(q: &Coeffs) -> bool {
 
 /// The one positive root of `p` (Descartes: one sign variation), if below
 /// `hi`; `r` bounds the roots.
-#[inline(never)]
-fn single_positive_root<const N: usize>(a: &Coeffs, r: f64, hi: f64, out: &mut Roots) {
+#[inline(always)]
+fn single_positive_root<const N: usize, P: Product>(a: &Coeffs, r: f64, hi: f64, out: &mut Roots) {
     let f0 = a[0];
     let (h, fh) = if hi >= r {
         (r, f64::MAX.copysign(a[N]))
     } else {
-        (hi, signed_value::<N>(a, hi))
+        (hi, signed_value::<N, P>(a, hi))
     };
     if fh == 0.0 || (fh < 0.0) == (f0 < 0.0) {
         // p(hi) = 0 (excluded) or the root lies beyond hi.
@@ -506,16 +542,16 @@ fn single_positive_root<const N: usize>(a: &Coeffs, r: f64, hi: f64, out: &mut R
         start = split_point(0.0, h);
     }
     let (x, d) = halley::<N>(a, 0.0, h, f0, start, ROOT_TOL);
-    out.push(polish::<N>(a, x, 0.0, h, f0, d));
+    out.push(polish::<N, P>(a, x, 0.0, h, f0, d));
 }
 
 /// Real roots of `c2 x^2 + c1 x + c0` (`c2 != 0`), ascending, a double root
 /// once. The discriminant is formed from error-free products, so its sign
 /// is right unless it is below the rounding level of its own error terms.
-#[inline]
-pub(super) fn quadratic(c0: f64, c1: f64, c2: f64) -> (usize, [f64; 2]) {
-    let (bb, ebb) = two_prod(c1, c1);
-    let (ac, eac) = two_prod(4.0 * c2, c0);
+#[inline(always)]
+pub(super) fn quadratic<P: Product>(c0: f64, c1: f64, c2: f64) -> (usize, [f64; 2]) {
+    let (bb, ebb) = P::two_prod(c1, c1);
+    let (ac, eac) = P::two_prod(4.0 * c2, c0);
     let d = (bb - ac) + (ebb - eac);
     if !(d >= 0.0) {
         // Negative, or NaN from overflow of the products.
@@ -551,19 +587,19 @@ fn quadratic_scaled(c0: f64, c1: f64, c2: f64) -> (usize, [f64; 2]) {
         return (0, [0.0; 2]);
     }
     let s = super::poly::pow2(-(m.log2().round() as i32));
-    quadratic(c0 * s, c1 * s, c2 * s)
+    quadratic::<Native>(c0 * s, c1 * s, c2 * s)
 }
 
 /// The value of `p(x)` when its sign can be trusted: plain Horner when its
 /// error bound allows, compensated Horner otherwise, and `0.0` when even the
 /// compensated value cannot be told apart from zero.
 #[inline(always)]
-fn signed_value<const N: usize>(p: &Coeffs, x: f64) -> f64 {
+fn signed_value<const N: usize, P: Product>(p: &Coeffs, x: f64) -> f64 {
     let (v, e) = horner_bounded::<N>(p, x);
     if v.abs() > e || !v.is_finite() {
         return v;
     }
-    let (v, e) = horner_comp::<N>(p, x);
+    let (v, e) = horner_comp::<N, P>(p, x);
     if v.abs() > e {
         v
     } else {
@@ -687,12 +723,12 @@ fn halley<const N: usize>(
 /// compensated Horner, or exact evaluation (error below an ulp of the
 /// value) when the compensated bound cannot decide.
 #[inline(always)]
-fn certain_value<const N: usize>(p: &Coeffs, x: f64) -> (f64, f64) {
-    let (v, e) = horner_comp::<N>(p, x);
+fn certain_value<const N: usize, P: Product>(p: &Coeffs, x: f64) -> (f64, f64) {
+    let (v, e) = horner_comp::<N, P>(p, x);
     if v.abs() > e {
         (v, e)
     } else {
-        let v = horner_exact::<N>(p, x);
+        let v = horner_exact::<N, Native>(p, x);
         (v, v.abs() * f64::EPSILON)
     }
 }
@@ -707,28 +743,60 @@ fn certain_value<const N: usize>(p: &Coeffs, x: f64) -> (f64, f64) {
 /// further correction is doubled until one overshoots and brackets the root
 /// tightly. `d` estimates `p'` near the root.
 #[inline(always)]
-fn polish<const N: usize>(p: &Coeffs, x: f64, a: f64, b: f64, fa: f64, d: f64) -> f64 {
-    polish_with(|x| certain_value::<N>(p, x), x, a, b, fa, d)
+fn polish<const N: usize, P: Product>(p: &Coeffs, x: f64, a: f64, b: f64, fa: f64, d: f64) -> f64 {
+    let value = Value::<N, P> {
+        p,
+        product: PhantomData,
+    };
+    polish_with(&value, x, a, b, fa, d)
 }
 
-/// [`polish`] for any function whose value at a point comes with a sign
-/// that can be trusted and an error bound (`value`, as [`certain_value`];
-/// a value of exactly `0.0` means "at the root within what `value` can
-/// tell"): the root of that function in `(a, b)`, where `fa` is its value
-/// at `a` and `d` estimates its derivative near the root.
+/// A function whose value at a point comes with a sign that can be trusted
+/// and a bound on its error (as [`certain_value`]; a value of exactly `0.0`
+/// means "at the root within what it can tell"): what [`polish_with`]
+/// refines a root of. A trait with an always-inlined method rather than a
+/// closure, so that the evaluation is compiled into the walk that calls
+/// it, with the walk's instructions (see [`general`]); a closure the
+/// compiler kept out of line took its fused multiply-adds as library calls.
+trait Certain {
+    fn at(&self, x: f64) -> (f64, f64);
+}
+
+/// `p` by [`certain_value`].
+struct Value<'a, const N: usize, P> {
+    p: &'a Coeffs,
+    product: PhantomData<P>,
+}
+
+impl<const N: usize, P: Product> Certain for Value<'_, N, P> {
+    #[inline(always)]
+    fn at(&self, x: f64) -> (f64, f64) {
+        certain_value::<N, P>(self.p, x)
+    }
+}
+
+/// The derivative `d` of the quartic `p` by [`certain_slope`].
+struct Slope<'a> {
+    p: &'a Coeffs,
+    d: &'a Coeffs,
+}
+
+impl Certain for Slope<'_> {
+    #[inline(always)]
+    fn at(&self, x: f64) -> (f64, f64) {
+        certain_slope::<Native>(self.p, self.d, x)
+    }
+}
+
+/// [`polish`] for any [`Certain`] function `value`: its root in `(a, b)`,
+/// where `fa` is its value at `a` and `d` estimates its derivative near
+/// the root.
 #[inline(always)]
-fn polish_with(
-    value: impl Fn(f64) -> (f64, f64),
-    x: f64,
-    mut a: f64,
-    mut b: f64,
-    fa: f64,
-    d: f64,
-) -> f64 {
+fn polish_with(value: &impl Certain, x: f64, mut a: f64, mut b: f64, fa: f64, d: f64) -> f64 {
     let neg_a = fa < 0.0;
     let mut x = x;
     let mut d = d;
-    let (mut v, mut e) = value(x);
+    let (mut v, mut e) = value.at(x);
     let mut mult = 1.0;
     for _ in 0..100 {
         if v == 0.0 {
@@ -777,7 +845,7 @@ fn polish_with(
                 }
             }
         }
-        let (vn, en) = value(xn);
+        let (vn, en) = value.at(xn);
         let slope = (vn - v) / (xn - x);
         if slope.is_finite() && slope != 0.0 && (slope < 0.0) == (d < 0.0) {
             d = slope;
@@ -805,13 +873,7 @@ fn polish_with(
 /// Falls back to `x` when the bracket is not finite.
 #[cold]
 #[inline(never)]
-fn bisect_bracket(
-    value: impl Fn(f64) -> (f64, f64),
-    mut a: f64,
-    mut b: f64,
-    neg_a: bool,
-    x: f64,
-) -> f64 {
+fn bisect_bracket(value: &impl Certain, mut a: f64, mut b: f64, neg_a: bool, x: f64) -> f64 {
     if !(a.is_finite() && b.is_finite() && a < b) {
         return x;
     }
@@ -821,7 +883,7 @@ fn bisect_bracket(
         if !(m > a && m < b) {
             break;
         }
-        let v = value(m).0;
+        let v = value.at(m).0;
         if v == 0.0 {
             return m;
         }
@@ -893,7 +955,7 @@ fn start_point<const N: usize>(
 }
 
 /// Walks the monotone pieces of a degree-`N` polynomial left to right.
-struct Walker<'a, const N: usize> {
+struct Walker<'a, const N: usize, P: Product> {
     p: &'a Coeffs,
     /// Left end of the current piece and `p` there (`0.0`: a root, already
     /// reported).
@@ -901,9 +963,10 @@ struct Walker<'a, const N: usize> {
     f: f64,
     first: bool,
     out: &'a mut Roots,
+    product: PhantomData<P>,
 }
 
-impl<'a, const N: usize> Walker<'a, N> {
+impl<'a, const N: usize, P: Product> Walker<'a, N, P> {
     /// Starts at `lo` (`p(lo) = f`); reports `lo` if it is a root. Returns
     /// `None` when that already answers a `first_root` query.
     #[inline(always)]
@@ -920,6 +983,7 @@ impl<'a, const N: usize> Walker<'a, N> {
             f,
             first,
             out,
+            product: PhantomData,
         })
     }
 
@@ -942,7 +1006,7 @@ impl<'a, const N: usize> Walker<'a, N> {
         } else if self.f != 0.0 && (self.f < 0.0) != (fc < 0.0) {
             let start = start_point::<N>(self.p, (self.x, self.f), (c, fc), model);
             let (x, d) = halley::<N>(self.p, self.x, c, self.f, start, ROOT_TOL);
-            let r = polish::<N>(self.p, x, self.x, c, self.f, d);
+            let r = polish::<N, P>(self.p, x, self.x, c, self.f, d);
             self.out.push(r);
             if self.first {
                 return true;
@@ -959,7 +1023,7 @@ impl<'a, const N: usize> Walker<'a, N> {
         if !(c > self.x) {
             return false;
         }
-        let fc = signed_value::<N>(self.p, c);
+        let fc = signed_value::<N, P>(self.p, c);
         self.advance(c, fc)
     }
 
@@ -975,7 +1039,7 @@ impl<'a, const N: usize> Walker<'a, N> {
 /// Effective search interval: `[lo, hi)` clipped to the root bound, with
 /// `p` at both ends (the sign at a bound end is known: no evaluation).
 #[inline(always)]
-fn search_interval<const N: usize>(
+fn search_interval<const N: usize, P: Product>(
     a: &Coeffs,
     r: f64,
     lo: f64,
@@ -990,12 +1054,12 @@ fn search_interval<const N: usize>(
     } else if lo == 0.0 {
         (lo, a[0])
     } else {
-        (lo, signed_value::<N>(a, lo))
+        (lo, signed_value::<N, P>(a, lo))
     };
     let (h, fh) = if hi >= r {
         (r, f64::MAX.copysign(lead))
     } else {
-        (hi, signed_value::<N>(a, hi))
+        (hi, signed_value::<N, P>(a, hi))
     };
     if l < h {
         Some((l, fl, h, fh))
@@ -1004,14 +1068,14 @@ fn search_interval<const N: usize>(
     }
 }
 
-#[inline(never)]
-fn cubic(a: &Coeffs, r: f64, lo: f64, hi: f64, first: bool, out: &mut Roots) {
-    let Some((l, fl, h, fh)) = search_interval::<3>(a, r, lo, hi) else {
+#[inline(always)]
+fn cubic<P: Product>(a: &Coeffs, r: f64, lo: f64, hi: f64, first: bool, out: &mut Roots) {
+    let Some((l, fl, h, fh)) = search_interval::<3, P>(a, r, lo, hi) else {
         return;
     };
     // Critical points: the roots of the quadratic p'.
-    let (k, cp) = quadratic(a[1], 2.0 * a[2], 3.0 * a[3]);
-    let Some(mut w) = Walker::<3>::start(a, l, fl, first, out) else {
+    let (k, cp) = quadratic::<P>(a[1], 2.0 * a[2], 3.0 * a[3]);
+    let Some(mut w) = Walker::<3, P>::start(a, l, fl, first, out) else {
         return;
     };
     for &c in &cp[..k] {
@@ -1035,7 +1099,7 @@ fn cubic(a: &Coeffs, r: f64, lo: f64, hi: f64, first: bool, out: &mut Roots) {
 /// the point, `p` there and, after an early stop, `p'` and `p''/2` there
 /// (for the quadratic model that starts the root search).
 #[inline(always)]
-fn critical_point(
+fn critical_point<P: Product>(
     p: &Coeffs,
     d: &Coeffs,
     (mut lo, mut hi): (f64, f64),
@@ -1080,7 +1144,7 @@ fn critical_point(
             y = m;
         }
     }
-    let mut f = signed_value::<4>(p, y);
+    let mut f = signed_value::<4, P>(p, y);
     if f == 0.0 || !critical_value_is_settled(d, y, f) {
         // Inside a cluster of roots plain Newton on p' stops wherever its
         // rounding noise hides the true critical point, which may be
@@ -1089,7 +1153,7 @@ fn critical_point(
         // stopped. Locate it with certified signs of p' instead, in the
         // bracket the caller proved.
         y = certified_critical_point(p, d, bracket, g_lo, y);
-        f = signed_value::<4>(p, y);
+        f = signed_value::<4, P>(p, y);
     }
     (y, f, None)
 }
@@ -1124,14 +1188,7 @@ fn certified_critical_point(p: &Coeffs, d: &Coeffs, bracket: (f64, f64), g_lo: f
     if !(y > bracket.0 && y < bracket.1 && dg.is_finite() && dg != 0.0) {
         return y;
     }
-    polish_with(
-        |x| certain_slope(p, d, x),
-        y,
-        bracket.0,
-        bracket.1,
-        g_lo,
-        dg,
-    )
+    polish_with(&Slope { p, d }, y, bracket.0, bracket.1, g_lo, dg)
 }
 
 /// `p'(x)` of the quartic `p` (`d` = [`derivative`] of it) with a sign that
@@ -1141,16 +1198,16 @@ fn certified_critical_point(p: &Coeffs, d: &Coeffs, bracket: (f64, f64), g_lo: f
 /// evaluation when that cannot decide and `3 a3` was exact; otherwise
 /// `0.0` ("a critical point, as far as this precision can tell").
 #[inline(always)]
-fn certain_slope(p: &Coeffs, d: &Coeffs, x: f64) -> (f64, f64) {
-    let low = two_prod(p[3], 3.0).1;
-    let (v, e) = horner_comp::<3>(d, x);
+fn certain_slope<P: Product>(p: &Coeffs, d: &Coeffs, x: f64) -> (f64, f64) {
+    let low = P::two_prod(p[3], 3.0).1;
+    let (v, e) = horner_comp::<3, P>(d, x);
     let t = low * x * x;
     let w = v + t;
     let bound = e + gamma(3) * t.abs() + 2.0 * U * w.abs();
     if w.abs() > bound {
         (w, bound)
     } else if low == 0.0 {
-        let w = horner_exact::<3>(d, x);
+        let w = horner_exact::<3, Native>(d, x);
         (w, w.abs() * f64::EPSILON)
     } else {
         (0.0, bound)
@@ -1161,21 +1218,21 @@ fn certain_slope(p: &Coeffs, d: &Coeffs, x: f64) -> (f64, f64) {
 /// cannot be told from zero), as [`signed_value`] but with the rounding of
 /// `d`'s coefficient `3 a3` in the plain bound and in the fallback.
 #[inline(always)]
-fn signed_slope(p: &Coeffs, d: &Coeffs, x: f64) -> f64 {
+fn signed_slope<P: Product>(p: &Coeffs, d: &Coeffs, x: f64) -> f64 {
     let (v, e) = horner_bounded::<3>(d, x);
     if v.abs() > e + 2.0 * U * d[2].abs() * (x * x) || !v.is_finite() {
         return v;
     }
-    certain_slope(p, d, x).0
+    certain_slope::<P>(p, d, x).0
 }
 
-#[inline(never)]
-fn quartic(a: &Coeffs, r: f64, lo: f64, hi: f64, first: bool, out: &mut Roots) {
-    let Some((l, fl, h, fh)) = search_interval::<4>(a, r, lo, hi) else {
+#[inline(always)]
+fn quartic<P: Product>(a: &Coeffs, r: f64, lo: f64, hi: f64, first: bool, out: &mut Roots) {
+    let Some((l, fl, h, fh)) = search_interval::<4, P>(a, r, lo, hi) else {
         return;
     };
     let d = derivative::<4>(a);
-    let Some(mut w) = Walker::<4>::start(a, l, fl, first, out) else {
+    let Some(mut w) = Walker::<4, P>::start(a, l, fl, first, out) else {
         return;
     };
     if l == 0.0 {
@@ -1189,11 +1246,11 @@ fn quartic(a: &Coeffs, r: f64, lo: f64, hi: f64, first: bool, out: &mut Roots) {
             let gh = if fh.abs() == f64::MAX {
                 f64::MAX.copysign(d[3])
             } else {
-                signed_slope(a, &d, h)
+                signed_slope::<P>(a, &d, h)
             };
             if variations == 1 && g0 != 0.0 && gh != 0.0 && (g0 < 0.0) != (gh < 0.0) {
                 let start = start_point::<3>(&d, (0.0, g0), (h, gh), None);
-                let (c, fc, model) = critical_point(a, &d, (0.0, h), g0, start, w.f);
+                let (c, fc, model) = critical_point::<P>(a, &d, (0.0, h), g0, start, w.f);
                 if c > w.x && w.advance_with(c, fc, model) {
                     return;
                 }
@@ -1204,9 +1261,9 @@ fn quartic(a: &Coeffs, r: f64, lo: f64, hi: f64, first: bool, out: &mut Roots) {
     }
     // The critical points are the roots of the cubic p', which is monotone
     // between the roots of the quadratic p'' (the inflection points).
-    let (k, infl) = quadratic(d[1], 2.0 * d[2], 3.0 * d[3]);
+    let (k, infl) = quadratic::<P>(d[1], 2.0 * d[2], 3.0 * d[3]);
     let mut x = l;
-    let mut gx = signed_slope(a, &d, l);
+    let mut gx = signed_slope::<P>(a, &d, l);
     let mut i = 0;
     loop {
         let (e, ge, is_infl) = if i < k {
@@ -1215,13 +1272,13 @@ fn quartic(a: &Coeffs, r: f64, lo: f64, hi: f64, first: bool, out: &mut Roots) {
             if !(e > x && e < h) {
                 continue;
             }
-            (e, signed_slope(a, &d, e), true)
+            (e, signed_slope::<P>(a, &d, e), true)
         } else {
-            (h, signed_slope(a, &d, h), false)
+            (h, signed_slope::<P>(a, &d, h), false)
         };
         if gx != 0.0 && ge != 0.0 && (gx < 0.0) != (ge < 0.0) {
             let start = start_point::<3>(&d, (x, gx), (e, ge), None);
-            let (c, fc, model) = critical_point(a, &d, (x, e), gx, start, w.f);
+            let (c, fc, model) = critical_point::<P>(a, &d, (x, e), gx, start, w.f);
             if c > w.x && w.advance_with(c, fc, model) {
                 return;
             }
@@ -1245,11 +1302,11 @@ mod tests {
     fn quadratic_classifies_tangency_from_an_accurate_discriminant() {
         // (x - 0.1)^2 with rounded coefficients: b^2 - 4ac is a few ulps
         // either side of zero and the plain formula gets its sign wrong.
-        let (k, r) = quadratic(1.0, -2.0, 1.0);
+        let (k, r) = quadratic::<Native>(1.0, -2.0, 1.0);
         assert_eq!((k, r[0]), (1, 1.0));
-        let (k, r) = quadratic(-1.0, 0.0, 1.0);
+        let (k, r) = quadratic::<Native>(-1.0, 0.0, 1.0);
         assert_eq!((k, r), (2, [-1.0, 1.0]));
-        let (k, _) = quadratic(1.0, 0.0, 1.0);
+        let (k, _) = quadratic::<Native>(1.0, 0.0, 1.0);
         assert_eq!(k, 0);
     }
 
@@ -1419,6 +1476,64 @@ mod tests {
             Production.roots_in(&[0.0, -3.0, 1.0], -1.0, 5.0).as_slice(),
             &[0.0, 3.0]
         );
+    }
+
+    /// The walk with products by splitting and by the fused multiply-add,
+    /// on the same normalised polynomial and interval.
+    fn both_walks(c: &[f64], lo: f64, hi: f64, first: bool) -> Option<(Roots, Roots)> {
+        let (a, n) = normalize(c)?;
+        if n < 3 || a[0] == 0.0 {
+            return None;
+        }
+        let single = lo == 0.0 && sign_variations(&a, n) == 1;
+        let (mut split, mut fused) = (Roots::new(), Roots::new());
+        walk::<super::super::poly::Split>(&a, n, lo, hi, first, single, &mut split);
+        walk::<super::super::poly::Fused>(&a, n, lo, hi, first, single, &mut fused);
+        Some((split, fused))
+    }
+
+    #[test]
+    fn the_fused_walk_finds_the_same_roots_to_the_bit() {
+        // The hard table (every search the method tests make of it) and
+        // random contact quartics, some touching at 0: whichever way the
+        // processor forms its error-free products, the roots are the same
+        // bits, so no record depends on the machine that computed it.
+        let bits = |r: &Roots| r.as_slice().iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let mut compared = 0;
+        let mut check = |c: &[f64], lo: f64, hi: f64| {
+            for first in [false, true] {
+                if let Some((split, fused)) = both_walks(c, lo, hi, first) {
+                    assert_eq!(bits(&split), bits(&fused), "{c:?} on [{lo}, {hi})");
+                    compared += 1;
+                }
+            }
+        };
+        for case in super::super::cases::hard_table() {
+            check(&case.coeffs, f64::NEG_INFINITY, f64::INFINITY);
+            check(&case.coeffs, 0.0, f64::INFINITY);
+        }
+        let mut next = uniform_stream(0x00f0_5ed5_0123_4567);
+        for i in 0..20_000 {
+            let v = |next: &mut dyn FnMut() -> f64, r: f64| [r * next(), r * next()];
+            let (dv, da) = (v(&mut next, 5.0), v(&mut next, 2.0));
+            let (dp, s) = if i % 4 == 0 {
+                let k = 0.125 * (1.0 + (4.0 * (next() + 1.0)).floor());
+                ([3.0 * k, 4.0 * k], 5.0 * k)
+            } else {
+                (v(&mut next, 10.0), 0.5 + next().abs() * 1.5)
+            };
+            let dot = |a: [f64; 2], b: [f64; 2]| a[0] * b[0] + a[1] * b[1];
+            let c = [
+                dot(dp, dp) - s * s,
+                2.0 * dot(dp, dv),
+                dot(dv, dv) + dot(dp, da),
+                dot(dv, da),
+                0.25 * dot(da, da),
+            ];
+            check(&c, 0.0, f64::INFINITY);
+            check(&c, 0.0, 10.0);
+        }
+        assert!(compared > 40_000, "compared {compared}");
     }
 
     #[test]

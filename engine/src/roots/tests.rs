@@ -151,7 +151,7 @@ fn method_dispatch_names_and_default() {
 // Property tests: random products of linear factors.
 // ---------------------------------------------------------------------
 
-use super::poly::{horner_comp, horner_exact, normalize};
+use super::poly::{horner_comp, horner_exact, normalize, Native};
 use proptest::prelude::*;
 
 /// `lead * prod (x - r)` expanded in `f64` (lowest degree first): the test
@@ -195,20 +195,20 @@ fn poly_strategy() -> impl Strategy<Value = Vec<f64>> {
 fn exact_value(c: &[f64], x: f64) -> f64 {
     let (a, n) = normalize(c).unwrap();
     match n {
-        1 => horner_exact::<1>(&a, x),
-        2 => horner_exact::<2>(&a, x),
-        3 => horner_exact::<3>(&a, x),
-        _ => horner_exact::<4>(&a, x),
+        1 => horner_exact::<1, Native>(&a, x),
+        2 => horner_exact::<2, Native>(&a, x),
+        3 => horner_exact::<3, Native>(&a, x),
+        _ => horner_exact::<4, Native>(&a, x),
     }
 }
 
 fn comp_bound(c: &[f64], x: f64) -> f64 {
     let (a, n) = normalize(c).unwrap();
     match n {
-        1 => horner_comp::<1>(&a, x).1,
-        2 => horner_comp::<2>(&a, x).1,
-        3 => horner_comp::<3>(&a, x).1,
-        _ => horner_comp::<4>(&a, x).1,
+        1 => horner_comp::<1, Native>(&a, x).1,
+        2 => horner_comp::<2, Native>(&a, x).1,
+        3 => horner_comp::<3, Native>(&a, x).1,
+        _ => horner_comp::<4, Native>(&a, x).1,
     }
 }
 
