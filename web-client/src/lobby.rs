@@ -463,6 +463,7 @@ impl Lobby {
 fn list(ui: &mut Ui, l: &MatchList, area: Rect) -> Option<Route> {
     let mut go = None;
     ui::panel(area);
+    let _inside = ui::bounds(area);
     ui::text(
         &ui::fit(&i18n::text(l.title, &[]), 19.0, area.w - 20.0),
         area.x + 10.0,

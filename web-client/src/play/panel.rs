@@ -409,6 +409,8 @@ pub fn menu_buttons(chat: &Chat) -> Vec<(String, String)> {
 /// the panel while it is open (the panel under it takes no press).
 pub fn show(ui: &mut Ui, area: Rect, c: &Content, chat: Chat) -> Pressed {
     ui::panel(area);
+    // Every text of the panel stays in it.
+    let _inside = ui::bounds(area);
     let l: PanelLayout = layout::panel(area, &c.spec(chat.lines.len()));
     let mut pressed = if chat.menu {
         ui.without_input(|ui| body(ui, c, &l, chat.lines))
