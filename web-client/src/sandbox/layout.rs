@@ -53,7 +53,7 @@ const SLIDER_AT: f32 = 118.0;
 /// "Скорость" at 12 units and more).
 const RAIL_BUTTON: f32 = 78.0;
 /// Width of a button of the tight layout's column.
-const TIGHT_BUTTON: f32 = 68.0;
+const TIGHT_BUTTON: f32 = 72.0;
 
 /// Width of a column of the side panel in two columns.
 const SIDE_COLUMN: f32 = 236.0;
@@ -194,14 +194,16 @@ pub fn tools_button(a: &Areas) -> Option<Rect> {
 }
 
 /// The menu of the tight layout (in the side panel's place): the tools,
-/// Wall/Edge, Export and Import in rows of four, in the order of
+/// Wall/Edge, Export and Import in rows of four (three where four would
+/// be under 90 units wide), in the order of
 /// [`toolbar`] (without Lobby and Panel), and the speeds (one per
 /// [`SPEEDS`]) in two rows of their own below.
 pub fn menu(a: &Areas) -> (Vec<Rect>, Vec<Rect>) {
     let r = a.side;
     let items = TOOLS.len() + 3;
-    let per_row = 4;
-    let bw = (r.w - 16.0 - GAP * (per_row - 1) as f32) / per_row as f32;
+    let width = |per_row: usize| (r.w - 16.0 - GAP * (per_row - 1) as f32) / per_row as f32;
+    let per_row = if width(4) >= 90.0 { 4 } else { 3 };
+    let bw = width(per_row);
     let slot = |i: usize, per_row: usize, bw: f32, top: f32| {
         let (c, row) = ((i % per_row) as f32, (i / per_row) as f32);
         Rect::new(
