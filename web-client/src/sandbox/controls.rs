@@ -344,11 +344,12 @@ fn unit_slider(ui: &mut Ui, id: &str, label: &str, value: f64, row: Row) -> f64 
 /// clicked.
 fn stepper(ui: &mut Ui, name: &str, label: &str, row: Row) -> Option<f64> {
     let (less, more) = layout::stepper_buttons(row);
-    ui::text(
-        &ui::fit(label, 16.0, less.x - row.x - 4.0),
+    ui::text_in(
+        label,
         row.x,
         row.y + 13.0,
         16.0,
+        less.x - row.x - 4.0,
         colors::TEXT,
     );
     let less = ui.button(&format!("{name}-less"), "-", less);
