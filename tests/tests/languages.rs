@@ -122,7 +122,14 @@ async fn a_russian_browser_gets_russian_the_switch_turns_it_to_english_and_a_rel
             .session_with(&programs, &profile, &extra)
             .await
             .unwrap_or_else(|e| panic!("{e}"));
+        let started = std::time::Instant::now();
         let outcome = both_languages(&client, &server, &artifacts, window).await;
+        eprintln!(
+            "e2e: the tours at {}x{} took {:.1} s",
+            window.width,
+            window.height,
+            started.elapsed().as_secs_f64()
+        );
         if let Err(e) = outcome {
             let _ = browser::screenshot(
                 &client,

@@ -100,13 +100,14 @@ impl Screen for Leaderboard {
             } else {
                 t!("loading")
             };
-            ui::text(
-                &ui::fit(&text, 16.0, area.w - 20.0),
-                area.x + 10.0,
-                ry + 4.0,
-                16.0,
-                colors::MUTED,
-            );
+            // In as many lines as the list's width takes.
+            for (i, line) in crate::help::wrap(&text, 16.0, area.w - 20.0)
+                .iter()
+                .enumerate()
+            {
+                let y = ry + 4.0 + i as f32 * 20.0;
+                ui::text(line, area.x + 10.0, y, 16.0, colors::MUTED);
+            }
         }
         let name_w = (area.w * 0.5).min(260.0);
         for (k, p) in self.rows.iter().enumerate() {
