@@ -20,10 +20,14 @@
 //! leaves the world most of the window, its side panel opens and closes
 //! over it, and every control stays inside the window. The smallest
 //! phone there is (an iPhone SE: 568 x 320 on its side, 320 x 568
-//! upright, two device pixels a CSS pixel) gets the same tour in both
-//! languages; there the sandbox's world is at least 480 x 220 CSS pixels
-//! sideways and 300 x 400 upright, and its menu of tools and its side
-//! panel open over the world and close again.
+//! upright, two device pixels a CSS pixel) gets the same tour, in
+//! Russian on its side and in English upright, every screen with a
+//! language switch (the lobby, the rules, the leaderboard, the account,
+//! the replay, the sandbox) seen in the other language too, so each
+//! screen is checked in both languages at that size; there the sandbox's
+//! world is at least 480 x 220 CSS pixels sideways and 300 x 400 upright,
+//! and its menu of tools and its side panel open over the world and
+//! close again.
 
 use e2e::browser::{self, Driver};
 use e2e::process::Server;
@@ -109,6 +113,7 @@ async fn a_russian_browser_gets_russian_the_switch_turns_it_to_english_and_a_rel
         .unwrap_or_else(|e| panic!("{e}"));
     let mut failures = Vec::new();
     for window in [&LAPTOP, &PHONE, &SMALL_SIDEWAYS, &SMALL_UPRIGHT] {
+        let small = window.suffix.starts_with("-small");
         let extra = [
             "--lang=ru".to_string(),
             "--accept-lang=ru-RU,ru".to_string(),
@@ -123,7 +128,11 @@ async fn a_russian_browser_gets_russian_the_switch_turns_it_to_english_and_a_rel
             .await
             .unwrap_or_else(|e| panic!("{e}"));
         let started = std::time::Instant::now();
-        let outcome = both_languages(&client, &server, &artifacts, window).await;
+        let outcome = if small {
+            smallest_phone(&client, &server, &artifacts, window).await
+        } else {
+            both_languages(&client, &server, &artifacts, window).await
+        };
         eprintln!(
             "e2e: the tours at {}x{} took {:.1} s",
             window.width,
@@ -220,6 +229,53 @@ async fn both_languages(
     tour(client, artifacts, window, "en").await
 }
 
+/// The tour on the smallest phone: in Russian (the browser's language) on
+/// its side, in English (switched to in the lobby) upright.
+async fn smallest_phone(
+    client: &Client,
+    server: &Server,
+    artifacts: &Path,
+    window: &Window,
+) -> Result<()> {
+    browser::fit_viewport(client, window.width, window.height).await?;
+    client.goto(&server.url("/")).await?;
+    lobby_in(client, "ru").await?;
+    let lang = if window.width < window.height {
+        click_button(client, "lang").await?;
+        lobby_in(client, "en").await?;
+        "en"
+    } else {
+        "ru"
+    };
+    tour(client, artifacts, window, lang).await
+}
+
+/// On the smallest phone, the screen `name` shown in `lang` is switched to
+/// the other language, checked as [`tour`] checks a screen and saved as
+/// `<name>-<other><suffix>.png`, and switched back.
+async fn in_the_other_language(
+    client: &Client,
+    artifacts: &Path,
+    window: &Window,
+    name: &str,
+    lang: &str,
+) -> Result<()> {
+    if !window.suffix.starts_with("-small") {
+        return Ok(());
+    }
+    let other = if lang == "ru" { "en" } else { "ru" };
+    click_button(client, "lang").await?;
+    let state = settle(client, other).await?;
+    let file = format!("{name}-{other}{}.png", window.suffix);
+    let png = browser::screenshot(client, &artifacts.join(&file)).await?;
+    picture::stats(&png)?.check_drawn(&file, 8, 0.001)?;
+    whole_and_even(&state, &file)?;
+    inside_window(&state, &file, window)?;
+    click_button(client, "lang").await?;
+    settle(client, lang).await?;
+    Ok(())
+}
+
 /// Whether the lobby's language switch reads "EN"/"RU" in `window` (a
 /// phone's) rather than the language's whole name.
 fn short_switch(window: &Window) -> bool {
@@ -279,9 +335,12 @@ async fn tour(client: &Client, artifacts: &Path, window: &Window, lang: &str) ->
         inside_window(&state, &file, window)?;
         Ok::<Value, E2eError>(state)
     };
+    let other = |name: &'static str| in_the_other_language(client, artifacts, window, name, lang);
     snap("lobby").await?;
+    other("lobby").await?;
     click_button(client, "help").await?;
     snap("help").await?;
+    other("help").await?;
     click_button(client, "help-close").await?;
 
     click_button(client, "leaderboard").await?;
@@ -290,6 +349,7 @@ async fn tour(client: &Client, artifacts: &Path, window: &Window, lang: &str) ->
     })
     .await?;
     snap("leaderboard").await?;
+    other("leaderboard").await?;
     click_button(client, "lobby").await?;
 
     click_button(client, "sign-in").await?;
@@ -298,6 +358,7 @@ async fn tour(client: &Client, artifacts: &Path, window: &Window, lang: &str) ->
     })
     .await?;
     snap("sign-in").await?;
+    other("sign-in").await?;
     click_button(client, "lobby").await?;
 
     // Without an account the quick match offers the computer at once.
@@ -357,6 +418,7 @@ async fn tour(client: &Client, artifacts: &Path, window: &Window, lang: &str) ->
     };
     expect_label(&replay, "previous-shot", previous)?;
     let replay = snap("replay").await?;
+    other("replay").await?;
     // On a phone the replay's controls read at 13 px or more.
     if window.width < 600 {
         let sizes = replay["label_sizes"]
@@ -381,6 +443,7 @@ async fn tour(client: &Client, artifacts: &Path, window: &Window, lang: &str) ->
     })
     .await?;
     let sandbox = snap("sandbox").await?;
+    other("sandbox").await?;
     if !sandbox["buttons"]["lang"].is_array() {
         return Err(E2eError::Check(format!(
             "no language switch in the sandbox's toolbar: {}",

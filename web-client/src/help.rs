@@ -31,6 +31,17 @@ pub fn wrap_lines(text: &str, size: f32, width: f32, lines: usize) -> Vec<String
     wrapped
 }
 
+/// `text` in at most `lines` lines `width` wide: at `size`, or smaller
+/// (down to [`ui::MIN_TEXT`]) where it takes more lines; only below that
+/// is the last line cut. The size and the lines.
+pub fn shrink_lines(text: &str, size: f32, width: f32, lines: usize) -> (f32, Vec<String>) {
+    let mut size = size;
+    while size > ui::MIN_TEXT && wrap(text, size, width).len() > lines {
+        size = (size - 1.0).max(ui::MIN_TEXT);
+    }
+    (size, wrap_lines(text, size, width, lines))
+}
+
 /// Words of `text` wrapped to lines at most `width` pixels wide.
 pub fn wrap(text: &str, size: f32, width: f32) -> Vec<String> {
     let mut lines = Vec::new();
