@@ -8,7 +8,9 @@
 //! visited in both languages, at a laptop's and a phone's size, and on each
 //! the client reports no button whose label had to be cut, no text cut
 //! short (a title, a heading) and, in every row of buttons, one size for
-//! all their labels; each is saved as
+//! all their labels, no text smaller than 12 CSS pixels (the client's
+//! `small_texts`: a button's label or any other text) and every control
+//! inside the window; each is saved as
 //! a screenshot (`lobby-ru.png`, `lobby-en.png`, `lobby-ru-phone.png`, ...)
 //! in the artifacts folder (`target/e2e-artifacts` or
 //! `$CHAPAEV_E2E_ARTIFACTS`). The page's loader, shown before the game
@@ -16,7 +18,16 @@
 //! match reads as the computer of its level in it. On a phone held
 //! sideways (844 x 390 at three device pixels a CSS pixel) the sandbox
 //! leaves the world most of the window, its side panel opens and closes
-//! over it, and every control stays inside the window.
+//! over it, and every control stays inside the window. The smallest
+//! phone there is (an iPhone SE: 568 x 320 on its side, 320 x 568
+//! upright, two device pixels a CSS pixel) gets the same tour, in
+//! Russian on its side and in English upright, every screen with a
+//! language switch (the lobby, the rules, the leaderboard, the account,
+//! the replay, the sandbox) seen in the other language too, so each
+//! screen is checked in both languages at that size; there the sandbox's
+//! world is at least 480 x 220 CSS pixels sideways and 300 x 400 upright,
+//! and its menu of tools and its side panel open over the world and
+//! close again.
 
 use e2e::browser::{self, Driver};
 use e2e::process::Server;
@@ -58,6 +69,33 @@ const SIDEWAYS: Window = Window {
     dpr: 3,
 };
 
+/// The smallest phone on its side and upright.
+const SMALL_SIDEWAYS: Window = Window {
+    suffix: "-small-sideways",
+    width: 568,
+    height: 320,
+    dpr: 2,
+};
+
+const SMALL_UPRIGHT: Window = Window {
+    suffix: "-small",
+    width: 320,
+    height: 568,
+    dpr: 2,
+};
+
+/// The smallest text a screen may show (CSS pixels; the client reports
+/// any smaller one in `small_texts`, a button's label among them).
+const MIN_TEXT: f64 = 12.0;
+
+/// The smallest label of the replay's controls on a phone (CSS pixels).
+const REPLAY_PHONE_TEXT: f64 = 13.0;
+
+/// The smallest world the sandbox leaves on the smallest phone (CSS
+/// pixels): on its side, and upright.
+const SMALL_WORLD_SIDEWAYS: (f64, f64) = (480.0, 220.0);
+const SMALL_WORLD_UPRIGHT: (f64, f64) = (300.0, 400.0);
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_russian_browser_gets_russian_the_switch_turns_it_to_english_and_a_reload_keeps_it() {
     let Some(programs) = browser::find_programs().unwrap_or_else(|e| panic!("{e}")) else {
@@ -74,7 +112,8 @@ async fn a_russian_browser_gets_russian_the_switch_turns_it_to_english_and_a_rel
     let driver = Driver::start(&programs, &artifacts.join("chromedriver-languages.log"))
         .unwrap_or_else(|e| panic!("{e}"));
     let mut failures = Vec::new();
-    for window in [&LAPTOP, &PHONE] {
+    for window in [&LAPTOP, &PHONE, &SMALL_SIDEWAYS, &SMALL_UPRIGHT] {
+        let small = window.suffix.starts_with("-small");
         let extra = [
             "--lang=ru".to_string(),
             "--accept-lang=ru-RU,ru".to_string(),
@@ -88,7 +127,18 @@ async fn a_russian_browser_gets_russian_the_switch_turns_it_to_english_and_a_rel
             .session_with(&programs, &profile, &extra)
             .await
             .unwrap_or_else(|e| panic!("{e}"));
-        let outcome = both_languages(&client, &server, &artifacts, window).await;
+        let started = std::time::Instant::now();
+        let outcome = if small {
+            smallest_phone(&client, &server, &artifacts, window).await
+        } else {
+            both_languages(&client, &server, &artifacts, window).await
+        };
+        eprintln!(
+            "e2e: the tours at {}x{} took {:.1} s",
+            window.width,
+            window.height,
+            started.elapsed().as_secs_f64()
+        );
         if let Err(e) = outcome {
             let _ = browser::screenshot(
                 &client,
@@ -149,7 +199,11 @@ async fn both_languages(
     expect_label(
         &lobby,
         "lang",
-        if window.width < 600 { "EN" } else { "English" },
+        if short_switch(window) {
+            "EN"
+        } else {
+            "English"
+        },
     )?;
     expect_html_lang(client, "ru").await?;
     tour(client, artifacts, window, "ru").await?;
@@ -165,7 +219,7 @@ async fn both_languages(
     expect_label(
         &lobby,
         "lang",
-        if window.width < 600 {
+        if short_switch(window) {
             "RU"
         } else {
             "Русский"
@@ -173,6 +227,59 @@ async fn both_languages(
     )?;
     expect_loader(client, "en", "Loading Chapaev…").await?;
     tour(client, artifacts, window, "en").await
+}
+
+/// The tour on the smallest phone: in Russian (the browser's language) on
+/// its side, in English (switched to in the lobby) upright.
+async fn smallest_phone(
+    client: &Client,
+    server: &Server,
+    artifacts: &Path,
+    window: &Window,
+) -> Result<()> {
+    browser::fit_viewport(client, window.width, window.height).await?;
+    client.goto(&server.url("/")).await?;
+    lobby_in(client, "ru").await?;
+    let lang = if window.width < window.height {
+        click_button(client, "lang").await?;
+        lobby_in(client, "en").await?;
+        "en"
+    } else {
+        "ru"
+    };
+    tour(client, artifacts, window, lang).await
+}
+
+/// On the smallest phone, the screen `name` shown in `lang` is switched to
+/// the other language, checked as [`tour`] checks a screen and saved as
+/// `<name>-<other><suffix>.png`, and switched back.
+async fn in_the_other_language(
+    client: &Client,
+    artifacts: &Path,
+    window: &Window,
+    name: &str,
+    lang: &str,
+) -> Result<()> {
+    if !window.suffix.starts_with("-small") {
+        return Ok(());
+    }
+    let other = if lang == "ru" { "en" } else { "ru" };
+    click_button(client, "lang").await?;
+    let state = settle(client, other).await?;
+    let file = format!("{name}-{other}{}.png", window.suffix);
+    let png = browser::screenshot(client, &artifacts.join(&file)).await?;
+    picture::stats(&png)?.check_drawn(&file, 8, 0.001)?;
+    whole_and_even(&state, &file)?;
+    inside_window(&state, &file, window)?;
+    click_button(client, "lang").await?;
+    settle(client, lang).await?;
+    Ok(())
+}
+
+/// Whether the lobby's language switch reads "EN"/"RU" in `window` (a
+/// phone's) rather than the language's whole name.
+fn short_switch(window: &Window) -> bool {
+    window.width < 600
 }
 
 /// Loads the page once more in a hidden frame and reads its loader as the
@@ -225,11 +332,15 @@ async fn tour(client: &Client, artifacts: &Path, window: &Window, lang: &str) ->
         let png = browser::screenshot(client, &artifacts.join(&file)).await?;
         picture::stats(&png)?.check_drawn(&file, 8, 0.001)?;
         whole_and_even(&state, &file)?;
+        inside_window(&state, &file, window)?;
         Ok::<Value, E2eError>(state)
     };
+    let other = |name: &'static str| in_the_other_language(client, artifacts, window, name, lang);
     snap("lobby").await?;
+    other("lobby").await?;
     click_button(client, "help").await?;
     snap("help").await?;
+    other("help").await?;
     click_button(client, "help-close").await?;
 
     click_button(client, "leaderboard").await?;
@@ -238,6 +349,7 @@ async fn tour(client: &Client, artifacts: &Path, window: &Window, lang: &str) ->
     })
     .await?;
     snap("leaderboard").await?;
+    other("leaderboard").await?;
     click_button(client, "lobby").await?;
 
     click_button(client, "sign-in").await?;
@@ -246,6 +358,7 @@ async fn tour(client: &Client, artifacts: &Path, window: &Window, lang: &str) ->
     })
     .await?;
     snap("sign-in").await?;
+    other("sign-in").await?;
     click_button(client, "lobby").await?;
 
     // Without an account the quick match offers the computer at once.
@@ -304,7 +417,24 @@ async fn tour(client: &Client, artifacts: &Path, window: &Window, lang: &str) ->
         "Prev. shot"
     };
     expect_label(&replay, "previous-shot", previous)?;
-    snap("replay").await?;
+    let replay = snap("replay").await?;
+    other("replay").await?;
+    // On a phone the replay's controls read at 13 px or more.
+    if window.width < 600 {
+        let sizes = replay["label_sizes"]
+            .as_object()
+            .cloned()
+            .unwrap_or_default();
+        if let Some((name, size)) = sizes
+            .iter()
+            .find(|(_, s)| s.as_f64().unwrap_or(0.0) < REPLAY_PHONE_TEXT)
+        {
+            return Err(E2eError::Check(format!(
+                "replay{}: the {name} button's label is {size} px, under {REPLAY_PHONE_TEXT}",
+                window.suffix
+            )));
+        }
+    }
     click_button(client, "lobby").await?;
 
     click_button(client, "sandbox").await?;
@@ -313,20 +443,88 @@ async fn tour(client: &Client, artifacts: &Path, window: &Window, lang: &str) ->
     })
     .await?;
     let sandbox = snap("sandbox").await?;
+    other("sandbox").await?;
     if !sandbox["buttons"]["lang"].is_array() {
         return Err(E2eError::Check(format!(
             "no language switch in the sandbox's toolbar: {}",
             sandbox["buttons"]
         )));
     }
+    let small = match window.suffix {
+        "-small-sideways" => Some(SMALL_WORLD_SIDEWAYS),
+        "-small" => Some(SMALL_WORLD_UPRIGHT),
+        _ => None,
+    };
+    if let Some((min_w, min_h)) = small {
+        let world = &sandbox["world"];
+        let (ww, wh) = (
+            world[2].as_f64().unwrap_or(0.0),
+            world[3].as_f64().unwrap_or(0.0),
+        );
+        eprintln!(
+            "e2e: the sandbox's world at {}x{}: {ww} x {wh} CSS pixels",
+            window.width, window.height
+        );
+        if ww < min_w || wh < min_h {
+            return Err(E2eError::Check(format!(
+                "the sandbox's world is {ww} x {wh} at {}x{}, not at least {min_w} x {min_h}",
+                window.width, window.height
+            )));
+        }
+        // The menu of tools and speeds, then the side panel, over the
+        // world; each closes again.
+        for (button, shows, open) in [
+            ("menu", "tool-disc", "tools_open"),
+            ("panel", "preset-brownian", "panel_open"),
+        ] {
+            click_button(client, button).await?;
+            let state = snap(if button == "menu" {
+                "sandbox-menu"
+            } else {
+                "sandbox-panel"
+            })
+            .await?;
+            if state[open] != true || !state["buttons"][shows].is_array() {
+                return Err(E2eError::Check(format!(
+                    "{button} did not open what it holds: {}",
+                    state["buttons"]
+                )));
+            }
+            click_button(client, button).await?;
+            let closed = settle(client, lang).await?;
+            if closed[open] != false || !closed["buttons"]["play"].is_array() {
+                return Err(E2eError::Check(format!(
+                    "{button} did not close, or the bar did not come back"
+                )));
+            }
+        }
+    }
     click_button(client, "lobby").await?;
     lobby_in(client, lang).await?;
     Ok(())
 }
 
+/// Checks that every control the screen `state` reports (saved as
+/// `file`) lies inside `window`.
+fn inside_window(state: &Value, file: &str, window: &Window) -> Result<()> {
+    let buttons = state["buttons"].as_object().cloned().unwrap_or_default();
+    let (w, h) = (f64::from(window.width), f64::from(window.height));
+    for (name, r) in &buttons {
+        let n = |i: usize| r[i].as_f64().unwrap_or(f64::NAN);
+        if !(n(0) >= -0.01 && n(1) >= -0.01 && n(0) + n(2) <= w + 0.01 && n(1) + n(3) <= h + 0.01) {
+            return Err(E2eError::Check(format!(
+                "{file}: {name} {r} is outside the {w} x {h} window"
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// Checks the screen `state` reports (saved as `file`): no button's label
-/// cut, no other text cut short, and one label size in each row of
-/// buttons (buttons of one height whose tops are level).
+/// cut, no other text cut short or running out of its panel or the
+/// window, no text (a label or another) under [`MIN_TEXT`], and one label
+/// size in each row of buttons (buttons of one height whose tops are
+/// level).
 fn whole_and_even(state: &Value, file: &str) -> Result<()> {
     let cut = state["cut"].as_array().cloned().unwrap_or_default();
     if !cut.is_empty() {
@@ -339,6 +537,16 @@ fn whole_and_even(state: &Value, file: &str) -> Result<()> {
     if !texts.is_empty() {
         return Err(E2eError::Check(format!(
             "{file}: texts cut short on {}: {texts:?}",
+            state["screen"]
+        )));
+    }
+    let small = state["small_texts"]
+        .as_object()
+        .cloned()
+        .unwrap_or_default();
+    if !small.is_empty() {
+        return Err(E2eError::Check(format!(
+            "{file}: texts under {MIN_TEXT} px on {}: {small:?}",
             state["screen"]
         )));
     }
@@ -367,6 +575,12 @@ fn whole_and_even(state: &Value, file: &str) -> Result<()> {
         }
     }
     for (_, row) in &rows {
+        if let Some((name, size)) = row.iter().find(|(_, s)| *s < MIN_TEXT - 0.01) {
+            return Err(E2eError::Check(format!(
+                "{file}: the {name} button's label is {size} px on {}, under {MIN_TEXT}",
+                state["screen"]
+            )));
+        }
         if row.iter().any(|(_, s)| (s - row[0].1).abs() > 0.01) {
             return Err(E2eError::Check(format!(
                 "{file}: one row of buttons on {} has labels of different sizes: {row:?}",

@@ -365,6 +365,8 @@ sandbox-tool-delete = Delete
 sandbox-edge = Edge
 sandbox-wall = Wall
 sandbox-panel = Panel
+# The tight layout's button that opens the tools and the speeds.
+sandbox-menu = Menu
 sandbox-export = Export
 sandbox-import = Import
 sandbox-exported = { $done } (the scene at t = { $t } s)

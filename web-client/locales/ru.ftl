@@ -375,6 +375,7 @@ sandbox-tool-delete = Удалить
 sandbox-edge = Край
 sandbox-wall = Стена
 sandbox-panel = Панель
+sandbox-menu = Меню
 sandbox-export = Экспорт
 sandbox-import = Импорт
 sandbox-exported = { $done } (сцена в момент t = { $t } с)

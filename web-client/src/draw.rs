@@ -53,7 +53,12 @@ pub fn board(v: &Viewport, size: f64) {
             }
         }
     }
-    let label = (frame * 0.7).clamp(8.0, 16.0);
+    // The files and ranks in the frame, where it is wide enough to hold
+    // them at a readable size (a small board goes without).
+    let label = (frame * 0.7).clamp(crate::ui::MIN_TEXT, 16.0);
+    if frame < 14.0 {
+        return;
+    }
     for i in 0..8u8 {
         let f = v.to_screen(DVec2::new((i as f64 + 0.5) * sq, 0.0));
         let files = (b'a' + i) as char;

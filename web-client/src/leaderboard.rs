@@ -60,11 +60,16 @@ impl Screen for Leaderboard {
         if ui.button("lobby", &t!("lobby"), Rect::new(x0, y, 96.0, ui::TOUCH)) {
             go = Some(Route::Lobby);
         }
-        ui::text(
+        // The title between the lobby's button and the language switch,
+        // smaller (down to 12 units) where that is narrow.
+        let lang_w = if w < 600.0 { 48.0 } else { 110.0 };
+        let room = x0 + col - lang_w - 8.0 - (x0 + 108.0);
+        ui::text_in(
             &t!("leaderboard"),
-            x0 + 112.0,
+            x0 + 108.0,
             y + 9.0,
             24.0,
+            room,
             colors::ACCENT,
         );
         crate::i18n::switch_top(ui, x0 + col, y);
@@ -85,6 +90,7 @@ impl Screen for Leaderboard {
         y += ui::TOUCH + 12.0;
         let area = Rect::new(x0, y, col, h - y - 12.0);
         ui::panel(area);
+        let _inside = ui::bounds(area);
         let mut ry = area.y + 10.0;
         if self.rows.is_empty() {
             let text = if let Some(m) = &self.message {
@@ -94,13 +100,14 @@ impl Screen for Leaderboard {
             } else {
                 t!("loading")
             };
-            ui::text(
-                &ui::fit(&text, 16.0, area.w - 20.0),
-                area.x + 10.0,
-                ry + 4.0,
-                16.0,
-                colors::MUTED,
-            );
+            // In as many lines as the list's width takes.
+            for (i, line) in crate::help::wrap(&text, 16.0, area.w - 20.0)
+                .iter()
+                .enumerate()
+            {
+                let y = ry + 4.0 + i as f32 * 20.0;
+                ui::text(line, area.x + 10.0, y, 16.0, colors::MUTED);
+            }
         }
         let name_w = (area.w * 0.5).min(260.0);
         for (k, p) in self.rows.iter().enumerate() {
@@ -121,13 +128,16 @@ impl Screen for Leaderboard {
                 t!("games-count", count = p.games)
             );
             let tx = r.x + r.w + 12.0;
-            ui::text(
-                &ui::fit(&facts, 16.0, area.x + area.w - tx - 8.0),
-                tx,
-                ry + 12.0,
-                16.0,
-                colors::TEXT,
-            );
+            let room = area.x + area.w - tx - 8.0;
+            if ui::text_width(&facts, 14.0) <= room {
+                ui::text_in(&facts, tx, ry + 12.0, 16.0, room, colors::TEXT);
+            } else {
+                // A narrow list: the rating above the games.
+                let rating = account::profile_rating(p);
+                let games = t!("games-count", count = p.games);
+                ui::text_in(&rating, tx, ry + 3.0, 14.0, room, colors::TEXT);
+                ui::text_in(&games, tx, ry + 23.0, 14.0, room, colors::MUTED);
+            }
             ry += ui::TOUCH + 6.0;
         }
         go

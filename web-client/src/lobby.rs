@@ -350,7 +350,8 @@ impl Lobby {
         }
         ui::text(&name, tx, y, title, colors::ACCENT);
         // The tagline: one line, or two on a phone, under the title.
-        // Smaller (down to 11 units) rather than cut.
+        // Smaller (down to 12 units) rather than cut, and left out where
+        // even that takes more lines.
         let lines = if narrow { 2 } else { 1 };
         let words = if narrow {
             t!("lobby-tagline-short")
@@ -358,10 +359,15 @@ impl Lobby {
             t!("lobby-tagline")
         };
         let mut size: f32 = if narrow { 13.0 } else { 18.0 };
-        while size > 11.0 && crate::help::wrap(&words, size, room).len() > lines {
+        while size > ui::MIN_TEXT && crate::help::wrap(&words, size, room).len() > lines {
             size -= 1.0;
         }
-        let tagline = crate::help::wrap_lines(&words, size, room, lines);
+        let tagline = crate::help::wrap(&words, size, room);
+        let tagline = if tagline.len() > lines {
+            Vec::new()
+        } else {
+            tagline
+        };
         for (i, line) in tagline.iter().enumerate() {
             let ly = y + title + 4.0 + i as f32 * (size + 2.0);
             ui::text(line, tx + 2.0, ly, size, colors::MUTED);
@@ -376,7 +382,9 @@ impl Lobby {
         }
         i18n::switch(ui, l.lang, narrow);
         let label_w = l.label_w;
-        if let Some(r) = self.account_row(ui, x0, l.account_y, col, label_w, narrow) {
+        if let Some(r) =
+            self.account_row(ui, l.account_x, l.account_y, l.account_w, label_w, narrow)
+        {
             go = Some(r);
         }
         // The matches to start: a grid of four columns, or two on a phone.
@@ -439,13 +447,15 @@ impl Lobby {
         } else {
             t!("lobby-footer")
         };
-        ui::text(
-            &ui::fit(&footer, 14.0, col),
-            x0,
-            l.footer_y,
-            14.0,
-            colors::MUTED,
-        );
+        if let Some(footer_y) = l.footer_y {
+            ui::text(
+                &ui::fit(&footer, 14.0, col),
+                x0,
+                footer_y,
+                14.0,
+                colors::MUTED,
+            );
+        }
         for (list_, area) in self.s.lists.iter().zip(l.lists) {
             if let Some(r) = list(ui, list_, area) {
                 go = Some(r);
@@ -463,6 +473,7 @@ impl Lobby {
 fn list(ui: &mut Ui, l: &MatchList, area: Rect) -> Option<Route> {
     let mut go = None;
     ui::panel(area);
+    let _inside = ui::bounds(area);
     ui::text(
         &ui::fit(&i18n::text(l.title, &[]), 19.0, area.w - 20.0),
         area.x + 10.0,

@@ -118,6 +118,7 @@ async fn main() {
         state.insert("cut".into(), ui.cut());
         state.insert("label_sizes".into(), ui.label_sizes());
         state.insert("cut_texts".into(), ui.cut_texts());
+        state.insert("small_texts".into(), ui.small_texts());
         state.insert("hovered".into(), ui.hovered().into());
         state.insert("lang".into(), i18n::current().code().into());
         state

@@ -155,9 +155,11 @@ impl Screen for QuickMatch {
             26.0,
             colors::ACCENT,
         );
-        let status = crate::help::wrap_lines(&self.seek.status(), 17.0, tw, 2);
+        // The status and the hint in two lines each, smaller (down to 12
+        // units) where a narrow panel needs it.
+        let (size, status) = crate::help::shrink_lines(&self.seek.status(), 17.0, tw, 2);
         for (i, line) in status.iter().enumerate() {
-            ui::text(line, x, p.status_y + i as f32 * 20.0, 17.0, colors::TEXT);
+            ui::text(line, x, p.status_y + i as f32 * 20.0, size, colors::TEXT);
         }
         let hint = match &self.message {
             Some(m) => m.clone(),
@@ -165,11 +167,9 @@ impl Screen for QuickMatch {
             None => t!("quick-next-person"),
         };
         let hint_y = p.status_y + 20.0 * status.len() as f32 + 4.0;
-        for (i, line) in crate::help::wrap_lines(&hint, 15.0, tw, 2)
-            .iter()
-            .enumerate()
-        {
-            ui::text(line, x, hint_y + i as f32 * 18.0, 15.0, colors::MUTED);
+        let (size, hint) = crate::help::shrink_lines(&hint, 15.0, tw, 2);
+        for (i, line) in hint.iter().enumerate() {
+            ui::text(line, x, hint_y + i as f32 * 18.0, size, colors::MUTED);
         }
         let mut go = None;
         if ui.button("quick-cancel", &t!("cancel"), p.cancel) {

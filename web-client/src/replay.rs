@@ -21,34 +21,30 @@ use crate::viewport::Viewport;
 use game::{MatchResult, MatchView, Replay as GameReplay, Side, WinReason};
 use macroquad::prelude::*;
 
-/// The speeds offered: backwards, slow motion down to a tenth, fast.
-pub const SPEEDS: [f64; 7] = [-1.0, 0.1, 0.25, 0.5, 1.0, 2.0, 4.0];
+mod layout;
+
+use layout::Mode;
+
 /// How many best shots are listed.
 const BEST: usize = 3;
-
-/// The widths of the control bar's buttons in a window `w` units wide:
-/// a shot jump, play/pause and a speed. The bar's row of buttons shares
-/// one label size, set by the most cramped of them ("Пред. щелчок",
-/// "0.25x"), so a wide window (1200 units and more) gives them the room
-/// it has; the wide bar's controls then end 1126 units from the left.
-/// On a phone the jumps' words take two lines.
-fn bar_widths(w: f32, narrow: bool) -> (f32, f32, f32) {
-    if narrow {
-        (72.0, 80.0, 56.0)
-    } else if w >= 1200.0 {
-        (160.0, 90.0, 72.0)
-    } else {
-        (116.0, 80.0, 56.0)
-    }
-}
 
 /// The title's size (its lines are three units apart).
 const TITLE_SIZE: f32 = 19.0;
 
-/// The title in lines at most `width` wide (word by word), so a narrow
-/// window shows it whole instead of cutting it.
-fn title_lines(title: &str, width: f32) -> Vec<String> {
-    crate::help::wrap(title, TITLE_SIZE, width)
+/// The title and the heading of the sideways layout's column, `width`
+/// wide and at most `room` tall: in lines, at the largest size from 15
+/// units down to 12 at which all of them fit. The size and the lines.
+fn column_text(title: &str, head: &str, width: f32, room: f32) -> (f32, Vec<String>, Vec<String>) {
+    let mut size = 15.0;
+    loop {
+        let t = crate::help::wrap(title, size, width);
+        let h = crate::help::wrap(head, size, width);
+        let tall = (t.len() + h.len()) as f32 * (size + 3.0) + 4.0;
+        if tall <= room || size <= ui::MIN_TEXT {
+            return (size, t, h);
+        }
+        size -= 1.0;
+    }
 }
 
 struct Loaded {
@@ -206,11 +202,9 @@ impl Screen for Replay {
             }
         }
         let (w, h) = crate::scale::size().into();
-        // Two rows of controls under the timeline when the window is narrow.
-        // (The wide bar's controls end 916 units from the left.)
-        let narrow = w < 930.0;
-        let bar_h = if narrow { 170.0 } else { 118.0 };
-        let lobby = Rect::new(w - 98.0, 8.0, 90.0, ui::TOUCH);
+        let mode = layout::mode(w, h);
+        let top = layout::top(w, h);
+        let lobby = top.lobby;
         let l = match &self.state {
             State::Ready(l) => l,
             State::Fetching(_) => {
@@ -225,12 +219,9 @@ impl Screen for Replay {
                     .then_some(Route::Lobby);
             }
             State::Failed(e) => {
-                ui::text_centred(
-                    &ui::fit(e, 20.0, w - 24.0),
-                    Rect::new(0.0, 0.0, w, h),
-                    20.0,
-                    colors::DANGER,
-                );
+                for (i, line) in crate::help::wrap(e, 20.0, w - 24.0).iter().enumerate() {
+                    ui::text(line, 12.0, 64.0 + i as f32 * 24.0, 20.0, colors::DANGER);
+                }
                 return ui
                     .button("lobby", &t!("lobby"), lobby)
                     .then_some(Route::Lobby);
@@ -250,11 +241,6 @@ impl Screen for Replay {
                 self.playing = false;
             }
         }
-        // The title beside the buttons, in as many lines as it takes
-        // (a narrow window: the heading's lines below the buttons).
-        let lang_w = if narrow { 48.0 } else { 110.0 };
-        let lang = Rect::new(lobby.x - 8.0 - lang_w, lobby.y, lang_w, ui::TOUCH);
-        let text_w = lang.x - 20.0;
         let title = match &self.players {
             Some(players) => t!(
                 "replay-title-players",
@@ -267,28 +253,7 @@ impl Screen for Replay {
                 fairness = l.fairness.as_str()
             ),
         };
-        let title = title_lines(&title, text_w);
-        let (title_size, title_step) = (TITLE_SIZE, TITLE_SIZE + 3.0);
-        let title_end = 8.0 + title.len() as f32 * title_step;
-        let heading_y = if narrow {
-            title_end.max(lobby.y + lobby.h) + 2.0
-        } else {
-            title_end + 4.0
-        };
-        let head_h = if narrow {
-            heading_y + 2.0 * 18.0 + 2.0
-        } else {
-            (heading_y + 22.0).max(60.0)
-        };
         let (view, frame, shot) = at(l, self.t);
-        // The board between the heading and the control bar.
-        let board = Rect::new(0.0, head_h, w, h - bar_h - head_h);
-        let vp = Viewport::fit_square(view.config.board_size(), board, 24.0, false);
-        draw::board(&vp, view.config.board_size());
-        let shooter = shot.map(|n| l.clips[n].outcome.piece);
-        draw::frame(&vp, view.config.piece_radius, &frame, |p| {
-            (Some(p) == shooter).then_some(colors::ACCENT)
-        });
         // Heading: which shot, who, the round, pieces left.
         let count = |s: Side| frame.pieces.iter().filter(|(p, _)| p.side() == s).count();
         let head = match shot {
@@ -311,49 +276,79 @@ impl Screen for Replay {
             Some(r) if self.t >= l.timeline.total() => format!("{head} · {}", result_line(r)),
             _ => head,
         };
+        // The title and the heading in lines (title, heading), each line's
+        // top, size and colour, and where the heading ends.
+        let mut lines: Vec<(String, f32, f32, Color)> = Vec::new();
+        let head_h = match mode {
+            Mode::Side => {
+                // The column right of the board: both in as many lines as
+                // they take, smaller where the column is short.
+                let (size, t_lines, h_lines) =
+                    column_text(&title, &head, top.title.w, top.heading.h);
+                let mut y = top.title.y;
+                for line in t_lines {
+                    lines.push((line, y, size, colors::ACCENT));
+                    y += size + 3.0;
+                }
+                y += 4.0;
+                for line in h_lines {
+                    lines.push((line, y, size, colors::TEXT));
+                    y += size + 3.0;
+                }
+                0.0
+            }
+            _ => {
+                // The title beside the buttons, in as many lines as it
+                // takes; the heading below it (a narrow window: below the
+                // buttons too, in as many lines as it takes).
+                let step = TITLE_SIZE + 3.0;
+                let t_lines = crate::help::wrap(&title, TITLE_SIZE, top.title.w);
+                let title_end = top.title.y + t_lines.len() as f32 * step;
+                for (i, line) in t_lines.into_iter().enumerate() {
+                    let y = top.title.y + i as f32 * step;
+                    lines.push((line, y, TITLE_SIZE, colors::ACCENT));
+                }
+                if mode == Mode::Narrow {
+                    let mut y = title_end.max(lobby.y + lobby.h) + 2.0;
+                    for line in crate::help::wrap(&head, 14.0, top.heading.w) {
+                        lines.push((line, y, 14.0, colors::TEXT));
+                        y += 18.0;
+                    }
+                    y + 2.0
+                } else {
+                    let y = title_end + 4.0;
+                    lines.push((head.clone(), y, 15.0, colors::TEXT));
+                    (y + 22.0).max(60.0)
+                }
+            }
+        };
+        // The board between the heading and the control bar (at the left
+        // of the column, sideways).
+        let board = layout::board(w, h, head_h);
+        let vp = Viewport::fit_square(view.config.board_size(), board, 24.0, false);
+        draw::board(&vp, view.config.board_size());
+        let shooter = shot.map(|n| l.clips[n].outcome.piece);
+        draw::frame(&vp, view.config.piece_radius, &frame, |p| {
+            (Some(p) == shooter).then_some(colors::ACCENT)
+        });
         // The heading stays above the board (the board is drawn first, so
         // a piece sliding off it goes under the heading and the bar).
-        draw_rectangle(0.0, 0.0, w, head_h, colors::BACKGROUND);
-        crate::i18n::switch(ui, lang, narrow);
-        for (i, line) in title.iter().enumerate() {
-            ui::text(
-                &ui::fit(line, title_size, text_w),
-                12.0,
-                8.0 + i as f32 * title_step,
-                title_size,
-                colors::ACCENT,
-            );
-        }
-        // The heading in one line, or two where the window is narrow.
-        let parts: Vec<&str> = head.splitn(3, " · ").collect();
-        if narrow && parts.len() >= 2 {
-            let (first, rest) = match parts[..] {
-                [a, b, c] => (format!("{a} · {b}"), c),
-                [a, b, ..] => (a.to_string(), b),
-                _ => (head.clone(), ""),
-            };
-            ui::text(
-                &ui::fit(&first, 14.0, w - 24.0),
-                12.0,
-                heading_y,
-                14.0,
-                colors::TEXT,
-            );
-            ui::text(
-                &ui::fit(rest, 14.0, w - 24.0),
-                12.0,
-                heading_y + 18.0,
-                14.0,
-                colors::TEXT,
-            );
+        if mode == Mode::Side {
+            draw_rectangle(board.w, 0.0, w - board.w, h, colors::BACKGROUND);
         } else {
-            // Beside the buttons, so it stops before them.
+            draw_rectangle(0.0, 0.0, w, head_h, colors::BACKGROUND);
+        }
+        crate::i18n::switch(ui, top.lang, top.short_lang);
+        let text_w = top.heading.w;
+        for (line, y, size, color) in &lines {
+            // A line longer than its room (the wide heading beside the
+            // buttons) is cut, and reported so.
             ui::text(
-                &ui::fit(&head, 15.0, text_w),
-                12.0,
-                heading_y,
-                15.0,
-                colors::TEXT,
+                &ui::fit(line, *size, text_w),
+                top.title.x,
+                *y,
+                *size,
+                *color,
             );
         }
         let mut go = ui
@@ -361,8 +356,8 @@ impl Screen for Replay {
             .then_some(Route::Lobby);
         // The best shots down the board's left edge: each jumps to its
         // shot, in slow motion.
-        let bw = if narrow { 112.0 } else { 150.0 };
-        if !l.best.is_empty() && !narrow {
+        let best = layout::best(w, h, head_h, l.best.len());
+        if !l.best.is_empty() && mode == Mode::Wide {
             ui::text(
                 &t!("replay-best-shots"),
                 12.0,
@@ -371,9 +366,7 @@ impl Screen for Replay {
                 colors::MUTED,
             );
         }
-        for (i, &(n, k)) in l.best.iter().enumerate() {
-            let top = head_h + if narrow { 6.0 } else { 28.0 };
-            let r = Rect::new(12.0, top + i as f32 * (ui::TOUCH + 6.0), bw, ui::TOUCH);
+        for (i, (&(n, k), r)) in l.best.iter().zip(best).enumerate() {
             let label = t!("replay-best-shot", shot = n + 1, off = k);
             if ui.button(&format!("best-{i}"), &label, r) {
                 self.t = l.timeline.start(n);
@@ -382,9 +375,9 @@ impl Screen for Replay {
             }
         }
         // The control bar: timeline, play/pause, shot jumps, speeds.
-        let bar = Rect::new(0.0, h - bar_h, w, bar_h);
-        ui::panel(bar);
-        let track = Rect::new(20.0, bar.y + 8.0, w - 40.0, ui::TOUCH);
+        let c = layout::controls(w, h);
+        ui::panel(c.panel);
+        let track = c.track;
         let total = l.timeline.total().max(1e-9);
         for n in 0..l.timeline.shots() {
             let x = track.x + track.w * (l.timeline.start(n) / total) as f32;
@@ -401,18 +394,9 @@ impl Screen for Replay {
         let t = ui.slider("timeline", self.t, 0.0, total, track);
         self.scrubbing = ui.input.down && t != before;
         self.t = t;
-        let y = bar.y + 60.0;
-        let mut x = if narrow { 12.0 } else { 20.0 };
-        let mut next = |wdt: f32| {
-            let r = Rect::new(x, y, wdt, ui::TOUCH);
-            x += wdt + 8.0;
-            r
-        };
-        // The shot jumps say what they do (on one line where the window is
-        // wide; on a phone their words take two). The row's labels share
-        // one size, so a cramped jump would shrink the speeds too.
-        let (jump_w, play_w, speed_w) = bar_widths(w, narrow);
-        if ui.button("previous-shot", &t!("replay-previous-shot"), next(jump_w)) {
+        // The shot jumps say what they do (their words on two lines where
+        // the row is narrow). The row's labels share one size.
+        if ui.button("previous-shot", &t!("replay-previous-shot"), c.previous) {
             self.t = l.timeline.previous_shot(self.t);
         }
         let label = if self.playing {
@@ -420,47 +404,39 @@ impl Screen for Replay {
         } else {
             t!("replay-play")
         };
-        if ui.button("play-pause", &label, next(play_w)) {
+        if ui.button("play-pause", &label, c.play) {
             if !self.playing && self.speed > 0.0 && self.t >= l.timeline.total() {
                 self.t = 0.0;
             }
             self.playing = !self.playing;
         }
-        if ui.button("next-shot", &t!("replay-next-shot"), next(jump_w)) {
+        if ui.button("next-shot", &t!("replay-next-shot"), c.next) {
             self.t = l.timeline.next_shot(self.t);
         }
-        let clock = next(0.0);
-        ui::text(
+        ui::text_in(
             &t!(
                 "replay-clock",
                 at = format!("{:.1}", self.t),
                 total = format!("{:.1}", l.timeline.total())
             ),
-            clock.x + 4.0,
-            y + 13.0,
-            17.0,
+            c.clock.x,
+            c.clock.y,
+            c.clock.h,
+            c.clock.w,
             colors::TEXT,
         );
-        // The speeds: after the clock, or on a row of their own.
-        let (sx, sy, sw) = if narrow {
-            let sw = ((w - 24.0 - 6.0 * (SPEEDS.len() - 1) as f32) / SPEEDS.len() as f32).min(60.0);
-            (12.0, y + ui::TOUCH + 8.0, sw)
-        } else {
-            (clock.x + 120.0, y, speed_w)
-        };
         // One label size for the row, so "0.25x" is not smaller than "1x".
-        let labels = SPEEDS.map(|s| format!("{s}x"));
-        let size = Rect::new(sx, sy, sw, ui::TOUCH);
-        ui.even_labels(&labels, size, |ui| {
-            for (i, (s, label)) in SPEEDS.into_iter().zip(&labels).enumerate() {
-                let gap = if narrow { 6.0 } else { 8.0 };
-                let r = Rect::new(sx + i as f32 * (sw + gap), sy, sw, ui::TOUCH);
-                if ui.button_styled(&format!("speed{s}"), label, r, true, self.speed == s) {
-                    self.speed = s;
-                    self.playing = true;
+        let labels: Vec<String> = c.speeds.iter().map(|s| format!("{s}x")).collect();
+        if let Some(&first) = c.speed_buttons.first() {
+            ui.even_labels(&labels, first, |ui| {
+                for ((&s, label), r) in c.speeds.iter().zip(&labels).zip(&c.speed_buttons) {
+                    if ui.button_styled(&format!("speed{s}"), label, *r, true, self.speed == s) {
+                        self.speed = s;
+                        self.playing = true;
+                    }
                 }
-            }
-        });
+            });
+        }
         if is_key_pressed(KeyCode::Space) {
             self.playing = !self.playing;
         }
@@ -513,14 +489,14 @@ mod tests {
             for play in ["replay-play", "replay-pause"] {
                 // A 1280 x 800 browser window, in layout units.
                 let w = 1280.0 / crate::scale::zoom_for(1280.0, 800.0);
-                let (jump, play_w, speed) = bar_widths(w, false);
+                let (jump, play_w, speed) = layout::bar_widths(w);
                 let text = |id: &str| message_in(lang, id).expect("the message exists");
                 let mut labels = vec![
                     (text("replay-previous-shot"), jump),
                     (text(play), play_w),
                     (text("replay-next-shot"), jump),
                 ];
-                labels.extend(SPEEDS.map(|s| (format!("{s}x"), speed)));
+                labels.extend(layout::SPEEDS.map(|s| (format!("{s}x"), speed)));
                 let mut x = 20.0;
                 let buttons: Vec<(&str, Rect)> = labels
                     .iter()

@@ -118,6 +118,7 @@ impl Screen for Sandbox {
         let layout::Areas {
             compact,
             sideways,
+            tight,
             top,
             bottom,
             world,
@@ -128,6 +129,11 @@ impl Screen for Sandbox {
         if !compact {
             self.s.panel_open = false;
         }
+        if !tight {
+            self.s.tools_open = false;
+        }
+        // Something open over the world takes its input.
+        let covering = self.s.panel_open || self.s.tools_open;
 
         if self.s.waiting_file {
             if let Some(text) = platform::picked_file() {
@@ -146,7 +152,7 @@ impl Screen for Sandbox {
         let left = if compact { 0.0 } else { STATS_W };
         self.s.refit_in(&scene, world, left);
         self.keys(&scene);
-        if !self.s.panel_open {
+        if !covering {
             self.world_input(ui, world, &scene);
         }
         let scene = self.s.sim.scene();
@@ -154,7 +160,7 @@ impl Screen for Sandbox {
 
         // Sideways, the open panel covers the world's right part: the view
         // is drawn moved left, its centre in the middle of what is seen.
-        let covered = if sideways && self.s.panel_open {
+        let covered = if sideways && !tight && self.s.panel_open {
             (world.x + world.w - side.x).max(0.0)
         } else {
             0.0
@@ -185,9 +191,10 @@ impl Screen for Sandbox {
         if !compact || self.s.panel_open {
             controls::side_panel(&mut self.s, ui, side, &scene);
         }
-        // Sideways, the open panel takes the bar's place.
-        if !(sideways && self.s.panel_open) {
-            controls::playback_bar(&mut self.s, ui, bar, compact);
+        // Sideways, and in the tight layout, the open panel (or menu)
+        // takes the bar's place.
+        if !((sideways || tight) && covering) {
+            controls::playback_bar(&mut self.s, ui, bar, layout::Bar::of(&areas));
         }
         route
     }
@@ -223,6 +230,7 @@ impl Screen for Sandbox {
         m.insert("preset".into(), self.s.kind.name().into());
         m.insert("selected".into(), self.s.selected.map(|b| b.0).into());
         m.insert("panel_open".into(), self.s.panel_open.into());
+        m.insert("tools_open".into(), self.s.tools_open.into());
         // The world's rectangle, and the open panel's, in CSS pixels.
         let (w, h) = crate::scale::size().into();
         let a = layout::areas(w, h);
@@ -231,7 +239,8 @@ impl Screen for Sandbox {
             serde_json::json!([r.x, r.y, r.w, r.h])
         };
         m.insert("world".into(), css(a.world));
-        if a.compact && self.s.panel_open {
+        m.insert("tight".into(), a.tight.into());
+        if a.compact && (self.s.panel_open || self.s.tools_open) {
             m.insert("side".into(), css(a.side));
         }
         if let Some((text, error, _)) = &self.s.message {

@@ -110,22 +110,14 @@ impl SignIn {
     fn signed_out(&mut self, ui: &mut Ui, x0: f32, col: f32, mut y: f32) {
         let gap = 8.0;
         let bw = 112.0;
-        ui::text(
-            &ui::fit(&t!("account-new"), 19.0, col),
-            x0,
-            y,
-            19.0,
-            colors::ACCENT,
-        );
+        ui::text_in(&t!("account-new"), x0, y, 19.0, col, colors::ACCENT);
         y += 26.0;
-        ui::text(
-            &ui::fit(&account::name_hint(), 14.0, col),
-            x0,
-            y,
-            14.0,
-            colors::MUTED,
-        );
-        y += 22.0;
+        // The rule of names, on two lines where the column is narrow.
+        for line in crate::help::wrap(&account::name_hint(), 14.0, col) {
+            ui::text_in(&line, x0, y, 14.0, col, colors::MUTED);
+            y += 17.0;
+        }
+        y += 5.0;
         let field = Rect::new(x0, y, col - bw - gap, ui::TOUCH);
         let entered = ui.text_field(
             "account-name",
@@ -142,13 +134,7 @@ impl SignIn {
             self.create();
         }
         y += ui::TOUCH + 28.0;
-        ui::text(
-            &ui::fit(&t!("account-key-heading"), 19.0, col),
-            x0,
-            y,
-            19.0,
-            colors::ACCENT,
-        );
+        ui::text_in(&t!("account-key-heading"), x0, y, 19.0, col, colors::ACCENT);
         y += 30.0;
         let field = Rect::new(x0, y, col - bw - gap, ui::TOUCH);
         let entered = ui.text_field(
@@ -262,11 +248,15 @@ impl Screen for SignIn {
         if ui.button("lobby", &t!("lobby"), Rect::new(x0, y, 96.0, ui::TOUCH)) {
             go = Some(Route::Lobby);
         }
-        ui::text(
+        // Between the lobby's button and the language switch, smaller
+        // (down to 12 units) where that is narrow.
+        let lang_w = if w < 600.0 { 48.0 } else { 110.0 };
+        ui::text_in(
             &t!("account-title"),
-            x0 + 112.0,
+            x0 + 108.0,
             y + 9.0,
             24.0,
+            col - lang_w - 8.0 - 108.0,
             colors::ACCENT,
         );
         crate::i18n::switch_top(ui, x0 + col, y);

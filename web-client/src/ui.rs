@@ -72,13 +72,73 @@ fn cache_glyphs(font: Option<&Font>, s: &str, p: &TextParams) {
     }
 }
 
-/// Draws `s` with its baseline at `(x, y)`.
+/// The smallest text size (layout units, which are CSS pixels on a
+/// phone) a screen draws: a text drawn smaller is reported
+/// ([`Ui::small_texts`]) as a layout to fix.
+pub const MIN_TEXT: f32 = 12.0;
+
+thread_local! {
+    /// The rectangles the text drawn now must stay in (innermost last;
+    /// the window when empty): see [`bounds`].
+    static BOUNDS: std::cell::RefCell<Vec<Rect>> = const { std::cell::RefCell::new(Vec::new()) };
+    /// The texts drawn since [`Ui::begin`] below [`MIN_TEXT`], with their
+    /// sizes.
+    static SMALL_TEXTS: std::cell::RefCell<BTreeMap<String, f32>> =
+        const { std::cell::RefCell::new(BTreeMap::new()) };
+}
+
+/// Keeps the text drawn while it lives inside a rectangle (a panel, a
+/// row of a list): a text that runs out of it is reported as cut, as
+/// one [`fit`] had to cut is.
+#[must_use = "the bounds hold while the guard lives"]
+pub struct Bounds(());
+
+/// Text drawn until the guard is dropped must stay inside `r` (and the
+/// window): what runs out of it is reported among the cut texts.
+pub fn bounds(r: Rect) -> Bounds {
+    BOUNDS.with(|b| b.borrow_mut().push(r));
+    Bounds(())
+}
+
+impl Drop for Bounds {
+    fn drop(&mut self) {
+        BOUNDS.with(|b| b.borrow_mut().pop());
+    }
+}
+
+/// Whether a text `width` wide at `size` with its baseline at `(x, y)`
+/// lies inside `r` (half a unit's slack for rounding; the glyphs rise
+/// 0.8 of the size above the baseline and fall 0.2 below).
+fn text_inside(x: f32, y: f32, width: f32, size: f32, r: Rect) -> bool {
+    const SLACK: f32 = 0.5;
+    x >= r.x - SLACK
+        && x + width <= r.x + r.w + SLACK
+        && y - 0.8 * size >= r.y - SLACK
+        && y + 0.2 * size <= r.y + r.h + SLACK
+}
+
+/// Draws `s` with its baseline at `(x, y)`. A text that runs out of the
+/// window or of the [`bounds`] it is drawn in is reported as cut, and one
+/// smaller than [`MIN_TEXT`] as small.
 pub fn draw_at_baseline(s: &str, x: f32, y: f32, size: f32, color: Color) {
-    FONT.with(|f| {
+    let width = FONT.with(|f| {
         let p = params(f.as_ref(), size, color);
         cache_glyphs(f.as_ref(), s, &p);
-        draw_text_ex(s, x, y, p)
+        draw_text_ex(s, x, y, p).width
     });
+    if s.trim().is_empty() {
+        return;
+    }
+    let window = Rect::new(0.0, 0.0, scale::size().x, scale::size().y);
+    let within = BOUNDS
+        .with(|b| b.borrow().last().copied())
+        .unwrap_or(window);
+    if !text_inside(x, y, width, size, window) || !text_inside(x, y, width, size, within) {
+        CUT_TEXTS.with(|c| c.borrow_mut().insert(s.to_string()));
+    }
+    if size < MIN_TEXT - 0.01 {
+        SMALL_TEXTS.with(|t| t.borrow_mut().insert(s.to_string(), size));
+    }
 }
 
 /// The size of `s` at `size` units.
@@ -258,12 +318,12 @@ pub fn text_width(s: &str, size: f32) -> f32 {
 }
 
 /// Draws `s` at `(x, y)` in at most `width` units: at `size`, smaller
-/// (down to 12 units) where it is too wide, and cut with an ellipsis only
+/// (down to [`MIN_TEXT`]) where it is too wide, and cut with an ellipsis only
 /// below that.
 pub fn text_in(s: &str, x: f32, y: f32, size: f32, width: f32, color: Color) {
     let mut sz = size;
-    while sz > 12.0 && text_width(s, sz) > width {
-        sz -= 1.0;
+    while sz > MIN_TEXT && text_width(s, sz) > width {
+        sz = (sz - 1.0).max(MIN_TEXT);
     }
     // The smaller text stays on the line the full size would take.
     text(&fit(s, sz, width), x, y + (size - sz) * 0.5, sz, color);
@@ -321,30 +381,40 @@ impl Setting {
 }
 
 /// How `label` is set in a button of `r`, no larger than `cap`: one line,
-/// smaller as needed down to 12 units; a label still too wide takes two
-/// lines where the button is finger-tall; whatever is left too wide ends
-/// with an ellipsis (down to 10 units). `width` measures a text at a size.
+/// smaller as needed down to [`MIN_TEXT`]; a label still too wide, or
+/// one that would read under [`READABLE`] on one line while two lines
+/// read larger, takes two lines where the button is finger-tall;
+/// whatever is left too wide ends with an ellipsis (down to 10 units).
+/// `width` measures a text at a size.
 fn setting(label: &str, r: Rect, cap: f32, width: impl Fn(&str, f32) -> f32) -> Setting {
     let room = label_room(r);
     let fits = |s: &str, size: f32| width(s, size) <= room;
     let mut size = label_start(r).min(cap);
-    while size > 12.0 && !fits(label, size) {
-        size -= 1.0;
+    while size > MIN_TEXT && !fits(label, size) {
+        size = (size - 1.0).max(MIN_TEXT);
     }
-    if !fits(label, size) && r.h >= 40.0 {
+    let line_fits = fits(label, size);
+    if r.h >= 40.0 && (!line_fits || size < READABLE) {
         if let Some((a, b)) = split_in_two(label) {
+            let two = |size: f32| fits(a, size) && fits(b, size);
             let mut small = (r.h * 0.34).clamp(10.0, 16.0).min(cap.max(10.0));
-            while small > 10.0 && !(fits(a, small) && fits(b, small)) {
-                small -= 1.0;
+            while small > 10.0 && !two(small) {
+                small = (small - 1.0).max(10.0);
             }
-            return Setting::Lines(small);
+            if !line_fits || (two(small) && small > size) {
+                return Setting::Lines(small);
+            }
         }
     }
     while size > 10.0 && !fits(label, size) {
-        size -= 1.0;
+        size = (size - 1.0).max(10.0);
     }
     Setting::Line(size)
 }
+
+/// The size a label is readable at on a phone: one that would be smaller
+/// on one line takes two where they read larger.
+const READABLE: f32 = 13.0;
 
 /// Draws a button's `label` in `r` as [`setting`] sets it, so no label
 /// ever runs past its button. Whether the label shows whole, and its size.
@@ -498,6 +568,8 @@ impl Ui {
         self.cut.clear();
         self.sizes.clear();
         CUT_TEXTS.with(|c| c.borrow_mut().clear());
+        SMALL_TEXTS.with(|t| t.borrow_mut().clear());
+        BOUNDS.with(|b| b.borrow_mut().clear());
         self.captured = false;
         self.hovered = None;
         // Native inputs not laid over a field last frame go away.
@@ -584,6 +656,19 @@ impl Ui {
     /// The texts cut to fit this frame (buttons' labels and the rest).
     pub fn cut_texts(&self) -> serde_json::Value {
         CUT_TEXTS.with(|c| c.borrow().iter().cloned().collect::<Vec<_>>().into())
+    }
+
+    /// The texts drawn this frame below [`MIN_TEXT`], as `{"text": size}`
+    /// in layout units.
+    pub fn small_texts(&self) -> serde_json::Value {
+        SMALL_TEXTS.with(|t| {
+            serde_json::Value::Object(
+                t.borrow()
+                    .iter()
+                    .map(|(k, v)| (k.clone(), f64::from(*v).into()))
+                    .collect(),
+            )
+        })
     }
 
     /// The names of the buttons whose label was cut this frame.

@@ -10,6 +10,12 @@
 //! fit at), so eight buttons in one row would shrink every label to the
 //! size of the longest ("Компьютер: адаптивный") in an eighth of the
 //! column; four to a row leave room for it at a size that reads easily.
+//!
+//! A window too short for the column (a small phone on its side) sets it
+//! in two: the title, the join row and the lists at the left, the
+//! buttons of the title row, the account row and the matches to start at
+//! the right; a short phone upright leaves out the footer so its lists
+//! keep room for their headings and a line.
 
 use crate::ui::TOUCH;
 use macroquad::prelude::Rect;
@@ -36,8 +42,11 @@ pub struct Layout {
     pub lang: Rect,
     /// The logo's checkers' radius.
     pub logo: f32,
-    /// The account row's top and the width of its label.
+    /// The account row's left edge, top and width, and the width of its
+    /// label.
+    pub account_x: f32,
     pub account_y: f32,
+    pub account_w: f32,
     pub label_w: f32,
     /// The matches to start.
     pub choices: [Rect; CHOICES],
@@ -46,8 +55,8 @@ pub struct Layout {
     pub join: Rect,
     /// Where a message goes: its text's left, top and width.
     pub message: (f32, f32, f32),
-    /// The footer line's top.
-    pub footer_y: f32,
+    /// The footer line's top, where there is room for it.
+    pub footer_y: Option<f32>,
     /// The open, live and finished lists.
     pub lists: [Rect; 3],
 }
@@ -55,6 +64,9 @@ pub struct Layout {
 /// The lobby in a `w` x `h` window; `message` whether a message shows
 /// (on a narrow screen it takes a line above the lists).
 pub fn layout(w: f32, h: f32, message: bool) -> Layout {
+    if w > h && h < SHORT {
+        return two_columns(w, h, message);
+    }
     let pad = if w < 600.0 { 12.0 } else { 20.0 };
     let col = (w - 2.0 * pad).min(980.0);
     let x0 = (w - col) / 2.0;
@@ -99,14 +111,20 @@ pub fn layout(w: f32, h: f32, message: bool) -> Layout {
         let mx = join.x + join.w + 16.0;
         (mx, join.y + 12.0, x0 + col - mx)
     };
-    // The three lists side by side (or stacked on a narrow screen).
+    // The three lists side by side (or stacked on a narrow screen; one
+    // too short for them and the footer goes without the footer).
     let top = y;
-    let bottom = h - 30.0;
+    let footer = !narrow || (h - 30.0 - top) / 3.0 - GAP >= LIST_MIN_H;
+    let (bottom, gap) = if footer {
+        (h - 30.0, GAP)
+    } else {
+        (h - 4.0, 4.0)
+    };
     let lw = if narrow { col } else { (col - 24.0) / 3.0 };
     let lists = std::array::from_fn(|i| {
         if narrow {
-            let lh = (bottom - top) / 3.0;
-            Rect::new(x0, top + i as f32 * lh, lw, lh - GAP)
+            let lh = (bottom - top + gap) / 3.0;
+            Rect::new(x0, top + i as f32 * lh, lw, lh - gap)
         } else {
             Rect::new(x0 + i as f32 * (lw + 12.0), top, lw, bottom - top)
         }
@@ -119,13 +137,76 @@ pub fn layout(w: f32, h: f32, message: bool) -> Layout {
         help,
         lang,
         logo,
+        account_x: x0,
         account_y,
+        account_w: col,
         label_w,
         choices,
         join_field,
         join,
         message: message_at,
-        footer_y: h - 22.0,
+        footer_y: footer.then_some(h - 22.0),
+        lists,
+    }
+}
+
+/// Windows less tall than this, and wider than tall, get two columns.
+const SHORT: f32 = 480.0;
+
+/// The least height of a list: its heading and one line under it.
+const LIST_MIN_H: f32 = 50.0;
+
+/// The lobby in two columns (a short window): the title, the join row,
+/// the message and the stacked lists at the left; the rules, the language
+/// switch, the account row and the matches to start (two to a row) at
+/// the right. No footer.
+fn two_columns(w: f32, h: f32, message: bool) -> Layout {
+    let pad = 12.0;
+    let half = (w - 2.0 * pad - 12.0) / 2.0;
+    let (x0, rx) = (pad, pad + half + 12.0);
+    let row = TOUCH;
+    let title_y = 6.0;
+    let help = Rect::new(rx + half - 84.0, title_y, 84.0, row);
+    let lang = Rect::new(help.x - GAP - 48.0, title_y, 48.0, row);
+    let account_y = title_y + row + 6.0;
+    let label_w = 98.0;
+    let y = account_y + row + 8.0;
+    let bw = (half - GAP) / 2.0;
+    let choices = std::array::from_fn(|i| {
+        let (c, r) = ((i % 2) as f32, (i / 2) as f32);
+        Rect::new(rx + c * (bw + GAP), y + r * (row + GAP), bw, row)
+    });
+    // The left column: under the title and its tagline (about 70 units),
+    // the join row, the message and the lists.
+    let join_w = 80.0;
+    let mut ly = 80.0;
+    let join_field = Rect::new(x0 + label_w, ly, half - label_w - GAP - join_w, row);
+    let join = Rect::new(join_field.x + join_field.w + GAP, ly, join_w, row);
+    ly += row + 8.0;
+    let message_at = (x0, ly, half);
+    if message {
+        ly += 22.0;
+    }
+    let gap = 4.0;
+    let lh = (h - 4.0 - ly + gap) / 3.0;
+    let lists = std::array::from_fn(|i| Rect::new(x0, ly + i as f32 * lh, half, lh - gap));
+    Layout {
+        x0,
+        col: half,
+        narrow: true,
+        title_y,
+        help,
+        lang,
+        logo: 14.0,
+        account_x: rx,
+        account_y,
+        account_w: half,
+        label_w,
+        choices,
+        join_field,
+        join,
+        message: message_at,
+        footer_y: None,
         lists,
     }
 }
@@ -141,6 +222,8 @@ mod tests {
     const COMFORTABLE: f32 = 16.0;
 
     const PHONES: [(f32, f32); 2] = [(390.0, 844.0), (412.0, 915.0)];
+    /// The smallest phone upright and on its side, and a phone on its side.
+    const SMALL: [(f32, f32); 3] = [(320.0, 568.0), (568.0, 320.0), (844.0, 390.0)];
     const DESKTOPS: [(f32, f32); 3] = [(1100.0, 760.0), (1280.0, 720.0), (1440.0, 900.0)];
 
     fn overlap(a: Rect, b: Rect) -> bool {
@@ -250,19 +333,28 @@ mod tests {
 
     #[test]
     fn nothing_overlaps_and_everything_is_inside_the_window() {
-        for (w, h) in PHONES.into_iter().chain(DESKTOPS) {
+        for (w, h) in PHONES.into_iter().chain(SMALL).chain(DESKTOPS) {
             for message in [false, true] {
                 let l = layout(w, h, message);
-                let rects = all(&l);
+                let mut rects = all(&l);
+                // The account row's place (the name's field and Sign in).
+                rects.push(Rect::new(
+                    l.account_x + l.label_w,
+                    l.account_y,
+                    l.account_w - l.label_w,
+                    TOUCH,
+                ));
                 for (i, a) in rects.iter().enumerate() {
                     assert!(inside(*a, w, h), "{w}x{h}: {a:?}");
                     for b in &rects[i + 1..] {
                         assert!(!overlap(*a, *b), "{w}x{h}: {a:?} overlaps {b:?}");
                     }
                 }
-                // The lists end above the footer.
+                // The lists end above the footer, and hold their heading
+                // and a line (without a message, which takes their room).
                 for list in l.lists {
-                    assert!(list.y + list.h <= l.footer_y);
+                    assert!(list.y + list.h <= l.footer_y.unwrap_or(h));
+                    assert!(message || list.h >= LIST_MIN_H, "{w}x{h}: {list:?}");
                 }
             }
         }

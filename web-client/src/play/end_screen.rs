@@ -77,34 +77,10 @@ pub fn show(
         Color::new(0.0, 0.0, 0.0, 0.45),
     );
     ui::panel(r);
-    ui::text(
-        &ui::fit(&w.title, 30.0, l.w),
-        l.x,
-        r.y + 14.0,
-        30.0,
-        w.color,
-    );
-    ui::text(
-        &ui::fit(&w.reason, 15.0, l.w),
-        l.x,
-        r.y + 54.0,
-        15.0,
-        colors::MUTED,
-    );
-    ui::text(
-        &ui::fit(&w.rounds, 17.0, l.w),
-        l.x,
-        r.y + 80.0,
-        17.0,
-        colors::TEXT,
-    );
-    ui::text(
-        &ui::fit(&w.counts, 17.0, l.w),
-        l.x,
-        r.y + 104.0,
-        17.0,
-        colors::TEXT,
-    );
+    ui::text_in(&w.title, l.x, r.y + 14.0, 30.0, l.w, w.color);
+    ui::text_in(&w.reason, l.x, r.y + 54.0, 15.0, l.w, colors::MUTED);
+    ui::text_in(&w.rounds, l.x, r.y + 80.0, 17.0, l.w, colors::TEXT);
+    ui::text_in(&w.counts, l.x, r.y + 104.0, 17.0, l.w, colors::TEXT);
     let mut pressed = Vec::new();
     if let (Some((label, enabled)), Some(b)) = (rematch, l.rematch) {
         if ui.button_styled("end-rematch", label, b, enabled, false) {

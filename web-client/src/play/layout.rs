@@ -31,7 +31,9 @@ pub fn split(w: f32, h: f32) -> (Rect, Rect) {
             Rect::new(w - pw, 0.0, pw, h),
         )
     } else {
-        let bh = w.min(h * 0.56);
+        // The panel keeps 300 units at least (a small phone's board gives
+        // them up), room for its lines, buttons and shot log.
+        let bh = w.min(h * 0.56).min(h - 300.0);
         (Rect::new(0.0, 0.0, w, bh), Rect::new(0.0, bh, w, h - bh))
     }
 }
@@ -124,7 +126,7 @@ fn lines(sizes: &[f32], x: f32, w: f32, y: &mut f32) -> Vec<Rect> {
 }
 
 /// The panel's parts in `area`. Buttons are two to a row (three in a wide
-/// compact panel); the chat sits at the bottom, as many of its lines as
+/// compact panel, or a short one as wide as a small phone); the chat sits at the bottom, as many of its lines as
 /// fit between the buttons and its field.
 pub fn panel(area: Rect, spec: &PanelSpec) -> PanelLayout {
     let compact = compact(area);
@@ -159,7 +161,10 @@ pub fn panel(area: Rect, spec: &PanelSpec) -> PanelLayout {
     l.body = lines(&spec.body, x, w, &mut y);
     y += 2.0;
     l.hints = lines(&spec.hints, x, w, &mut y);
-    let per_row = if compact && w > 520.0 { 3 } else { 2 };
+    // Three to a row in a wide compact panel, and in a short one wide
+    // enough (the smallest phone upright), so its buttons stay in it.
+    let three = w > 520.0 || (area.h < 300.0 && w > 280.0);
+    let per_row = if compact && three { 3 } else { 2 };
     let bw = (w - GAP * (per_row - 1) as f32) / per_row as f32;
     l.buttons = (0..spec.buttons)
         .map(|i| {
@@ -169,6 +174,8 @@ pub fn panel(area: Rect, spec: &PanelSpec) -> PanelLayout {
         .collect();
     y += spec.buttons.div_ceil(per_row) as f32 * (TOUCH + GAP) + 4.0;
     l.log = lines(&vec![14.0; spec.log], x, w, &mut y);
+    // As many of the log's lines as the panel holds.
+    l.log.retain(|r| r.y + r.h <= bottom);
     // The chat above its field (spectators read it, without a field).
     let field_y = bottom - TOUCH;
     let chat_bottom = if spec.chat_field {
@@ -360,7 +367,9 @@ mod tests {
 
     #[test]
     fn the_panels_parts_stay_inside_it_and_apart_at_phone_and_desktop_sizes() {
-        for (w, h) in PHONES.into_iter().chain(DESKTOPS) {
+        // The smallest phone upright and on its side besides.
+        let small = [(320.0, 568.0), (568.0, 320.0)];
+        for (w, h) in PHONES.into_iter().chain(small).chain(DESKTOPS) {
             let (_, area) = split(w, h);
             // While shooting (resign, lobby, rules, sound) and at the end
             // (rematch, replay, lobby, rules, sound), with a full chat.

@@ -409,6 +409,8 @@ pub fn menu_buttons(chat: &Chat) -> Vec<(String, String)> {
 /// the panel while it is open (the panel under it takes no press).
 pub fn show(ui: &mut Ui, area: Rect, c: &Content, chat: Chat) -> Pressed {
     ui::panel(area);
+    // Every text of the panel stays in it.
+    let _inside = ui::bounds(area);
     let l: PanelLayout = layout::panel(area, &c.spec(chat.lines.len()));
     let mut pressed = if chat.menu {
         ui.without_input(|ui| body(ui, c, &l, chat.lines))
@@ -493,7 +495,17 @@ fn body(ui: &mut Ui, c: &Content, l: &PanelLayout, chat: &[String]) -> Pressed {
                 colors::MUTED,
             );
         } else {
-            ui::text_in(&p.name, r.x + 22.0, r.y, 18.0, r.w - 22.0, color);
+            // A name too long for the whole width even at the smallest
+            // size ("компьютер (лёгкий)" in half a small phone's panel)
+            // gives its second half to the line below, in the row's place.
+            let room = r.w - 22.0;
+            let (name, row) = match ui::split_in_two(&p.name) {
+                Some((a, b)) if ui::text_width(&p.name, ui::MIN_TEXT) > room => {
+                    (a.to_string(), b.to_string())
+                }
+                _ => (p.name.clone(), row),
+            };
+            ui::text_in(&name, r.x + 22.0, r.y, 18.0, room, color);
             let small = ui::text_width(&count, 13.0);
             ui::text(&count, r.x + r.w - small, r.y + 21.0, 13.0, colors::TEXT);
             let room = r.w - 30.0 - small;

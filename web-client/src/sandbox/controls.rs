@@ -51,10 +51,27 @@ pub fn toolbar(s: &mut State, ui: &mut Ui, a: &layout::Areas) -> Option<Route> {
     if let Some(r) = layout::language(a) {
         crate::i18n::switch(ui, r, true);
     }
+    if let Some(r) = layout::tools_button(a) {
+        if ui.button_styled("menu", &t!("sandbox-menu"), r, true, s.tools_open) {
+            s.toggle_tools();
+        }
+    }
+    if s.tools_open {
+        // The menu over the world: the tools (set in rows of one width,
+        // one label size) and the speeds.
+        ui::panel(a.side);
+        let (_, speeds) = layout::menu(a);
+        speed_buttons(s, ui, &speeds);
+    }
     let mut go = None;
     for ((name, label, selected), r) in items.iter().zip(layout::toolbar(a)) {
-        if !ui.button_styled(name, label, r, true, *selected) {
+        let in_sight = !a.tight || s.tools_open || name == "lobby" || name == "panel";
+        if !in_sight || !ui.button_styled(name, label, r, true, *selected) {
             continue;
+        }
+        if a.tight && name != "panel" && name != "lobby" && name != "sensor" {
+            // A choice made in the menu closes it.
+            s.tools_open = false;
         }
         match name.as_str() {
             "lobby" => go = Some(Route::Lobby),
@@ -101,6 +118,8 @@ fn new_disc_controls(s: &mut State, ui: &mut Ui, x: f32, d: NewDiscs) {
 /// The side panel in `r` over the scene shown.
 pub fn side_panel(s: &mut State, ui: &mut Ui, r: Rect, scene: &Scene) {
     ui::panel(r);
+    // Every text of the panel stays in it.
+    let _inside = ui::bounds(r);
     // The presets and the world's controls, which stand where they do
     // whatever is selected (a preset may change the selection).
     let top = layout::side_panel(r, false);
@@ -154,20 +173,22 @@ pub fn side_panel(s: &mut State, ui: &mut Ui, r: Rect, scene: &Scene) {
         s.refit = true;
     }
 
-    heading(&t!("sandbox-world"), top.world);
-    let g_now = s.g_edit.unwrap_or(scene.g);
-    let row = top.gravity;
-    ui::text(
-        &t!("sandbox-gravity", g = format!("{g_now:.2}")),
-        x,
-        row.y + 4.0,
-        16.0,
-        colors::TEXT,
-    );
-    let g = ui.slider("gravity", g_now, 0.0, 20.0, layout::slider_of(row));
-    s.drag_gravity(g_now, g, ui.input.down, scene);
-
     let l = layout::side_panel(r, s.selected_body(scene).is_some());
+    if l.world_shown {
+        heading(&t!("sandbox-world"), top.world);
+        let g_now = s.g_edit.unwrap_or(scene.g);
+        let row = top.gravity;
+        ui::text(
+            &t!("sandbox-gravity", g = format!("{g_now:.2}")),
+            x,
+            row.y + 4.0,
+            16.0,
+            colors::TEXT,
+        );
+        let g = ui.slider("gravity", g_now, 0.0, 20.0, layout::slider_of(row));
+        s.drag_gravity(g_now, g, ui.input.down, scene);
+    }
+
     // The new discs and the selection (a second column's, if two).
     let x = l.x2;
     let heading = |t: &str, y: f32| ui::text(t, x, y, 17.0, colors::ACCENT);
@@ -257,10 +278,28 @@ pub fn side_panel(s: &mut State, ui: &mut Ui, r: Rect, scene: &Scene) {
     }
 }
 
-/// The playback bar in `r`: rewind, play, the speeds and the time slider.
-pub fn playback_bar(s: &mut State, ui: &mut Ui, r: Rect, compact: bool) {
+/// The speed buttons at `rects` (one per [`SPEEDS`]), their labels at one
+/// size ("0.01x" as large as "1x" can be).
+fn speed_buttons(s: &mut State, ui: &mut Ui, rects: &[Rect]) {
+    let labels: Vec<String> = SPEEDS.iter().map(|&v| speed_label(v)).collect();
+    if let Some(&first) = rects.first() {
+        ui.even_labels(&labels, first, |ui| {
+            for ((&speed, rect), label) in SPEEDS.iter().zip(rects).zip(&labels) {
+                let name = format!("speed-{speed}");
+                let selected = s.sim.speed == speed;
+                if ui.button_styled(&name, label, *rect, true, selected) {
+                    s.set_speed(speed);
+                }
+            }
+        });
+    }
+}
+
+/// The playback bar in `r`: rewind, play, the speeds (unless they are in
+/// the tight layout's menu) and the time slider.
+pub fn playback_bar(s: &mut State, ui: &mut Ui, r: Rect, bar: layout::Bar) {
     ui::panel(r);
-    let l = layout::playback(r, compact);
+    let l = layout::playback(r, bar);
     if ui.button("rewind", "|<", l.rewind) {
         s.rewind();
     }
@@ -272,28 +311,17 @@ pub fn playback_bar(s: &mut State, ui: &mut Ui, r: Rect, compact: bool) {
     if ui.button_styled("play", &label, l.play, true, s.sim.playing) {
         s.toggle_play();
     }
-    // One label size for the row ("0.01x" as large as "1x" can be).
-    let labels: Vec<String> = SPEEDS.iter().map(|&v| speed_label(v)).collect();
-    if let Some(&first) = l.speeds.first() {
-        ui.even_labels(&labels, first, |ui| {
-            for ((&speed, rect), label) in SPEEDS.iter().zip(&l.speeds).zip(&labels) {
-                let name = format!("speed-{speed}");
-                let selected = s.sim.speed == speed;
-                if ui.button_styled(&name, label, *rect, true, selected) {
-                    s.set_speed(speed);
-                }
-            }
-        });
-    }
+    speed_buttons(s, ui, &l.speeds);
     let (start, hi) = s.time_range();
     let t = ui.slider("time", s.sim.t, start, hi, l.slider);
     s.scrub(t);
     let (tx, ty, tw) = l.time;
-    ui::text(
-        &ui::fit(&t!("sandbox-time", t = num(s.sim.t)), 17.0, tw),
+    ui::text_in(
+        &t!("sandbox-time", t = num(s.sim.t)),
         tx,
         ty,
         17.0,
+        tw,
         colors::TEXT,
     );
 }
@@ -316,11 +344,12 @@ fn unit_slider(ui: &mut Ui, id: &str, label: &str, value: f64, row: Row) -> f64 
 /// clicked.
 fn stepper(ui: &mut Ui, name: &str, label: &str, row: Row) -> Option<f64> {
     let (less, more) = layout::stepper_buttons(row);
-    ui::text(
-        &ui::fit(label, 16.0, less.x - row.x - 4.0),
+    ui::text_in(
+        label,
         row.x,
         row.y + 13.0,
         16.0,
+        less.x - row.x - 4.0,
         colors::TEXT,
     );
     let less = ui.button(&format!("{name}-less"), "-", less);

@@ -5,11 +5,17 @@
 //! overlays over the world; and the view that fits a scene into the
 //! world. A window narrower than a desktop's (a phone) gets the compact
 //! layout: held upright, the tools wrap in rows above the world, the
-//! playback bar takes two rows below it and the side panel opens over the
+//! playback bar takes three rows below it and the side panel opens over the
 //! world; held sideways (wider than tall), where height is short, the
 //! tools stand in columns down the left edge, the bar lies below the world
 //! right of them, and the side panel opens over the world's right part in
-//! two columns. Nothing here draws, so all of it is tested natively.
+//! two columns. A phone too small for that (the world would be under
+//! [`MIN_WORLD`] sideways, or the tools would take four rows upright) gets
+//! the tight layout: the lobby, *Tools*, *Panel* and the language switch
+//! stand alone (one column at the left sideways, one row at the top
+//! upright), the tools and the speeds open in a menu over the world, and
+//! the bar takes one row. Nothing here draws, so all of it is tested
+//! natively.
 
 use super::sim::SPEEDS;
 use super::tools::TOOLS;
@@ -43,11 +49,24 @@ pub const STATS_W: f32 = 248.0;
 /// Where a slider of a side panel row starts, right of its label.
 const SLIDER_AT: f32 = 118.0;
 
-/// Width of a button of the sideways layout's columns of tools.
-const RAIL_BUTTON: f32 = 68.0;
+/// Width of a button of the sideways layout's columns of tools (room for
+/// "Скорость" at 12 units and more).
+const RAIL_BUTTON: f32 = 78.0;
+/// Width of a button of the tight layout's column.
+const TIGHT_BUTTON: f32 = 72.0;
 
 /// Width of a column of the side panel in two columns.
-const SIDE_COLUMN: f32 = 244.0;
+const SIDE_COLUMN: f32 = 236.0;
+/// The narrowest column of a side panel in two columns.
+const SIDE_COLUMN_MIN: f32 = 228.0;
+
+/// The smallest world the sideways layout leaves (layout units): a window
+/// whose columns of tools would leave less gets the tight layout.
+pub const MIN_WORLD: (f32, f32) = (480.0, 220.0);
+
+/// The controls the tight layout keeps in sight: the lobby, *Tools* (the
+/// menu), *Panel* and the language switch.
+const TIGHT_SLOTS: usize = 4;
 
 /// The screen's parts in a window.
 #[derive(Clone, Copy, Debug)]
@@ -60,6 +79,9 @@ pub struct Areas {
     /// The compact layout of a window wider than tall (a phone on its
     /// side): the tools in columns at the left.
     pub sideways: bool,
+    /// The layout of a phone too small for the compact one: the tools
+    /// and the speeds in a menu over the world, the bar in one row.
+    pub tight: bool,
     /// Heights of the toolbar's and the playback bar's bands.
     pub top: f32,
     pub bottom: f32,
@@ -76,8 +98,15 @@ pub struct Areas {
 pub fn areas(w: f32, h: f32) -> Areas {
     let compact = w < MIN_WIDTH;
     if compact && w > h {
-        let rail = rail_width(h);
-        let bottom = 2.0 * (TOUCH + GAP) + 12.0;
+        let mut rail = rail_width(h);
+        let mut bottom = 2.0 * (TOUCH + GAP) + 12.0;
+        let roomy =
+            w - rail >= MIN_WORLD.0 && h - bottom >= MIN_WORLD.1 && speed_rows(w - rail - 4.0) == 1;
+        if !roomy {
+            // One column of four, and the bar in one row.
+            rail = 8.0 + TIGHT_BUTTON + 8.0;
+            bottom = TOUCH + GAP + 8.0;
+        }
         let world = Rect::new(rail, 0.0, w - rail, h - bottom);
         // Two columns at the right, the window's height (over the bar,
         // which hides while the panel is open).
@@ -87,6 +116,7 @@ pub fn areas(w: f32, h: f32) -> Areas {
             h,
             compact,
             sideways: true,
+            tight: !roomy,
             top: 0.0,
             bottom,
             world,
@@ -94,9 +124,31 @@ pub fn areas(w: f32, h: f32) -> Areas {
             bar: Rect::new(rail, h - bottom, w - rail - 4.0, bottom - 4.0),
         };
     }
+    if compact && toolbar_rows(w) > 3.0 {
+        // One row of four at the top, the bar in one row; the panel and
+        // the menu open over the world and the bar.
+        let (top, bottom) = (6.0 + TOUCH + GAP + 2.0, TOUCH + GAP + 8.0);
+        return Areas {
+            w,
+            h,
+            compact,
+            sideways: false,
+            tight: true,
+            top,
+            bottom,
+            world: Rect::new(0.0, top, w, h - top - bottom),
+            side: Rect::new(4.0, top, w - 8.0, h - top - 4.0),
+            bar: Rect::new(4.0, h - bottom, w - 8.0, bottom - 4.0),
+        };
+    }
     let (top, bottom) = if compact {
         let rows = toolbar_rows(w);
-        (6.0 + rows * (TOUCH + GAP) + 2.0, 2.0 * (TOUCH + GAP) + 12.0)
+        // The bar's speeds in one or two rows of their own.
+        let speeds = speed_rows(w - 8.0) as f32;
+        (
+            6.0 + rows * (TOUCH + GAP) + 2.0,
+            (1.0 + speeds) * (TOUCH + GAP) + 12.0,
+        )
     } else {
         (TOP, BOTTOM)
     };
@@ -116,12 +168,62 @@ pub fn areas(w: f32, h: f32) -> Areas {
         h,
         compact,
         sideways: false,
+        tight: false,
         top,
         bottom,
         world,
         side,
         bar,
     }
+}
+
+/// The place of the tight layout's control `i` (of [`TIGHT_SLOTS`]): down
+/// the left edge sideways, along the top upright.
+fn tight_slot(a: &Areas, i: usize) -> Rect {
+    if a.sideways {
+        return Rect::new(8.0, 6.0 + i as f32 * (TOUCH + GAP), TIGHT_BUTTON, TOUCH);
+    }
+    let n = TIGHT_SLOTS as f32;
+    let bw = (a.w - 16.0 - GAP * (n - 1.0)) / n;
+    Rect::new(8.0 + i as f32 * (bw + GAP), 6.0, bw, TOUCH)
+}
+
+/// The tight layout's *Tools*, which opens the menu of tools and speeds.
+pub fn tools_button(a: &Areas) -> Option<Rect> {
+    a.tight.then(|| tight_slot(a, 1))
+}
+
+/// The menu of the tight layout (in the side panel's place): the tools,
+/// Wall/Edge, Export and Import in rows of four (three where four would
+/// be under 90 units wide), in the order of
+/// [`toolbar`] (without Lobby and Panel), and the speeds (one per
+/// [`SPEEDS`]) in two rows of their own below.
+pub fn menu(a: &Areas) -> (Vec<Rect>, Vec<Rect>) {
+    let r = a.side;
+    let items = TOOLS.len() + 3;
+    let width = |per_row: usize| (r.w - 16.0 - GAP * (per_row - 1) as f32) / per_row as f32;
+    let per_row = if width(4) >= 90.0 { 4 } else { 3 };
+    let bw = width(per_row);
+    let slot = |i: usize, per_row: usize, bw: f32, top: f32| {
+        let (c, row) = ((i % per_row) as f32, (i / per_row) as f32);
+        Rect::new(
+            r.x + 8.0 + c * (bw + GAP),
+            top + row * (TOUCH + GAP),
+            bw,
+            TOUCH,
+        )
+    };
+    let tools = (0..items)
+        .map(|i| slot(i, per_row, bw, r.y + 8.0))
+        .collect();
+    let rows = items.div_ceil(per_row) as f32;
+    let top = r.y + 8.0 + rows * (TOUCH + GAP) + 8.0;
+    let per_row = SPEEDS.len().div_ceil(2);
+    let sw = (r.w - 16.0 - GAP * (per_row - 1) as f32) / per_row as f32;
+    let speeds = (0..SPEEDS.len())
+        .map(|i| slot(i, per_row, sw, top))
+        .collect();
+    (tools, speeds)
 }
 
 /// The columns of tools of the sideways layout in a window `h` tall:
@@ -189,6 +291,16 @@ fn toolbar_widths(w: f32) -> (f32, f32, f32, f32) {
 /// the columns at the left row by row.
 pub fn toolbar(a: &Areas) -> Vec<Rect> {
     let (w, compact) = (a.w, a.compact);
+    if a.tight {
+        // Lobby and Panel in sight, the rest in the menu.
+        let (mut menu, _) = menu(a);
+        let mut rects = vec![tight_slot(a, 0)];
+        let rest = menu.split_off(TOOLS.len() + 1);
+        rects.extend(menu);
+        rects.push(tight_slot(a, 2));
+        rects.extend(rest);
+        return rects;
+    }
     if a.sideways {
         return (0..TOOLBAR_BUTTONS).map(|i| rail_slot(a.h, i)).collect();
     }
@@ -231,6 +343,9 @@ pub fn toolbar(a: &Areas) -> Vec<Rect> {
 /// Import on a desktop wide enough (`None` else).
 pub fn language(a: &Areas) -> Option<Rect> {
     let (w, compact) = (a.w, a.compact);
+    if a.tight {
+        return Some(tight_slot(a, 3));
+    }
     if a.sideways {
         return Some(rail_slot(a.h, TOOLBAR_BUTTONS));
     }
@@ -266,9 +381,55 @@ pub struct Playback {
     pub time: (f32, f32, f32),
 }
 
+/// The narrowest a speed button of the compact bar may be before the
+/// speeds take two rows ("0.01x" fits it at 13 units).
+const SPEED_MIN_W: f32 = 42.0;
+
+/// The width of each of `per_row` buttons in a row of the bar `bar_w`
+/// wide.
+fn speed_width(bar_w: f32, per_row: usize) -> f32 {
+    (bar_w - 16.0 - GAP * (per_row - 1) as f32) / per_row as f32
+}
+
+/// The rows the compact bar `bar_w` wide gives its speeds: one where each
+/// is [`SPEED_MIN_W`] wide or more, else two.
+fn speed_rows(bar_w: f32) -> usize {
+    if speed_width(bar_w, SPEEDS.len()) >= SPEED_MIN_W {
+        1
+    } else {
+        2
+    }
+}
+
+/// How the playback bar is laid out.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Bar {
+    /// One row, the speeds in it (a desktop).
+    Wide,
+    /// Rewind, play and the slider in one row, the speeds in one or two
+    /// rows below (a phone).
+    Compact,
+    /// Rewind, play and the slider only: the speeds are in the menu.
+    Short,
+}
+
+impl Bar {
+    /// The bar of the layout `a`.
+    pub fn of(a: &Areas) -> Bar {
+        if a.tight {
+            Bar::Short
+        } else if a.compact {
+            Bar::Compact
+        } else {
+            Bar::Wide
+        }
+    }
+}
+
 /// Rewind, play, the speeds and the time slider in the bar `r`: one row
-/// on a desktop; two in the compact layout (the speeds below).
-pub fn playback(r: Rect, compact: bool) -> Playback {
+/// on a desktop; two or three in the compact layout (the speeds in one
+/// or two below); one without the speeds in the tight layout.
+pub fn playback(r: Rect, bar: Bar) -> Playback {
     let h = TOUCH;
     let y = r.y + 6.0;
     let mut x = r.x + 8.0;
@@ -284,25 +445,44 @@ pub fn playback(r: Rect, compact: bool) -> Playback {
     let play = Rect::new(x, y, play_w, h);
     // Room for the slider's knob beside Play.
     x += play_w + 24.0;
-    let n = SPEEDS.len() as f32;
-    let (mut sx, sy, sw) = if compact {
-        let sw = (r.w - 16.0 - GAP / 2.0 * (n - 1.0)) / n;
-        (r.x + 8.0, y + h + GAP, sw)
-    } else {
-        (x, y, speed_w)
+    let speeds = match bar {
+        Bar::Wide => {
+            let mut sx = x;
+            let speeds = SPEEDS
+                .iter()
+                .map(|_| {
+                    let s = Rect::new(sx, y, speed_w, h);
+                    sx += speed_w + GAP / 2.0;
+                    s
+                })
+                .collect();
+            x = sx + 24.0;
+            speeds
+        }
+        Bar::Compact => {
+            // In two rows of five where one would be too narrow for
+            // "0.01x" to read at a phone's size.
+            let per_row = SPEEDS.len().div_ceil(speed_rows(r.w));
+            let sw = speed_width(r.w, per_row);
+            (0..SPEEDS.len())
+                .map(|i| {
+                    let (c, row) = ((i % per_row) as f32, (i / per_row) as f32);
+                    Rect::new(
+                        r.x + 8.0 + c * (sw + GAP),
+                        y + (1.0 + row) * (h + GAP),
+                        sw,
+                        h,
+                    )
+                })
+                .collect()
+        }
+        Bar::Short => Vec::new(),
     };
-    let speeds = SPEEDS
-        .iter()
-        .map(|_| {
-            let s = Rect::new(sx, sy, sw, h);
-            sx += sw + GAP / 2.0;
-            s
-        })
-        .collect();
-    if !compact {
-        x = sx + 24.0;
-    }
-    let label_w = if compact { 96.0 } else { 120.0 };
+    let label_w = match bar {
+        Bar::Wide => 120.0,
+        Bar::Compact => 96.0,
+        Bar::Short => 84.0,
+    };
     let slider = Rect::new(x, y, (r.x + r.w - label_w - 16.0 - x).max(40.0), h);
     Playback {
         rewind,
@@ -378,6 +558,9 @@ pub struct SidePanel {
     /// The world's heading's top and the gravity's slider row.
     pub world: f32,
     pub gravity: Row,
+    /// Whether the world's heading and gravity show (a short panel in one
+    /// column gives their place to a body's controls).
+    pub world_shown: bool,
     /// The controls of new discs, unless a body's replace them.
     pub new_discs: Option<NewDiscs>,
     /// The selection's heading's top (and its help lines below).
@@ -392,7 +575,7 @@ pub struct SidePanel {
 /// sideways layout's) has the presets and the world in the first, the
 /// new discs and the selection in the second.
 pub fn side_panel(r: Rect, body: bool) -> SidePanel {
-    let two = r.w >= 2.0 * SIDE_COLUMN - 1e-3;
+    let two = r.w >= 2.0 * SIDE_COLUMN_MIN - 1e-3;
     let column = if two { r.w / 2.0 } else { r.w };
     let x = r.x + 10.0;
     let w = column - 20.0;
@@ -421,6 +604,12 @@ pub fn side_panel(r: Rect, body: bool) -> SidePanel {
     }
     let row = |y: f32| Rect::new(x2, y, w, h);
     let compact = r.h < 720.0;
+    // A panel in one column too short for the world's row and a body's
+    // controls too: the body's take the world's place.
+    let world_shown = !(!two && r.h < 540.0 && body);
+    if !world_shown {
+        y = world;
+    }
     let new_discs = (!(compact && body)).then(|| {
         let heading = y;
         y += 18.0;
@@ -462,6 +651,7 @@ pub fn side_panel(r: Rect, body: bool) -> SidePanel {
         fit,
         world,
         gravity,
+        world_shown,
         new_discs,
         selection,
         body,
@@ -473,9 +663,10 @@ pub fn stats(world: Rect) -> Rect {
     Rect::new(world.x + 8.0, world.y + 8.0, 232.0, 265.0)
 }
 
-/// Galperin's counter over the world's top right corner.
+/// Galperin's counter over the world's top right corner (narrower in a
+/// narrow world).
 pub fn galperin_counter(world: Rect) -> Rect {
-    let w = 330.0;
+    let w = (world.w - 16.0).min(330.0);
     Rect::new(world.x + world.w - w - 8.0, world.y + 8.0, w, 112.0)
 }
 
@@ -487,7 +678,7 @@ pub fn line_step(size: f32) -> f32 {
 /// The message's box at the world's bottom for `lines` lines of text at
 /// `size`, the widest `text_w` wide.
 pub fn message(world: Rect, text_w: f32, lines: usize, size: f32) -> Rect {
-    let w = text_w.min(world.w - 24.0) + 20.0;
+    let w = text_w.min(world.w - 36.0) + 20.0;
     let h = 8.0 + lines.max(1) as f32 * line_step(size);
     Rect::new(world.x + 8.0, world.y + world.h - 8.0 - h, w, h)
 }
@@ -543,6 +734,8 @@ mod tests {
     const DESKTOPS: [(f32, f32); 2] = [(1280.0, 720.0), (1920.0, 1080.0)];
     /// Phones on their side besides [`PHONES`]' (a small one, a tall one).
     const SIDEWAYS: [(f32, f32); 2] = [(568.0, 320.0), (915.0, 412.0)];
+    /// The smallest phone (an iPhone SE) upright and on its side.
+    const SMALL: [(f32, f32); 2] = [(320.0, 568.0), (568.0, 320.0)];
 
     fn apart(what: &str, rects: &[Rect]) {
         for (i, a) in rects.iter().enumerate() {
@@ -562,8 +755,10 @@ mod tests {
             p.chapaev,
             p.empty,
             p.fit,
-            slider_of(p.gravity),
         ];
+        if p.world_shown {
+            all.push(slider_of(p.gravity));
+        }
         if let Some(d) = p.new_discs {
             let (a, b) = stepper_buttons(d.radius);
             let (c, e) = stepper_buttons(d.mass);
@@ -626,7 +821,7 @@ mod tests {
             }
             let bar: Vec<(String, Rect)> = labels.into_iter().zip(rects).collect();
             let top = row_size(&bar);
-            let p = playback(a.bar, false);
+            let p = playback(a.bar, Bar::Wide);
             let mut row = vec![("|<".to_string(), p.rewind), (text("replay-pause"), p.play)];
             row.extend(
                 SPEEDS
@@ -708,15 +903,33 @@ mod tests {
             assert!(t.iter().any(|r| r.y > 6.0));
             assert!(t.iter().all(|r| r.y + r.h < a.world.y));
             // The speeds take the bar's second row.
-            let p = playback(a.bar, true);
+            let p = playback(a.bar, Bar::Compact);
             assert!(p.speeds.iter().all(|s| s.y > p.play.y + p.play.h));
         }
         assert!(areas(999.0, 700.0).compact && !areas(1000.0, 700.0).compact);
     }
 
+    /// The controls in sight while nothing is open over the world: the
+    /// toolbar's (in the tight layout only Lobby, *Menu*, *Panel* and the
+    /// language switch).
+    fn in_sight(a: &Areas) -> Vec<Rect> {
+        let mut tools = toolbar(a);
+        if a.tight {
+            tools = vec![tools[0], tools[TOOLS.len() + 2]];
+        }
+        tools.extend(language(a));
+        tools.extend(tools_button(a));
+        tools
+    }
+
     #[test]
     fn every_control_is_inside_the_window_apart_and_finger_tall_at_phone_and_desktop_sizes() {
-        for (w, h) in PHONES.into_iter().chain(DESKTOPS) {
+        for (w, h) in PHONES
+            .into_iter()
+            .chain(SIDEWAYS)
+            .chain(SMALL)
+            .chain(DESKTOPS)
+        {
             let window = Rect::new(0.0, 0.0, w, h);
             let a = areas(w, h);
             for part in [a.world, a.side, a.bar] {
@@ -725,9 +938,8 @@ mod tests {
             assert!(!overlap(a.world, a.bar), "{w}x{h}");
             assert!(a.compact || !overlap(a.world, a.side), "{w}x{h}");
             assert_eq!(a.sideways, a.compact && w > h, "{w}x{h}");
-            let mut tools = toolbar(&a);
-            tools.extend(language(&a));
-            let p = playback(a.bar, a.compact);
+            let tools = in_sight(&a);
+            let p = playback(a.bar, Bar::of(&a));
             let mut bar = vec![p.rewind, p.play, p.slider];
             bar.extend(&p.speeds);
             for r in tools.iter().chain(&bar) {
@@ -747,13 +959,12 @@ mod tests {
 
     #[test]
     fn the_side_panels_controls_fit_it_apart_with_or_without_a_body() {
-        // The smallest phone on its side (568 x 320) is left out: its tools
-        // take three columns, and the room right of them holds one of the
-        // panel's columns, not two.
-        for (w, h) in PHONES.into_iter().chain(SIDEWAYS).chain(DESKTOPS) {
-            if (w, h) == (568.0, 320.0) {
-                continue;
-            }
+        for (w, h) in PHONES
+            .into_iter()
+            .chain(SIDEWAYS)
+            .chain(SMALL)
+            .chain(DESKTOPS)
+        {
             let a = areas(w, h);
             for body in [false, true] {
                 let p = side_panel(a.side, body);
@@ -807,7 +1018,7 @@ mod tests {
 
     #[test]
     fn the_overlays_stay_inside_the_world_and_apart() {
-        for (w, h) in PHONES.into_iter().chain(DESKTOPS) {
+        for (w, h) in PHONES.into_iter().chain(SMALL).chain(DESKTOPS) {
             let a = areas(w, h);
             let counter = galperin_counter(a.world);
             let msg = message(a.world, 300.0, 3, 17.0);
@@ -820,6 +1031,101 @@ mod tests {
                 assert!(inside(*r, a.world), "{w}x{h}: {r:?} outside");
             }
             apart(&format!("{w}x{h} overlays"), &shown);
+        }
+    }
+
+    #[test]
+    fn the_smallest_phone_gets_the_tight_layout_with_a_world_of_480_by_220_sideways_and_300_by_400_upright(
+    ) {
+        for (w, h) in SMALL {
+            let a = areas(w, h);
+            assert!(a.compact && a.tight, "{w}x{h}");
+            let min = if a.sideways {
+                MIN_WORLD
+            } else {
+                (300.0, 400.0)
+            };
+            eprintln!("sandbox {w}x{h}: the world {} x {}", a.world.w, a.world.h);
+            assert!(
+                a.world.w >= min.0 && a.world.h >= min.1,
+                "{w}x{h}: {:?}",
+                a.world
+            );
+            // In sight: four controls, apart and off the world.
+            let shown = in_sight(&a);
+            assert_eq!(shown.len(), TIGHT_SLOTS, "{w}x{h}");
+            for r in &shown {
+                assert!(!overlap(*r, a.world) && r.h >= TOUCH, "{w}x{h}: {r:?}");
+            }
+            apart(&format!("{w}x{h} in sight"), &shown);
+            // The menu: the tools, Wall/Edge, Export, Import and the
+            // speeds, inside the panel's place, apart.
+            let (tools, speeds) = menu(&a);
+            assert_eq!(tools.len(), TOOLS.len() + 3);
+            assert_eq!(speeds.len(), SPEEDS.len());
+            let all: Vec<Rect> = tools.iter().chain(&speeds).copied().collect();
+            for r in &all {
+                assert!(inside(*r, a.side), "{w}x{h}: {r:?} outside {:?}", a.side);
+                assert!(r.h >= TOUCH && r.w >= 44.0, "{w}x{h}: {r:?}");
+            }
+            apart(&format!("{w}x{h} menu"), &all);
+            // The bar: one row, no speeds.
+            let p = playback(a.bar, Bar::of(&a));
+            assert!(p.speeds.is_empty() && p.slider.w >= 60.0, "{w}x{h}: {p:?}");
+        }
+        // A phone on its side with room enough keeps its columns of tools.
+        for (w, h) in [(844.0, 390.0), (915.0, 412.0), (667.0, 375.0)] {
+            let a = areas(w, h);
+            assert!(a.sideways && !a.tight, "{w}x{h}");
+            assert!(a.world.w >= MIN_WORLD.0 && a.world.h >= MIN_WORLD.1);
+        }
+        assert!(!areas(390.0, 844.0).tight && !areas(375.0, 667.0).tight);
+    }
+
+    #[test]
+    fn the_speeds_read_at_13_units_and_the_tools_at_12_or_more_on_every_phone_in_both_languages() {
+        use crate::i18n::{message_in, Lang};
+        let speeds: Vec<String> = SPEEDS
+            .iter()
+            .map(|s| crate::sandbox::format::speed_label(*s))
+            .collect();
+        for (w, h) in PHONES.into_iter().chain(SIDEWAYS).chain(SMALL) {
+            let a = areas(w, h);
+            let rects = if a.tight {
+                menu(&a).1
+            } else {
+                playback(a.bar, Bar::of(&a)).speeds
+            };
+            let row: Vec<(String, Rect)> = speeds.iter().cloned().zip(rects).collect();
+            let size = row_size(&row);
+            for lang in [Lang::En, Lang::Ru] {
+                let text = |id: &str| message_in(lang, id).expect("the message exists");
+                let mut labels: Vec<String> = std::iter::once("lobby".to_string())
+                    .chain(TOOLS.map(|t| format!("sandbox-tool-{}", t.name())))
+                    .chain(["sandbox-wall", "sandbox-panel", "sandbox-export"].map(String::from))
+                    .chain(std::iter::once("sandbox-import".to_string()))
+                    .map(|id| text(&id))
+                    .collect();
+                let mut rects = toolbar(&a);
+                if !a.compact {
+                    // No Panel on a desktop.
+                    labels.remove(TOOLS.len() + 2);
+                }
+                if let Some(r) = tools_button(&a) {
+                    labels.push(text("sandbox-menu"));
+                    rects.push(r);
+                }
+                let tools: Vec<(String, Rect)> = labels.into_iter().zip(rects).collect();
+                let sizes: Vec<f32> = {
+                    let b: Vec<(&str, Rect)> =
+                        tools.iter().map(|(l, r)| (l.as_str(), *r)).collect();
+                    crate::ui::group_label_sizes(&b, crate::test_geometry::font_width)
+                };
+                let least = sizes.iter().copied().fold(f32::INFINITY, f32::min);
+                eprintln!("sandbox {w}x{h} {lang:?}: speeds at {size}, tools at {least}");
+                assert!(size >= 13.0, "{w}x{h}: the speeds at {size}");
+                assert!(least >= 12.0, "{w}x{h} {lang:?}: the tools at {sizes:?}");
+            }
         }
     }
 }

@@ -20,6 +20,7 @@ pub fn stats(s: &State, area: Rect, scene: &Scene) {
     let tally = &s.tally;
     let r = layout::stats(area);
     ui::panel(r);
+    let _inside = ui::bounds(r);
     let mut y = r.y + 8.0;
     let mut row = |label: String, value: String, color: Color| {
         ui::text(
@@ -98,6 +99,7 @@ pub fn galperin(s: &State, area: Rect, n: u32) {
     let target = engine::presets::pi_digits(n);
     let r = layout::galperin_counter(area);
     ui::panel(r);
+    let _inside = ui::bounds(r);
     ui::text(
         &t!("galperin-collisions"),
         r.x + 12.0,
@@ -110,11 +112,12 @@ pub fn galperin(s: &State, area: Rect, n: u32) {
     ui::text(&count.to_string(), r.x + 12.0, r.y + 26.0, 44.0, color);
     let digits = target.to_string();
     let pi = format!("{}.{}", &digits[..1], &digits[1..]);
-    ui::text(
-        &ui::fit(&t!("galperin-pi", n = n, pi = pi), 18.0, r.w - 20.0),
+    ui::text_in(
+        &t!("galperin-pi", n = n, pi = pi),
         r.x + 12.0,
         r.y + 70.0,
         18.0,
+        r.w - 20.0,
         colors::TEXT,
     );
     let ratio = t!("galperin-ratio", power = n - 1);
@@ -123,11 +126,12 @@ pub fn galperin(s: &State, area: Rect, n: u32) {
     } else {
         ratio
     };
-    ui::text(
-        &ui::fit(&line, 15.0, r.w - 20.0),
+    ui::text_in(
+        &line,
         r.x + 12.0,
         r.y + 90.0,
         15.0,
+        r.w - 20.0,
         colors::MUTED,
     );
 }
@@ -145,7 +149,7 @@ pub fn message(s: &State, area: Rect) {
     let alpha = (1.0 - ((age - MESSAGE_SECS + 1.0).max(0.0))) as f32;
     // In as many lines as the world's width needs (smaller, down to 12
     // units, rather than more than three).
-    let room = area.w - 24.0;
+    let room = area.w - 36.0;
     let mut size: f32 = 17.0;
     let mut lines = crate::help::wrap(text, size, room);
     while size > 12.0 && lines.len() > 3 {

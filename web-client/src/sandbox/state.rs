@@ -53,6 +53,8 @@ pub struct State {
     pub tally: Tally,
     /// The side panel is open over the world (compact layout only).
     pub panel_open: bool,
+    /// The tight layout's menu of tools and speeds is open over the world.
+    pub tools_open: bool,
 }
 
 impl State {
@@ -93,6 +95,7 @@ impl State {
             clock: 0.0,
             tally: Tally::default(),
             panel_open: false,
+            tools_open: false,
         };
         if let Kind::Galperin(n) = kind {
             s.galperin_n = n;
@@ -289,6 +292,15 @@ impl State {
     /// Opens or closes the side panel over the world, dropping the gesture.
     pub fn toggle_panel(&mut self) {
         self.panel_open = !self.panel_open;
+        self.tools_open = false;
+        self.gesture = None;
+    }
+
+    /// Opens or closes the tight layout's menu of tools and speeds over
+    /// the world (closing the side panel), dropping the gesture.
+    pub fn toggle_tools(&mut self) {
+        self.tools_open = !self.tools_open;
+        self.panel_open = false;
         self.gesture = None;
     }
 
@@ -600,6 +612,11 @@ mod tests {
         assert!(s.gesture.is_some());
         s.toggle_panel();
         assert!(s.panel_open && s.gesture.is_none());
+        s.press(Button::Middle, vec2(300.0, 300.0), &scene);
+        s.toggle_tools();
+        assert!(s.tools_open && !s.panel_open && s.gesture.is_none());
+        s.toggle_panel();
+        assert!(s.panel_open && !s.tools_open);
         s.press(Button::Middle, vec2(300.0, 300.0), &scene);
         s.escape();
         assert_eq!((s.tool, s.gesture), (Tool::Select, None));
