@@ -6,11 +6,12 @@
 //! hooks tell it what happened; each has a no-op default, so a bot
 //! implements only [`Bot::decide`].
 
+use crate::clock::Instant;
 use game::session::BotDecision;
 use game::{
     Config, MatchRecord, MatchResult, MatchView, NoiseConfig, Phase, Shot, ShotOutcome, Side,
 };
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// What a bot is asked to decide.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -31,6 +31,15 @@
 //! (connecting on the node of a cluster that plays the match), [`hosted_bot`] (a
 //! WebAssembly bot as a [`Bot`]), [`program`] (any program speaking JSON
 //! lines as a [`Bot`]).
+//!
+//! The levels and everything they stand on ([`bot`], [`clock`],
+//! [`simulator`], [`candidates`], [`eval`], [`pie`], [`hand`], [`handed`],
+//! [`planner`], [`search`], [`adaptive`], [`level`] and the scripted bots)
+//! build without any feature, also for `wasm32-unknown-unknown`, where the
+//! browser plays them offline. The rest (in process matches, tournaments,
+//! the runner, hosted and program bots, the command line) needs the
+//! default `runner` feature; the levels' work runs on all cores with
+//! `parallel` (which `runner` turns on), else in the calling thread.
 
 /// The README's example, compiled and run as a doctest.
 #[doc = include_str!("../README.md")]
@@ -38,31 +47,44 @@
 pub struct ReadmeDoctests;
 
 pub mod adaptive;
+#[cfg(feature = "runner")]
 pub mod arena;
 pub mod bot;
 pub mod candidates;
+pub mod clock;
 pub mod eval;
+#[cfg(feature = "runner")]
 pub mod follow;
 pub mod greedy;
 pub mod hand;
 pub mod handed;
+#[cfg(feature = "runner")]
 pub mod hosted_bot;
 pub mod level;
+#[cfg(feature = "runner")]
 pub mod misses;
+#[cfg(feature = "runner")]
 pub mod online;
+#[cfg(feature = "runner")]
 pub mod owner;
+mod par;
 pub mod pie;
 pub mod planner;
+#[cfg(feature = "runner")]
 pub mod program;
 pub mod random;
+#[cfg(feature = "runner")]
 pub mod remote;
+#[cfg(feature = "runner")]
 pub mod runner;
 pub mod search;
 pub mod simulator;
 pub mod stats;
+#[cfg(feature = "runner")]
 pub mod tournament;
 
 pub use adaptive::{Adaptive, AdaptiveSettings};
+#[cfg(feature = "runner")]
 pub use arena::{play_match, ArenaLimits, MatchReport};
 pub use bot::{Ask, Bot, Context, Decision};
 pub use greedy::Greedy;
@@ -71,6 +93,7 @@ pub use handed::{Handed, Throw};
 pub use level::{by_name, Imprecise, Level, BOT_NAMES};
 pub use planner::{PlanSettings, Planner};
 pub use random::RandomBot;
+#[cfg(feature = "runner")]
 pub use runner::{CreateMatch, Opponent, RunReport, Runner, RunnerError, RunnerOptions, SeatGrant};
 pub use search::{Search, SearchSettings};
 pub use simulator::{Simulated, Simulator};

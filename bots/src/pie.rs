@@ -43,7 +43,6 @@ use crate::simulator::Simulator;
 use game::noise::{NoiseDraw, SplitMix64};
 use game::rules::{after_round, AfterRound, RoundResult, Verdict};
 use game::{Board, Config, MatchResult, MatchView, NoiseConfig, Rows, Side};
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
@@ -264,48 +263,54 @@ impl MatchValues {
         let jobs: Vec<(usize, u32)> = (0..states.len())
             .flat_map(|s| (0..settings.setup_playouts).map(move |k| (s, k)))
             .collect();
-        let threads = std::thread::available_parallelism()
-            .map_or(1, |n| n.get())
-            .clamp(1, jobs.len().max(1));
-        let endings: Vec<Ending> = std::thread::scope(|scope| {
-            let workers: Vec<_> = (0..threads)
-                .map(|t| {
-                    let (jobs, states) = (&jobs, &states);
-                    let (noise, spread) = (&noise, &settings.setup_spread);
-                    scope.spawn(move || {
-                        jobs.iter()
-                            .enumerate()
-                            .filter(|(i, _)| i % threads == t)
-                            .map(|(i, &(s, k))| {
-                                let (rows, opens) = states[s];
-                                let seed = (rows.rank(Side::White) as u64) << 40
-                                    ^ (rows.rank(Side::Black) as u64) << 32
-                                    ^ (opens.index() as u64) << 24
-                                    ^ k as u64;
-                                let mut rng = SplitMix64::new(seed ^ 0x005E_ED0F_9A1E);
-                                let board = Board::setup(config, rows);
-                                let ending = play_round(
-                                    config,
-                                    spread,
-                                    noise,
-                                    &board,
-                                    opens,
-                                    settings.max_shots,
-                                    &mut rng,
-                                );
-                                (i, ending)
-                            })
-                            .collect::<Vec<_>>()
+        // One playout, its draws seeded by the setup and its number alone.
+        let play = |&(s, k): &(usize, u32)| {
+            let (rows, opens): (Rows, Side) = states[s];
+            let seed = (rows.rank(Side::White) as u64) << 40
+                ^ (rows.rank(Side::Black) as u64) << 32
+                ^ (opens.index() as u64) << 24
+                ^ k as u64;
+            let mut rng = SplitMix64::new(seed ^ 0x005E_ED0F_9A1E);
+            let board = Board::setup(config, rows);
+            play_round(
+                config,
+                &settings.setup_spread,
+                &noise,
+                &board,
+                opens,
+                settings.max_shots,
+                &mut rng,
+            )
+        };
+        #[cfg(feature = "parallel")]
+        let endings: Vec<Ending> = {
+            let threads = std::thread::available_parallelism()
+                .map_or(1, |n| n.get())
+                .clamp(1, jobs.len().max(1));
+            std::thread::scope(|scope| {
+                let workers: Vec<_> = (0..threads)
+                    .map(|t| {
+                        let (jobs, play) = (&jobs, &play);
+                        scope.spawn(move || {
+                            jobs.iter()
+                                .enumerate()
+                                .filter(|(i, _)| i % threads == t)
+                                .map(|(i, job)| (i, play(job)))
+                                .collect::<Vec<_>>()
+                        })
                     })
-                })
-                .collect();
-            let mut all: Vec<(usize, Ending)> = workers
-                .into_iter()
-                .flat_map(|w| w.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-                .collect();
-            all.sort_by_key(|(i, _)| *i);
-            all.into_iter().map(|(_, e)| e).collect()
-        });
+                    .collect();
+                let mut all: Vec<(usize, Ending)> = workers
+                    .into_iter()
+                    .flat_map(|w| w.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+                    .collect();
+                all.sort_by_key(|(i, _)| *i);
+                all.into_iter().map(|(_, e)| e).collect()
+            })
+        };
+        // Without threads (the browser), one after the other.
+        #[cfg(not(feature = "parallel"))]
+        let endings: Vec<Ending> = jobs.iter().map(play).collect();
         let mut tallies: Vec<((Rows, Side), Tally)> =
             states.iter().map(|&s| (s, Vec::new())).collect();
         for (&(s, _), ending) in jobs.iter().zip(&endings) {
@@ -423,31 +428,33 @@ pub fn white_share_with(
     let noise = config.variants.noise.unwrap_or(settings.assumed_noise);
     // The pie decision comes in round 1, which White opened.
     let opened = Side::White;
-    let total: f64 = (0..settings.playouts)
-        .into_par_iter()
-        .map(|k| {
-            let mut rng =
-                SplitMix64::new(seed ^ (k as u64 + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15));
-            let ending = play_round(
-                config,
-                &settings.spread,
-                &noise,
-                &view.board,
-                view.turn,
-                settings.max_shots,
-                &mut rng,
-            );
-            match ending {
-                Ending::Over { result, flawless } => {
-                    values.after(view.rows, opened, result, flawless)
-                }
-                Ending::Unfinished { white } => {
-                    let won = |s| values.after(view.rows, opened, RoundResult::Won(s), false);
-                    white * won(Side::White) + (1.0 - white) * won(Side::Black)
-                }
+    let playout = |k: u32| {
+        let mut rng = SplitMix64::new(seed ^ (k as u64 + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15));
+        let ending = play_round(
+            config,
+            &settings.spread,
+            &noise,
+            &view.board,
+            view.turn,
+            settings.max_shots,
+            &mut rng,
+        );
+        match ending {
+            Ending::Over { result, flawless } => values.after(view.rows, opened, result, flawless),
+            Ending::Unfinished { white } => {
+                let won = |s| values.after(view.rows, opened, RoundResult::Won(s), false);
+                white * won(Side::White) + (1.0 - white) * won(Side::Black)
             }
-        })
-        .sum();
+        }
+    };
+    #[cfg(feature = "parallel")]
+    let total: f64 = {
+        use rayon::prelude::*;
+        (0..settings.playouts).into_par_iter().map(playout).sum()
+    };
+    // Without threads (the browser), one after the other.
+    #[cfg(not(feature = "parallel"))]
+    let total: f64 = (0..settings.playouts).map(playout).sum();
     total / settings.playouts.max(1) as f64
 }
 

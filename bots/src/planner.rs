@@ -18,10 +18,10 @@ use crate::bot::{Ask, Bot, Context, Decision};
 use crate::candidates::{candidates, Spread};
 use crate::eval;
 use crate::hand::{Aim, Bias, HandModel};
+use crate::par;
 use crate::simulator::Simulator;
 use game::noise::{NoiseDraw, SplitMix64};
 use game::{Config, Shot, Side};
-use rayon::prelude::*;
 
 /// How the planner looks.
 #[derive(Clone, Debug, PartialEq)]
@@ -71,14 +71,13 @@ impl Planner {
         let mut power = config.clone();
         power.max_speed = config.max_speed * self.model.full_power.clamp(0.05, 1.0);
         let all = candidates(&power, board, side, &self.settings.spread);
-        let mut scored: Vec<(usize, f64)> = all
-            .par_iter()
-            .enumerate()
-            .filter_map(|(i, shot)| {
-                let r = sim.play(side, shot).ok()?;
-                Some((i, eval::after_shot(config, &r, side)))
-            })
-            .collect();
+        let mut scored: Vec<(usize, f64)> = par::map(&all, |i, shot| {
+            let r = sim.play(side, shot).ok()?;
+            Some((i, eval::after_shot(config, &r, side)))
+        })
+        .into_iter()
+        .flatten()
+        .collect();
         scored.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
         scored.truncate(self.settings.keep.max(1));
         let shaky = self.model.angle_sigma > 0.0 || self.model.speed_sigma > 0.0;
@@ -94,14 +93,10 @@ impl Planner {
             })
             .collect();
         let model = self.model;
-        let mut valued: Vec<(usize, usize, f64)> = scored
-            .par_iter()
-            .enumerate()
-            .map(|(rank, &(i, _))| {
-                let mean = mean_value(config, &sim, side, &model, &all[i], &draws);
-                (rank, i, mean)
-            })
-            .collect();
+        let mut valued: Vec<(usize, usize, f64)> = par::map(&scored, |rank, &(i, _)| {
+            let mean = mean_value(config, &sim, side, &model, &all[i], &draws);
+            (rank, i, mean)
+        });
         valued.sort_by(|a, b| b.2.total_cmp(&a.2).then(a.0.cmp(&b.0)));
         valued.into_iter().map(|(_, i, v)| (all[i], v)).collect()
     }

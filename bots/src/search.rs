@@ -8,8 +8,10 @@
 //! keeps it. A search given its own hand ([`SearchSettings::hand`], as the
 //! `hard` level is) makes its candidates at that hand's full power and
 //! plays each sample through that hand's error (then the match's noise,
-//! if any) instead of the assumed noise. The candidates' samples run on all cores (rayon), in a fixed
-//! order, so the choice depends only on the position and the bot's seed.
+//! if any) instead of the assumed noise. The candidates' samples run on all
+//! cores (rayon, with the `parallel` feature; one after the other without
+//! it, as in the browser), in a fixed order, so the choice depends only on
+//! the position and the bot's seed.
 //! The work per move is fixed (so the choice depends only on the position
 //! and the bot's seed; about 0.1 s of CPU on a mid-game board); the time
 //! budget and the context's deadline only cut the samples short on a
@@ -17,14 +19,15 @@
 
 use crate::bot::{Ask, Bot, Context, Decision};
 use crate::candidates::{candidates, Spread};
+use crate::clock::Instant;
 use crate::eval;
 use crate::eval::best_shot;
 use crate::hand::{Aim, Bias, HandModel};
+use crate::par;
 use crate::simulator::Simulator;
 use game::noise::{NoiseDraw, SplitMix64};
 use game::{NoiseConfig, Shot};
-use rayon::prelude::*;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// How hard the search looks.
 #[derive(Clone, Debug, PartialEq)]
@@ -90,14 +93,13 @@ impl Search {
             power.max_speed = config.max_speed * hand.full_power.clamp(0.05, 1.0);
         }
         let all = candidates(&power, board, me, &Spread::wide());
-        let mut scored: Vec<(usize, f64)> = all
-            .par_iter()
-            .enumerate()
-            .filter_map(|(i, shot)| {
-                let r = sim.play(me, shot).ok()?;
-                Some((i, eval::after_shot(config, &r, me)))
-            })
-            .collect();
+        let mut scored: Vec<(usize, f64)> = par::map(&all, |i, shot| {
+            let r = sim.play(me, shot).ok()?;
+            Some((i, eval::after_shot(config, &r, me)))
+        })
+        .into_iter()
+        .flatten()
+        .collect();
         scored.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
         let kept: Vec<usize> = scored
             .iter()
@@ -131,31 +133,28 @@ impl Search {
             if done > 0 && started.elapsed() >= budget.mul_f64(0.8) {
                 break;
             }
-            let values: Vec<f64> = kept
-                .par_iter()
-                .zip(aims.par_iter())
-                .map(|(&i, aim)| {
-                    let played = match (&hand, hand_draws.get(d)) {
-                        (Some(h), Some(&hd)) => {
-                            let shot = h.shot(config, &all[i], aim, hd, Bias::default());
-                            sim.play_noisy(me, &shot, *draw)
-                        }
-                        _ => sim.play_with(me, &all[i], &noise, *draw),
-                    };
-                    let Ok(r) = played else {
-                        return -eval::ROUND;
-                    };
-                    let now = eval::after_shot(config, &r, me);
-                    if eval::round_over(&r) {
-                        return now;
+            let values: Vec<f64> = par::map(&kept, |k, &i| {
+                let aim = &aims[k];
+                let played = match (&hand, hand_draws.get(d)) {
+                    (Some(h), Some(&hd)) => {
+                        let shot = h.shot(config, &all[i], aim, hd, Bias::default());
+                        sim.play_noisy(me, &shot, *draw)
                     }
-                    let next = eval::next_to_shoot(&r, me);
-                    let reply = best_shot(config, &r.board, next, &Spread::narrow())
-                        .map(|(_, v)| if next == me { v } else { -v })
-                        .unwrap_or(now);
-                    (1.0 - w) * now + w * reply
-                })
-                .collect();
+                    _ => sim.play_with(me, &all[i], &noise, *draw),
+                };
+                let Ok(r) = played else {
+                    return -eval::ROUND;
+                };
+                let now = eval::after_shot(config, &r, me);
+                if eval::round_over(&r) {
+                    return now;
+                }
+                let next = eval::next_to_shoot(&r, me);
+                let reply = best_shot(config, &r.board, next, &Spread::narrow())
+                    .map(|(_, v)| if next == me { v } else { -v })
+                    .unwrap_or(now);
+                (1.0 - w) * now + w * reply
+            });
             for (t, v) in totals.iter_mut().zip(values) {
                 *t += v;
             }

@@ -300,6 +300,13 @@
     // what was typed (field_take_len) and learns of focus and Enter
     // (field_flags); an input not placed in the last frame is removed
     // (field_sweep, at the start of each frame).
+    // 32 random bits from the browser's cryptographic generator (an
+    // offline match's noise secret and its computer's seed).
+    function random_u32() {
+        const word = new Uint32Array(1);
+        crypto.getRandomValues(word);
+        return word[0] | 0;
+    }
     function coarse_pointer() {
         return window.matchMedia && window.matchMedia("(pointer: coarse)").matches ? 1 : 0;
     }
@@ -416,6 +423,7 @@
         env.chapaev_pasted_len = pasted_len;
         env.chapaev_sound = sound;
         env.chapaev_coarse_pointer = coarse_pointer;
+        env.chapaev_random_u32 = random_u32;
         env.chapaev_field_sweep = field_sweep;
         env.chapaev_field_place = field_place;
         env.chapaev_field_take_len = field_take_len;

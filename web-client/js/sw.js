@@ -1,7 +1,9 @@
 // The web client's service worker: it keeps this build's page, scripts,
 // wasm, manifest and icons in a cache of their own, so the game opens
-// without a network (the physics sandbox then works; matches, against
-// people or the computer, need the server). The server's build fills in
+// without a network: the physics sandbox then works, and so do matches
+// against the computer, played in the page (the levels are in the wasm,
+// the noise secret comes from chapaev.js; matches against people need the
+// server). The server's build fills in
 // the cache's name (this build's page hash) and the list of files (their
 // build-hashed addresses); a new build installs a new worker, which drops
 // the old cache once it takes over.

@@ -29,6 +29,8 @@ pub enum Link {
     },
     /// Given up for this reason.
     Failed(String),
+    /// No server: the match is played in this page ([`crate::channel`]).
+    Offline,
 }
 
 /// A self-healing match connection.

@@ -7,6 +7,12 @@
 //! A match this server cannot play (another physics version) offers no
 //! Join or Watch. The lists refresh every few seconds.
 //!
+//! The computer can also be played offline, in the page
+//! ([`crate::local_match`]): by choice ("Offline vs computer" and a level),
+//! and by itself whenever the server is out of reach — the lists got no
+//! answer (the page was opened offline, or the server is down), or the
+//! match against the computer could not be created for that reason.
+//!
 //! This module owns the screen: it starts the requests and feeds their
 //! answers to the [`state`] (the lists, the account, the message and the
 //! rest the lobby keeps), keeps the browser's storage, and draws the
@@ -22,6 +28,7 @@ use crate::route::Route;
 use crate::screen::Screen;
 use crate::ui::{self, colors, Ui};
 use crate::{draw, platform};
+use bots::Level;
 use game::Side;
 use macroquad::prelude::*;
 pub use state::{clean_name, describe};
@@ -40,6 +47,9 @@ pub struct Lobby {
     fetching_profile: Option<Pending<Profile>>,
     /// A question over the lobby, if one is open.
     dialog: Option<Dialog>,
+    /// The level of the match against the computer being created (played
+    /// offline instead should the server be out of reach).
+    creating_level: Option<Level>,
 }
 
 /// The questions the lobby asks over itself.
@@ -49,6 +59,8 @@ enum Dialog {
     Return(String),
     /// "Sign out" was pressed: the key is the only way into the account.
     SignOut,
+    /// "Offline vs computer" was pressed: which level.
+    Offline,
 }
 
 impl Lobby {
@@ -63,10 +75,25 @@ impl Lobby {
             api,
             creating: None,
             listing: [None, None, None],
+            creating_level: None,
             dialog: platform::storage_get(crate::play::LEFT_KEY)
                 .filter(|id| crate::route::valid_id(id))
                 .map(Dialog::Return),
         }
+    }
+
+    /// A match against `level`: on the server, or here when the server is
+    /// out of reach.
+    fn computer(&mut self, level: Level) -> Option<Route> {
+        if self.s.offline {
+            platform::storage_set(NAME_KEY, self.s.name.trim());
+            return Some(Route::Offline { level });
+        }
+        if self.creating.is_none() {
+            self.creating_level = Some(level);
+        }
+        self.create(Opponent::Bot(level.as_str()));
+        None
     }
 
     fn create(&mut self, opponent: Opponent) {
@@ -101,14 +128,24 @@ impl Lobby {
         for (i, pending) in self.listing.iter_mut().enumerate() {
             if let Some(p) = pending {
                 if let Some(r) = p.poll() {
+                    let status = p.status();
                     *pending = None;
                     self.s.listed(i, r);
+                    self.s.heard(status);
                 }
             }
         }
         let p = self.creating.as_mut()?;
         let r = p.poll()?;
+        let status = p.status();
         self.creating = None;
+        let level = self.creating_level.take();
+        if r.is_err() && self.s.heard(status) {
+            // No server to play the computer on: play it here.
+            if let Some(level) = level {
+                return Some(Route::Offline { level });
+            }
+        }
         let grant = self.s.created(r)?;
         Some(seated(&grant))
     }
@@ -158,6 +195,7 @@ impl Screen for Lobby {
         );
         m.insert("rated".into(), self.s.rated_request().into());
         m.insert("name".into(), self.s.name.clone().into());
+        m.insert("offline".into(), self.s.offline.into());
         m.insert("message".into(), self.s.message.clone().into());
         m.insert(
             "dialog".into(),
@@ -264,8 +302,13 @@ impl Lobby {
         let (title, body, lines) = match d {
             Dialog::Return(_) => (t!("lobby-return-title"), t!("lobby-return-body"), 2),
             Dialog::SignOut => (t!("lobby-sign-out-title"), t!("lobby-sign-out-body"), 3),
+            Dialog::Offline => (t!("lobby-offline-title"), t!("lobby-offline-body"), 3),
         };
-        let h = if lines == 2 { 190.0 } else { 268.0 };
+        let h = match d {
+            Dialog::Offline => 320.0,
+            _ if lines == 2 => 190.0,
+            _ => 268.0,
+        };
         let box_ = dialog(crate::scale::size(), h);
         ui::panel(box_);
         let (x, w) = (box_.x + 16.0, box_.w - 32.0);
@@ -292,6 +335,34 @@ impl Lobby {
                     });
                 }
                 if ui.button("return-no", &t!("lobby-return-no"), stay) {
+                    self.dialog = None;
+                }
+            }
+            Dialog::Offline => {
+                let levels = [
+                    ("offline-easy", t!("lobby-computer-easy"), Level::Easy),
+                    ("offline-medium", t!("lobby-computer-medium"), Level::Medium),
+                    ("offline-hard", t!("lobby-computer-hard"), Level::Hard),
+                    (
+                        "offline-adaptive",
+                        t!("lobby-computer-adaptive"),
+                        Level::Adaptive,
+                    ),
+                ];
+                let rows = [
+                    dialog_buttons(box_, h - 180.0),
+                    dialog_buttons(box_, h - 124.0),
+                ];
+                let rects = [rows[0].0, rows[0].1, rows[1].0, rows[1].1];
+                for ((name, label, level), r) in levels.into_iter().zip(rects) {
+                    if ui.button(name, &label, r) {
+                        self.dialog = None;
+                        platform::storage_set(NAME_KEY, self.s.name.trim());
+                        return Some(Route::Offline { level });
+                    }
+                }
+                let (_, cancel) = dialog_buttons(box_, h - 64.0);
+                if ui.button("offline-cancel", &t!("cancel"), cancel) {
                     self.dialog = None;
                 }
             }
@@ -397,6 +468,7 @@ impl Lobby {
             ("vs-person", t!("lobby-friend")),
             ("sandbox", t!("lobby-sandbox")),
             ("leaderboard", t!("leaderboard")),
+            ("offline", t!("lobby-offline")),
         ];
         for ((name, label), rect) in choices.iter().zip(l.choices) {
             if ui.button(name, label, rect) {
@@ -406,12 +478,13 @@ impl Lobby {
                             rated: self.s.rated_request(),
                         })
                     }
-                    "vs-computer-easy" => self.create(Opponent::Bot("easy")),
-                    "vs-computer-medium" => self.create(Opponent::Bot("medium")),
-                    "vs-computer-hard" => self.create(Opponent::Bot("hard")),
-                    "vs-computer-adaptive" => self.create(Opponent::Bot("adaptive")),
+                    "vs-computer-easy" => go = self.computer(Level::Easy),
+                    "vs-computer-medium" => go = self.computer(Level::Medium),
+                    "vs-computer-hard" => go = self.computer(Level::Hard),
+                    "vs-computer-adaptive" => go = self.computer(Level::Adaptive),
                     "vs-person" => self.create(Opponent::Person),
                     "sandbox" => go = Some(Route::Sandbox),
+                    "offline" => self.dialog = Some(Dialog::Offline),
                     _ => go = Some(Route::Leaderboard { bots: false }),
                 }
             }

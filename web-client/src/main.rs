@@ -1,6 +1,7 @@
 //! Chapaev online in the browser: the lobby, live play against people or
 //! the server's bots (rated for a signed-in player), the replay viewer,
-//! the leaderboard and players' pages, and the offline physics sandbox,
+//! the leaderboard and players' pages, matches against the computer played
+//! offline in the page (no server needed), and the offline physics sandbox,
 //! drawn with macroquad and compiled to `wasm32-unknown-unknown` (the
 //! server embeds the build and serves it at `/`). The same code runs on
 //! the desktop against `CHAPAEV_SERVER` (default `http://127.0.0.1:8080`).
@@ -8,6 +9,7 @@
 mod account;
 mod aim;
 mod api;
+mod channel;
 mod chart;
 mod clip;
 mod connection;
@@ -17,6 +19,7 @@ mod highlight;
 mod i18n;
 mod leaderboard;
 mod lobby;
+mod local_match;
 mod pace;
 mod platform;
 mod play;
@@ -84,6 +87,7 @@ fn open(route: &Route) -> Box<dyn Screen> {
         }
         Route::Replay { match_id } => Box::new(replay::Replay::new(api, match_id.clone())),
         Route::Sandbox => Box::new(sandbox::Sandbox::new()),
+        Route::Offline { level } => Box::new(play::Play::offline(api, *level, name)),
         Route::SignIn => Box::new(sign_in::SignIn::new(api)),
         Route::Leaderboard { bots } => Box::new(leaderboard::Leaderboard::new(&api, *bots)),
         Route::Account { name } => Box::new(profile::Profile::new(&api, name.clone())),
@@ -92,6 +96,9 @@ fn open(route: &Route) -> Box<dyn Screen> {
 
 #[macroquad::main(conf)]
 async fn main() {
+    // The computer levels' deadlines read the page's clock (std's panics
+    // in the browser).
+    bots::clock::set_source(get_time);
     let mut route = Route::parse(&platform::location());
     let mut screen = open(&route);
     platform::set_hash(&route.hash());

@@ -1,6 +1,7 @@
 //! The outside world as the client sees it, one API on both targets: a
 //! WebSocket, HTTP requests (with an optional `Authorization` header), the page address, persistent key-value
-//! storage, saving and opening files, pasted text, short sounds, native
+//! storage, saving and opening files, pasted text, short sounds, random
+//! bits (the browser's cryptographic generator), native
 //! text inputs laid over the canvas's text fields on touch screens (a
 //! phone's keyboard never opens for a canvas), and the readiness flag and
 //! state report that the browser test reads.
@@ -103,6 +104,7 @@ mod imp {
         fn chapaev_pasted_len() -> i32;
         fn chapaev_sound(kind: i32, loudness: f32);
         fn chapaev_coarse_pointer() -> i32;
+        fn chapaev_random_u32() -> i32;
         fn chapaev_field_sweep();
         #[allow(clippy::too_many_arguments)]
         fn chapaev_field_place(
@@ -258,6 +260,11 @@ mod imp {
 
     pub fn coarse_pointer() -> bool {
         unsafe { chapaev_coarse_pointer() == 1 }
+    }
+
+    pub fn random_u64() -> u64 {
+        let word = || unsafe { chapaev_random_u32() } as u32 as u64;
+        word() << 32 | word()
     }
 
     pub fn field_sweep() {
@@ -503,6 +510,15 @@ mod imp {
         false
     }
 
+    /// 64 random bits: the keys std draws from the system for each
+    /// `RandomState`, hashed.
+    pub fn random_u64() -> u64 {
+        use std::hash::{BuildHasher, Hasher};
+        let mut h = std::collections::hash_map::RandomState::new().build_hasher();
+        h.write_u64(0x0FF1_1AE5);
+        h.finish()
+    }
+
     /// The desktop types into the canvas: no native inputs.
     pub fn field_sweep() {}
 
@@ -530,6 +546,6 @@ mod imp {
 
 pub use imp::{
     coarse_pointer, copy_text, field_flags, field_place, field_sweep, field_take, languages,
-    location, pasted, picked_file, play_sound, report, request_file, save_file, set_document_lang,
-    set_hash, set_ready, storage_get, storage_set, Request, Socket,
+    location, pasted, picked_file, play_sound, random_u64, report, request_file, save_file,
+    set_document_lang, set_hash, set_ready, storage_get, storage_set, Request, Socket,
 };

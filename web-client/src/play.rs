@@ -8,6 +8,13 @@
 //! one (a phone held upright) the board takes the full width at the top
 //! and the panel lies below it. A player who opens an invitation link
 //! without a name is asked for one before taking the seat.
+//!
+//! A match against the computer may also be played offline, in this page
+//! ([`crate::local_match`]): the same screen, fed by the page's own
+//! session through the same [`Channel`]. The computer answers on the
+//! page's only thread, so it is asked only after the frame that says it is
+//! thinking has been drawn and the last shot's film has played; the page
+//! pauses for as long as it decides (the state report's `think_ms`).
 
 pub mod board;
 pub mod end_screen;
@@ -16,9 +23,11 @@ pub mod panel;
 pub mod state;
 
 use crate::api::{token_key, Api, Pending, SeatGrant, SocketAt};
+use crate::channel::Channel;
 use crate::connection::{Connection, Link};
 use crate::highlight;
 use crate::i18n::t;
+use crate::local_match::LocalMatch;
 use crate::platform;
 use crate::route::{ws_origin, Route};
 use crate::screen::Screen;
@@ -56,7 +65,16 @@ pub struct Play {
     /// Asking the page's node where the match's socket is (on a cluster,
     /// the node that plays it), before connecting.
     locating: Option<Pending<SocketAt>>,
-    conn: Option<Connection>,
+    conn: Option<Channel>,
+    /// The computer's level of a match played in this page, offline.
+    offline: Option<bots::Level>,
+    /// The offline computer's question was shown as pending in the last
+    /// frame drawn: it may think now.
+    think_shown: bool,
+    /// How long the offline computer's decisions took, in milliseconds
+    /// of the page's clock (the last one, the longest) and how many.
+    think_ms: Option<(f64, f64)>,
+    thinks: u32,
     /// The match as this page follows it.
     state: MatchState,
     chat_draft: String,
@@ -117,7 +135,16 @@ impl Play {
         } else {
             Setup::Live
         };
-        let mut p = Play {
+        let mut p = Play::with(api, match_id, name, token, setup);
+        if matches!(p.setup, Setup::Live) {
+            p.connect();
+        }
+        p
+    }
+
+    /// The screen for `match_id`, not yet connected.
+    fn with(api: Api, match_id: String, name: String, token: Option<String>, setup: Setup) -> Play {
+        Play {
             api,
             match_id,
             name,
@@ -125,6 +152,10 @@ impl Play {
             setup,
             locating: None,
             conn: None,
+            offline: None,
+            think_shown: false,
+            think_ms: None,
+            thinks: 0,
             state: MatchState::default(),
             chat_draft: String::new(),
             chat_menu: false,
@@ -141,10 +172,23 @@ impl Play {
             sound: sound_on(),
             was_my_turn: false,
             turn_since: 0.0,
-        };
-        if matches!(p.setup, Setup::Live) {
-            p.connect();
         }
+    }
+
+    /// A match against `level` played in this page, offline: casual, never
+    /// rated, its noise secret and the computer's seed drawn here.
+    pub fn offline(api: Api, level: bots::Level, name: String) -> Play {
+        let mut p = Play::with(api, "offline".to_string(), name, None, Setup::Live);
+        let mut secret = [0u8; 32];
+        for chunk in secret.chunks_mut(8) {
+            chunk.copy_from_slice(&platform::random_u64().to_le_bytes());
+        }
+        let secret = game::NoiseSecret::from_bytes(secret);
+        match LocalMatch::new(level, &p.name, secret, platform::random_u64(), 0.0) {
+            Ok(m) => p.conn = Some(Channel::Local(Box::new(m))),
+            Err(e) => p.setup = Setup::Refused(e.to_string()),
+        }
+        p.offline = Some(level);
         p
     }
 
@@ -158,16 +202,16 @@ impl Play {
     fn connected_to(&mut self, direct: Option<String>) {
         let own = format!("{}/ws?match={}", ws_origin(&self.api.origin), self.match_id);
         let token = self.token.clone().map(SeatToken::new);
-        self.conn = Some(Connection::open_preferring(
+        self.conn = Some(Channel::Server(Connection::open_preferring(
             direct,
             own,
             self.name.clone(),
             token,
-        ));
+        )));
     }
 
     fn connected(&self) -> bool {
-        self.conn.as_ref().is_some_and(Connection::is_open)
+        self.conn.as_ref().is_some_and(Channel::is_open)
     }
 
     /// Whether the player may aim now.
@@ -176,7 +220,7 @@ impl Play {
     }
 
     fn send(&mut self, m: ClientMessage) -> bool {
-        let sent = self.conn.as_ref().is_some_and(|c| c.send(&m));
+        let sent = self.conn.as_mut().is_some_and(|c| c.send(&m));
         if !sent {
             self.state.notify(t!("play-not-connected-retry"));
         }
@@ -248,7 +292,7 @@ impl Play {
         if self.locating.is_some() {
             return (t!("play-link-connecting"), colors::MUTED);
         }
-        match self.conn.as_ref().map(Connection::link) {
+        match self.conn.as_ref().map(Channel::link) {
             Some(Link::Open) => (t!("play-link-open"), colors::GOOD),
             Some(Link::Connecting) => (t!("play-link-connecting"), colors::MUTED),
             Some(Link::Retrying { at, attempt }) => (
@@ -260,14 +304,22 @@ impl Play {
                 colors::DANGER,
             ),
             Some(Link::Failed(why)) => (t!("play-link-failed", why = why.as_str()), colors::DANGER),
+            Some(Link::Offline) if self.computer_thinking() => {
+                (t!("play-link-offline-thinking"), colors::ACCENT)
+            }
+            Some(Link::Offline) => (t!("play-link-offline"), colors::MUTED),
             None => (t!("play-link-none"), colors::MUTED),
         }
     }
 
     /// The side panel in `area`, and what its buttons do.
     fn panel(&mut self, ui: &mut Ui, area: Rect) -> Option<Route> {
+        let id = match self.offline {
+            Some(_) => t!("play-offline-id"),
+            None => self.match_id.clone(),
+        };
         let cx = panel::Context {
-            match_id: &self.match_id,
+            match_id: &id,
             link: self.link(),
             compact: layout::compact(area),
             my_turn: self.my_turn(),
@@ -312,6 +364,20 @@ impl Play {
             "pie-keep" => {
                 self.send(ClientMessage::PieDecision { swap: false });
             }
+            "replay" | "end-replay" | "copy-link" if self.offline.is_some() => {
+                self.state.notify(t!("play-offline-not-kept"));
+            }
+            "rematch" | "end-rematch" => {
+                if let Some(level) = self.offline {
+                    return Some(Route::Offline { level });
+                }
+                self.send(if self.state.rematch_is_theirs() {
+                    ClientMessage::AcceptRematch
+                } else {
+                    ClientMessage::OfferRematch
+                });
+            }
+            "leave-yes" if self.offline.is_some() => return Some(Route::Lobby),
             "copy-link" => {
                 let link = format!("{}/#/join/{}", self.api.origin, self.match_id);
                 platform::copy_text(&link);
@@ -323,13 +389,6 @@ impl Play {
                 self.confirm_resign = false;
             }
             "resign-no" => self.confirm_resign = false,
-            "rematch" | "end-rematch" => {
-                self.send(if self.state.rematch_is_theirs() {
-                    ClientMessage::AcceptRematch
-                } else {
-                    ClientMessage::OfferRematch
-                });
-            }
             "replay" | "end-replay" => {
                 return Some(Route::Replay {
                     match_id: self.match_id.clone(),
@@ -357,6 +416,32 @@ impl Play {
             _ => {}
         }
         None
+    }
+
+    /// Whether the offline computer has a question pending.
+    fn computer_thinking(&self) -> bool {
+        self.conn
+            .as_ref()
+            .and_then(Channel::local)
+            .is_some_and(LocalMatch::thinking)
+    }
+
+    /// The offline computer's move, once the frame that says it thinks has
+    /// been drawn with the last shot's film over; timed on the page's clock.
+    fn computer_moves(&mut self) {
+        let ready = self.think_shown && !self.state.busy();
+        self.think_shown = false;
+        let Some(local) = self.conn.as_mut().and_then(Channel::local_mut) else {
+            return;
+        };
+        if ready && local.thinking() {
+            let started = get_time();
+            local.think();
+            let ms = (get_time() - started) * 1000.0;
+            let longest = self.think_ms.map_or(ms, |(_, l)| l.max(ms));
+            self.think_ms = Some((ms, longest));
+            self.thinks += 1;
+        }
     }
 
     /// Whether this page holds a seat in a match still being played.
@@ -491,6 +576,7 @@ impl Screen for Play {
             self.connected_to(answer.ok().and_then(|s| s.url));
         }
         let mut go = None;
+        self.computer_moves();
         if let Some(c) = &mut self.conn {
             for m in c.poll(self.state.now) {
                 if let Some(r) = self.receive(m) {
@@ -554,6 +640,8 @@ impl Screen for Play {
                 ui::text_centred(&shown, r, 16.0, colors::TEXT);
             }
         }
+        // Drawn with the computer's question pending: it may answer next frame.
+        self.think_shown = self.computer_thinking() && !self.state.busy();
         go.or(nav)
     }
 
@@ -563,7 +651,9 @@ impl Screen for Play {
 
     /// A shot playing, or the "your turn" cue pulsing.
     fn animating(&self) -> bool {
-        self.state.playing.is_some() || self.state.now - self.turn_since < TURN_CUE
+        self.state.playing.is_some()
+            || self.state.now - self.turn_since < TURN_CUE
+            || self.computer_thinking()
     }
 
     fn report(&self) -> serde_json::Map<String, serde_json::Value> {
@@ -591,12 +681,19 @@ impl Screen for Play {
         m.insert("replaying".into(), self.state.replaying.into());
         m.insert(
             "connected".into(),
-            self.conn.as_ref().is_some_and(Connection::is_open).into(),
+            self.conn.as_ref().is_some_and(Channel::is_open).into(),
         );
         m.insert(
             "socket".into(),
-            self.conn.as_ref().map(|c| c.url().to_string()).into(),
+            self.conn.as_ref().and_then(Channel::url).into(),
         );
+        m.insert("offline".into(), self.offline.map(|l| l.as_str()).into());
+        m.insert("thinking".into(), self.computer_thinking().into());
+        m.insert("thinks".into(), self.thinks.into());
+        if let Some((last, longest)) = self.think_ms {
+            m.insert("think_ms".into(), last.into());
+            m.insert("think_ms_longest".into(), longest.into());
+        }
         m.insert(
             "shots".into(),
             self.state.view.as_ref().map_or(0, |v| v.shots).into(),

@@ -20,6 +20,9 @@ pub enum Route {
     Replay { match_id: String },
     /// The offline physics sandbox.
     Sandbox,
+    /// A match against a computer level played in this page, without the
+    /// server (casual, never rated; a new one each time it opens).
+    Offline { level: bots::Level },
     /// Signing in (create an account or paste a key), or the signed-in
     /// account's key and sign-out.
     SignIn,
@@ -44,6 +47,10 @@ impl Route {
             ["sandbox"] => Route::Sandbox,
             ["quick"] => Route::QuickMatch { rated: false },
             ["quick", "rated"] => Route::QuickMatch { rated: true },
+            ["offline", level] => match bots::Level::parse(level) {
+                Some(level) => Route::Offline { level },
+                None => Route::Lobby,
+            },
             ["account"] => Route::SignIn,
             ["leaderboard"] => Route::Leaderboard { bots: false },
             ["leaderboard", "bots"] => Route::Leaderboard { bots: true },
@@ -75,6 +82,7 @@ impl Route {
             Route::Watch { match_id } => format!("#/watch/{match_id}"),
             Route::Replay { match_id } => format!("#/replay/{match_id}"),
             Route::Sandbox => "#/sandbox".to_string(),
+            Route::Offline { level } => format!("#/offline/{level}"),
             Route::SignIn => "#/account".to_string(),
             Route::Leaderboard { bots: false } => "#/leaderboard".to_string(),
             Route::Leaderboard { bots: true } => "#/leaderboard/bots".to_string(),
@@ -129,6 +137,12 @@ mod tests {
             },
             Route::Replay { match_id: id },
             Route::Sandbox,
+            Route::Offline {
+                level: bots::Level::Hard,
+            },
+            Route::Offline {
+                level: bots::Level::Adaptive,
+            },
             Route::SignIn,
             Route::Leaderboard { bots: false },
             Route::Leaderboard { bots: true },
@@ -151,6 +165,8 @@ mod tests {
             "#/play/<x>",
             "#/player/a%20b",
             "#/player/x",
+            "#/offline/grandmaster",
+            "#/offline/",
         ] {
             assert_eq!(Route::parse(a), Route::Lobby, "{a}");
         }

@@ -10,6 +10,8 @@
 //! fit at), so eight buttons in one row would shrink every label to the
 //! size of the longest ("Компьютер: адаптивный") in an eighth of the
 //! column; four to a row leave room for it at a size that reads easily.
+//! The last, "Offline vs computer", takes a row of its own, the column's
+//! full width.
 //!
 //! A window too short for the column (a small phone on its side) sets it
 //! in two: the title, the join row and the lists at the left, the
@@ -23,7 +25,7 @@ use macroquad::prelude::Rect;
 /// Room between controls.
 pub const GAP: f32 = 8.0;
 /// How many matches there are to start.
-pub const CHOICES: usize = 8;
+pub const CHOICES: usize = 9;
 
 /// The lobby's places.
 #[derive(Clone, Debug)]
@@ -93,7 +95,12 @@ pub fn layout(w: f32, h: f32, message: bool) -> Layout {
     let bh = if narrow { row } else { 52.0 };
     let choices = std::array::from_fn(|i| {
         let (c, r) = ((i % per_row) as f32, (i / per_row) as f32);
-        Rect::new(x0 + c * (bw + GAP), y + r * (bh + GAP), bw, bh)
+        if i + 1 == CHOICES && CHOICES % per_row == 1 {
+            // Alone in its row: the full width.
+            Rect::new(x0, y + r * (bh + GAP), col, bh)
+        } else {
+            Rect::new(x0 + c * (bw + GAP), y + r * (bh + GAP), bw, bh)
+        }
     });
     y += CHOICES.div_ceil(per_row) as f32 * (bh + GAP) + 6.0;
     let join_w = 80.0;
@@ -258,16 +265,19 @@ mod tests {
     }
 
     #[test]
-    fn a_desktop_sets_the_lists_side_by_side_and_the_choices_in_two_rows_of_four() {
+    fn a_desktop_sets_the_lists_side_by_side_and_the_choices_in_two_rows_of_four_and_a_wide_one() {
         for (w, h) in DESKTOPS {
             let l = layout(w, h, false);
             assert!(!l.narrow);
             assert_eq!(l.lists[0].y, l.lists[2].y);
             assert!(l.lists[0].x + l.lists[0].w < l.lists[1].x);
             assert!(l.choices[..4].iter().all(|c| c.y == l.choices[0].y));
-            assert!(l.choices[4..].iter().all(|c| c.y == l.choices[4].y));
+            assert!(l.choices[4..8].iter().all(|c| c.y == l.choices[4].y));
             assert!(l.choices[4].y > l.choices[0].y);
             assert_eq!(l.choices[4].x, l.choices[0].x);
+            // "Offline vs computer" alone under them, the column's width.
+            assert!(l.choices[8].y > l.choices[4].y);
+            assert_eq!((l.choices[8].x, l.choices[8].w), (l.x0, l.col));
             assert!(l.col <= 980.0);
         }
     }
@@ -282,6 +292,7 @@ mod tests {
         "lobby-friend",
         "lobby-sandbox",
         "leaderboard",
+        "lobby-offline",
     ];
 
     /// The size the matches to start share in a `w` x `h` window in
@@ -305,7 +316,11 @@ mod tests {
                 "{w}x{h} {lang:?}: {label} runs past its button"
             );
         }
-        assert!(sizes.iter().all(|s| *s == sizes[0]), "{sizes:?}");
+        // The grid shares one size; "Offline vs computer", alone in its
+        // row, reads at least as large.
+        let (grid, wide) = sizes.split_at(CHOICES - 1);
+        assert!(grid.iter().all(|s| *s == grid[0]), "{sizes:?}");
+        assert!(wide.iter().all(|s| *s >= grid[0]), "{sizes:?}");
         sizes[0]
     }
 

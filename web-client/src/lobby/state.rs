@@ -45,6 +45,9 @@ pub struct LobbyState {
     pub profile: Option<Profile>,
     /// New matches are rated (signed in only).
     pub rated: bool,
+    /// The server was out of reach when last asked: the computer is
+    /// played offline, in the page.
+    pub offline: bool,
 }
 
 impl LobbyState {
@@ -72,6 +75,7 @@ impl LobbyState {
             account,
             profile: None,
             rated,
+            offline: false,
         }
     }
 
@@ -133,6 +137,22 @@ impl LobbyState {
     /// The server answered the new match: its seat, or a message.
     pub fn created(&mut self, r: Result<SeatGrant, String>) -> Option<SeatGrant> {
         r.map_err(|e| self.message = Some(e)).ok()
+    }
+
+    /// How a request to the server ended (`status`: its HTTP status;
+    /// `None`: no answer at all). Whether the server is out of reach now
+    /// (no answer, or a gateway's 502 to 504 in front of a server that is
+    /// down): then the lobby says so, and plays the computer offline until
+    /// the server answers again.
+    pub fn heard(&mut self, status: Option<u16>) -> bool {
+        let out_of_reach = matches!(status, None | Some(502..=504));
+        if out_of_reach {
+            self.message = Some(t!("lobby-server-unreachable"));
+        } else if self.offline {
+            self.message = None;
+        }
+        self.offline = out_of_reach;
+        out_of_reach
     }
 
     /// Turns Rated over; what to remember ("on" or "off").
@@ -243,6 +263,22 @@ mod tests {
 
     fn summary(json: serde_json::Value) -> Summary {
         serde_json::from_value(json).expect("a summary")
+    }
+
+    #[test]
+    fn a_server_out_of_reach_turns_the_lobby_offline_until_it_answers_again() {
+        let mut s = LobbyState::new("Petka".into(), None, false);
+        assert!(!s.offline);
+        assert!(s.heard(None), "no answer at all");
+        assert!(s.offline);
+        assert_eq!(s.message, Some(t!("lobby-server-unreachable")));
+        assert!(s.heard(Some(503)), "the gateway of a server that is down");
+        assert!(!s.heard(Some(200)));
+        assert!(!s.offline);
+        assert_eq!(s.message, None);
+        // A refusal is an answer: the server is there.
+        assert!(!s.heard(Some(400)));
+        assert!(!s.offline);
     }
 
     #[test]
