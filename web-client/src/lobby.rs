@@ -423,7 +423,11 @@ impl Lobby {
         // The tagline: one line, or two on a phone, under the title.
         // Smaller (down to 12 units) rather than cut, and left out where
         // even that takes more lines.
-        let lines = if narrow { 2 } else { 1 };
+        let lines = match (l.tagline, narrow) {
+            (false, _) => 0,
+            (true, true) => 2,
+            (true, false) => 1,
+        };
         let words = if narrow {
             t!("lobby-tagline-short")
         } else {

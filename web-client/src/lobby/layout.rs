@@ -44,6 +44,9 @@ pub struct Layout {
     pub lang: Rect,
     /// The logo's checkers' radius.
     pub logo: f32,
+    /// Whether the tagline has its lines under the title (a short phone
+    /// upright gives them to the lists).
+    pub tagline: bool,
     /// The account row's left edge, top and width, and the width of its
     /// label.
     pub account_x: f32,
@@ -73,6 +76,10 @@ pub fn layout(w: f32, h: f32, message: bool) -> Layout {
     let col = (w - 2.0 * pad).min(980.0);
     let x0 = (w - col) / 2.0;
     let narrow = col < 700.0;
+    // A short phone upright (an iPhone SE's 568): the grid's rows closer,
+    // the title without its tagline, so the lists keep a heading and a
+    // line each.
+    let tight = narrow && h < 640.0;
     let row = TOUCH;
     let title_y = if narrow { 10.0 } else { 24.0 };
     let help = if narrow {
@@ -86,28 +93,34 @@ pub fn layout(w: f32, h: f32, message: bool) -> Layout {
         Rect::new(help.x - GAP - 110.0, help.y, 110.0, row)
     };
     let logo = if narrow { 14.0 } else { 20.0 };
-    let account_y = title_y + if narrow { 62.0 } else { 86.0 };
+    let account_y = title_y
+        + match (narrow, tight) {
+            (_, true) => 50.0,
+            (true, false) => 62.0,
+            (false, _) => 86.0,
+        };
     let label_w = if narrow { 98.0 } else { 100.0 };
-    let mut y = account_y + row + 12.0;
+    let mut y = account_y + row + if tight { 6.0 } else { 12.0 };
     // The matches to start: a grid of four columns, or two on a phone.
     let per_row = if narrow { 2 } else { 4 };
     let bw = (col - GAP * (per_row - 1) as f32) / per_row as f32;
     let bh = if narrow { row } else { 52.0 };
+    let row_gap = if tight { 4.0 } else { GAP };
     let choices = std::array::from_fn(|i| {
         let (c, r) = ((i % per_row) as f32, (i / per_row) as f32);
         if i + 1 == CHOICES && CHOICES % per_row == 1 {
             // Alone in its row: the full width.
-            Rect::new(x0, y + r * (bh + GAP), col, bh)
+            Rect::new(x0, y + r * (bh + row_gap), col, bh)
         } else {
-            Rect::new(x0 + c * (bw + GAP), y + r * (bh + GAP), bw, bh)
+            Rect::new(x0 + c * (bw + GAP), y + r * (bh + row_gap), bw, bh)
         }
     });
-    y += CHOICES.div_ceil(per_row) as f32 * (bh + GAP) + 6.0;
+    y += CHOICES.div_ceil(per_row) as f32 * (bh + row_gap) + if tight { 2.0 } else { 6.0 };
     let join_w = 80.0;
     let field_w = (col - label_w - GAP - join_w).min(300.0);
     let join_field = Rect::new(x0 + label_w, y, field_w, row);
     let join = Rect::new(join_field.x + join_field.w + GAP, y, join_w, row);
-    y += row + 10.0;
+    y += row + if tight { 6.0 } else { 10.0 };
     let message_at = if narrow {
         let at = (x0, y, col);
         if message {
@@ -144,6 +157,7 @@ pub fn layout(w: f32, h: f32, message: bool) -> Layout {
         help,
         lang,
         logo,
+        tagline: !tight,
         account_x: x0,
         account_y,
         account_w: col,
@@ -164,9 +178,10 @@ const SHORT: f32 = 480.0;
 const LIST_MIN_H: f32 = 50.0;
 
 /// The lobby in two columns (a short window): the title, the join row,
-/// the message and the stacked lists at the left; the rules, the language
-/// switch, the account row and the matches to start (two to a row) at
-/// the right. No footer.
+/// "Offline vs computer", the message and the stacked lists at the left;
+/// the rules, the language switch, the account row and the other matches
+/// to start (two to a row) at the right. No footer, and no tagline where
+/// the lists would lose their heading and line to it.
 fn two_columns(w: f32, h: f32, message: bool) -> Layout {
     let pad = 12.0;
     let half = (w - 2.0 * pad - 12.0) / 2.0;
@@ -179,17 +194,24 @@ fn two_columns(w: f32, h: f32, message: bool) -> Layout {
     let label_w = 98.0;
     let y = account_y + row + 8.0;
     let bw = (half - GAP) / 2.0;
+    // The left column: under the title and its tagline (about 70 units,
+    // or the title alone, about 40), the join row, "Offline vs computer",
+    // the message and the lists.
+    let under = |top: f32| top + (row + 8.0) + (row + 4.0) + if message { 22.0 } else { 0.0 };
+    let tagline = (h - under(80.0)) / 3.0 - 4.0 >= LIST_MIN_H;
+    let mut ly = if tagline { 80.0 } else { 44.0 };
+    let offline = Rect::new(x0, ly + row + 8.0, half, row);
     let choices = std::array::from_fn(|i| {
+        if i + 1 == CHOICES {
+            return offline;
+        }
         let (c, r) = ((i % 2) as f32, (i / 2) as f32);
         Rect::new(rx + c * (bw + GAP), y + r * (row + GAP), bw, row)
     });
-    // The left column: under the title and its tagline (about 70 units),
-    // the join row, the message and the lists.
     let join_w = 80.0;
-    let mut ly = 80.0;
     let join_field = Rect::new(x0 + label_w, ly, half - label_w - GAP - join_w, row);
     let join = Rect::new(join_field.x + join_field.w + GAP, ly, join_w, row);
-    ly += row + 8.0;
+    ly += (row + 8.0) + (row + 4.0);
     let message_at = (x0, ly, half);
     if message {
         ly += 22.0;
@@ -205,6 +227,7 @@ fn two_columns(w: f32, h: f32, message: bool) -> Layout {
         help,
         lang,
         logo: 14.0,
+        tagline,
         account_x: rx,
         account_y,
         account_w: half,
