@@ -595,11 +595,15 @@ mod tests {
 
     /// The size budget of the browser build, as built. It was 1.5 MB
     /// until the client spoke two languages: Project Fluent and the two
-    /// message files added 204 KB (66 KB gzipped).
-    const WASM_BUDGET_BYTES: usize = 1_700_000;
+    /// message files added 204 KB (66 KB gzipped). It was 1.7 MB until the
+    /// client played the computer offline: the game's session and the
+    /// bots' levels in the page took it from 1,665,043 bytes to 2,042,048
+    /// (this test's output, `-- --nocapture`).
+    const WASM_BUDGET_BYTES: usize = 2_100_000;
     /// What a browser that accepts brotli downloads: the figure a player
-    /// waits for (428 KB when the budget was set).
-    const WASM_BROTLI_BUDGET_BYTES: usize = 460_000;
+    /// waits for (428 KB when the budget was set; 444,146 bytes before the
+    /// offline matches, 554,008 with them).
+    const WASM_BROTLI_BUDGET_BYTES: usize = 580_000;
 
     #[test]
     fn the_embedded_wasm_stays_within_its_size_budget() {
