@@ -182,6 +182,13 @@ impl LocalMatch {
     fn carry_out(&mut self, effects: Vec<Effect>) {
         for effect in effects {
             match effect {
+                // A person playing the computer in the page is not timed:
+                // the session's hour-long clock only passes the turn of a
+                // page left alone, and is not shown as a countdown.
+                Effect::Send {
+                    msg: ServerMessage::Clock { .. },
+                    ..
+                } => {}
                 Effect::Send { to, msg } if to.includes(PLAYER) => self.inbox.push(msg),
                 Effect::Refused {
                     request: Request::Message(PLAYER),
@@ -274,6 +281,10 @@ mod tests {
         assert!(got
             .iter()
             .any(|g| matches!(g, ServerMessage::MatchOver { .. })));
+        assert!(
+            !got.iter().any(|g| matches!(g, ServerMessage::Clock { .. })),
+            "an offline match shows no turn clock"
+        );
     }
 
     #[test]
