@@ -67,6 +67,13 @@ pub(crate) const COLLAPSE_WINDOW: u64 = 64;
 /// slower than the last, until the approach threshold cuts them off.
 pub(crate) const REPEAT_HITS: u32 = 16;
 
+/// From the tenth revision, [`REPEAT_HITS`] is this: a light disc jammed
+/// between walls and a heavy disc that presses it as it slides by rings
+/// about 15 times at one instant between the discs alone (the walls they
+/// touch are a rounding of a position away, hit a picosecond later), the
+/// ring weaker by a few per cent each time, instant after instant.
+pub(crate) const EARLY_REPEAT_HITS: u32 = 8;
+
 /// From the fifth revision, the fraction of the speed of the fastest disc
 /// they involve under which every approach at one instant must stay for
 /// [`REPEAT_HITS`] to take it as a collapse: discs pressed together while
@@ -172,6 +179,8 @@ pub(crate) struct Crawl {
     events: u64,
     /// Events in the blocks before it, in a row, that moved nothing.
     still: u64,
+    /// How long the block just ended took.
+    span: f64,
     /// Slots of the latest [`COLLAPSE_WINDOW`] events of the block
     /// (`usize::MAX` for a hit on an obstacle), as `World::collapse` takes.
     recent: Vec<usize>,
@@ -187,6 +196,7 @@ impl Crawl {
             since: t,
             events: 0,
             still: 0,
+            span: 0.0,
             recent: Vec::new(),
         }
     }
@@ -222,7 +232,8 @@ impl Crawl {
         } else {
             world.fastest_and_smallest(t)
         };
-        let still = (t - self.since) * speed <= CRAWL * radius;
+        self.span = t - self.since;
+        let still = self.span * speed <= CRAWL * radius;
         self.since = t;
         self.events = 0;
         let recent = std::mem::take(&mut self.recent);
@@ -245,6 +256,11 @@ impl Crawl {
     pub(crate) fn still(&self) -> u64 {
         self.still
     }
+
+    /// How long the block just ended took.
+    pub(crate) fn span(&self) -> f64 {
+        self.span
+    }
 }
 
 /// What two bodies hit: two discs (ids in order), or a disc and a line or
@@ -266,8 +282,10 @@ struct PairHits {
 
 /// From the fifth revision, each inelastic pair's hits at the current
 /// instant (see [`REPEAT_HITS`]).
-#[derive(Default)]
 pub(crate) struct Repeats {
+    /// Hits of one pair after which the instant is a collapse
+    /// ([`REPEAT_HITS`], or from the tenth revision [`EARLY_REPEAT_HITS`]).
+    every: u32,
     /// The instant's first event and the speed of its approach, counted
     /// only once a second event shares the instant (most events have an
     /// instant to themselves).
@@ -280,6 +298,17 @@ pub(crate) struct Repeats {
 }
 
 impl Repeats {
+    /// No instant yet; a collapse after `every` hits of one pair.
+    pub(crate) fn new(every: u32) -> Self {
+        Repeats {
+            every,
+            first: None,
+            hits: Vec::new(),
+            fastest: 0.0,
+            moving: 0.0,
+        }
+    }
+
     /// A new instant, begun by `event`, whose bodies approached at
     /// `approach`. It is counted when a second event joins the instant, with
     /// the speeds of its discs as they are then.
@@ -292,7 +321,7 @@ impl Repeats {
 
     /// Counts `event`'s hit, one more at the instant (the world's state
     /// right after it), whose bodies approached at `approach`; `true` when its pair, an inelastic one, has now
-    /// been hit a multiple of [`REPEAT_HITS`] times at this instant, and
+    /// been hit a multiple of `every` (see [`Repeats::new`]) times at this instant, and
     /// every hit so far was [`GENTLE`]. Elastic hits lose no energy: their
     /// sequences are finite, however long (a light disc between heavy
     /// ones), and are not counted.
@@ -339,7 +368,7 @@ impl Repeats {
                 1
             }
         };
-        hits % REPEAT_HITS == 0 && self.fastest <= GENTLE * self.moving
+        hits % self.every == 0 && self.fastest <= GENTLE * self.moving
     }
 
     /// The pairs hit more than once at this instant (slots; `None` for an
