@@ -69,7 +69,8 @@ pub(crate) const REPEAT_HITS: u32 = 16;
 
 /// From the tenth revision, [`REPEAT_HITS`] is this: a light disc jammed
 /// between walls and a heavy disc that presses it as it slides by rings
-/// about 15 times at one instant between the discs alone (the walls they
+/// at one instant between the discs alone, fewer than 16 hits of a pair
+/// (the walls they
 /// touch are a rounding of a position away, hit a picosecond later), the
 /// ring weaker by a few per cent each time, instant after instant.
 pub(crate) const EARLY_REPEAT_HITS: u32 = 8;

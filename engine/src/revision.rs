@@ -132,8 +132,8 @@ pub enum Revision {
     /// has been hit `limits::EARLY_REPEAT_HITS` times (8), every hit
     /// gentle, is taken as a collapse as the fifth revision takes one at
     /// `limits::REPEAT_HITS` (16): a disc jammed between walls and a heavy
-    /// one that presses it as it slides past rings 15 times at one instant
-    /// among the discs alone (the walls they touch are a rounding of a
+    /// one that presses it as it slides past rings at one instant among
+    /// the discs alone, fewer than 16 hits of a pair (the walls they touch are a rounding of a
     /// position away, and are hit a picosecond later), so the fifth
     /// revision's count was never reached, and the ring came back, a
     /// little weaker, instant after instant, until the event cap.

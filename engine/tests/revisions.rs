@@ -485,12 +485,13 @@ fn a_contact_that_rounding_lets_join_the_active_set_but_cannot_push_is_left_out(
 fn a_disc_jammed_by_walls_and_a_heavy_disc_sliding_past_collapses_after_eight_gentle_hits() {
     // Plastic frictionless disc 2 lies on the floor against disc 1 in the
     // corner; the heavy braking disc 6 slides past it, pressing it. Each
-    // time they ring about 15 times at one instant among the three discs
-    // alone (the walls disc 1 and 2 touch are a rounding of a position
+    // time they ring at one instant among the three discs alone, fewer
+    // than 16 hits of a pair (the walls disc 1 and 2 touch are a rounding of a position
     // away and are hit a picosecond later), so revision 9's count of 16
     // hits is never reached, and the ring, a few per cent weaker each
     // time, comes back instant after instant until the event cap.
-    // Revision 10 takes the collapse after 8 gentle hits, walls included.
+    // Revision 10 takes the collapse after 8 gentle hits, with the
+    // plastic contacts the discs touch, walls among them.
     let out = rests_within(Revision::R10, "mixed-box-373", 10_000);
     assert!(out.collapses > 0);
 }
