@@ -128,15 +128,23 @@ pub enum Revision {
     /// at once, 2,000 more events at one instant each time, until the run
     /// ended `stuck`.
     R9,
-    /// The tenth, as the ninth but an instant at which one inelastic pair
-    /// has been hit `limits::EARLY_REPEAT_HITS` times (8), every hit
-    /// gentle, is taken as a collapse as the fifth revision takes one at
-    /// `limits::REPEAT_HITS` (16): a disc jammed between walls and a heavy
-    /// one that presses it as it slides past rings at one instant among
-    /// the discs alone, fewer than 16 hits of a pair (the walls they touch are a rounding of a
-    /// position away, and are hit a picosecond later), so the fifth
-    /// revision's count was never reached, and the ring came back, a
-    /// little weaker, instant after instant, until the event cap.
+    /// The tenth, as the ninth but:
+    /// - an instant at which one inelastic pair has been hit
+    ///   `limits::EARLY_REPEAT_HITS` times (8), every hit of the instant
+    ///   gentle (or, for a plastic pair, every hit since a plastic pair
+    ///   was last counted), is taken as a collapse, as the fifth revision
+    ///   takes one after `limits::REPEAT_HITS` (16): a disc jammed between
+    ///   walls and a heavy one that presses it as it slides past rings at
+    ///   one instant among the discs alone, fewer than 16 hits of a pair
+    ///   (the walls they touch are a rounding of a position away, and are
+    ///   hit a picosecond later), and where an instant's first hits were
+    ///   not gentle, the gentle ring after them was never counted; either
+    ///   way the ring came back, instant after instant, until the event
+    ///   cap;
+    /// - a cluster of elastic discs no longer counts as losing no energy
+    ///   (and so is taken to a plastic limit when it crawls) where one of
+    ///   them moves so slowly that its friction would stop it within the
+    ///   block of events taken as a collapse (`World::all_elastic`).
     #[default]
     R10,
 }
@@ -203,7 +211,8 @@ impl Revision {
     }
 
     /// Whether this revision has the tenth revision's rules (a collapse
-    /// taken after fewer repeated hits at one instant).
+    /// taken after fewer repeated hits at one instant, and elastic
+    /// clusters with a disc braking to a stop taken as losing energy).
     pub fn at_least_r10(self) -> bool {
         self >= Revision::R10
     }

@@ -377,8 +377,9 @@ fn reaches_the_horizon_from_r8(name: &str, until: f64) {
 }
 
 /// The revision before `since` runs `name` to the cap before `until`;
-/// `since` and every revision after it reach `until` within it, without
-/// overlap.
+/// `since` and every revision after it reach `until` within it (or come
+/// to rest before it: from the tenth revision mixed-box 172's row
+/// collapses sooner and the box rests), without overlap.
 fn reaches_the_horizon_from(since: Revision, name: &str, until: f64) {
     let previous = Revision::ALL[index(since) - 1];
     let (old, events, _) = run_until(name, previous, until);
@@ -386,7 +387,10 @@ fn reaches_the_horizon_from(since: Revision, name: &str, until: f64) {
     assert_eq!(events, CAP);
     for revision in Revision::ALL[index(since)..].iter().copied() {
         let (reason, events, overlap) = run_until(name, revision, until);
-        assert_eq!(reason, EndReason::Until, "{name} under {revision:?}");
+        assert!(
+            reason == EndReason::Until || (revision.at_least_r10() && reason == EndReason::Rest),
+            "{name} under {revision:?}: {reason:?}"
+        );
         assert!(events < CAP, "{name}: {events} events");
         assert!(overlap < 1e-9, "{name}: overlap {overlap:e}");
     }
