@@ -127,16 +127,34 @@ pub enum Revision {
     /// the chain of discs behind them, still driving them, hit them again
     /// at once, 2,000 more events at one instant each time, until the run
     /// ended `stuck`.
-    #[default]
     R9,
+    /// The tenth, as the ninth but:
+    /// - an instant at which one inelastic pair has been hit
+    ///   `limits::EARLY_REPEAT_HITS` times (8), every hit of the instant
+    ///   gentle (or, for a plastic pair, every hit since a plastic pair
+    ///   was last counted), is taken as a collapse, as the fifth revision
+    ///   takes one after `limits::REPEAT_HITS` (16): a disc jammed between
+    ///   walls and a heavy one that presses it as it slides past rings at
+    ///   one instant among the discs alone, fewer than 16 hits of a pair
+    ///   (the walls they touch are a rounding of a position away, and are
+    ///   hit a picosecond later), and where an instant's first hits were
+    ///   not gentle, the gentle ring after them was never counted; either
+    ///   way the ring came back, instant after instant, until the event
+    ///   cap;
+    /// - a cluster of elastic discs no longer counts as losing no energy
+    ///   (and so is taken to a plastic limit when it crawls) where one of
+    ///   them moves so slowly that its friction would stop it within the
+    ///   block of events taken as a collapse (`World::all_elastic`).
+    #[default]
+    R10,
 }
 
 impl Revision {
     /// The revision new computations use.
-    pub const LATEST: Revision = Revision::R9;
+    pub const LATEST: Revision = Revision::R10;
 
     /// Every revision, oldest first.
-    pub const ALL: [Revision; 9] = [
+    pub const ALL: [Revision; 10] = [
         Revision::R1,
         Revision::R2,
         Revision::R3,
@@ -146,6 +164,7 @@ impl Revision {
         Revision::R7,
         Revision::R8,
         Revision::R9,
+        Revision::R10,
     ];
 
     /// Whether this revision has the second revision's rules.
@@ -190,6 +209,13 @@ impl Revision {
     pub fn at_least_r9(self) -> bool {
         self >= Revision::R9
     }
+
+    /// Whether this revision has the tenth revision's rules (a collapse
+    /// taken after fewer repeated hits at one instant, and elastic
+    /// clusters with a disc braking to a stop taken as losing energy).
+    pub fn at_least_r10(self) -> bool {
+        self >= Revision::R10
+    }
 }
 
 /// A revision name that names no revision.
@@ -217,10 +243,10 @@ mod tests {
         for (k, r) in Revision::ALL.into_iter().enumerate() {
             assert_eq!(format!("r{}", k + 1).parse(), Ok(r));
         }
-        let err = "r10".parse::<Revision>().unwrap_err();
+        let err = "r11".parse::<Revision>().unwrap_err();
         assert_eq!(
             err.to_string(),
-            "no engine revision named \"r10\" (r1, r2, ...)"
+            "no engine revision named \"r11\" (r1, r2, ...)"
         );
     }
 }

@@ -31,9 +31,9 @@ use crate::id::{BodyId, LineId, PointId};
 use crate::impulse;
 use crate::instant::same_instant;
 use crate::limits::{
-    snap, Crawl, Repeats, Watched, COLLAPSE_EVENTS, COLLAPSE_WINDOW, CRAWL_EVENTS, FAR_FUTURE,
-    MAX_COLLAPSE, MAX_COORDINATE, PRESS_ROUNDS, PRESS_SWEEPS, SETTLE, SNAP, STUCK_EVENTS,
-    STUCK_EVENTS_PER_BODY,
+    snap, Crawl, Repeats, Watched, COLLAPSE_EVENTS, COLLAPSE_WINDOW, CRAWL_EVENTS,
+    EARLY_REPEAT_HITS, FAR_FUTURE, MAX_COLLAPSE, MAX_COORDINATE, PRESS_ROUNDS, PRESS_SWEEPS,
+    REPEAT_HITS, SETTLE, SNAP, STUCK_EVENTS, STUCK_EVENTS_PER_BODY,
 };
 use crate::obstacle::{Line, LineGeom, Point};
 use crate::push;
@@ -528,7 +528,11 @@ impl World {
         let mut tick: Option<f64> = None;
         let mut crawl = Crawl::new(self.last_event_t, self.config.revision.at_least_r8());
         let r5 = self.config.revision.at_least_r5();
-        let mut repeats = Repeats::default();
+        let mut repeats = Repeats::new(if self.config.revision.at_least_r10() {
+            EARLY_REPEAT_HITS
+        } else {
+            REPEAT_HITS
+        });
         // From the seventh revision: the fine clock (see `clock`), and the
         // current instant's tick (see `World::instant_tick`), worked out
         // only once an event comes near it.
@@ -589,7 +593,7 @@ impl World {
                         self.remember(&mut recent, &event);
                     }
                     if phase == 0 {
-                        self.collapse(&mut recent, t);
+                        self.collapse(&mut recent, t, 0.0);
                         recent.clear();
                     }
                     if r5 && repeats.note(self, &event, self.last_approach) {
@@ -610,9 +614,9 @@ impl World {
                             return self.end_on(EndReason::Stuck);
                         }
                         if crawl_rest && crawl.still() > CRAWL_EVENTS {
-                            self.crawl_rest(&mut latest, t);
+                            self.crawl_rest(&mut latest, t, crawl.span());
                         } else {
-                            self.collapse(&mut latest, t);
+                            self.collapse(&mut latest, t, crawl.span());
                         }
                     }
                 }
@@ -706,10 +710,10 @@ impl World {
     /// Whatever is left ends the run as `stuck` if it goes on.
     /// From the seventh revision, nothing is taken where every disc
     /// touching the ones involved is elastic: their hits lose no energy.
-    fn collapse(&mut self, recent: &mut Vec<usize>, t: f64) {
+    fn collapse(&mut self, recent: &mut Vec<usize>, t: f64, span: f64) {
         recent.sort_unstable();
         recent.dedup();
-        if self.config.revision.at_least_r7() && self.all_elastic(recent, t) {
+        if self.config.revision.at_least_r7() && self.all_elastic(recent, t, span) {
             return;
         }
         let taken = self.collapse_chain(recent, t)
@@ -739,11 +743,11 @@ impl World {
     /// disc touching them is elastic nothing is stopped: they lose no
     /// energy, and the run ends `stuck` if it goes on. Counted as a
     /// collapse.
-    fn crawl_rest(&mut self, recent: &mut Vec<usize>, t: f64) {
+    fn crawl_rest(&mut self, recent: &mut Vec<usize>, t: f64, span: f64) {
         recent.retain(|&c| c != usize::MAX && self.slots.get(c).is_some_and(|s| s.alive));
         recent.sort_unstable();
         recent.dedup();
-        if recent.is_empty() || self.all_elastic(recent, t) {
+        if recent.is_empty() || self.all_elastic(recent, t, span) {
             return;
         }
         let (members, mut contacts) = self.touching_cluster(recent.clone(), t);
@@ -792,15 +796,26 @@ impl World {
     /// Whether the discs of `recent` (slots; `usize::MAX` for an obstacle)
     /// and every disc touching them, or touching one that does, are all
     /// elastic: every contact among them, and with obstacles, has
-    /// restitution 1.
-    fn all_elastic(&self, recent: &[usize], t: f64) -> bool {
+    /// restitution 1. From the tenth revision, not where one of them
+    /// moves so slowly that its friction would stop it within `span`, the
+    /// time the events taken as a collapse took (zero at one instant): a
+    /// frictionless elastic disc rattling against a braking one, 1e-10 s
+    /// apart at 1e-9 m/s, loses its energy to that friction, where a chain
+    /// pinned between two walls, rattling 1e-16 s an event, loses none.
+    fn all_elastic(&self, recent: &[usize], t: f64, span: f64) -> bool {
         let seed: Vec<usize> = recent
             .iter()
             .copied()
             .filter(|&c| c != usize::MAX)
             .collect();
         let (members, _) = self.touching_cluster(seed, t);
+        let braked = |c: usize| {
+            let tr = &self.slots[c].traj;
+            let speed = tr.velocity(t).length();
+            speed > 0.0 && speed <= tr.alpha() * span
+        };
         members.iter().all(|&c| self.material[c].restitution >= 1.0)
+            && !(self.config.revision.at_least_r10() && members.iter().any(|&c| braked(c)))
     }
 
     /// From the fifth revision, an instant at which one inelastic pair has
