@@ -317,30 +317,31 @@ async fn on_a_phone_a_sharp_screen_and_full_hd_every_control_fits_and_the_slings
     else {
         return;
     };
-    // Two lanes side by side, each its own browser on the one server: the
-    // phone (the longest, at three device pixels to the CSS pixel) in one,
-    // the sharp screen then full HD in the other. Run one after another,
-    // the three windows made this the binary's last test to finish.
-    let (phone, rest) = WINDOWS.split_at(1);
-    let (mut failures, others) = tokio::join!(
-        layout_lane(
-            phone,
-            &programs,
-            &driver,
-            &server,
-            &artifacts,
-            scratch.path()
-        ),
-        layout_lane(
-            rest,
-            &programs,
-            &driver,
-            &server,
-            &artifacts,
-            scratch.path()
-        ),
-    );
-    failures.extend(others);
+    let mut failures = Vec::new();
+    for window in &WINDOWS {
+        let extra = [
+            format!("--window-size={},{}", window.width, window.height),
+            format!("--force-device-scale-factor={}", window.dpr),
+        ];
+        let profile = scratch.path().join(format!("profile-{}", window.name));
+        let client = match driver.session_with(&programs, &profile, &extra).await {
+            Ok(c) => c,
+            Err(e) => panic!("{e}"),
+        };
+        let outcome = layouts(&client, &server, &artifacts, window).await;
+        if let Err(e) = outcome {
+            let _ = browser::screenshot(
+                &client,
+                &artifacts.join(format!("failure-{}.png", window.name)),
+            )
+            .await;
+            if let Ok(state) = browser::eval(&client, STATE).await {
+                eprintln!("e2e: chapaev_state at the failure: {state}");
+            }
+            failures.push(format!("{}: {e}", window.name));
+        }
+        let _ = client.close().await;
+    }
     drop(driver);
     drop(server);
     assert!(
@@ -349,50 +350,6 @@ async fn on_a_phone_a_sharp_screen_and_full_hd_every_control_fits_and_the_slings
         failures.join("\n"),
         artifacts.display()
     );
-}
-
-/// Runs the layout scenario in each of `windows` in turn, each in a fresh
-/// browser; every window's failure, named.
-async fn layout_lane(
-    windows: &[Window],
-    programs: &browser::Programs,
-    driver: &Driver,
-    server: &Server,
-    artifacts: &Path,
-    scratch: &Path,
-) -> Vec<String> {
-    let mut failures = Vec::new();
-    for window in windows {
-        let extra = [
-            format!("--window-size={},{}", window.width, window.height),
-            format!("--force-device-scale-factor={}", window.dpr),
-        ];
-        let profile = scratch.join(format!("profile-{}", window.name));
-        let client = match driver.session_with(programs, &profile, &extra).await {
-            Ok(c) => c,
-            Err(e) => {
-                failures.push(format!("{}: starting the browser: {e}", window.name));
-                continue;
-            }
-        };
-        let outcome = layouts(&client, server, artifacts, window).await;
-        if let Err(e) = outcome {
-            let _ = browser::screenshot(
-                &client,
-                &artifacts.join(format!("failure-{}.png", window.name)),
-            )
-            .await;
-            if let Ok(state) = browser::eval(&client, STATE).await {
-                eprintln!(
-                    "e2e: {}: chapaev_state at the failure: {state}",
-                    window.name
-                );
-            }
-            failures.push(format!("{}: {e}", window.name));
-        }
-        let _ = client.close().await;
-    }
-    failures
 }
 
 /// Checks the layout the app reports now: inside the window, no overlaps,
@@ -517,17 +474,7 @@ async fn layouts(
         .ok_or_else(|| E2eError::Check(format!("no piece of ours: {}", play["pieces"])))?;
     let edge = (piece.0, f64::from(h) - 2.0);
     browser::press_and_move(client, piece, edge, 10).await?;
-    // The app reports the pull on its next frame: read the state until it
-    // shows full power (a loaded machine draws late), checked below.
-    let start = Instant::now();
-    let aiming = loop {
-        let s = browser::eval(client, STATE).await?;
-        let full = s["aim_power"].as_f64().is_some_and(|p| p >= 0.999);
-        if full || start.elapsed() > Duration::from_secs(3) {
-            break s;
-        }
-        tokio::time::sleep(Duration::from_millis(50)).await;
-    };
+    let aiming = browser::eval(client, STATE).await?;
     let _ = browser::screenshot(client, &artifacts.join(format!("layout-{name}-4-aim.png"))).await;
     browser::release(client).await?;
     let power = aiming["aim_power"].as_f64().unwrap_or(0.0);
