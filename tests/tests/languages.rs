@@ -96,89 +96,137 @@ const REPLAY_PHONE_TEXT: f64 = 13.0;
 const SMALL_WORLD_SIDEWAYS: (f64, f64) = (480.0, 220.0);
 const SMALL_WORLD_UPRIGHT: (f64, f64) = (300.0, 400.0);
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn a_russian_browser_gets_russian_the_switch_turns_it_to_english_and_a_reload_keeps_it() {
-    let Some(programs) = browser::find_programs().unwrap_or_else(|e| panic!("{e}")) else {
-        return;
-    };
+/// A server and a chromedriver of the test's own (each test runs beside
+/// the others), or `None` where the machine has no browser (said out loud
+/// by `find_programs`).
+struct Rig {
+    programs: browser::Programs,
+    artifacts: std::path::PathBuf,
+    scratch: tempfile::TempDir,
+    server: Server,
+    driver: Driver,
+}
+
+fn rig(tag: &str) -> Option<Rig> {
+    let programs = browser::find_programs().unwrap_or_else(|e| panic!("{e}"))?;
     let artifacts = artifacts_dir().unwrap_or_else(|e| panic!("{e}"));
     let scratch = tempfile::tempdir().unwrap();
     let server = Server::start(
         Path::new(env!("CARGO_BIN_EXE_e2e-server")),
         &scratch.path().join("data"),
-        &artifacts.join("server-languages.log"),
+        &artifacts.join(format!("server-languages{tag}.log")),
     )
     .unwrap_or_else(|e| panic!("{e}"));
-    let driver = Driver::start(&programs, &artifacts.join("chromedriver-languages.log"))
-        .unwrap_or_else(|e| panic!("{e}"));
-    let mut failures = Vec::new();
-    for window in [&LAPTOP, &PHONE, &SMALL_SIDEWAYS, &SMALL_UPRIGHT] {
-        let small = window.suffix.starts_with("-small");
+    let driver = Driver::start(
+        &programs,
+        &artifacts.join(format!("chromedriver-languages{tag}.log")),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    Some(Rig {
+        programs,
+        artifacts,
+        scratch,
+        server,
+        driver,
+    })
+}
+
+impl Rig {
+    /// A Russian browser in `window`.
+    async fn russian(&self, window: &Window) -> Client {
         let extra = [
             "--lang=ru".to_string(),
             "--accept-lang=ru-RU,ru".to_string(),
             format!("--window-size={},{}", window.width, window.height),
             format!("--force-device-scale-factor={}", window.dpr),
         ];
-        let profile = scratch
+        let profile = self
+            .scratch
             .path()
             .join(format!("profile-languages{}", window.suffix));
-        let client = driver
-            .session_with(&programs, &profile, &extra)
+        self.driver
+            .session_with(&self.programs, &profile, &extra)
             .await
-            .unwrap_or_else(|e| panic!("{e}"));
-        let started = std::time::Instant::now();
-        let outcome = if small {
-            smallest_phone(&client, &server, &artifacts, window).await
-        } else {
-            both_languages(&client, &server, &artifacts, window).await
-        };
-        eprintln!(
-            "e2e: the tours at {}x{} took {:.1} s",
-            window.width,
-            window.height,
-            started.elapsed().as_secs_f64()
-        );
-        if let Err(e) = outcome {
+            .unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// Fails the test with `outcome`'s error, a screenshot and the
+    /// client's state, named for `window`.
+    async fn finish(&self, client: Client, window: &Window, outcome: Result<()>) {
+        if let Err(e) = &outcome {
             let _ = browser::screenshot(
                 &client,
-                &artifacts.join(format!("failure-languages{}.png", window.suffix)),
+                &self
+                    .artifacts
+                    .join(format!("failure-languages{}.png", window.suffix)),
             )
             .await;
             if let Ok(state) = browser::eval(&client, STATE).await {
                 eprintln!("e2e: chapaev_state at the failure: {state}");
             }
-            failures.push(format!("{}x{}: {e}", window.width, window.height));
+            let _ = client.close().await;
+            panic!(
+                "{}x{}: {e}\n(screenshots and logs are in {})",
+                window.width,
+                window.height,
+                self.artifacts.display()
+            );
         }
         let _ = client.close().await;
     }
-    let profile = scratch.path().join("profile-languages-sideways");
-    let extra = [
-        "--lang=ru".to_string(),
-        "--accept-lang=ru-RU,ru".to_string(),
-        format!("--window-size={},{}", SIDEWAYS.width, SIDEWAYS.height),
-        format!("--force-device-scale-factor={}", SIDEWAYS.dpr),
-    ];
-    let client = driver
-        .session_with(&programs, &profile, &extra)
-        .await
-        .unwrap_or_else(|e| panic!("{e}"));
-    if let Err(e) = sandbox_sideways(&client, &server, &artifacts).await {
-        let _ = browser::screenshot(&client, &artifacts.join("failure-sandbox-sideways.png")).await;
-        if let Ok(state) = browser::eval(&client, STATE).await {
-            eprintln!("e2e: chapaev_state at the failure: {state}");
-        }
-        failures.push(format!("844x390: {e}"));
-    }
-    let _ = client.close().await;
-    drop(driver);
-    drop(server);
-    assert!(
-        failures.is_empty(),
-        "{}\n(screenshots and logs are in {})",
-        failures.join("\n"),
-        artifacts.display()
+}
+
+/// The tour of every screen in `window`: both languages in full, or on
+/// the smallest phone one language with each switchable screen seen in
+/// the other too.
+async fn tour_in(window: &Window) {
+    let Some(rig) = rig(window.suffix) else {
+        return;
+    };
+    let client = rig.russian(window).await;
+    let started = std::time::Instant::now();
+    let outcome = if window.suffix.starts_with("-small") {
+        smallest_phone(&client, &rig.server, &rig.artifacts, window).await
+    } else {
+        both_languages(&client, &rig.server, &rig.artifacts, window).await
+    };
+    eprintln!(
+        "e2e: the tours at {}x{} took {:.1} s",
+        window.width,
+        window.height,
+        started.elapsed().as_secs_f64()
     );
+    rig.finish(client, window, outcome).await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_russian_browser_gets_russian_the_switch_turns_it_to_english_and_a_reload_keeps_it() {
+    tour_in(&LAPTOP).await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn on_a_phone_every_screen_reads_whole_and_even_in_both_languages() {
+    tour_in(&PHONE).await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn on_the_smallest_phone_on_its_side_every_screen_reads_whole_and_even() {
+    tour_in(&SMALL_SIDEWAYS).await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn on_the_smallest_phone_upright_every_screen_reads_whole_and_even() {
+    tour_in(&SMALL_UPRIGHT).await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn on_a_phone_on_its_side_the_sandbox_leaves_the_world_most_of_the_window() {
+    let Some(rig) = rig(SIDEWAYS.suffix) else {
+        return;
+    };
+    let client = rig.russian(&SIDEWAYS).await;
+    let outcome = sandbox_sideways(&client, &rig.server, &rig.artifacts).await;
+    rig.finish(client, &SIDEWAYS, outcome).await;
 }
 
 /// Russian first (from the browser's preference), the tour; then the
