@@ -372,3 +372,51 @@ pub async fn screenshot(client: &Client, path: &Path) -> Result<Vec<u8>> {
     })?;
     Ok(png)
 }
+
+/// The script that reads the app's state (`window.chapaev_state`, refreshed
+/// every frame).
+pub const APP_STATE: &str = "return window.chapaev_state || null;";
+
+/// Polls the app's state every 50 ms until `done` holds (at most `secs`
+/// seconds).
+pub async fn state_until(
+    client: &Client,
+    what: &str,
+    secs: u64,
+    done: impl FnMut(&Value) -> bool,
+) -> Result<Value> {
+    poll(
+        client,
+        what,
+        APP_STATE,
+        Duration::from_secs(secs),
+        Duration::from_millis(50),
+        done,
+    )
+    .await
+}
+
+/// Waits for the app's button `name` to be drawn, clicks its centre, and
+/// waits for a frame drawn after the click.
+pub async fn click_button(client: &Client, name: &str) -> Result<()> {
+    let state = state_until(client, &format!("the {name} button"), 15, |s| {
+        s["buttons"][name].is_array()
+    })
+    .await?;
+    let rect = &state["buttons"][name];
+    let (Some(x), Some(y), Some(w), Some(h)) = (
+        rect[0].as_f64(),
+        rect[1].as_f64(),
+        rect[2].as_f64(),
+        rect[3].as_f64(),
+    ) else {
+        return Err(E2eError::Check(format!("not a rectangle: {rect}")));
+    };
+    let after = state["frame"].as_u64().unwrap_or(0);
+    click(client, x + w / 2.0, y + h / 2.0).await?;
+    state_until(client, "a frame after the click", 10, |s| {
+        s["frame"].as_u64().is_some_and(|f| f > after)
+    })
+    .await?;
+    Ok(())
+}

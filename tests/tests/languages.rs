@@ -29,7 +29,7 @@
 //! and its menu of tools and its side panel open over the world and
 //! close again.
 
-use e2e::browser::{self, Driver};
+use e2e::browser::{self, click_button, state_until, Driver};
 use e2e::process::Server;
 use e2e::{artifacts_dir, picture, E2eError, Result};
 use fantoccini::Client;
@@ -745,47 +745,4 @@ async fn expect_html_lang(client: &Client, lang: &str) -> Result<()> {
             "<html lang> is {html}, not {lang:?}"
         )))
     }
-}
-
-/// Polls the app's state every 50 ms until `done` holds (at most `secs` seconds).
-async fn state_until(
-    client: &Client,
-    what: &str,
-    secs: u64,
-    done: impl FnMut(&Value) -> bool,
-) -> Result<Value> {
-    browser::poll(
-        client,
-        what,
-        STATE,
-        Duration::from_secs(secs),
-        Duration::from_millis(50),
-        done,
-    )
-    .await
-}
-
-/// Waits for the button `name` to be drawn, then clicks its centre and
-/// waits for a frame drawn after the click.
-async fn click_button(client: &Client, name: &str) -> Result<()> {
-    let state = state_until(client, &format!("the {name} button"), 15, |s| {
-        s["buttons"][name].is_array()
-    })
-    .await?;
-    let rect = &state["buttons"][name];
-    let (Some(x), Some(y), Some(w), Some(h)) = (
-        rect[0].as_f64(),
-        rect[1].as_f64(),
-        rect[2].as_f64(),
-        rect[3].as_f64(),
-    ) else {
-        return Err(E2eError::Check(format!("not a rectangle: {rect}")));
-    };
-    browser::click(client, x + w / 2.0, y + h / 2.0).await?;
-    let after = state["frame"].as_u64().unwrap_or(0);
-    state_until(client, "a frame after the click", 10, |s| {
-        s["frame"].as_u64().is_some_and(|f| f > after)
-    })
-    .await?;
-    Ok(())
 }

@@ -12,7 +12,7 @@
 //! artifacts folder (`target/e2e-artifacts` or
 //! `$CHAPAEV_E2E_ARTIFACTS`). Skipped, saying so, without a browser.
 
-use e2e::browser::{self, Driver};
+use e2e::browser::{self, click_button, state_until, Driver};
 use e2e::process::Server;
 use e2e::{artifacts_dir, picture, E2eError, Result};
 use fantoccini::Client;
@@ -170,45 +170,6 @@ async fn until_the_computer_answers(client: &Client, level: &str) -> Result<()> 
         })
         .await?;
     }
-}
-
-/// Polls the app's state every 50 ms until `done` holds (at most `secs` seconds).
-async fn state_until(
-    client: &Client,
-    what: &str,
-    secs: u64,
-    done: impl FnMut(&Value) -> bool,
-) -> Result<Value> {
-    browser::poll(
-        client,
-        what,
-        STATE,
-        Duration::from_secs(secs),
-        Duration::from_millis(50),
-        done,
-    )
-    .await
-}
-
-/// Waits for the button `name` to be drawn, clicks its centre, and waits
-/// for a frame drawn after the click.
-async fn click_button(client: &Client, name: &str) -> Result<()> {
-    let state = state_until(client, &format!("the {name} button"), 15, |s| {
-        s["buttons"][name].is_array()
-    })
-    .await?;
-    let r = &state["buttons"][name];
-    let (x, y) = match (r[0].as_f64(), r[1].as_f64(), r[2].as_f64(), r[3].as_f64()) {
-        (Some(x), Some(y), Some(w), Some(h)) => (x + w / 2.0, y + h / 2.0),
-        _ => return Err(E2eError::Check(format!("not a rectangle: {r}"))),
-    };
-    let after = state["frame"].as_u64().unwrap_or(0);
-    browser::click(client, x, y).await?;
-    state_until(client, "a frame after the click", 10, |s| {
-        s["frame"].as_u64().is_some_and(|f| f > after)
-    })
-    .await?;
-    Ok(())
 }
 
 /// Pulls the piece of ours nearest the middle straight down and lets go.
