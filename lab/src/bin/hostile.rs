@@ -12,7 +12,7 @@ use std::time::Instant;
 
 /// Hostile scenes of every kind through the engine, with their checks.
 #[derive(Parser, Debug)]
-#[command(version, about)]
+#[command(version)]
 struct Args {
     /// Scenes in all, spread evenly over the kinds.
     #[arg(long, default_value_t = 13_000)]

@@ -11,7 +11,7 @@ use std::process::ExitCode;
 /// Hostile scenes of every kind under two engine revisions: how many
 /// outcomes differ, and by how much.
 #[derive(Parser, Debug)]
-#[command(version, about)]
+#[command(version)]
 struct Args {
     /// Scenes of each kind.
     #[arg(long, default_value_t = 1_000)]
