@@ -32,7 +32,7 @@ use std::time::{Duration, Instant};
 /// Kill -9 the Chapaev server during live matches and check that no
 /// acknowledged shot is lost and every match resumes.
 #[derive(Parser, Debug, Clone)]
-#[command(name = "crashtest", version, about)]
+#[command(name = "crashtest", version)]
 struct Args {
     /// Person-vs-person matches played at once (two WebSocket clients each).
     #[arg(long, default_value_t = 1000, value_parser = clap::value_parser!(u64).range(1..=5000))]

@@ -61,7 +61,7 @@ use tokio_tungstenite::tungstenite::Message;
 
 /// Load generator for the Chapaev match server (loopback only).
 #[derive(Parser, Debug)]
-#[command(name = "loadgen", version, about)]
+#[command(name = "loadgen", version)]
 struct Args {
     /// Server address, `host:port`. Several nodes of one cluster: repeat
     /// the flag or separate them with commas; the load is spread over them.
