@@ -403,20 +403,35 @@ pub async fn click_button(client: &Client, name: &str) -> Result<()> {
         s["buttons"][name].is_array()
     })
     .await?;
-    let rect = &state["buttons"][name];
-    let (Some(x), Some(y), Some(w), Some(h)) = (
-        rect[0].as_f64(),
-        rect[1].as_f64(),
-        rect[2].as_f64(),
-        rect[3].as_f64(),
-    ) else {
-        return Err(E2eError::Check(format!("not a rectangle: {rect}")));
-    };
-    let after = state["frame"].as_u64().unwrap_or(0);
-    click(client, x + w / 2.0, y + h / 2.0).await?;
+    let (x, y) = centre(&state["buttons"][name])?;
+    click_seen(client, x, y).await
+}
+
+/// Clicks at (`x`, `y`) and waits for a frame drawn after the click, so
+/// the next step reads a page that has seen it. (The page draws only while
+/// something changes: without this wait, a second click could reach it in
+/// the same frame as the first.)
+pub async fn click_seen(client: &Client, x: f64, y: f64) -> Result<()> {
+    click(client, x, y).await?;
+    let after = eval(client, APP_STATE).await?["frame"]
+        .as_u64()
+        .unwrap_or(0);
     state_until(client, "a frame after the click", 10, |s| {
         s["frame"].as_u64().is_some_and(|f| f > after)
     })
     .await?;
     Ok(())
+}
+
+/// The centre of an `[x, y, w, h]` rectangle from the app's state.
+pub fn centre(rect: &Value) -> Result<(f64, f64)> {
+    match (
+        rect[0].as_f64(),
+        rect[1].as_f64(),
+        rect[2].as_f64(),
+        rect[3].as_f64(),
+    ) {
+        (Some(x), Some(y), Some(w), Some(h)) => Ok((x + w / 2.0, y + h / 2.0)),
+        _ => Err(E2eError::Check(format!("not a rectangle: {rect}"))),
+    }
 }

@@ -18,15 +18,13 @@
 //! Screenshots and logs are left in
 //! the artifacts folder (`target/e2e-artifacts` or `$CHAPAEV_E2E_ARTIFACTS`).
 
-use e2e::browser::{self, Driver};
+use e2e::browser::{self, centre, click_button, click_seen, state_until, Driver};
 use e2e::process::Server;
 use e2e::{api, artifacts_dir, layout, picture, E2eError, Result};
 use fantoccini::Client;
 use serde_json::Value;
 use std::path::Path;
 use std::time::{Duration, Instant};
-
-const STATE: &str = "return window.chapaev_state || null;";
 
 /// What each scenario starts with: the browser's programs, the artifacts
 /// folder, a scratch folder, the server and the browser driver.
@@ -83,7 +81,7 @@ async fn a_player_opens_the_page_shoots_against_the_easy_bot_resigns_scrubs_the_
     if outcome.is_err() {
         // What the page showed when it went wrong.
         let _ = browser::screenshot(&client, &artifacts.join("failure.png")).await;
-        if let Ok(state) = browser::eval(&client, STATE).await {
+        if let Ok(state) = browser::eval(&client, browser::APP_STATE).await {
             eprintln!("e2e: chapaev_state at the failure: {state}");
         }
     }
@@ -126,7 +124,7 @@ async fn two_browsers_pressing_quick_match_are_paired_into_one_match() {
     if outcome.is_err() {
         for (i, c) in clients.iter().enumerate() {
             let _ = browser::screenshot(c, &artifacts.join(format!("quick-failure-{i}.png"))).await;
-            if let Ok(state) = browser::eval(c, STATE).await {
+            if let Ok(state) = browser::eval(c, browser::APP_STATE).await {
                 eprintln!("e2e: browser {i}'s chapaev_state at the failure: {state}");
             }
         }
@@ -335,7 +333,7 @@ async fn on_a_phone_a_sharp_screen_and_full_hd_every_control_fits_and_the_slings
                 &artifacts.join(format!("failure-{}.png", window.name)),
             )
             .await;
-            if let Ok(state) = browser::eval(&client, STATE).await {
+            if let Ok(state) = browser::eval(&client, browser::APP_STATE).await {
                 eprintln!("e2e: chapaev_state at the failure: {state}");
             }
             failures.push(format!("{}: {e}", window.name));
@@ -474,7 +472,7 @@ async fn layouts(
         .ok_or_else(|| E2eError::Check(format!("no piece of ours: {}", play["pieces"])))?;
     let edge = (piece.0, f64::from(h) - 2.0);
     browser::press_and_move(client, piece, edge, 10).await?;
-    let aiming = browser::eval(client, STATE).await?;
+    let aiming = browser::eval(client, browser::APP_STATE).await?;
     let _ = browser::screenshot(client, &artifacts.join(format!("layout-{name}-4-aim.png"))).await;
     browser::release(client).await?;
     let power = aiming["aim_power"].as_f64().unwrap_or(0.0);
@@ -731,7 +729,7 @@ async fn play(client: &Client, server: &Server, artifacts: &Path) -> Result<()> 
     .await?;
     let (x, y) = centre(&lobby["buttons"]["vs-computer-easy"])?;
     eprintln!("e2e: clicking vs-computer-easy at ({x:.0}, {y:.0})");
-    click(client, x, y).await?;
+    click_seen(client, x, y).await?;
 
     // 4. The match is on, connected, and it is our turn.
     let play = state_until(
@@ -795,7 +793,7 @@ async fn play(client: &Client, server: &Server, artifacts: &Path) -> Result<()> 
     let mut work = Vec::new();
     let sampling = Instant::now();
     while sampling.elapsed() < Duration::from_millis(1500) {
-        let s = browser::eval(client, STATE).await?;
+        let s = browser::eval(client, browser::APP_STATE).await?;
         if s["animating"] == true {
             fps.extend(s["fps"].as_f64());
             work.extend(s["work_ms"].as_f64());
@@ -823,7 +821,9 @@ async fn play(client: &Client, server: &Server, artifacts: &Path) -> Result<()> 
             break;
         }
         if start.elapsed() > Duration::from_secs(15) {
-            let state = browser::eval(client, STATE).await.unwrap_or(Value::Null);
+            let state = browser::eval(client, browser::APP_STATE)
+                .await
+                .unwrap_or(Value::Null);
             return Err(E2eError::Timeout {
                 what: format!("GET {path} to count a shot"),
                 seconds: 15,
@@ -854,7 +854,7 @@ async fn play(client: &Client, server: &Server, artifacts: &Path) -> Result<()> 
     );
     // Scrub: clicking the middle of the timeline jumps there.
     let (x, y) = centre(&replay["buttons"]["timeline"])?;
-    click(client, x, y).await?;
+    click_seen(client, x, y).await?;
     let total = replay["total"].as_f64().unwrap_or(0.0);
     state_until(
         client,
@@ -887,61 +887,6 @@ async fn play(client: &Client, server: &Server, artifacts: &Path) -> Result<()> 
     let shot = browser::screenshot(client, &artifacts.join("04-sandbox.png")).await?;
     picture::stats(&shot)?.check_drawn("sandbox", 8, 0.01)?;
     Ok(())
-}
-
-/// Polls the app's state every 50 ms until `done` holds (at most `secs` seconds).
-async fn state_until(
-    client: &Client,
-    what: &str,
-    secs: u64,
-    done: impl FnMut(&Value) -> bool,
-) -> Result<Value> {
-    browser::poll(
-        client,
-        what,
-        STATE,
-        Duration::from_secs(secs),
-        Duration::from_millis(50),
-        done,
-    )
-    .await
-}
-
-/// Waits for the button `name` to be drawn, then clicks its centre.
-async fn click_button(client: &Client, name: &str) -> Result<()> {
-    let state = state_until(client, &format!("the {name} button"), 15, |s| {
-        s["buttons"][name].is_array()
-    })
-    .await?;
-    let (x, y) = centre(&state["buttons"][name])?;
-    eprintln!("e2e: clicking {name} at ({x:.0}, {y:.0})");
-    click(client, x, y).await
-}
-
-/// Clicks at (`x`, `y`) and waits for a frame drawn after the click, so
-/// the next step reads a page that has seen it. (The page draws only while
-/// something changes: without this wait, a second click could reach it in
-/// the same frame as the first.)
-async fn click(client: &Client, x: f64, y: f64) -> Result<()> {
-    browser::click(client, x, y).await?;
-    let seen = client.execute(STATE, vec![]).await?;
-    let after = seen["frame"].as_u64().unwrap_or(0);
-    state_until(client, "a frame after the click", 10, |s| {
-        s["frame"].as_u64().is_some_and(|f| f > after)
-    })
-    .await?;
-    Ok(())
-}
-
-/// The centre of a `[x, y, w, h]` rectangle.
-fn centre(rect: &Value) -> Result<(f64, f64)> {
-    let n = |i: usize| rect[i].as_f64();
-    match (n(0), n(1), n(2), n(3)) {
-        (Some(x), Some(y), Some(w), Some(h)) => Ok((x + w / 2.0, y + h / 2.0)),
-        _ => Err(E2eError::Check(format!(
-            "not an [x, y, w, h] rectangle: {rect}"
-        ))),
-    }
 }
 
 // ---- The defects a player found, each at phone and desktop size.
@@ -1012,7 +957,7 @@ async fn in_player_windows(tag: &str, scenario: Scenario) {
                 &artifacts.join(format!("failure{tag}-{}.png", window.name)),
             )
             .await;
-            if let Ok(state) = browser::eval(&client, STATE).await {
+            if let Ok(state) = browser::eval(&client, browser::APP_STATE).await {
                 eprintln!("e2e: chapaev_state at the failure: {state}");
             }
             failures.push(format!("{}: {e}", window.name));
@@ -1157,7 +1102,7 @@ async fn a_friends_match_waits_for_the_friend_before_anyone_aims() {
             .await?;
             // Settle a moment: nothing may offer the turn.
             tokio::time::sleep(Duration::from_millis(600)).await;
-            let s = browser::eval(client, STATE).await?;
+            let s = browser::eval(client, browser::APP_STATE).await?;
             if s["my_turn"] != false
                 || s["status"] != "Waiting for your friend to join"
                 || !s["buttons"]["copy-link"].is_array()
@@ -1331,8 +1276,8 @@ async fn the_panels_buttons_keep_their_places_and_resigns_confirmation_stands_el
             // A double tap on Resign: the second tap finds no confirmation
             // under the finger.
             let (x, y) = centre(&at(&start, "resign"))?;
-            click(client, x, y).await?;
-            click(client, x, y).await?;
+            click_seen(client, x, y).await?;
+            click_seen(client, x, y).await?;
             let asking = state_until(client, "Resign's question", 10, |s| {
                 s["buttons"]["resign-yes"].is_array()
             })
@@ -1418,7 +1363,7 @@ async fn shots_clack_as_their_pieces_meet_and_the_sound_button_silences_them_for
                         "no clack within 60 s of shots: {heard:?}"
                     )));
                 }
-                let s = browser::eval(client, STATE).await?;
+                let s = browser::eval(client, browser::APP_STATE).await?;
                 if s["my_turn"] == true && s["animating"] == false {
                     shoot(client, &s).await?;
                 }
@@ -1527,7 +1472,7 @@ async fn on_a_touch_screen_a_text_field_is_a_real_input_that_takes_the_phones_ty
             let rect = native_input(client, "name", 10)
                 .await?
                 .ok_or_else(|| E2eError::Check("no native input over the name field".into()))?;
-            let s = browser::eval(client, STATE).await?;
+            let s = browser::eval(client, browser::APP_STATE).await?;
             let field = &s["buttons"]["name"];
             let off = (0..4)
                 .map(|i| (rect[i].as_f64().unwrap_or(f64::NAN) - field[i].as_f64().unwrap_or(0.0)).abs())
@@ -1708,7 +1653,7 @@ async fn a_match_chat_has_quick_phrases_spectators_and_a_mute_and_a_tap_leaves_n
             )
             .await?;
             tokio::time::sleep(Duration::from_millis(300)).await;
-            let muted = browser::eval(client, STATE).await?;
+            let muted = browser::eval(client, browser::APP_STATE).await?;
             if muted["chat"]
                 .as_array()
                 .is_none_or(|l| l.iter().any(|l| l.as_str().is_some_and(|l| l.contains("still talking"))))
