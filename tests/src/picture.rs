@@ -3,7 +3,6 @@
 //! the page's background shows).
 
 use crate::{E2eError, Result};
-use std::collections::HashMap;
 
 /// What a screenshot holds, in numbers.
 #[derive(Debug, Clone)]
@@ -69,7 +68,13 @@ pub fn stats(png_bytes: &[u8]) -> Result<Stats> {
             return Err(E2eError::Check("palette left unexpanded".into()));
         }
     };
-    let mut counts: HashMap<[u8; 3], usize> = HashMap::new();
+    // One counter per 24-bit colour, zeroed lazily by the allocator (only
+    // the pages of colours that occur are touched), and the colour count
+    // and the most common colour kept as the pixels go by: this crate is
+    // built without optimisation for tests, where hashing each pixel of a
+    // 3-megapixel screenshot took seconds.
+    let mut counts = vec![0u32; 1 << 24];
+    let (mut colours, mut dominant, mut most) = (0usize, [0u8; 3], 0u32);
     let pixels = &buf[..info.buffer_size()];
     for px in pixels.chunks_exact(channels) {
         let rgb = if channels >= 3 {
@@ -77,20 +82,23 @@ pub fn stats(png_bytes: &[u8]) -> Result<Stats> {
         } else {
             [px[0], px[0], px[0]]
         };
-        *counts.entry(rgb).or_default() += 1;
+        let count =
+            &mut counts[usize::from(rgb[0]) << 16 | usize::from(rgb[1]) << 8 | usize::from(rgb[2])];
+        *count += 1;
+        if *count == 1 {
+            colours += 1;
+        }
+        if *count > most {
+            (most, dominant) = (*count, rgb);
+        }
     }
     let total = (info.width as usize * info.height as usize).max(1);
-    let (dominant, most) = counts
-        .iter()
-        .max_by_key(|(_, n)| **n)
-        .map(|(c, n)| (*c, *n))
-        .unwrap_or(([0; 3], 0));
     Ok(Stats {
         width: info.width,
         height: info.height,
-        colours: counts.len(),
+        colours,
         dominant,
-        dominant_share: most as f64 / total as f64,
+        dominant_share: f64::from(most) / total as f64,
     })
 }
 
