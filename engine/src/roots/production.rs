@@ -529,18 +529,16 @@ fn no_real_roots(q: &Coeffs) -> bool {
         }
     }
     // The discriminant grouped by powers of e (Horner in e). A quartic with
-    // two real roots (the usual case that gets here) fails on its sign
-    // alone; otherwise the same expression on absolute values with every
-    // sign positive, which is the sum of the magnitudes of its 16
-    // monomials, bounds its rounding error: below gamma(k) times that, k
-    // the longest chain of roundings (Higham, Accuracy and Stability, 3.1).
-    // The discriminant and the magnitude that bounds its rounding are the
-    // same expression, the second on absolute values with every sign
-    // positive: both are formed at once, in the two lanes of a [`Pair`]
-    // (lane 0 signed, lane 1 magnitudes), which the compiler turns into
-    // one packed instruction per operation instead of two chains. Each
-    // lane does exactly the operations of its scalar expression (`x - k y`
-    // is `x + (-k) y` to the bit), so the decision is the same.
+    // two real roots (the usual case that gets here) fails on its sign;
+    // otherwise the same expression on absolute values with every sign
+    // positive, which is the sum of the magnitudes of its 16 monomials,
+    // bounds its rounding error: below gamma(k) times that, k the longest
+    // chain of roundings (Higham, Accuracy and Stability, 3.1). The two
+    // are formed at once in the lanes of a [`Pair`] (lane 0 signed, lane 1
+    // magnitudes: one packed instruction per operation instead of two
+    // chains). Each lane does exactly the operations of its scalar
+    // expression (`x - k y` is `x + (-k) y` to the bit), so the decision
+    // is that of the scalar code.
     let bd = b * d;
     let (ta, tac, tbd, tc, te) = (
         Pair::new(a, a.abs()),
