@@ -365,7 +365,7 @@ fn class_table(batches: &[(&str, Vec<[f64; 5]>)]) {
                 t.push(start.elapsed().as_secs_f64() / CLASS_REPS as f64);
             }
             let answer = match ours(c) {
-                Some(r) if r == 0.0 => "0",
+                Some(0.0) => "0",
                 Some(_) => "a positive root",
                 None => "none",
             };
