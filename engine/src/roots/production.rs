@@ -388,7 +388,7 @@ fn descartes_at_zero(a: &Coeffs, n: usize) -> Option<bool> {
 /// batch of queries, and mispredicted branches were a tenth of the time of
 /// the whole shortcut path), and no chain of comparisons from one
 /// coefficient to the next (a select per coefficient carrying the last
-/// non-zero sign took a fifth of the shortcut path's samples). The
+/// non-zero sign was the largest spot of the shortcut path). The
 /// coefficients above degree `n` are zero (see [`normalize`]), so all five
 /// are read; a zero of either sign counts as zero.
 #[inline(always)]
@@ -1652,15 +1652,16 @@ mod tests {
     }
 
     #[test]
-    fn sign_variations_count_every_sign_pattern_with_zeros_skipped() {
-        // All 3^5 patterns of -, 0, + (the degree is where the last non-zero
-        // one sits), against the count read off the non-zero signs.
-        for code in 0..243u32 {
+    fn sign_variations_count_every_sign_pattern_with_zeros_of_either_sign_skipped() {
+        // All 4^5 patterns of -, 0, +, -0 (the degree is where the last
+        // non-zero one sits), against the count read off the non-zero
+        // signs: a zero counts as zero whatever its sign bit.
+        for code in 0..1024u32 {
             let mut a = [0.0; 5];
             let mut k = code;
             for slot in a.iter_mut() {
-                *slot = [-1.5, 0.0, 2.5][(k % 3) as usize];
-                k /= 3;
+                *slot = [-1.5, 0.0, 2.5, -0.0][(k % 4) as usize];
+                k /= 4;
             }
             let Some(n) = (0..5).rev().find(|&i| a[i] != 0.0) else {
                 continue;
