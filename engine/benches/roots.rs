@@ -7,7 +7,9 @@
 //! the engine itself uses (every contact before a stop time).
 //!
 //! With `-- --hard-table`, the table is followed by each hard quartic
-//! timed on its own (ours and kurbo) instead of criterion's groups.
+//! timed on its own (ours and kurbo) instead of criterion's groups; with
+//! `-- --classes`, by the mixed batch's queries timed one by one and
+//! summed by class (where `production`'s time goes).
 //!
 //! First of all, before criterion's groups, a table of the same
 //! `first_root` queries timed the way this machine allows a fair
@@ -340,9 +342,65 @@ fn hard_table(hard: &[[f64; 5]]) {
     }
 }
 
+/// Rounds and repetitions per round of [`class_table`].
+const CLASS_ROUNDS: usize = 15;
+const CLASS_REPS: usize = 500;
+
+/// The mixed batch's queries to `production`, each timed on its own (the
+/// median round's CPU time per query; alone, its branches are better
+/// predicted than in the batch), summed by class: the batch it comes from,
+/// its answer (`0` when `p(0) = 0`, a positive first root, or none) and
+/// how many real roots the quartic has.
+fn class_table(batches: &[(&str, Vec<[f64; 5]>)]) {
+    let ours = solvers()[0].1;
+    let mut classes: Vec<((&str, &str, usize), usize, f64)> = Vec::new();
+    for (name, batch) in &batches[..2] {
+        for c in batch {
+            let mut t = Vec::with_capacity(CLASS_ROUNDS);
+            for _ in 0..CLASS_ROUNDS {
+                let start = ThreadTime::now();
+                for _ in 0..CLASS_REPS {
+                    black_box(ours(black_box(c)));
+                }
+                t.push(start.elapsed().as_secs_f64() / CLASS_REPS as f64);
+            }
+            let answer = match ours(c) {
+                Some(0.0) => "0",
+                Some(_) => "a positive root",
+                None => "none",
+            };
+            let key = (*name, answer, Production.real_roots(c).len());
+            let time = median(t);
+            match classes.iter_mut().find(|e| e.0 == key) {
+                Some(e) => {
+                    e.1 += 1;
+                    e.2 += time;
+                }
+                None => classes.push((key, 1, time)),
+            }
+        }
+    }
+    classes.sort_by(|a, b| b.2.total_cmp(&a.2));
+    let total: f64 = classes.iter().map(|e| e.2).sum();
+    println!("mixed batch by class: production's CPU time per query alone, median of {CLASS_ROUNDS} rounds");
+    println!("| batch | first root | real roots | queries | mean | share of the sum |");
+    println!("|---|---|---:|---:|---:|---:|");
+    for ((batch, answer, real), n, time) in classes {
+        println!(
+            "| {batch} | {answer} | {real} | {n} | {:.1} ns | {:.1} % |",
+            time / n as f64 * 1e9,
+            100.0 * time / total
+        );
+    }
+}
+
 fn main() {
     let batches = batches();
     cpu_table(&batches);
+    if std::env::args().any(|a| a == "--classes") {
+        class_table(&batches);
+        return;
+    }
     if std::env::args().any(|a| a == "--hard-table") {
         hard_table(&batches[1].1);
         return;

@@ -87,17 +87,22 @@ impl RootSolver for Production {
             return None;
         }
         let (a, n) = normalize(coeffs)?;
-        let mut out = Roots::new();
-        match n {
-            1 | 2 => low_degree(&a[..=n], lo, hi, &mut out),
-            _ => match classify(&a, n, lo, true) {
-                Path::NoRoot => return None,
-                Path::Zero => return Some(0.0),
-                Path::Deflate => return deflated(&a, n, lo, hi, true).first(),
-                Path::Single => general(&a, n, lo, hi, true, true, &mut out),
-                Path::General => general(&a, n, lo, hi, true, false, &mut out),
-            },
+        // The result array is only built where it is filled (zeroing it
+        // up front was a store on every query), and the walk has one call.
+        if n <= 2 {
+            let mut out = Roots::new();
+            low_degree(&a[..=n], lo, hi, &mut out);
+            return out.first().filter(|&r| lo <= r && r < hi);
         }
+        let single = match classify(&a, n, lo, true) {
+            Path::NoRoot => return None,
+            Path::Zero => return Some(0.0),
+            Path::Deflate => return deflated(&a, n, lo, hi, true).first(),
+            Path::Single => true,
+            Path::General => false,
+        };
+        let mut out = Roots::new();
+        general(&a, n, lo, hi, true, single, &mut out);
         out.first().filter(|&r| lo <= r && r < hi)
     }
 }
@@ -377,25 +382,52 @@ fn descartes_at_zero(a: &Coeffs, n: usize) -> Option<bool> {
     }
 }
 
-/// The sign variations of `a[0..=n]`, zeros skipped, counted without a
-/// branch on any sign (they are as good as random in a batch of queries,
-/// and mispredicted branches were a tenth of the time of the whole
-/// shortcut path). The coefficients above degree `n` are zero (see
-/// [`normalize`]), so all five are visited.
+/// The sign variations of `a[0..=n]`, zeros skipped, read from a table
+/// ([`VARIATIONS`]) indexed by which coefficients are negative and which
+/// are non-zero: no branch on any sign (they are as good as random in a
+/// batch of queries, and mispredicted branches were a tenth of the time of
+/// the whole shortcut path), and no chain of comparisons from one
+/// coefficient to the next (a select per coefficient carrying the last
+/// non-zero sign was the largest spot of the shortcut path). The
+/// coefficients above degree `n` are zero (see [`normalize`]), so all five
+/// are read; a zero of either sign counts as zero.
 #[inline(always)]
 fn sign_variations(a: &Coeffs, n: usize) -> u32 {
     debug_assert!(a[n + 1..].iter().all(|&c| c == 0.0));
-    let mut variations = 0;
-    let mut last_neg = a[0] < 0.0;
-    let mut last_zero = a[0] == 0.0;
-    for &c in &a[1..] {
-        let (neg, zero) = (c < 0.0, c == 0.0);
-        variations += u32::from(!zero & !last_zero & (neg != last_neg));
-        // Select, not branch: the last non-zero coefficient's sign.
-        last_neg = (zero & last_neg) | (!zero & neg);
-        last_zero &= zero;
+    let mut index = 0;
+    for (i, &c) in a.iter().enumerate() {
+        let bits = c.to_bits();
+        index |= ((bits >> 63) as usize) << i;
+        index |= usize::from(bits << 1 != 0) << (i + 5);
     }
-    variations
+    u32::from(VARIATIONS[index & 1023])
+}
+
+/// [`sign_variations`] for every pattern of five coefficients: bit `i` of
+/// the index says that coefficient `i` is negative, bit `i + 5` that it is
+/// non-zero (the sign of a zero is ignored).
+static VARIATIONS: [u8; 1024] = variations_table();
+
+const fn variations_table() -> [u8; 1024] {
+    let mut table = [0; 1024];
+    let mut index = 0;
+    while index < 1024 {
+        let (mut count, mut last_neg, mut seen) = (0, false, false);
+        let mut i = 0;
+        while i < 5 {
+            if (index >> (i + 5)) & 1 == 1 {
+                let neg = (index >> i) & 1 == 1;
+                if seen && neg != last_neg {
+                    count += 1;
+                }
+                (last_neg, seen) = (neg, true);
+            }
+            i += 1;
+        }
+        table[index] = count;
+        index += 1;
+    }
+    table
 }
 
 /// True when the quartic is certainly positive on `[0, inf)`, by the
@@ -497,29 +529,123 @@ fn no_real_roots(q: &Coeffs) -> bool {
         }
     }
     // The discriminant grouped by powers of e (Horner in e). A quartic with
-    // two real roots (the usual case that gets here) fails on its sign
-    // alone; otherwise the same expression on absolute values with every
-    // sign positive, which is the sum of the magnitudes of its 16
-    // monomials, bounds its rounding error: below gamma(k) times that, k
-    // the longest chain of roundings (Higham, Accuracy and Stability, 3.1).
+    // two real roots (the usual case that gets here) fails on its sign;
+    // otherwise the same expression on absolute values with every sign
+    // positive, which is the sum of the magnitudes of its 16 monomials,
+    // bounds its rounding error: below gamma(k) times that, k the longest
+    // chain of roundings (Higham, Accuracy and Stability, 3.1). The two
+    // are formed at once in the lanes of a [`Pair`] (lane 0 signed, lane 1
+    // magnitudes: one packed instruction per operation instead of two
+    // chains). Each lane does exactly the operations of its scalar
+    // expression (`x - k y` is `x + (-k) y` to the bit), so the decision
+    // is that of the scalar code.
     let bd = b * d;
-    let a3 = 256.0 * a2 * a;
-    let a2_ = a * (a * (-192.0 * bd - 128.0 * c2) + 144.0 * b2 * c) - 27.0 * b2 * b2;
-    let a1 = a * (d2 * (144.0 * ac - 6.0 * b2) + c2 * (16.0 * c2 - 80.0 * bd))
-        + b2 * c * (18.0 * bd - 4.0 * c2);
-    let a0 = d2 * (ac * (18.0 * bd - 4.0 * c2) - 27.0 * a2 * d2 + b2 * (c2 - 4.0 * bd));
-    let disc = ((a3 * e + a2_) * e + a1) * e + a0;
-    if !(disc > 0.0) {
-        return false;
+    let (ta, tac, tbd, tc, te) = (
+        Pair::new(a, a.abs()),
+        Pair::new(ac, ac.abs()),
+        Pair::new(bd, bd.abs()),
+        Pair::new(c, c.abs()),
+        Pair::new(e, e.abs()),
+    );
+    let k = |signed: f64| Pair::new(signed, -signed);
+    let s = |x: f64| Pair::new(x, x);
+    let m3 = s(256.0 * a2) * ta;
+    let m2 = ta * (ta * (k(-192.0) * tbd + k(-128.0) * s(c2)) + s(144.0 * b2) * tc)
+        + k(-27.0 * b2) * s(b2);
+    let m1 = ta
+        * (s(d2) * (s(144.0) * tac + k(-6.0) * s(b2)) + s(c2) * (s(16.0 * c2) + k(-80.0) * tbd))
+        + s(b2) * tc * (s(18.0) * tbd + k(-4.0) * s(c2));
+    let m0 = s(d2)
+        * (tac * (s(18.0) * tbd + k(-4.0) * s(c2))
+            + k(-27.0 * a2) * s(d2)
+            + s(b2) * (s(c2) + k(-4.0) * tbd));
+    let (disc, mag) = (((m3 * te + m2) * te + m1) * te + m0).lanes();
+    disc > 0.0 && disc > gamma(24) * mag * (1.0 + 32.0 * U) && mag < f64::INFINITY && mag > 1e-250
+}
+
+/// Two `f64` lanes computed side by side (see [`no_real_roots`]): one
+/// packed SSE2 register on x86-64 (the compiler left the two chains scalar
+/// when written as a pair of numbers), a pair of numbers elsewhere. Either
+/// way each lane is rounded as its own scalar operation would be.
+#[cfg(target_arch = "x86_64")]
+#[derive(Clone, Copy)]
+struct Pair(core::arch::x86_64::__m128d);
+
+#[cfg(target_arch = "x86_64")]
+impl Pair {
+    #[inline(always)]
+    fn new(lane0: f64, lane1: f64) -> Pair {
+        // SAFETY: SSE2 is part of every x86-64 processor (the target's
+        // baseline), and the intrinsic only computes on registers.
+        Pair(unsafe { core::arch::x86_64::_mm_set_pd(lane1, lane0) })
     }
-    let (aa, ac_, bd_, cc, ee) = (a.abs(), ac.abs(), bd.abs(), c.abs(), e.abs());
-    let m3 = 256.0 * a2 * aa;
-    let m2 = aa * (aa * (192.0 * bd_ + 128.0 * c2) + 144.0 * b2 * cc) + 27.0 * b2 * b2;
-    let m1 = aa * (d2 * (144.0 * ac_ + 6.0 * b2) + c2 * (16.0 * c2 + 80.0 * bd_))
-        + b2 * cc * (18.0 * bd_ + 4.0 * c2);
-    let m0 = d2 * (ac_ * (18.0 * bd_ + 4.0 * c2) + 27.0 * a2 * d2 + b2 * (c2 + 4.0 * bd_));
-    let mag = ((m3 * ee + m2) * ee + m1) * ee + m0;
-    disc > gamma(24) * mag * (1.0 + 32.0 * U) && mag < f64::INFINITY && mag > 1e-250
+
+    #[inline(always)]
+    fn lanes(self) -> (f64, f64) {
+        use core::arch::x86_64::{_mm_cvtsd_f64, _mm_unpackhi_pd};
+        // SAFETY: as in `new`.
+        unsafe {
+            (
+                _mm_cvtsd_f64(self.0),
+                _mm_cvtsd_f64(_mm_unpackhi_pd(self.0, self.0)),
+            )
+        }
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+impl core::ops::Add for Pair {
+    type Output = Pair;
+    #[inline(always)]
+    fn add(self, o: Pair) -> Pair {
+        // SAFETY: as in `Pair::new`.
+        Pair(unsafe { core::arch::x86_64::_mm_add_pd(self.0, o.0) })
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+impl core::ops::Mul for Pair {
+    type Output = Pair;
+    #[inline(always)]
+    fn mul(self, o: Pair) -> Pair {
+        // SAFETY: as in `Pair::new`.
+        Pair(unsafe { core::arch::x86_64::_mm_mul_pd(self.0, o.0) })
+    }
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+#[derive(Clone, Copy)]
+struct Pair(f64, f64);
+
+#[cfg(not(target_arch = "x86_64"))]
+impl Pair {
+    #[inline(always)]
+    fn new(lane0: f64, lane1: f64) -> Pair {
+        Pair(lane0, lane1)
+    }
+
+    #[inline(always)]
+    fn lanes(self) -> (f64, f64) {
+        (self.0, self.1)
+    }
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+impl core::ops::Add for Pair {
+    type Output = Pair;
+    #[inline(always)]
+    fn add(self, o: Pair) -> Pair {
+        Pair(self.0 + o.0, self.1 + o.1)
+    }
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+impl core::ops::Mul for Pair {
+    type Output = Pair;
+    #[inline(always)]
+    fn mul(self, o: Pair) -> Pair {
+        Pair(self.0 * o.0, self.1 * o.1)
+    }
 }
 
 /// The one positive root of `p` (Descartes: one sign variation), if below
@@ -1373,6 +1499,91 @@ mod tests {
         );
     }
 
+    /// [`no_real_roots`] as it was written before its discriminant and
+    /// magnitude shared the lanes of a [`Pair`]: two scalar chains.
+    fn no_real_roots_scalar(q: &Coeffs) -> bool {
+        let (a, b, c, d, e) = (q[4], q[3], q[2], q[1], q[0]);
+        let (b2, c2, d2) = (b * b, c * c, d * d);
+        let (ae, ac, a2) = (a * e, a * c, a * a);
+        let (p1, p2) = (8.0 * ac, 3.0 * b2);
+        if !(p1 - p2 > gamma(4) * (p1.abs() + p2) * (1.0 + 4.0 * U)) {
+            let dt = [
+                64.0 * a2 * ae,
+                -16.0 * a2 * c2,
+                16.0 * ac * b2,
+                -16.0 * a2 * b * d,
+                -3.0 * b2 * b2,
+            ];
+            let dd = dt[0] + dt[1] + dt[2] + dt[3] + dt[4];
+            let ds = dt[0].abs() + dt[1].abs() + dt[2].abs() + dt[3].abs() + dt[4].abs();
+            if !(dd > gamma(10) * ds * (1.0 + 8.0 * U)) {
+                return false;
+            }
+        }
+        let bd = b * d;
+        let a3 = 256.0 * a2 * a;
+        let a2_ = a * (a * (-192.0 * bd - 128.0 * c2) + 144.0 * b2 * c) - 27.0 * b2 * b2;
+        let a1 = a * (d2 * (144.0 * ac - 6.0 * b2) + c2 * (16.0 * c2 - 80.0 * bd))
+            + b2 * c * (18.0 * bd - 4.0 * c2);
+        let a0 = d2 * (ac * (18.0 * bd - 4.0 * c2) - 27.0 * a2 * d2 + b2 * (c2 - 4.0 * bd));
+        let disc = ((a3 * e + a2_) * e + a1) * e + a0;
+        if !(disc > 0.0) {
+            return false;
+        }
+        let (aa, ac_, bd_, cc, ee) = (a.abs(), ac.abs(), bd.abs(), c.abs(), e.abs());
+        let m3 = 256.0 * a2 * aa;
+        let m2 = aa * (aa * (192.0 * bd_ + 128.0 * c2) + 144.0 * b2 * cc) + 27.0 * b2 * b2;
+        let m1 = aa * (d2 * (144.0 * ac_ + 6.0 * b2) + c2 * (16.0 * c2 + 80.0 * bd_))
+            + b2 * cc * (18.0 * bd_ + 4.0 * c2);
+        let m0 = d2 * (ac_ * (18.0 * bd_ + 4.0 * c2) + 27.0 * a2 * d2 + b2 * (c2 + 4.0 * bd_));
+        let mag = ((m3 * ee + m2) * ee + m1) * ee + m0;
+        disc > gamma(24) * mag * (1.0 + 32.0 * U) && mag < f64::INFINITY && mag > 1e-250
+    }
+
+    #[test]
+    fn paired_discriminant_test_decides_as_the_two_scalar_chains() {
+        // Random coefficients of every sign over wide scales (so both the
+        // sign and the magnitude test decide, and some products overflow
+        // or underflow), products of two quadratic factors with complex or
+        // nearly real roots, and the hard table: the same answer every
+        // time, and both answers occur.
+        let mut next = uniform_stream(0x7a1d_0c0d_e5ee_d123);
+        let (mut yes, mut total) = (0, 0);
+        let mut check = |c: &Coeffs| {
+            let paired = no_real_roots(c);
+            assert_eq!(paired, no_real_roots_scalar(c), "{c:?}");
+            yes += usize::from(paired);
+            total += 1;
+        };
+        for i in 0..200_000 {
+            let mut c = [0.0; 5];
+            if i % 2 == 0 {
+                for v in c.iter_mut() {
+                    *v = next() * super::super::poly::pow2((next() * 200.0) as i32);
+                }
+            } else {
+                let (re1, s1, re2, s2) = (next() * 10.0, next(), next() * 10.0, next());
+                let s1 = s1 * s1.abs().powi(4);
+                let q1 = [re1 * re1 + s1, -2.0 * re1, 1.0];
+                let q2 = [re2 * re2 + s2, -2.0 * re2, 1.0];
+                let lead = super::super::poly::pow2((next() * 300.0) as i32);
+                for i in 0..3 {
+                    for j in 0..3 {
+                        c[i + j] += lead * q1[i] * q2[j];
+                    }
+                }
+            }
+            check(&c);
+        }
+        for case in super::super::cases::hard_table() {
+            let mut c = [0.0; 5];
+            c[..case.coeffs.len()].copy_from_slice(&case.coeffs);
+            check(&c);
+        }
+        println!("{yes} of {total} certified without a real root");
+        assert!(yes * 20 > total && yes < total, "{yes} of {total}");
+    }
+
     #[test]
     fn half_line_certificates_are_never_wrong() {
         // Contacts (some grazing, some with the touch just after 0) and
@@ -1441,15 +1652,16 @@ mod tests {
     }
 
     #[test]
-    fn sign_variations_count_every_sign_pattern_with_zeros_skipped() {
-        // All 3^5 patterns of -, 0, + (the degree is where the last non-zero
-        // one sits), against the count read off the non-zero signs.
-        for code in 0..243u32 {
+    fn sign_variations_count_every_sign_pattern_with_zeros_of_either_sign_skipped() {
+        // All 4^5 patterns of -, 0, +, -0 (the degree is where the last
+        // non-zero one sits), against the count read off the non-zero
+        // signs: a zero counts as zero whatever its sign bit.
+        for code in 0..1024u32 {
             let mut a = [0.0; 5];
             let mut k = code;
             for slot in a.iter_mut() {
-                *slot = [-1.5, 0.0, 2.5][(k % 3) as usize];
-                k /= 3;
+                *slot = [-1.5, 0.0, 2.5, -0.0][(k % 4) as usize];
+                k /= 4;
             }
             let Some(n) = (0..5).rev().find(|&i| a[i] != 0.0) else {
                 continue;
