@@ -10,6 +10,12 @@
 //!   discs on a line and one wall, all three predictions redone after every
 //!   event): not the engine, but the speed this machine allows at all, the
 //!   yardstick for the engine's own rate.
+//! * `galperin/bare_2d_n7`: the same billiard in a hand-written loop in the
+//!   plane: positions and velocities as `DVec2`, the engine's contact
+//!   quadratic for the pair and its line contact for the wall, the impulse
+//!   along the contact normal as the engine forms it (reduced mass, one
+//!   division by each mass); still no calendar and no guards. The engine
+//!   is two-dimensional, so this is the like-for-like yardstick.
 //! * `box_frictionless_{100,10000}`: discs in a closed box at ~10% area
 //!   fraction, 20 000 events from a steady state (the world is built and
 //!   warmed up once, then cloned per iteration, outside the timing).
@@ -17,7 +23,7 @@
 //! * `solver_choice`: the break shot with each root-finding method.
 //!
 //! Rates are printed as elements/s, where an element is one event. Before
-//! criterion's Galperin group, a table times the engine and the bare loop
+//! criterion's Galperin group, a table times the engine and both bare loops
 //! interleaved in CPU time (see [`galperin_cpu_table`]): the figures to
 //! compare on a loaded machine.
 //! Run with `cargo bench -p engine --bench engine`.
@@ -203,38 +209,46 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-/// Galperin's billiard through `World` and in the bare loop, one after the
-/// other round after round in one process, in CPU time of this thread (the
-/// hypervisor's steal and the wall clock's drift are not counted): the
-/// fair comparison of the two rates on a loaded machine. Prints the median
-/// round of each, as events per CPU second, and the engine's share of the
-/// bare loop's rate.
+/// Galperin's billiard through `World` and in the two bare loops, one after
+/// the other round after round in one process, in CPU time of this thread
+/// (the hypervisor's steal and the wall clock's drift are not counted): the
+/// fair comparison of the rates on a loaded machine. Prints the median
+/// round of each, as events per CPU second, and the engine's share of each
+/// bare loop's rate (the one-dimensional loop of [`bare_galperin`] and the
+/// planar one of [`bare_galperin_2d`]).
 fn galperin_cpu_table() {
     println!("Galperin: events per CPU second, median of interleaved rounds");
-    println!("| n | rounds | engine | bare loop | engine / bare |");
-    println!("|---|---:|---:|---:|---:|");
+    println!("| n | rounds | engine | bare 1-D | bare 2-D | engine / 1-D | engine / 2-D |");
+    println!("|---|---:|---:|---:|---:|---:|---:|");
     for (n, rounds) in GALPERIN_ROUNDS {
         if !selected(&format!("galperin/n{n}")) {
             continue;
         }
         let scene = galperin_scene(n);
-        let (mut engine, mut bare) = (Vec::new(), Vec::new());
+        let digits = engine::presets::pi_digits(n);
+        let (mut engine, mut bare, mut plane) = (Vec::new(), Vec::new(), Vec::new());
         for _ in 0..rounds {
             let start = ThreadTime::now();
             let (counter, _) = run_galperin(black_box(&scene));
             engine.push(counter.events as f64 / start.elapsed().as_secs_f64());
-            assert_eq!(counter.collisions, engine::presets::pi_digits(n));
+            assert_eq!(counter.collisions, digits);
             let start = ThreadTime::now();
             let events = bare_galperin(black_box(n));
             bare.push(events as f64 / start.elapsed().as_secs_f64());
-            assert_eq!(events, engine::presets::pi_digits(n));
+            assert_eq!(events, digits);
+            let start = ThreadTime::now();
+            let events = bare_galperin_2d(black_box(n));
+            plane.push(events as f64 / start.elapsed().as_secs_f64());
+            assert_eq!(events, digits);
         }
-        let (e, b) = (median(engine), median(bare));
+        let (e, b, p) = (median(engine), median(bare), median(plane));
         println!(
-            "| {n} | {rounds} | {:.2} M/s | {:.2} M/s | {:.0} % |",
+            "| {n} | {rounds} | {:.2} M/s | {:.2} M/s | {:.2} M/s | {:.0} % | {:.0} % |",
             e * 1e-6,
             b * 1e-6,
-            100.0 * e / b
+            p * 1e-6,
+            100.0 * e / b,
+            100.0 * e / p
         );
     }
 }
@@ -274,6 +288,11 @@ fn galperin(c: &mut Criterion) {
         assert_eq!(bare_galperin(7), 3_141_592, "bare loop, n = 7");
         group.throughput(Throughput::Elements(3_141_592));
         group.bench_function("bare_loop_n7", |b| b.iter(|| bare_galperin(black_box(7))));
+    }
+    if selected("galperin/bare_2d_n7") {
+        assert_eq!(bare_galperin_2d(7), 3_141_592, "planar bare loop, n = 7");
+        group.throughput(Throughput::Elements(3_141_592));
+        group.bench_function("bare_2d_n7", |b| b.iter(|| bare_galperin_2d(black_box(7))));
     }
     group.finish();
 }
@@ -370,6 +389,117 @@ fn bare_galperin(n: u32) -> u64 {
                 v: -heavy.v,
                 ..heavy
             };
+        }
+    }
+}
+
+/// A disc in the plane for [`bare_galperin_2d`]: position and velocity at
+/// `t0`.
+#[derive(Clone, Copy)]
+struct PlaneDisc {
+    t0: f64,
+    p: DVec2,
+    v: DVec2,
+    r: f64,
+    m: f64,
+}
+
+impl PlaneDisc {
+    fn at(&self, t: f64) -> DVec2 {
+        self.p + self.v * (t - self.t0)
+    }
+
+    /// Moving on from `t` with velocity `v`.
+    fn moved(&self, t: f64, v: DVec2) -> PlaneDisc {
+        PlaneDisc {
+            t0: t,
+            p: self.at(t),
+            v,
+            ..*self
+        }
+    }
+}
+
+/// Galperin's billiard (the preset's scene) in a bare loop in the plane,
+/// with the engine's formulas: the pair's contact from the quadratic
+/// `|dp + dv l|^2 = s^2` and its stable root (a square root and a
+/// division), the wall as a line `n . p + c = 0` (signed distance, rate of
+/// approach, one division), the hit's impulse along the unit contact normal
+/// (a square root and a division) with the reduced mass formed as
+/// `impulse::reduced_mass` does and one division by each mass, the bounce
+/// mirroring the normal part. All three predictions are redone after every
+/// event; no calendar, no guards. Returns the number of collisions.
+fn bare_galperin_2d(n: u32) -> u64 {
+    let big = (1..n).fold(1.0, |m, _| m * 100.0);
+    let mut small = PlaneDisc {
+        t0: 0.0,
+        p: DVec2::new(1.0, 0.0),
+        v: DVec2::ZERO,
+        r: 0.1,
+        m: 1.0,
+    };
+    let mut heavy = PlaneDisc {
+        t0: 0.0,
+        p: DVec2::new(3.0, 0.0),
+        v: DVec2::new(-1.0, 0.0),
+        r: 0.5,
+        m: big,
+    };
+    // The wall: the line through (0, -1) and (0, 1), its unit normal and
+    // offset as `LineGeom` holds them.
+    let (wall_n, wall_c) = (DVec2::new(1.0, 0.0), 0.0);
+    let (mut now, mut events) = (0.0, 0u64);
+    loop {
+        let pair = {
+            let dp = small.at(now) - heavy.at(now);
+            let dv = small.v - heavy.v;
+            let s = small.r + heavy.r;
+            let b = dp.dot(dv);
+            let (a, c) = (dv.length_squared(), dp.length_squared() - s * s);
+            let disc = b * b - a * c;
+            if b >= 0.0 || disc <= 0.0 {
+                f64::INFINITY
+            } else {
+                now + c / (-b + disc.sqrt())
+            }
+        };
+        let wall = |d: &PlaneDisc| {
+            let h = wall_n.dot(d.at(now)) + wall_c;
+            let rate = wall_n.dot(d.v);
+            if rate >= 0.0 {
+                f64::INFINITY
+            } else {
+                now + (h - d.r) / -rate
+            }
+        };
+        let (ws, wh) = (wall(&small), wall(&heavy));
+        let t = pair.min(ws).min(wh);
+        if t == f64::INFINITY {
+            return events;
+        }
+        now = t;
+        events += 1;
+        if t == pair {
+            let (ps, ph) = (small.at(t), heavy.at(t));
+            let normal = (ps - ph).normalize();
+            let w = (small.v - heavy.v).dot(normal);
+            let (light, weighty) = if small.m <= heavy.m {
+                (small.m, heavy.m)
+            } else {
+                (heavy.m, small.m)
+            };
+            let reduced = light - light * (light / (light + weighty));
+            let j = -2.0 * w * reduced;
+            let (vs, vh) = (
+                small.v + normal * (j / small.m),
+                heavy.v - normal * (j / heavy.m),
+            );
+            small = small.moved(t, vs);
+            heavy = heavy.moved(t, vh);
+        } else {
+            let d = if t == ws { &mut small } else { &mut heavy };
+            let v = d.v - wall_n * (2.0 * wall_n.dot(d.v));
+            *d = d.moved(t, v);
         }
     }
 }

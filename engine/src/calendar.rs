@@ -92,28 +92,29 @@ impl Calendar {
 
     #[inline]
     fn sift_down(&mut self, mut i: usize, entry: (f64, u32)) {
-        let n = self.heap.len();
+        let heap = &mut self.heap[..];
         loop {
             let first = ARITY * i + 1;
-            if first >= n {
+            let last = (first + ARITY).min(heap.len());
+            if first >= last {
                 break;
             }
-            let last = (first + ARITY).min(n);
+            // The earliest child (the first of equals).
             let mut c = first;
-            for k in first + 1..last {
-                if less(self.heap[k], self.heap[c]) {
-                    c = k;
+            let mut child = heap[first];
+            for (k, &e) in heap[first + 1..last].iter().enumerate() {
+                if less(e, child) {
+                    (c, child) = (first + 1 + k, e);
                 }
             }
-            let child = self.heap[c];
             if !less(child, entry) {
                 break;
             }
-            self.heap[i] = child;
+            heap[i] = child;
             self.pos[child.1 as usize] = i as u32;
             i = c;
         }
-        self.heap[i] = entry;
+        heap[i] = entry;
         self.pos[entry.1 as usize] = i as u32;
     }
 }

@@ -136,7 +136,9 @@ pub(crate) fn disc_point(m: &Mover, q: DVec2, s: f64, rev: Revision) -> Option<f
 #[inline(always)]
 fn well_scaled(w: DVec2) -> (DVec2, f64) {
     let a = w.length_squared();
-    if a.is_normal() && a < 1e300 {
+    // `a.is_normal() && a < 1e300` for a square (never negative), in two
+    // comparisons (NaN fails both).
+    if (f64::MIN_POSITIVE..1e300).contains(&a) {
         return (w, 1.0);
     }
     let big = w.x.abs().max(w.y.abs());
@@ -525,6 +527,48 @@ mod tests {
 
     fn mover(p: (f64, f64), u: (f64, f64), alpha: f64) -> Trajectory {
         Trajectory::new(0.0, DVec2::new(p.0, p.1), DVec2::new(u.0, u.1), alpha)
+    }
+
+    #[test]
+    fn well_scaled_keeps_exactly_the_vectors_whose_square_is_normal_and_below_1e300() {
+        // The test as `f64::is_normal` states it, and the rescaling.
+        let reference = |w: DVec2| {
+            let a = w.length_squared();
+            if a.is_normal() && a < 1e300 {
+                return (w, 1.0);
+            }
+            let big = w.x.abs().max(w.y.abs());
+            if big == 0.0 || !big.is_finite() {
+                return (w, 1.0);
+            }
+            let scale = f64::from_bits((2046 - ((big.to_bits() >> 52) & 0x7ff).max(1)) << 52);
+            (w * scale, scale)
+        };
+        let parts = [
+            0.0,
+            -0.0,
+            5e-324,
+            f64::MIN_POSITIVE,
+            1e-160,
+            1e-154,
+            1.5e-154,
+            1e-3,
+            1.0,
+            3.0e149,
+            1e150,
+            1e155,
+            f64::MAX,
+            f64::INFINITY,
+            f64::NAN,
+        ];
+        let bits = |(v, s): (DVec2, f64)| (v.x.to_bits(), v.y.to_bits(), s.to_bits());
+        for &x in &parts {
+            for &y in &parts {
+                for w in [DVec2::new(x, y), DVec2::new(-y, x)] {
+                    assert_eq!(bits(well_scaled(w)), bits(reference(w)), "{w:?}");
+                }
+            }
+        }
     }
 
     /// `disc_point` for `tr` from time 0, under the latest revision.

@@ -564,7 +564,10 @@ impl World {
             if collisions_left == 0 {
                 return self.end_on(EndReason::MaxCollisions);
             }
-            if self.clock.absolute(t) > FAR_FUTURE && !self.in_range_at(t) {
+            if self.clock.may_pass(t, FAR_FUTURE)
+                && self.clock.absolute(t) > FAR_FUTURE
+                && !self.in_range_at(t)
+            {
                 return self.end_on(EndReason::OutOfRange);
             }
             let prev = self.last_event_t;
@@ -1488,9 +1491,14 @@ impl World {
         let mover = Mover::new(&tr, self.t);
         let mut unused = None;
         let grid = self.grid.as_ref().expect("checked above");
+        let si = &self.slots[i];
         for cell in grid.entered_cells(i, step) {
             for &j in cell {
-                self.offer_pair(i, mover.as_ref(), j as usize, None, &mut best, &mut unused);
+                let j = j as usize;
+                if let Some(sj) = self.slots.get(j) {
+                    let m = mover.as_ref();
+                    self.offer_pair(i, si, m, j, sj, None, &mut best, &mut unused);
+                }
             }
         }
         self.cross[i] = mover
@@ -1758,14 +1766,20 @@ impl World {
         } else {
             self.earliest(i, mover.as_ref(), known, &mut pair)
         };
-        let cross = match (&self.grid, &mover) {
-            (Some(grid), Some(m)) => grid.next_crossing(i, m),
-            _ => None,
-        }
-        .unwrap_or((f64::INFINITY, (0, 0)));
         self.pending[i] = best;
-        self.cross[i] = cross;
-        self.calendar.set(i, best.t.min(cross.0));
+        // Without a grid there are no crossings: `cross` stays at infinity
+        // (and `best.t` is never NaN, so the minimum is `best.t`).
+        let t = match &self.grid {
+            None => best.t,
+            Some(grid) => {
+                let cross = mover
+                    .and_then(|m| grid.next_crossing(i, &m))
+                    .unwrap_or((f64::INFINITY, (0, 0)));
+                self.cross[i] = cross;
+                best.t.min(cross.0)
+            }
+        };
+        self.calendar.set(i, t);
         pair
     }
 
@@ -1779,17 +1793,21 @@ impl World {
         pair: &mut Option<Option<f64>>,
     ) -> Best {
         let mut best = Best::NONE;
+        let si = &self.slots[i];
         match &self.grid {
             Some(grid) => {
                 for cell in grid.neighbour_cells(i) {
                     for &j in cell {
-                        self.offer_pair(i, mover, j as usize, known, &mut best, pair);
+                        let j = j as usize;
+                        if let Some(sj) = self.slots.get(j) {
+                            self.offer_pair(i, si, mover, j, sj, known, &mut best, pair);
+                        }
                     }
                 }
             }
             None => {
-                for j in 0..self.slots.len() {
-                    self.offer_pair(i, mover, j, known, &mut best, pair);
+                for (j, sj) in self.slots.iter().enumerate() {
+                    self.offer_pair(i, si, mover, j, sj, known, &mut best, pair);
                 }
             }
         }
@@ -1838,16 +1856,18 @@ impl World {
     /// Offers the contact of bodies `i` (on path `mover`, if moving) and `j`
     /// as `i`'s next event.
     #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
     fn offer_pair(
         &self,
         i: usize,
+        si: &Slot,
         mover: Option<&Mover>,
         j: usize,
+        sj: &Slot,
         known: Known,
         best: &mut Best,
         pair: &mut Option<Option<f64>>,
     ) {
-        let sj = &self.slots[j];
         if j == i || !sj.alive {
             return;
         }
@@ -1858,7 +1878,6 @@ impl World {
         let hit = match known {
             Some((k, Some(t))) if k == j => t,
             _ => {
-                let si = &self.slots[i];
                 let s = si.radius + sj.radius;
                 let t = contact::disc_disc(
                     &si.traj,
