@@ -234,6 +234,31 @@ pub(crate) fn bounce_speed(
     pressing(v, a, n, s, rev).map(|(_, w_min, _)| w_min)
 }
 
+/// From the eleventh revision: whether a pressed pair's kinetic energy
+/// (velocities `v` after the hit, masses `m`) is no more than the braking of
+/// each of its braking discs (decelerations `alpha`, zero for a frictionless
+/// one) dissipates over the approximation's gap: friction being the only
+/// thing that takes energy out of the pair, no braking disc of it can then
+/// slide further than the gap, whatever a frictionless partner does. The
+/// third revision's test (each disc's own slide within the gap) never holds
+/// for a frictionless disc, whose slide is unbounded; this one does where a
+/// heavy frictionless disc slowly presses a light braking one. `false`
+/// where neither brakes.
+pub(crate) fn spent_within_gap(
+    v: [DVec2; 2],
+    m: [f64; 2],
+    alpha: [f64; 2],
+    s: f64,
+    rev: Revision,
+) -> bool {
+    let energy = 0.5 * (m[0] * v[0].length_squared() + m[1] * v[1].length_squared());
+    let weakest = (0..2)
+        .filter(|&k| alpha[k] > 0.0)
+        .map(|k| m[k] * alpha[k])
+        .fold(f64::INFINITY, f64::min);
+    weakest.is_finite() && energy <= weakest * press_gap(rev) * s
+}
+
 /// The relative normal velocity, the bounce speed and the gap's second
 /// derivative of a pair pressed obliquely (see [`pressing_kick`]).
 fn pressing(

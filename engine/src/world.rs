@@ -994,9 +994,21 @@ impl World {
             -braking[1] * vj.normalize_or_zero(),
         ];
         let at = self.clock.origin() + t;
-        let Some(press) = push::pressing_kick([vi, vj], acc, n, s, at, self.config.revision) else {
+        let Some(mut press) = push::pressing_kick([vi, vj], acc, n, s, at, self.config.revision)
+        else {
             return false;
         };
+        // From the eleventh revision, a pair whose energy cannot move its
+        // braking discs beyond the gap (a heavy frictionless disc slowly
+        // pressing a light braking one) comes to rest too.
+        let r11 = self.config.revision.at_least_r11();
+        let masses = [self.material[i].mass, self.material[j].mass];
+        if r11
+            && matches!(press, push::Press::Part(_))
+            && push::spent_within_gap([vi, vj], masses, braking, s, self.config.revision)
+        {
+            press = push::Press::Rest;
+        }
         self.slots[i].traj = ti;
         self.slots[j].traj = tj;
         let (members, mut contacts) = self.touching_cluster(vec![i, j], t);
@@ -1013,8 +1025,15 @@ impl World {
                 // From the fourth revision, so does every disc of the
                 // cluster still sliding, but no further than the gap (one
                 // at rest already can still be pushed).
+                // From the eleventh revision, only the braking discs of the
+                // pair: a frictionless one keeps what does not run into
+                // them.
                 let mut still = vec![false; members.len()];
-                (still[0], still[1]) = (true, true);
+                (still[0], still[1]) = if r11 {
+                    (braking[0] > 0.0, braking[1] > 0.0)
+                } else {
+                    (true, true)
+                };
                 if self.config.revision.at_least_r4() {
                     let alpha = self.braking(&members);
                     for k in 2..members.len() {
@@ -1030,7 +1049,7 @@ impl World {
                     (held[k], inv_held[k]) = (DVec2::ZERO, 0.0);
                 }
                 contacts.retain(|c| !still[c.a] || c.b.is_some_and(|b| !still[b]));
-                let after = if alone || contacts.is_empty() {
+                let after = if (alone && !r11) || contacts.is_empty() {
                     held
                 } else {
                     match collapse::resolve(&held, &inv_held, &contacts, PRESS_SWEEPS) {
