@@ -809,10 +809,14 @@ impl World {
             .filter(|&c| c != usize::MAX)
             .collect();
         let (members, _) = self.touching_cluster(seed, t);
+        // From the eleventh revision, a braking disc at rest among them
+        // too: hit, it slides and loses what it was given (or, slower than
+        // the rounding of its position, is put back at rest).
+        let r11 = self.config.revision.at_least_r11();
         let braked = |c: usize| {
             let tr = &self.slots[c].traj;
             let speed = tr.velocity(t).length();
-            speed > 0.0 && speed <= tr.alpha() * span
+            (speed > 0.0 && speed <= tr.alpha() * span) || (r11 && speed == 0.0 && tr.alpha() > 0.0)
         };
         members.iter().all(|&c| self.material[c].restitution >= 1.0)
             && !(self.config.revision.at_least_r10() && members.iter().any(|&c| braked(c)))
@@ -827,8 +831,12 @@ impl World {
     /// with restitution that was hit once (the last disc of a chain, sent
     /// off by the collapse behind it) is left to the hits that follow.
     fn collapse_repeated(&mut self, pairs: &[(usize, Option<usize>)], t: f64) {
+        // From the eleventh revision, with every obstacle a member touches
+        // (see `Revision::R11`).
+        let walls = self.config.revision.at_least_r11();
         let involved = |w: &World, a: usize, b: Option<usize>| {
             w.restitution(a, b) == 0.0
+                || (walls && b.is_none())
                 || pairs.contains(&(a, b))
                 || b.is_some_and(|b| pairs.contains(&(b, Some(a))))
         };
@@ -1001,12 +1009,17 @@ impl World {
         // From the eleventh revision, a pair whose energy cannot move its
         // braking discs beyond the gap (a heavy frictionless disc slowly
         // pressing a light braking one) comes to rest too.
+        // Where it cannot rest (the projection with its braking discs held
+        // has no answer: a frictionless disc jammed between them and a
+        // wall), it is kicked as before.
         let r11 = self.config.revision.at_least_r11();
         let masses = [self.material[i].mass, self.material[j].mass];
+        let mut kick = None;
         if r11
             && matches!(press, push::Press::Part(_))
             && push::spent_within_gap([vi, vj], masses, braking, s, self.config.revision)
         {
+            kick = Some(press);
             press = push::Press::Rest;
         }
         self.slots[i].traj = ti;
@@ -1034,31 +1047,68 @@ impl World {
                 } else {
                     (true, true)
                 };
+                // From the eleventh revision, where the pair rests by its
+                // energy, first with every braking disc (at rest or not)
+                // that this energy cannot move beyond the gap held too:
+                // left free, the frictionless disc pushed it off at once,
+                // and two braking discs it pressed took turns at being
+                // pushed, at one instant. Where that has no answer, without.
+                let mut firm = still.clone();
                 if self.config.revision.at_least_r4() {
                     let alpha = self.braking(&members);
+                    let gap = push::press_gap(self.config.revision) * s;
+                    let energy =
+                        0.5 * (masses[0] * vi.length_squared() + masses[1] * vj.length_squared());
                     for k in 2..members.len() {
                         let slide = vel[k].length_squared() / (2.0 * alpha[k]);
-                        still[k] = alpha[k] > 0.0
-                            && slide > 0.0
-                            && slide <= push::press_gap(self.config.revision) * s;
+                        still[k] = alpha[k] > 0.0 && slide > 0.0 && slide <= gap;
+                        let mass = self.material[members[k]].mass;
+                        firm[k] = still[k]
+                            || (kick.is_some()
+                                && alpha[k] > 0.0
+                                && energy <= mass * alpha[k] * gap);
                     }
                 }
-                let mut held = vel.clone();
-                let mut inv_held = inv.clone();
-                for k in (0..members.len()).filter(|&k| still[k]) {
-                    (held[k], inv_held[k]) = (DVec2::ZERO, 0.0);
-                }
-                contacts.retain(|c| !still[c.a] || c.b.is_some_and(|b| !still[b]));
-                let after = if (alone && !r11) || contacts.is_empty() {
-                    held
+                let tries = if firm != still {
+                    vec![firm, still]
                 } else {
-                    match collapse::resolve(&held, &inv_held, &contacts, PRESS_SWEEPS) {
-                        Some(after) => after,
-                        None => return false,
+                    vec![still]
+                };
+                let hold = |still: &[bool]| {
+                    let mut held = vel.clone();
+                    let mut inv_held = inv.clone();
+                    for k in (0..members.len()).filter(|&k| still[k]) {
+                        (held[k], inv_held[k]) = (DVec2::ZERO, 0.0);
+                    }
+                    let mut contacts = contacts.clone();
+                    contacts.retain(|c| !still[c.a] || c.b.is_some_and(|b| !still[b]));
+                    if (alone && !r11) || contacts.is_empty() {
+                        Some(held)
+                    } else {
+                        collapse::resolve(&held, &inv_held, &contacts, PRESS_SWEEPS)
                     }
                 };
-                self.kick_cluster(&members, &vel, &after, [i, j], t);
-                return true;
+                let after = tries.iter().find_map(|still| hold(still));
+                match (after, kick) {
+                    (Some(mut after), _) => {
+                        // From the eleventh revision, what the projection
+                        // leaves of a speed within its rounding is none (a
+                        // frictionless disc left at 1e-191 m/s hit the
+                        // held one again at the same instant, for ever).
+                        if r11 {
+                            let noise = 1e-12 * vel.iter().map(|v| v.length()).fold(0.0, f64::max);
+                            for v in &mut after {
+                                if v.length() <= noise {
+                                    *v = DVec2::ZERO;
+                                }
+                            }
+                        }
+                        self.kick_cluster(&members, &vel, &after, [i, j], t);
+                        return true;
+                    }
+                    (None, Some(push::Press::Part(dw))) if !alone => dw,
+                    (None, _) => return false,
+                }
             }
         };
         // The kick between the two alone, where it drives neither into
