@@ -382,6 +382,55 @@ mod tests {
     }
 
     #[test]
+    fn a_slow_frictionless_disc_cannot_push_a_braking_one_beyond_the_gap() {
+        // A heavy frictionless disc (0.58 kg) at 2.7e-6 m/s against a light
+        // braking one (5.6 g, 5.7 m/s^2): 2.1e-12 J against 3.2e-2 N over
+        // 1e-4 of a contact distance of 0.024 m (7.7e-8 J).
+        let v = [DVec2::new(-1.5e-7, 0.0), DVec2::new(0.0, -2.7e-6)];
+        let (m, alpha) = ([0.0056, 0.577], [5.69, 0.0]);
+        assert!(spent_within_gap(v, m, alpha, 0.0242, Revision::R11));
+        // A hundred times faster (10^4 the energy) is still within it; a
+        // thousand times more again is not.
+        let fast = [v[0], v[1] * 100.0];
+        assert!(spent_within_gap(fast, m, alpha, 0.0242, Revision::R11));
+        let faster = [v[0], v[1] * 1e5];
+        assert!(!spent_within_gap(faster, m, alpha, 0.0242, Revision::R11));
+    }
+
+    #[test]
+    fn a_pair_with_no_braking_disc_is_never_spent_within_the_gap() {
+        let v = [DVec2::ZERO, DVec2::new(1e-20, 0.0)];
+        assert!(!spent_within_gap(
+            v,
+            [1.0, 1.0],
+            [0.0, 0.0],
+            0.02,
+            Revision::R11
+        ));
+    }
+
+    #[test]
+    fn the_lightest_braking_disc_of_the_pair_bounds_its_energy() {
+        // Two braking discs: the one with the smaller m alpha decides.
+        let v = [DVec2::new(1e-3, 0.0), DVec2::ZERO];
+        // 0.5 * 1 * 1e-6 = 5e-7 J; 1e-4 * 0.02 = 2e-6 m: needs m alpha >= 0.25 N.
+        assert!(spent_within_gap(
+            v,
+            [1.0, 1.0],
+            [1.0, 0.3],
+            0.02,
+            Revision::R11
+        ));
+        assert!(!spent_within_gap(
+            v,
+            [1.0, 1.0],
+            [1.0, 0.2],
+            0.02,
+            Revision::R11
+        ));
+    }
+
+    #[test]
     fn a_pressed_pair_rests_when_its_next_bounce_is_within_the_rounding_of_the_absolute_time() {
         // A frictionless disc sliding past a braking one that presses it
         // (1 m/s^2 along their normal): its next bounce is 1e-13 s away.

@@ -802,6 +802,8 @@ impl World {
     /// frictionless elastic disc rattling against a braking one, 1e-10 s
     /// apart at 1e-9 m/s, loses its energy to that friction, where a chain
     /// pinned between two walls, rattling 1e-16 s an event, loses none.
+    /// From the eleventh revision, not where a braking disc among them is
+    /// at rest either: each hit on it settles it back to rest.
     fn all_elastic(&self, recent: &[usize], t: f64, span: f64) -> bool {
         let seed: Vec<usize> = recent
             .iter()
@@ -829,7 +831,9 @@ impl World {
     /// every plastic contact (restitution 0) touching them, through which
     /// the limit of plastic hits spreads whatever their order. A contact
     /// with restitution that was hit once (the last disc of a chain, sent
-    /// off by the collapse behind it) is left to the hits that follow.
+    /// off by the collapse behind it) is left to the hits that follow;
+    /// from the eleventh revision, not one with an obstacle, which the
+    /// limit would otherwise drive a disc into a picosecond later.
     fn collapse_repeated(&mut self, pairs: &[(usize, Option<usize>)], t: f64) {
         // From the eleventh revision, with every obstacle a member touches
         // (see `Revision::R11`).
@@ -984,6 +988,10 @@ impl World {
     /// which would hit it back at the same instant, without end. `false`
     /// (nothing done) where `i` and `j` touch nothing else, or the
     /// projection has no answer (a pressed pair jammed between obstacles).
+    /// From the eleventh revision, a pair whose energy cannot move its
+    /// braking discs beyond the gap ([`push::spent_within_gap`]) rests
+    /// even with a frictionless disc in it: the braking discs held, the
+    /// frictionless one keeping what does not run into them.
     fn press_cluster(
         &mut self,
         i: usize,
@@ -1038,11 +1046,11 @@ impl World {
                 // From the fourth revision, so does every disc of the
                 // cluster still sliding, but no further than the gap (one
                 // at rest already can still be pushed).
-                // From the eleventh revision, only the braking discs of the
-                // pair: a frictionless one keeps what does not run into
-                // them.
+                // From the eleventh revision, where the pair rests by its
+                // energy, only the braking discs of the pair: a
+                // frictionless one keeps what does not run into them.
                 let mut still = vec![false; members.len()];
-                (still[0], still[1]) = if r11 {
+                (still[0], still[1]) = if kick.is_some() {
                     (braking[0] > 0.0, braking[1] > 0.0)
                 } else {
                     (true, true)
@@ -1082,7 +1090,7 @@ impl World {
                     }
                     let mut contacts = contacts.clone();
                     contacts.retain(|c| !still[c.a] || c.b.is_some_and(|b| !still[b]));
-                    if (alone && !r11) || contacts.is_empty() {
+                    if (alone && kick.is_none()) || contacts.is_empty() {
                         Some(held)
                     } else {
                         collapse::resolve(&held, &inv_held, &contacts, PRESS_SWEEPS)
@@ -1095,7 +1103,7 @@ impl World {
                         // leaves of a speed within its rounding is none (a
                         // frictionless disc left at 1e-191 m/s hit the
                         // held one again at the same instant, for ever).
-                        if r11 {
+                        if kick.is_some() {
                             let noise = 1e-12 * vel.iter().map(|v| v.length()).fold(0.0, f64::max);
                             for v in &mut after {
                                 if v.length() <= noise {
