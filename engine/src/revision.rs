@@ -150,7 +150,8 @@ pub enum Revision {
     /// is no more than the braking of its lightest-braked braking disc
     /// dissipates over the approximation's gap (`push::spent_within_gap`)
     /// comes to rest as the third revision's slow pair does, though one of
-    /// the two is frictionless: its braking discs are held where they are
+    /// the two is frictionless and whether or not the hit already parts
+    /// it faster than its bounce speed: its braking discs are held where they are
     /// and a frictionless one keeps only what does not run into them (the
     /// plastic limit against the held discs). A heavy frictionless disc
     /// slowly pressing a light braking one kicked it off its rest at every

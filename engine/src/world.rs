@@ -1010,23 +1010,28 @@ impl World {
             -braking[1] * vj.normalize_or_zero(),
         ];
         let at = self.clock.origin() + t;
-        let Some(mut press) = push::pressing_kick([vi, vj], acc, n, s, at, self.config.revision)
+        // From the eleventh revision, a pair whose energy cannot move its
+        // braking discs beyond the gap (a heavy frictionless disc slowly
+        // pressing a light braking one) comes to rest too, whether or not
+        // the hit parts it faster than its bounce speed (an elastic hit on
+        // a disc braking at 240 m/s^2 did, and the two chattered at one
+        // instant). Where it cannot rest (the projection with its braking
+        // discs held has no answer: a frictionless disc jammed between
+        // them and a wall), it is kicked as before, or left to the hit.
+        let r11 = self.config.revision.at_least_r11();
+        let masses = [self.material[i].mass, self.material[j].mass];
+        let spent =
+            r11 && push::spent_within_gap([vi, vj], masses, braking, s, self.config.revision);
+        let rev = self.config.revision;
+        let parted = spent && push::bounce_speed([vi, vj], acc, n, s, rev).is_some();
+        let Some(mut press) = push::pressing_kick([vi, vj], acc, n, s, at, rev)
+            .or_else(|| parted.then_some(push::Press::Part(0.0)))
         else {
             return false;
         };
-        // From the eleventh revision, a pair whose energy cannot move its
-        // braking discs beyond the gap (a heavy frictionless disc slowly
-        // pressing a light braking one) comes to rest too.
-        // Where it cannot rest (the projection with its braking discs held
-        // has no answer: a frictionless disc jammed between them and a
-        // wall), it is kicked as before.
-        let r11 = self.config.revision.at_least_r11();
-        let masses = [self.material[i].mass, self.material[j].mass];
+        let parted = parted && press == push::Press::Part(0.0);
         let mut kick = None;
-        if r11
-            && matches!(press, push::Press::Part(_))
-            && push::spent_within_gap([vi, vj], masses, braking, s, self.config.revision)
-        {
+        if spent && matches!(press, push::Press::Part(_)) {
             kick = Some(press);
             press = push::Press::Rest;
         }
@@ -1114,7 +1119,7 @@ impl World {
                         self.kick_cluster(&members, &vel, &after, [i, j], t);
                         return true;
                     }
-                    (None, Some(push::Press::Part(dw))) if !alone => dw,
+                    (None, Some(push::Press::Part(dw))) if !alone && !parted => dw,
                     (None, _) => return false,
                 }
             }
