@@ -805,6 +805,8 @@ impl World {
     /// frictionless elastic disc rattling against a braking one, 1e-10 s
     /// apart at 1e-9 m/s, loses its energy to that friction, where a chain
     /// pinned between two walls, rattling 1e-16 s an event, loses none.
+    /// From the eleventh revision, not where a braking disc among them is
+    /// at rest either: each hit on it settles it back to rest.
     fn all_elastic(&self, recent: &[usize], t: f64, span: f64) -> bool {
         let seed: Vec<usize> = recent
             .iter()
@@ -812,10 +814,14 @@ impl World {
             .filter(|&c| c != usize::MAX)
             .collect();
         let (members, _) = self.touching_cluster(seed, t);
+        // From the eleventh revision, a braking disc at rest among them
+        // too: hit, it slides and loses what it was given (or, slower than
+        // the rounding of its position, is put back at rest).
+        let r11 = self.config.revision.at_least_r11();
         let braked = |c: usize| {
             let tr = &self.slots[c].traj;
             let speed = tr.velocity(t).length();
-            speed > 0.0 && speed <= tr.alpha() * span
+            (speed > 0.0 && speed <= tr.alpha() * span) || (r11 && speed == 0.0 && tr.alpha() > 0.0)
         };
         members.iter().all(|&c| self.material[c].restitution >= 1.0)
             && !(self.config.revision.at_least_r10() && members.iter().any(|&c| braked(c)))
@@ -828,10 +834,16 @@ impl World {
     /// every plastic contact (restitution 0) touching them, through which
     /// the limit of plastic hits spreads whatever their order. A contact
     /// with restitution that was hit once (the last disc of a chain, sent
-    /// off by the collapse behind it) is left to the hits that follow.
+    /// off by the collapse behind it) is left to the hits that follow;
+    /// from the eleventh revision, not one with an obstacle, which the
+    /// limit would otherwise drive a disc into a picosecond later.
     fn collapse_repeated(&mut self, pairs: &[(usize, Option<usize>)], t: f64) {
+        // From the eleventh revision, with every obstacle a member touches
+        // (see `Revision::R11`).
+        let walls = self.config.revision.at_least_r11();
         let involved = |w: &World, a: usize, b: Option<usize>| {
             w.restitution(a, b) == 0.0
+                || (walls && b.is_none())
                 || pairs.contains(&(a, b))
                 || b.is_some_and(|b| pairs.contains(&(b, Some(a))))
         };
@@ -979,6 +991,10 @@ impl World {
     /// which would hit it back at the same instant, without end. `false`
     /// (nothing done) where `i` and `j` touch nothing else, or the
     /// projection has no answer (a pressed pair jammed between obstacles).
+    /// From the eleventh revision, a pair whose energy cannot move its
+    /// braking discs beyond the gap ([`push::spent_within_gap`]) rests
+    /// even with a frictionless disc in it: the braking discs held, the
+    /// frictionless one keeping what does not run into them.
     fn press_cluster(
         &mut self,
         i: usize,
@@ -997,9 +1013,31 @@ impl World {
             -braking[1] * vj.normalize_or_zero(),
         ];
         let at = self.clock.origin() + t;
-        let Some(press) = push::pressing_kick([vi, vj], acc, n, s, at, self.config.revision) else {
+        // From the eleventh revision, a pair whose energy cannot move its
+        // braking discs beyond the gap (a heavy frictionless disc slowly
+        // pressing a light braking one) comes to rest too, whether or not
+        // the hit parts it faster than its bounce speed (an elastic hit on
+        // a disc braking at 240 m/s^2 did, and the two chattered at one
+        // instant). Where it cannot rest (the projection with its braking
+        // discs held has no answer: a frictionless disc jammed between
+        // them and a wall), it is kicked as before, or left to the hit.
+        let r11 = self.config.revision.at_least_r11();
+        let masses = [self.material[i].mass, self.material[j].mass];
+        let spent =
+            r11 && push::spent_within_gap([vi, vj], masses, braking, s, self.config.revision);
+        let rev = self.config.revision;
+        let parted = spent && push::bounce_speed([vi, vj], acc, n, s, rev).is_some();
+        let Some(mut press) = push::pressing_kick([vi, vj], acc, n, s, at, rev)
+            .or_else(|| parted.then_some(push::Press::Part(0.0)))
+        else {
             return false;
         };
+        let parted = parted && press == push::Press::Part(0.0);
+        let mut kick = None;
+        if spent && matches!(press, push::Press::Part(_)) {
+            kick = Some(press);
+            press = push::Press::Rest;
+        }
         self.slots[i].traj = ti;
         self.slots[j].traj = tj;
         let (members, mut contacts) = self.touching_cluster(vec![i, j], t);
@@ -1016,33 +1054,77 @@ impl World {
                 // From the fourth revision, so does every disc of the
                 // cluster still sliding, but no further than the gap (one
                 // at rest already can still be pushed).
+                // From the eleventh revision, where the pair rests by its
+                // energy, only the braking discs of the pair: a
+                // frictionless one keeps what does not run into them.
                 let mut still = vec![false; members.len()];
-                (still[0], still[1]) = (true, true);
+                (still[0], still[1]) = if kick.is_some() {
+                    (braking[0] > 0.0, braking[1] > 0.0)
+                } else {
+                    (true, true)
+                };
+                // From the eleventh revision, where the pair rests by its
+                // energy, first with every braking disc (at rest or not)
+                // that this energy cannot move beyond the gap held too:
+                // left free, the frictionless disc pushed it off at once,
+                // and two braking discs it pressed took turns at being
+                // pushed, at one instant. Where that has no answer, without.
+                let mut firm = still.clone();
                 if self.config.revision.at_least_r4() {
                     let alpha = self.braking(&members);
+                    let gap = push::press_gap(self.config.revision) * s;
+                    let energy =
+                        0.5 * (masses[0] * vi.length_squared() + masses[1] * vj.length_squared());
                     for k in 2..members.len() {
                         let slide = vel[k].length_squared() / (2.0 * alpha[k]);
-                        still[k] = alpha[k] > 0.0
-                            && slide > 0.0
-                            && slide <= push::press_gap(self.config.revision) * s;
+                        still[k] = alpha[k] > 0.0 && slide > 0.0 && slide <= gap;
+                        let mass = self.material[members[k]].mass;
+                        firm[k] = still[k]
+                            || (kick.is_some()
+                                && alpha[k] > 0.0
+                                && energy <= mass * alpha[k] * gap);
                     }
                 }
-                let mut held = vel.clone();
-                let mut inv_held = inv.clone();
-                for k in (0..members.len()).filter(|&k| still[k]) {
-                    (held[k], inv_held[k]) = (DVec2::ZERO, 0.0);
-                }
-                contacts.retain(|c| !still[c.a] || c.b.is_some_and(|b| !still[b]));
-                let after = if alone || contacts.is_empty() {
-                    held
+                let tries = if firm != still {
+                    vec![firm, still]
                 } else {
-                    match collapse::resolve(&held, &inv_held, &contacts, PRESS_SWEEPS) {
-                        Some(after) => after,
-                        None => return false,
+                    vec![still]
+                };
+                let hold = |still: &[bool]| {
+                    let mut held = vel.clone();
+                    let mut inv_held = inv.clone();
+                    for k in (0..members.len()).filter(|&k| still[k]) {
+                        (held[k], inv_held[k]) = (DVec2::ZERO, 0.0);
+                    }
+                    let mut contacts = contacts.clone();
+                    contacts.retain(|c| !still[c.a] || c.b.is_some_and(|b| !still[b]));
+                    if (alone && kick.is_none()) || contacts.is_empty() {
+                        Some(held)
+                    } else {
+                        collapse::resolve(&held, &inv_held, &contacts, PRESS_SWEEPS)
                     }
                 };
-                self.kick_cluster(&members, &vel, &after, [i, j], t);
-                return true;
+                let after = tries.iter().find_map(|still| hold(still));
+                match (after, kick) {
+                    (Some(mut after), _) => {
+                        // From the eleventh revision, what the projection
+                        // leaves of a speed within its rounding is none (a
+                        // frictionless disc left at 1e-191 m/s hit the
+                        // held one again at the same instant, for ever).
+                        if kick.is_some() {
+                            let noise = 1e-12 * vel.iter().map(|v| v.length()).fold(0.0, f64::max);
+                            for v in &mut after {
+                                if v.length() <= noise {
+                                    *v = DVec2::ZERO;
+                                }
+                            }
+                        }
+                        self.kick_cluster(&members, &vel, &after, [i, j], t);
+                        return true;
+                    }
+                    (None, Some(push::Press::Part(dw))) if !alone && !parted => dw,
+                    (None, _) => return false,
+                }
             }
         };
         // The kick between the two alone, where it drives neither into
