@@ -224,8 +224,8 @@ struct Solver<'a> {
     tolerance: f64,
     /// Accumulated impulse of each contact.
     impulse: Vec<f64>,
-    /// Each contact's effective inverse mass.
-    weight: Vec<f64>,
+    /// What a sweep reads of each contact, side by side.
+    links: Vec<Link>,
     /// The rows of the contacts' equalities (see [`Rows`]).
     rows: Rows,
     /// The augmented matrix of the last system solved, kept for its
@@ -237,6 +237,23 @@ struct Solver<'a> {
     /// projection keeps the same contacts pushing for thousands of
     /// sweeps).
     rejected: Vec<usize>,
+    /// The contact [`Solver::violated`] found violated last.
+    last_violated: usize,
+}
+
+/// A contact as [`Solver::sweep`] reads it: the discs' indices (`b`
+/// unused against an obstacle, `wall`), and the normal, bias, effective
+/// inverse mass and each disc's inverse mass.
+#[derive(Clone, Copy, Debug)]
+struct Link {
+    a: usize,
+    b: usize,
+    wall: bool,
+    n: DVec2,
+    bias: f64,
+    weight: f64,
+    inv_a: f64,
+    inv_b: f64,
 }
 
 /// Each contact's row of the equalities (its normal velocity's change per
@@ -288,13 +305,23 @@ impl<'a> Solver<'a> {
             scale,
             tolerance: 1e-15 * scale,
             impulse: vec![0.0f64; contacts.len()],
-            weight: contacts
+            links: contacts
                 .iter()
-                .map(|c| inv_mass[c.a] + c.b.map_or(0.0, |b| inv_mass[b]))
+                .map(|c| Link {
+                    a: c.a,
+                    b: c.b.unwrap_or(c.a),
+                    wall: c.b.is_none(),
+                    n: c.n,
+                    bias: c.bias,
+                    weight: inv_mass[c.a] + c.b.map_or(0.0, |b| inv_mass[b]),
+                    inv_a: inv_mass[c.a],
+                    inv_b: c.b.map_or(0.0, |b| inv_mass[b]),
+                })
                 .collect(),
             rows: Rows::new(contacts.len()),
             system: Vec::new(),
             rejected: Vec::new(),
+            last_violated: 0,
         })
     }
 
@@ -305,36 +332,48 @@ impl<'a> Solver<'a> {
 
     /// One hit per contact.
     fn sweep(&mut self) {
-        for (k, c) in self.contacts.iter().enumerate() {
-            let rel = self.v[c.a] - c.b.map_or(DVec2::ZERO, |b| self.v[b]);
-            let approach = c.bias - rel.dot(c.n);
+        for (l, impulse) in self.links.iter().zip(&mut self.impulse) {
+            let other = if l.wall { DVec2::ZERO } else { self.v[l.b] };
+            let rel = self.v[l.a] - other;
+            let approach = l.bias - rel.dot(l.n);
             // A contact that does not push and does not approach stays so:
             // with a positive weight the quotient is at most zero (or NaN),
             // the sum with a zero impulse too, and its `max` with zero and
             // the difference from the impulse are zeros, `delta == 0.0`.
             // Skipping the division here changes no value.
-            if self.impulse[k] == 0.0 && !(approach > 0.0) && self.weight[k] > 0.0 {
+            if *impulse == 0.0 && !(approach > 0.0) && l.weight > 0.0 {
                 continue;
             }
-            let next = (self.impulse[k] + approach / self.weight[k]).max(0.0);
-            let delta = next - self.impulse[k];
+            let next = (*impulse + approach / l.weight).max(0.0);
+            let delta = next - *impulse;
             if delta == 0.0 {
                 continue;
             }
-            self.impulse[k] = next;
-            self.v[c.a] += c.n * (delta * self.inv_mass[c.a]);
-            if let Some(b) = c.b {
-                self.v[b] -= c.n * (delta * self.inv_mass[b]);
+            *impulse = next;
+            self.v[l.a] += l.n * (delta * l.inv_a);
+            if !l.wall {
+                self.v[l.b] -= l.n * (delta * l.inv_b);
             }
         }
     }
 
     /// Whether a contact still approaches (or parts slower than its bias)
-    /// beyond the tolerance (impulses are never negative: none pulls).
-    fn violated(&self) -> bool {
-        self.contacts
-            .iter()
-            .any(|c| self.normal(&self.v, c) < c.bias - self.tolerance)
+    /// beyond the tolerance (impulses are never negative: none pulls). The
+    /// contact found last is asked first: while the projection stalls it
+    /// is the same sweep after sweep (the answer does not depend on the
+    /// order of asking).
+    fn violated(&mut self) -> bool {
+        let violates = |c: &Contact| self.normal(&self.v, c) < c.bias - self.tolerance;
+        if self.contacts.get(self.last_violated).is_some_and(violates) {
+            return true;
+        }
+        match self.contacts.iter().position(violates) {
+            Some(k) => {
+                self.last_violated = k;
+                true
+            }
+            None => false,
+        }
     }
 
     /// Solves the contacts whose impulse is a push so far as equalities
@@ -604,7 +643,8 @@ mod tests {
         for (k, c) in s.contacts.iter().enumerate() {
             let rel = s.v[c.a] - c.b.map_or(DVec2::ZERO, |b| s.v[b]);
             let approach = c.bias - rel.dot(c.n);
-            let next = (s.impulse[k] + approach / s.weight[k]).max(0.0);
+            let weight = s.inv_mass[c.a] + c.b.map_or(0.0, |b| s.inv_mass[b]);
+            let next = (s.impulse[k] + approach / weight).max(0.0);
             let delta = next - s.impulse[k];
             if delta == 0.0 {
                 continue;
@@ -618,7 +658,8 @@ mod tests {
     }
 
     /// `project` as it was before `exact` remembered the set it rejected
-    /// last (and with the sweep above).
+    /// last and `violated` the contact it found (and with the sweep
+    /// above).
     fn reference_project(
         vel: &[DVec2],
         inv_mass: &[f64],
@@ -631,7 +672,11 @@ mod tests {
         };
         for k in 0..sweeps {
             reference_sweep(&mut s);
-            if !s.violated() {
+            let violated = s
+                .contacts
+                .iter()
+                .any(|c| s.normal(&s.v, c) < c.bias - s.tolerance);
+            if !violated {
                 return Some(s.finish());
             }
             if k % BLOCK == BLOCK - 1 {
