@@ -217,13 +217,17 @@ fn median(mut v: Vec<f64>) -> f64 {
 /// bare loop's rate (the one-dimensional loop of [`bare_galperin`] and the
 /// planar one of [`bare_galperin_2d`]).
 fn galperin_cpu_table() {
+    let chosen: Vec<_> = GALPERIN_ROUNDS
+        .into_iter()
+        .filter(|(n, _)| selected(&format!("galperin/n{n}")))
+        .collect();
+    if chosen.is_empty() {
+        return;
+    }
     println!("Galperin: events per CPU second, median of interleaved rounds");
     println!("| n | rounds | engine | bare 1-D | bare 2-D | engine / 1-D | engine / 2-D |");
     println!("|---|---:|---:|---:|---:|---:|---:|");
-    for (n, rounds) in GALPERIN_ROUNDS {
-        if !selected(&format!("galperin/n{n}")) {
-            continue;
-        }
+    for (n, rounds) in chosen {
         let scene = galperin_scene(n);
         let digits = engine::presets::pi_digits(n);
         let (mut engine, mut bare, mut plane) = (Vec::new(), Vec::new(), Vec::new());
