@@ -251,12 +251,17 @@ pub(crate) fn spent_within_gap(
     s: f64,
     rev: Revision,
 ) -> bool {
-    let energy = 0.5 * (m[0] * v[0].length_squared() + m[1] * v[1].length_squared());
+    let energy = pair_energy(v, m);
     let weakest = (0..2)
         .filter(|&k| alpha[k] > 0.0)
         .map(|k| m[k] * alpha[k])
         .fold(f64::INFINITY, f64::min);
     weakest.is_finite() && energy <= weakest * press_gap(rev) * s
+}
+
+/// The kinetic energy of a pair (velocities `v`, masses `m`).
+pub(crate) fn pair_energy(v: [DVec2; 2], m: [f64; 2]) -> f64 {
+    0.5 * (m[0] * v[0].length_squared() + m[1] * v[1].length_squared())
 }
 
 /// The relative normal velocity, the bounce speed and the gap's second

@@ -1073,8 +1073,7 @@ impl World {
                 if self.config.revision.at_least_r4() {
                     let alpha = self.braking(&members);
                     let gap = push::press_gap(self.config.revision) * s;
-                    let energy =
-                        0.5 * (masses[0] * vi.length_squared() + masses[1] * vj.length_squared());
+                    let energy = push::pair_energy([vi, vj], masses);
                     for k in 2..members.len() {
                         let slide = vel[k].length_squared() / (2.0 * alpha[k]);
                         still[k] = alpha[k] > 0.0 && slide > 0.0 && slide <= gap;
