@@ -435,3 +435,26 @@ pub fn centre(rect: &Value) -> Result<(f64, f64)> {
         _ => Err(E2eError::Check(format!("not a rectangle: {rect}"))),
     }
 }
+
+/// In a match (`play`: the app's state), pulls the piece of ours nearest
+/// the middle of the window straight down and lets go.
+pub async fn shoot(client: &Client, play: &Value) -> Result<()> {
+    let size = eval(client, "return [window.innerWidth, window.innerHeight];").await?;
+    let (Some(width), Some(height)) = (size[0].as_f64(), size[1].as_f64()) else {
+        return Err(E2eError::Check(format!("not a window size: {size}")));
+    };
+    let piece = play["pieces"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter(|p| p["mine"] == true)
+        .filter_map(|p| Some((p["x"].as_f64()?, p["y"].as_f64()?)))
+        .filter(|&(_, y)| y + 40.0 < height - 2.0)
+        .min_by(|a, b| {
+            let off = |p: &(f64, f64)| (p.0 - width / 2.0).abs();
+            off(a).total_cmp(&off(b))
+        })
+        .ok_or_else(|| E2eError::Check(format!("no piece of ours: {}", play["pieces"])))?;
+    let to = (piece.0, (piece.1 + 80.0).min(height - 2.0));
+    drag(client, piece, to, 8).await
+}

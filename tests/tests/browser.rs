@@ -18,7 +18,7 @@
 //! Screenshots and logs are left in
 //! the artifacts folder (`target/e2e-artifacts` or `$CHAPAEV_E2E_ARTIFACTS`).
 
-use e2e::browser::{self, centre, click_button, click_seen, state_until, Driver};
+use e2e::browser::{self, centre, click_button, click_seen, shoot, state_until, Driver};
 use e2e::process::Server;
 use e2e::{api, artifacts_dir, layout, picture, E2eError, Result};
 use fantoccini::Client;
@@ -1175,29 +1175,6 @@ async fn leaving_a_match_mid_play_asks_first_and_the_lobby_offers_the_way_back()
         })
     })
     .await;
-}
-
-/// Pulls the piece of ours nearest the middle straight down and lets go.
-async fn shoot(client: &Client, play: &Value) -> Result<()> {
-    let size = browser::eval(client, "return [window.innerWidth, window.innerHeight];").await?;
-    let (width, height) = (
-        size[0].as_f64().unwrap_or(390.0),
-        size[1].as_f64().unwrap_or(844.0),
-    );
-    let piece = play["pieces"]
-        .as_array()
-        .into_iter()
-        .flatten()
-        .filter(|p| p["mine"] == true)
-        .filter_map(|p| Some((p["x"].as_f64()?, p["y"].as_f64()?)))
-        .filter(|&(_, y)| y + 40.0 < height - 2.0)
-        .min_by(|a, b| {
-            let off = |p: &(f64, f64)| (p.0 - width / 2.0).abs();
-            off(a).total_cmp(&off(b))
-        })
-        .ok_or_else(|| E2eError::Check(format!("no piece of ours: {}", play["pieces"])))?;
-    let to = (piece.0, (piece.1 + 80.0).min(height - 2.0));
-    browser::drag(client, piece, to, 8).await
 }
 
 /// Whether the rectangles `a` and `b` (`[x, y, w, h]`) overlap.

@@ -12,11 +12,10 @@
 //! artifacts folder (`target/e2e-artifacts` or
 //! `$CHAPAEV_E2E_ARTIFACTS`). Skipped, saying so, without a browser.
 
-use e2e::browser::{self, click_button, state_until, Driver};
+use e2e::browser::{self, click_button, shoot, state_until, Driver};
 use e2e::process::Server;
 use e2e::{artifacts_dir, picture, E2eError, Result};
 use fantoccini::Client;
-use serde_json::Value;
 use std::path::Path;
 use std::time::Duration;
 
@@ -170,27 +169,4 @@ async fn until_the_computer_answers(client: &Client, level: &str) -> Result<()> 
         })
         .await?;
     }
-}
-
-/// Pulls the piece of ours nearest the middle straight down and lets go.
-async fn shoot(client: &Client, play: &Value) -> Result<()> {
-    let size = browser::eval(client, "return [window.innerWidth, window.innerHeight];").await?;
-    let (width, height) = (
-        size[0].as_f64().unwrap_or(1024.0),
-        size[1].as_f64().unwrap_or(720.0),
-    );
-    let piece = play["pieces"]
-        .as_array()
-        .into_iter()
-        .flatten()
-        .filter(|p| p["mine"] == true)
-        .filter_map(|p| Some((p["x"].as_f64()?, p["y"].as_f64()?)))
-        .filter(|&(_, y)| y + 40.0 < height - 2.0)
-        .min_by(|a, b| {
-            let off = |p: &(f64, f64)| (p.0 - width / 2.0).abs();
-            off(a).total_cmp(&off(b))
-        })
-        .ok_or_else(|| E2eError::Check(format!("no piece of ours: {}", play["pieces"])))?;
-    let to = (piece.0, (piece.1 + 80.0).min(height - 2.0));
-    browser::drag(client, piece, to, 8).await
 }
