@@ -854,10 +854,11 @@ impl World {
             .collect();
         members.sort_unstable();
         members.dedup();
+        let at = self.positions(t);
         let mut k = 0;
         while k < members.len() && members.len() < MAX_COLLAPSE {
             let m = members[k];
-            for c in self.touching(m, t) {
+            for c in self.touching(m, &at) {
                 if !members.contains(&c) && self.restitution(m, Some(c)) == 0.0 {
                     members.push(c);
                 }
@@ -1272,9 +1273,10 @@ impl World {
         t: f64,
     ) -> (Vec<usize>, Vec<collapse::Contact>) {
         // Grow to every disc touching a member.
+        let at = self.positions(t);
         let mut k = 0;
         while k < members.len() && members.len() < MAX_COLLAPSE {
-            for c in self.touching(members[k], t) {
+            for c in self.touching(members[k], &at) {
                 if !members.contains(&c) {
                     members.push(c);
                 }
@@ -1285,28 +1287,37 @@ impl World {
         (members, contacts)
     }
 
-    /// The live discs other than `m` (slots) that touch it at `t`.
-    fn touching(&self, m: usize, t: f64) -> impl Iterator<Item = usize> + '_ {
-        let pm = self.slots[m].traj.position(t);
+    /// Every slot's position at `t` (a dead one's too, never read), for
+    /// [`World::touching`]: each formed once however many discs ask.
+    fn positions(&self, t: f64) -> Vec<DVec2> {
+        self.slots.iter().map(|s| s.traj.position(t)).collect()
+    }
+
+    /// The live discs other than `m` (slots) that touch it where the
+    /// slots are at `at` ([`World::positions`]).
+    fn touching<'a>(&'a self, m: usize, at: &'a [DVec2]) -> impl Iterator<Item = usize> + 'a {
+        let pm = at[m];
         let rm = self.slots[m].radius;
         (0..self.slots.len()).filter(move |&c| {
             let s = &self.slots[c];
-            c != m
-                && s.alive
-                && (s.traj.position(t) - pm).length() <= (rm + s.radius) * (1.0 + push::TOUCHING)
+            c != m && s.alive && (at[c] - pm).length() <= (rm + s.radius) * (1.0 + push::TOUCHING)
         })
     }
 
     /// Every contact among `members` (slots) at `t`, and of each with the
     /// solid lines and points it touches, indexed into `members`.
     fn contacts_among(&self, members: &[usize], t: f64) -> Vec<collapse::Contact> {
-        let pos = |w: &World, c: usize| w.slots[c].traj.position(t);
+        // Each member's position, formed once.
+        let at: Vec<DVec2> = members
+            .iter()
+            .map(|&c| self.slots[c].traj.position(t))
+            .collect();
         let touching = |gap: f64, s: f64| gap <= s * (1.0 + push::TOUCHING);
         let mut contacts = Vec::new();
         for (a, &ca) in members.iter().enumerate() {
-            let (pa, r) = (pos(self, ca), self.slots[ca].radius);
+            let (pa, r) = (at[a], self.slots[ca].radius);
             for (b, &cb) in members.iter().enumerate().skip(a + 1) {
-                let d = pa - pos(self, cb);
+                let d = pa - at[b];
                 if touching(d.length(), r + self.slots[cb].radius) {
                     let n = d.normalize_or_zero();
                     contacts.push(collapse::Contact::plastic(a, Some(b), n));
