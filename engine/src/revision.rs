@@ -173,6 +173,15 @@ pub enum Revision {
     R11,
     /// The twelfth, as the eleventh but (rules being written; not yet the
     /// default):
+    /// - a touching pair of moving discs that neither approaches nor parts
+    ///   faster than rounding noise is still sought 1e-10 of its contact
+    ///   distance inside it (as the third revision seeks one approaching
+    ///   below that noise), where its braking brings it together later
+    ///   (`contact::turns_in_after_touch`):
+    ///   two discs left side by side by a plastic ring at one instant,
+    ///   braked differently along a normal turning as one pulls ahead,
+    ///   came together from a tangent, below the noise of an approach, and
+    ///   went 1.8e-8 of their contact distance into each other.
     R12,
 }
 
