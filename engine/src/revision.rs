@@ -257,6 +257,13 @@ impl Revision {
     pub fn at_least_r12(self) -> bool {
         self >= Revision::R12
     }
+
+    /// Whether a pressing kick over a cluster adds no more energy than the
+    /// kick between the pressed pair alone would (the twelfth revision;
+    /// see `World::press_cluster`).
+    pub fn holds_cluster_kick_to_pair_bound(self) -> bool {
+        self.at_least_r12()
+    }
 }
 
 /// A revision name that names no revision.
