@@ -285,6 +285,9 @@ struct PairHits {
     /// The pair's slots (the second `None` for an obstacle).
     slots: (usize, Option<usize>),
     hits: u32,
+    /// From the twelfth revision, how fast the pair approached at its
+    /// latest count (see [`Repeats::decaying`]).
+    counted: Option<f64>,
 }
 
 /// From the fifth revision, each inelastic pair's hits at the current
@@ -305,6 +308,10 @@ pub(crate) struct Repeats {
     since_count: f64,
     /// The fastest speed of a disc after a hit at this instant.
     moving: f64,
+    /// From the twelfth revision, a plastic pair's count is also taken
+    /// where the pair approached slower than at its previous count (see
+    /// [`Repeats::decaying`]).
+    decaying: bool,
 }
 
 impl Repeats {
@@ -317,7 +324,25 @@ impl Repeats {
             fastest: 0.0,
             since_count: 0.0,
             moving: 0.0,
+            decaying: false,
         }
+    }
+
+    /// From the twelfth revision: a plastic pair (restitution 0) whose
+    /// count comes round again, its hits slower than at its previous count,
+    /// is a collapse however hard its hits. A plastic hit leaves the pair
+    /// no approach; to be hit again at the same instant, something else
+    /// must have driven it back, every time with less: a light elastic disc
+    /// between a wall and a heavy plastic one pushing it bounces off the
+    /// wall and is caught again, its speed a per cent lower each time (the
+    /// ratio of the masses), a thousand hits an instant until the crawl
+    /// rule took the limit, instant after instant until the run ended
+    /// `stuck`. Its hits are not gentle (each approaches at twice the
+    /// speed of the discs), but they are no impact ringing through to an
+    /// end either: the sequence has none, only a limit.
+    pub(crate) fn decaying(mut self, on: bool) -> Self {
+        self.decaying = on;
+        self
     }
 
     /// A new instant, begun by `event`, whose bodies approached at
@@ -369,22 +394,33 @@ impl Repeats {
         self.since_count = self.since_count.max(approach.abs());
         let speed = |c: usize| world.speed_at_last_event(c);
         self.moving = self.moving.max(speed(sa)).max(sb.map_or(0.0, speed));
-        let hits = match self.hits.iter_mut().find(|h| h.pair == pair) {
-            Some(h) => {
-                h.hits += 1;
-                h.hits
+        let k = match self.hits.iter().position(|h| h.pair == pair) {
+            Some(k) => {
+                self.hits[k].hits += 1;
+                k
             }
             None => {
                 self.hits.push(PairHits {
                     pair,
                     slots: (sa, sb),
                     hits: 1,
+                    counted: None,
                 });
-                1
+                self.hits.len() - 1
             }
         };
-        if hits % self.every != 0 {
+        if self.hits[k].hits % self.every != 0 {
             return false;
+        }
+        // From the twelfth revision, a plastic pair hit slower than at its
+        // previous count (see `Repeats::decaying`).
+        let decayed = self.decaying
+            && plastic
+            && self.hits[k]
+                .counted
+                .is_some_and(|before| approach.abs() < before);
+        if self.decaying && plastic {
+            self.hits[k].counted = Some(approach.abs());
         }
         // From the tenth revision, a plastic pair's count is also taken where
         // the hits since the last such count were gentle (see
@@ -395,7 +431,7 @@ impl Repeats {
         if window {
             self.since_count = 0.0;
         }
-        gentle
+        gentle || decayed
     }
 
     /// The pairs hit more than once at this instant (slots; `None` for an

@@ -264,6 +264,22 @@ impl Revision {
     pub fn holds_cluster_kick_to_pair_bound(self) -> bool {
         self.at_least_r12()
     }
+
+    /// Whether the rest of a pressed pair's braking discs (the eleventh
+    /// revision's held projection) is found by the active-set method where
+    /// projected Gauss–Seidel stalls (the twelfth revision; see
+    /// `World::press_cluster`).
+    pub fn rests_caged_discs_by_active_set(self) -> bool {
+        self.at_least_r12()
+    }
+
+    /// Whether a plastic pair hit at one instant again and again, each
+    /// count of its hits slower than the last, is taken as a collapse
+    /// however hard its hits (the twelfth revision; see
+    /// `limits::Repeats::decaying`).
+    pub fn collapses_decaying_plastic_rings(self) -> bool {
+        self.at_least_r12()
+    }
 }
 
 /// A revision name that names no revision.

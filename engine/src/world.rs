@@ -532,7 +532,8 @@ impl World {
             EARLY_REPEAT_HITS
         } else {
             REPEAT_HITS
-        });
+        })
+        .decaying(self.config.revision.collapses_decaying_plastic_rings());
         // From the seventh revision: the fine clock (see `clock`), and the
         // current instant's tick (see `World::instant_tick`), worked out
         // only once an event comes near it.
@@ -1089,6 +1090,8 @@ impl World {
                 } else {
                     vec![still]
                 };
+                let held_rest_by_active_set =
+                    self.config.revision.rests_caged_discs_by_active_set();
                 let hold = |still: &[bool]| {
                     let mut held = vel.clone();
                     let mut inv_held = inv.clone();
@@ -1100,7 +1103,15 @@ impl World {
                     if (alone && kick.is_none()) || contacts.is_empty() {
                         Some(held)
                     } else {
-                        collapse::resolve(&held, &inv_held, &contacts, PRESS_SWEEPS)
+                        collapse::resolve(&held, &inv_held, &contacts, PRESS_SWEEPS).or_else(|| {
+                            // From the twelfth revision, where the
+                            // projection stalls (a frictionless disc caged
+                            // by held ones, more contacts than it has
+                            // directions), the active-set method.
+                            held_rest_by_active_set
+                                .then(|| collapse::active_set(&held, &inv_held, &contacts))
+                                .flatten()
+                        })
                     }
                 };
                 let after = tries.iter().find_map(|still| hold(still));
