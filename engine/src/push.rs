@@ -171,6 +171,15 @@ pub(crate) fn press_gap(rev: Revision) -> f64 {
 /// before it stops.
 pub(crate) const PRESS_SPEED: f64 = 0.05;
 
+/// The most kinetic energy the pressing kick between a pair alone adds, as
+/// a fraction of the pair's: `m w^2 / 2` of its reduced mass `m` with `w`
+/// at most [`PRESS_SPEED`] of the sum of their speeds `a + b`, and
+/// `m (a + b)^2 <= 2 m (a^2 + b^2) <= 4` times their energy (`m` is below
+/// either mass), so at most `2 PRESS_SPEED^2`. From the twelfth revision a
+/// kick over a cluster is held to the same fraction of the energy of the
+/// discs it moves (see `World::press_cluster`).
+pub(crate) const PRESS_GAIN: f64 = 2.0 * PRESS_SPEED * PRESS_SPEED;
+
 /// Two discs pressed together obliquely: the separation speed to add to a
 /// hit between them, or `None` where the model is exact.
 ///

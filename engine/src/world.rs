@@ -1143,11 +1143,6 @@ impl World {
         let mut kicked = vel.clone();
         kicked[0] += n * (dw * w_j);
         kicked[1] -= n * (dw * w_i);
-        // What the kick between the two alone adds to their energy: the
-        // bound a kick over the cluster is held to from the twelfth
-        // revision (see `World::within_pair_bound`).
-        let alone_gain = push::pair_energy([kicked[0], kicked[1]], masses)
-            - push::pair_energy([vel[0], vel[1]], masses);
         let noise = 1e-15 * (vi.length() + vj.length());
         let blocked = contacts.iter().any(|c| {
             let pair = c.a == 0 && c.b == Some(1);
@@ -1176,8 +1171,8 @@ impl World {
         else {
             return false;
         };
-        if self.config.revision.holds_cluster_kick_to_pair_bound() {
-            match within_pair_bound(&vel, &inv, &contacts, after, alone_gain) {
+        if self.config.revision.bounds_cluster_kick_energy() {
+            match within_press_bound(&vel, &inv, &contacts, after) {
                 Some(held) => after = held,
                 None => return false,
             }
@@ -2011,28 +2006,27 @@ impl World {
 }
 /// From the twelfth revision, the kick over a cluster `after` (from the
 /// velocities `vel` of discs with inverse masses `inv`, the `contacts`
-/// biased where a pair presses) held to the energy the kick between the
-/// pressed pair alone would add, `alone_gain` (`m w^2 / 2` of its reduced
-/// mass at most, see `push::pressing_kick`). The pair's bounce speed is
-/// set by its own speeds, but where one of the two is jammed (against a
-/// wall, or a chain of discs against one) the projection gives the whole
-/// separation to whatever it can move, a heavy disc behind the other
-/// among them: parting a light disc at 5 per cent of its speed set a disc
-/// a hundred times heavier moving at that speed, 7 per cent of the
-/// scene's energy from nothing. Held, the kick is the blend
-/// `plastic + l (after - plastic)` of the cluster's plastic limit (no
-/// bias: it adds no energy) and the biased projection with the largest
-/// `l` in [0, 1] whose energy is within the bound: every contact's normal
-/// speed is linear in `l` and parts at least at `l` times its bias, so no
-/// contact approaches and each pressed pair still parts, slower. `after`
-/// itself where it is within the bound (what the eleventh revision does);
-/// `None` where the plastic limit has no answer.
-fn within_pair_bound(
+/// biased where a pair presses) held to the bound of the kick between a
+/// pressed pair alone: at most [`push::PRESS_GAIN`] of the kinetic energy
+/// of the discs it moves. The pair's bounce speed is set by its own
+/// speeds, but where one of the two is jammed (against a wall, or a chain
+/// of discs against one) the projection gives the whole separation to
+/// whatever it can move, a heavy disc behind the other among them:
+/// parting a light disc at 5 per cent of its speed set a disc forty times
+/// heavier moving at that speed, 7 per cent of the scene's energy from
+/// nothing. Held, the kick is the blend `plastic + l (after - plastic)` of
+/// the cluster's plastic limit (no bias: it adds no energy) and the biased
+/// projection with the largest `l` in [0, 1] whose energy is within the
+/// bound: every contact's normal speed is linear in `l` and parts at least
+/// at `l` times its bias, so no contact approaches and each pressed pair
+/// still parts, slower. `after` itself where it is within the bound (what
+/// the eleventh revision does); `None` where the plastic limit has no
+/// answer.
+fn within_press_bound(
     vel: &[DVec2],
     inv: &[f64],
     contacts: &[collapse::Contact],
     after: Vec<DVec2>,
-    alone_gain: f64,
 ) -> Option<Vec<DVec2>> {
     let energy = |v: &[DVec2]| -> f64 {
         v.iter()
@@ -2040,7 +2034,8 @@ fn within_pair_bound(
             .map(|(v, &k)| 0.5 * v.length_squared() / k)
             .sum()
     };
-    let budget = energy(vel) + alone_gain.max(0.0);
+    let before = energy(vel);
+    let budget = before + push::PRESS_GAIN * before;
     if energy(&after) <= budget {
         return Some(after);
     }
