@@ -175,10 +175,18 @@ pub(crate) const PRESS_SPEED: f64 = 0.05;
 /// a fraction of the pair's: `m w^2 / 2` of its reduced mass `m` with `w`
 /// at most [`PRESS_SPEED`] of the sum of their speeds `a + b`, and
 /// `m (a + b)^2 <= 2 m (a^2 + b^2) <= 4` times their energy (`m` is below
-/// either mass), so at most `2 PRESS_SPEED^2`. From the twelfth revision a
-/// kick over a cluster is held to the same fraction of the energy of the
-/// discs it moves (see `World::press_cluster`).
+/// either mass), so at most `2 PRESS_SPEED^2`.
 pub(crate) const PRESS_GAIN: f64 = 2.0 * PRESS_SPEED * PRESS_SPEED;
+
+/// From the twelfth revision, the most kinetic energy a pressing kick over
+/// a cluster adds, as a fraction of the energy of the discs it moves (see
+/// `World::press_cluster`): twice the bound of a pair alone, [`PRESS_GAIN`],
+/// for the kick parts the pair hit and, from the fourth revision, the
+/// pairs its projection leaves pressed. Held to a pair's own bound, the
+/// kicks of a pack sheared by a heavy disc parted its pairs so slowly that
+/// runs which reached their horizon under the eleventh revision ran into
+/// the event cap.
+pub(crate) const CLUSTER_PRESS_GAIN: f64 = 2.0 * PRESS_GAIN;
 
 /// Two discs pressed together obliquely: the separation speed to add to a
 /// hit between them, or `None` where the model is exact.

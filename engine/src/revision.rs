@@ -173,9 +173,9 @@ pub enum Revision {
     R11,
     /// The twelfth, as the eleventh but (rules being written; not yet the
     /// default):
-    /// - a pressing kick over a cluster adds no more than 0.005 of the
-    ///   kinetic energy of the discs it moves, the bound of the kick between
-    ///   a pressed pair alone (`push::PRESS_GAIN`): where one of the pair is
+    /// - a pressing kick over a cluster adds no more than 0.01 of the
+    ///   kinetic energy of the discs it moves, twice the bound of the kick
+    ///   between a pressed pair alone (`push::CLUSTER_PRESS_GAIN`): where one of the pair is
     ///   jammed, the projection gave the whole separation to what it could
     ///   move, a disc forty times heavier set moving at the light one's
     ///   bounce speed (7.3e-2 of a scene's energy at one event); held, the
@@ -188,7 +188,7 @@ pub enum Revision {
     ///   than it has directions), instead of kicking the whole pack, which
     ///   crept at 1e-8 m/s until the run ended `stuck`
     ///   (`Revision::rests_caged_discs_by_active_set`);
-    /// - a plastic pair hit again and again at one instant (32 times at
+    /// - a plastic pair hit again and again at one instant (128 times at
     ///   least), each count of its hits slower than the last, is a collapse
     ///   however hard the hits
     ///   (a light elastic disc between a wall and a heavy plastic one,
@@ -280,9 +280,9 @@ impl Revision {
         self >= Revision::R12
     }
 
-    /// Whether a pressing kick over a cluster adds no more of the energy of
-    /// the discs it moves than the kick between a pressed pair alone may
-    /// add of the pair's, 0.005 (the twelfth revision; see
+    /// Whether a pressing kick over a cluster adds no more than 0.01 of the
+    /// energy of the discs it moves, twice what the kick between a pressed
+    /// pair alone may add of the pair's (the twelfth revision; see
     /// `World::press_cluster`).
     pub fn bounds_cluster_kick_energy(self) -> bool {
         self.at_least_r12()

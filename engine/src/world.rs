@@ -2006,22 +2006,21 @@ impl World {
 }
 /// From the twelfth revision, the kick over a cluster `after` (from the
 /// velocities `vel` of discs with inverse masses `inv`, the `contacts`
-/// biased where a pair presses) held to the bound of the kick between a
-/// pressed pair alone: at most [`push::PRESS_GAIN`] of the kinetic energy
-/// of the discs it moves. The pair's bounce speed is set by its own
-/// speeds, but where one of the two is jammed (against a wall, or a chain
-/// of discs against one) the projection gives the whole separation to
-/// whatever it can move, a heavy disc behind the other among them:
-/// parting a light disc at 5 per cent of its speed set a disc forty times
-/// heavier moving at that speed, 7 per cent of the scene's energy from
-/// nothing. Held, the kick is the blend `plastic + l (after - plastic)` of
-/// the cluster's plastic limit (no bias: it adds no energy) and the biased
-/// projection with the largest `l` in [0, 1] whose energy is within the
-/// bound: every contact's normal speed is linear in `l` and parts at least
-/// at `l` times its bias, so no contact approaches and each pressed pair
-/// still parts, slower. `after` itself where it is within the bound (what
-/// the eleventh revision does); `None` where the plastic limit has no
-/// answer.
+/// biased where a pair presses) held to [`push::CLUSTER_PRESS_GAIN`] of the
+/// kinetic energy of the discs it moves. The pair's bounce speed is set by
+/// its own speeds, but where one of the two is jammed (against a wall, or
+/// a chain of discs against one) the projection gives the whole
+/// separation to whatever it can move, a heavy disc behind the other
+/// among them: parting a light disc at 5 per cent of its speed set a disc
+/// forty times heavier moving at that speed, 7 per cent of the scene's
+/// energy from nothing. Held, the kick is the blend
+/// `plastic + l (after - plastic)` of the cluster's plastic limit (no
+/// bias: it adds no energy) and the biased projection with the largest
+/// `l` in [0, 1] whose energy is within the bound: every contact's normal
+/// speed is linear in `l` and parts at least at `l` times its bias, so no
+/// contact approaches and each pressed pair still parts, slower. `after`
+/// itself where it is within the bound (what the eleventh revision does);
+/// `None` where the plastic limit has no answer.
 fn within_press_bound(
     vel: &[DVec2],
     inv: &[f64],
@@ -2035,7 +2034,7 @@ fn within_press_bound(
             .sum()
     };
     let before = energy(vel);
-    let budget = before + push::PRESS_GAIN * before;
+    let budget = before + push::CLUSTER_PRESS_GAIN * before;
     if energy(&after) <= budget {
         return Some(after);
     }
