@@ -489,3 +489,77 @@ pub(crate) trait Watched {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two discs (slots 0 and 1, ids 1 and 2) of one restitution, each
+    /// moving at 1 m/s after every hit.
+    struct Pair(f64);
+
+    impl Watched for Pair {
+        fn slot_of(&self, id: BodyId) -> Option<usize> {
+            (id.0 >= 1 && id.0 <= 2).then(|| id.0 as usize - 1)
+        }
+        fn fastest_and_smallest(&self, _: f64) -> (f64, f64) {
+            (1.0, 1.0)
+        }
+        fn fastest_and_smallest_of(&self, _: &[usize], _: f64) -> (f64, f64) {
+            (1.0, 1.0)
+        }
+        fn restitution(&self, _: usize, _: Option<usize>) -> f64 {
+            self.0
+        }
+        fn speed_at_last_event(&self, _: usize) -> f64 {
+            1.0
+        }
+    }
+
+    fn hit() -> Event {
+        Event {
+            t: 1.0,
+            kind: EventKind::BodyBody {
+                a: BodyId(1),
+                b: BodyId(2),
+            },
+        }
+    }
+
+    /// The hit (1-based, up to the 400th) at which `repeats` first takes
+    /// the instant as a collapse, the pair approaching at `approach(k)` at
+    /// its `k`-th hit.
+    fn collapse_at(
+        world: &Pair,
+        mut repeats: Repeats,
+        approach: impl Fn(u32) -> f64,
+    ) -> Option<u32> {
+        repeats.start(hit(), approach(1));
+        (2..=400).find(|&k| repeats.note(world, &hit(), approach(k)))
+    }
+
+    #[test]
+    fn a_plastic_pair_rung_ever_slower_but_never_gently_is_a_collapse_from_the_twelfth_revision() {
+        // Each hit approaches a per cent slower than the one before, at
+        // twice the discs' speed at first and still above 1/100 of it at the
+        // 400th: never gentle.
+        let decaying = |k: u32| 2.0 * 0.99f64.powi(k as i32);
+        let plastic = Pair(0.0);
+        let r11 = Repeats::new(EARLY_REPEAT_HITS);
+        assert_eq!(collapse_at(&plastic, r11, decaying), None);
+        let r12 = Repeats::new(EARLY_REPEAT_HITS).decaying(true);
+        assert_eq!(
+            collapse_at(&plastic, r12, decaying),
+            Some(DECAYING_RING_HITS)
+        );
+    }
+
+    #[test]
+    fn a_ring_that_does_not_slow_or_has_restitution_is_left_to_its_hits() {
+        let steady = |_: u32| 2.0;
+        let r12 = || Repeats::new(EARLY_REPEAT_HITS).decaying(true);
+        assert_eq!(collapse_at(&Pair(0.0), r12(), steady), None);
+        let decaying = |k: u32| 2.0 * 0.99f64.powi(k as i32);
+        assert_eq!(collapse_at(&Pair(0.5), r12(), decaying), None);
+    }
+}

@@ -2004,6 +2004,7 @@ impl World {
         }
     }
 }
+
 /// From the twelfth revision, the kick over a cluster `after` (from the
 /// velocities `vel` of discs with inverse masses `inv`, the `contacts`
 /// biased where a pair presses) held to [`push::CLUSTER_PRESS_GAIN`] of the
@@ -2063,4 +2064,66 @@ fn within_press_bound(
             .map(|(p, q)| *p + (*q - *p) * l)
             .collect(),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn energy(v: &[DVec2], inv: &[f64]) -> f64 {
+        v.iter()
+            .zip(inv)
+            .map(|(v, &k)| 0.5 * v.length_squared() / k)
+            .sum()
+    }
+
+    #[test]
+    fn a_kick_parting_a_light_disc_against_a_wall_from_a_heavy_one_is_held_to_its_bound() {
+        // Disc 0 (10 g) slides along a wall at 1 m/s, touching disc 1 (1 kg,
+        // at rest) on its other side; the pair parts at 0.05 m/s. Disc 0
+        // cannot move into the wall, so the biased projection sets disc 1
+        // moving at 0.05 m/s: 1.25e-3 J, a quarter of the 5e-3 J the two
+        // have.
+        let vel = [DVec2::new(0.0, 1.0), DVec2::ZERO];
+        let inv = [100.0, 1.0];
+        let contacts = [
+            collapse::Contact::plastic(0, None, DVec2::X),
+            collapse::Contact {
+                a: 1,
+                b: Some(0),
+                n: DVec2::X,
+                bias: 0.05,
+            },
+        ];
+        let after = collapse::resolve(&vel, &inv, &contacts, PRESS_SWEEPS).expect("a kick");
+        assert!((after[1].x - 0.05).abs() < 1e-12, "{after:?}");
+        let held = within_press_bound(&vel, &inv, &contacts, after).expect("a plastic limit");
+        let before = energy(&vel, &inv);
+        let gained = energy(&held, &inv) - before;
+        assert!(gained <= push::CLUSTER_PRESS_GAIN * before * (1.0 + 1e-12));
+        assert!(gained > 0.99 * push::CLUSTER_PRESS_GAIN * before);
+        // Still parting, slower, and not into the wall.
+        assert!(held[1].x - held[0].x > 0.0 && held[1].x < 0.05);
+        assert!(held[0].x >= 0.0);
+        assert_eq!(held[0].y, 1.0);
+    }
+
+    #[test]
+    fn a_kick_within_its_bound_is_left_as_the_projection_gives_it() {
+        // The same, disc 1 as light as disc 0: 1.25e-5 J of 5e-3 J.
+        let vel = [DVec2::new(0.0, 1.0), DVec2::ZERO];
+        let inv = [100.0, 100.0];
+        let contacts = [
+            collapse::Contact::plastic(0, None, DVec2::X),
+            collapse::Contact {
+                a: 1,
+                b: Some(0),
+                n: DVec2::X,
+                bias: 0.05,
+            },
+        ];
+        let after = collapse::resolve(&vel, &inv, &contacts, PRESS_SWEEPS).expect("a kick");
+        let held = within_press_bound(&vel, &inv, &contacts, after.clone());
+        assert_eq!(held, Some(after));
+    }
 }
