@@ -179,13 +179,14 @@ pub(crate) const PRESS_SPEED: f64 = 0.05;
 pub(crate) const PRESS_GAIN: f64 = 2.0 * PRESS_SPEED * PRESS_SPEED;
 
 /// From the twelfth revision, the most kinetic energy a pressing kick over
-/// a cluster adds, as a fraction of the energy of the discs it moves (see
-/// `World::press_cluster`): twice the bound of a pair alone, [`PRESS_GAIN`],
-/// for the kick parts the pair hit and, from the fourth revision, the
-/// pairs its projection leaves pressed. Held to a pair's own bound, the
-/// kicks of a pack sheared by a heavy disc parted its pairs so slowly that
-/// runs which reached their horizon under the eleventh revision ran into
-/// the event cap.
+/// a cluster adds, as a fraction of the scene's (see
+/// `World::press_cluster`): twice the bound of a pair alone,
+/// [`PRESS_GAIN`], for the kick parts the pair hit and, from the fourth
+/// revision, the pairs its projection leaves pressed. Held to a fraction
+/// of the cluster's own energy instead, the kicks of a pair pressed for
+/// seconds in a cluster, each a few per cent of the cluster's energy and
+/// far less of the scene's, parted it so slowly that runs which reached
+/// their horizon under the eleventh revision ran into the event cap.
 pub(crate) const CLUSTER_PRESS_GAIN: f64 = 2.0 * PRESS_GAIN;
 
 /// Two discs pressed together obliquely: the separation speed to add to a

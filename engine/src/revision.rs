@@ -174,8 +174,8 @@ pub enum Revision {
     /// The twelfth, as the eleventh but (rules being written; not yet the
     /// default):
     /// - a pressing kick over a cluster adds no more than 0.01 of the
-    ///   kinetic energy of the discs it moves, twice the bound of the kick
-    ///   between a pressed pair alone (`push::CLUSTER_PRESS_GAIN`): where one of the pair is
+    ///   scene's kinetic energy, twice the bound of the kick between a
+    ///   pressed pair alone (`push::CLUSTER_PRESS_GAIN`): where one of the pair is
     ///   jammed, the projection gave the whole separation to what it could
     ///   move, a disc forty times heavier set moving at the light one's
     ///   bounce speed (7.3e-2 of a scene's energy at one event); held, the
@@ -184,8 +184,9 @@ pub enum Revision {
     ///   (`Revision::bounds_cluster_kick_energy`);
     /// - the eleventh revision's rest of a pressed pair, its braking discs
     ///   held, is found by the active-set method where the projection
-    ///   stalls (a frictionless disc caged by held discs, more contacts
-    ///   than it has directions), instead of kicking the whole pack, which
+    ///   stalls on more contacts than the free discs have directions (a
+    ///   frictionless disc caged by held discs), instead of kicking the
+    ///   whole pack, which
     ///   crept at 1e-8 m/s until the run ended `stuck`
     ///   (`Revision::rests_caged_discs_by_active_set`);
     /// - a plastic pair hit again and again at one instant (128 times at
@@ -281,8 +282,8 @@ impl Revision {
     }
 
     /// Whether a pressing kick over a cluster adds no more than 0.01 of the
-    /// energy of the discs it moves, twice what the kick between a pressed
-    /// pair alone may add of the pair's (the twelfth revision; see
+    /// scene's kinetic energy, twice what the kick between a pressed pair
+    /// alone may add of the pair's (the twelfth revision; see
     /// `World::press_cluster`).
     pub fn bounds_cluster_kick_energy(self) -> bool {
         self.at_least_r12()

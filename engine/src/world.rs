@@ -1105,10 +1105,12 @@ impl World {
                     } else {
                         collapse::resolve(&held, &inv_held, &contacts, PRESS_SWEEPS).or_else(|| {
                             // From the twelfth revision, where the
-                            // projection stalls (a frictionless disc caged
-                            // by held ones, more contacts than it has
-                            // directions), the active-set method.
-                            held_rest_by_active_set
+                            // projection stalls on more contacts than the
+                            // free discs have directions (a frictionless
+                            // disc caged by held ones), the active-set
+                            // method.
+                            let free = inv_held.iter().filter(|&&k| k > 0.0).count();
+                            (held_rest_by_active_set && contacts.len() > 2 * free)
                                 .then(|| collapse::active_set(&held, &inv_held, &contacts))
                                 .flatten()
                         })
@@ -1172,7 +1174,16 @@ impl World {
             return false;
         };
         if self.config.revision.bounds_cluster_kick_energy() {
-            match within_press_bound(&vel, &inv, &contacts, after) {
+            // The scene's kinetic energy now, the hit's outgoing
+            // trajectories in place.
+            let scene: f64 = self
+                .slots
+                .iter()
+                .zip(&self.material)
+                .filter(|(s, _)| s.alive)
+                .map(|(s, m)| 0.5 * m.mass * s.traj.velocity(t).length_squared())
+                .sum();
+            match within_press_bound(&vel, &inv, &contacts, after, scene) {
                 Some(held) => after = held,
                 None => return false,
             }
@@ -2007,10 +2018,11 @@ impl World {
 
 /// From the twelfth revision, the kick over a cluster `after` (from the
 /// velocities `vel` of discs with inverse masses `inv`, the `contacts`
-/// biased where a pair presses) held to [`push::CLUSTER_PRESS_GAIN`] of the
-/// kinetic energy of the discs it moves. The pair's bounce speed is set by
-/// its own speeds, but where one of the two is jammed (against a wall, or
-/// a chain of discs against one) the projection gives the whole
+/// biased where a pair presses) held to add no more than
+/// [`push::CLUSTER_PRESS_GAIN`] of the kinetic energy of the `scene` (all
+/// its discs, at least those of the cluster). The pair's bounce speed is
+/// set by its own speeds, but where one of the two is jammed (against a
+/// wall, or a chain of discs against one) the projection gives the whole
 /// separation to whatever it can move, a heavy disc behind the other
 /// among them: parting a light disc at 5 per cent of its speed set a disc
 /// forty times heavier moving at that speed, 7 per cent of the scene's
@@ -2027,6 +2039,7 @@ fn within_press_bound(
     inv: &[f64],
     contacts: &[collapse::Contact],
     after: Vec<DVec2>,
+    scene: f64,
 ) -> Option<Vec<DVec2>> {
     let energy = |v: &[DVec2]| -> f64 {
         v.iter()
@@ -2035,7 +2048,7 @@ fn within_press_bound(
             .sum()
     };
     let before = energy(vel);
-    let budget = before + push::CLUSTER_PRESS_GAIN * before;
+    let budget = before + push::CLUSTER_PRESS_GAIN * scene.max(before);
     if energy(&after) <= budget {
         return Some(after);
     }
@@ -2080,10 +2093,10 @@ mod tests {
     #[test]
     fn a_kick_parting_a_light_disc_against_a_wall_from_a_heavy_one_is_held_to_its_bound() {
         // Disc 0 (10 g) slides along a wall at 1 m/s, touching disc 1 (1 kg,
-        // at rest) on its other side; the pair parts at 0.05 m/s. Disc 0
-        // cannot move into the wall, so the biased projection sets disc 1
-        // moving at 0.05 m/s: 1.25e-3 J, a quarter of the 5e-3 J the two
-        // have.
+        // at rest) on its other side, the whole scene; the pair parts at
+        // 0.05 m/s. Disc 0 cannot move into the wall, so the biased
+        // projection sets disc 1 moving at 0.05 m/s: 1.25e-3 J, a quarter
+        // of the 5e-3 J the two have.
         let vel = [DVec2::new(0.0, 1.0), DVec2::ZERO];
         let inv = [100.0, 1.0];
         let contacts = [
@@ -2097,7 +2110,8 @@ mod tests {
         ];
         let after = collapse::resolve(&vel, &inv, &contacts, PRESS_SWEEPS).expect("a kick");
         assert!((after[1].x - 0.05).abs() < 1e-12, "{after:?}");
-        let held = within_press_bound(&vel, &inv, &contacts, after).expect("a plastic limit");
+        let held = within_press_bound(&vel, &inv, &contacts, after, energy(&vel, &inv))
+            .expect("a plastic limit");
         let before = energy(&vel, &inv);
         let gained = energy(&held, &inv) - before;
         assert!(gained <= push::CLUSTER_PRESS_GAIN * before * (1.0 + 1e-12));
@@ -2123,7 +2137,7 @@ mod tests {
             },
         ];
         let after = collapse::resolve(&vel, &inv, &contacts, PRESS_SWEEPS).expect("a kick");
-        let held = within_press_bound(&vel, &inv, &contacts, after.clone());
+        let held = within_press_bound(&vel, &inv, &contacts, after.clone(), energy(&vel, &inv));
         assert_eq!(held, Some(after));
     }
 }
