@@ -85,12 +85,12 @@ pub(crate) const EARLY_REPEAT_HITS: u32 = 8;
 /// which it is taken as a collapse where its hits slow from one count to
 /// the next, gentle or not (see `Repeats::decaying`): a light elastic disc
 /// rung between a wall and a heavy plastic one slows by a per cent a
-/// cycle, hundreds of hits an instant. Counted from fewer (32), the rule
-/// also took shorter rings whose hits are the model's answer (a light
-/// frictionless disc rung among four others and the floor at one impact),
-/// and their plastic limit sent runs that reached their horizon under the
-/// eleventh revision into the event cap.
-pub(crate) const DECAYING_RING_HITS: u32 = 128;
+/// cycle, hundreds of hits an instant. Counted from fewer (32, or 128),
+/// the rule also took shorter rings whose hits are the model's answer (a
+/// light frictionless disc rung among four others and the floor at one
+/// impact), and their plastic limit sent runs that reached their horizon
+/// under the eleventh revision into the event cap or `stuck`.
+pub(crate) const DECAYING_RING_HITS: u32 = 160;
 
 /// From the fifth revision, the fraction of the speed of the fastest disc
 /// they involve under which every approach at one instant must stay for

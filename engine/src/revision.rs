@@ -189,7 +189,7 @@ pub enum Revision {
     ///   whole pack, which
     ///   crept at 1e-8 m/s until the run ended `stuck`
     ///   (`Revision::rests_caged_discs_by_active_set`);
-    /// - a plastic pair hit again and again at one instant (128 times at
+    /// - a plastic pair hit again and again at one instant (160 times at
     ///   least), each count of its hits slower than the last, is a collapse
     ///   however hard the hits
     ///   (a light elastic disc between a wall and a heavy plastic one,
