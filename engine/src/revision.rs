@@ -175,26 +175,24 @@ pub enum Revision {
     /// default):
     /// - a pressing kick over a cluster adds no more than 0.01 of the
     ///   scene's kinetic energy, twice the bound of the kick between a
-    ///   pressed pair alone (`push::CLUSTER_PRESS_GAIN`): where one of the pair is
-    ///   jammed, the projection gave the whole separation to what it could
-    ///   move, a disc forty times heavier set moving at the light one's
-    ///   bounce speed (7.3e-2 of a scene's energy at one event); held, the
-    ///   kick is the blend of the cluster's plastic limit and the biased
-    ///   projection within that bound
+    ///   pressed pair alone (`push::CLUSTER_PRESS_GAIN`): where one of the
+    ///   pair is jammed, the projection gave the whole separation to what
+    ///   it could move, a disc forty times heavier set moving at the light
+    ///   one's bounce speed (7.3e-2 of a scene's energy at one event);
+    ///   held, the kick is the blend of the cluster's plastic limit and the
+    ///   biased projection within that bound
     ///   (`Revision::bounds_cluster_kick_energy`);
     /// - the eleventh revision's rest of a pressed pair, its braking discs
     ///   held, is found by the active-set method where the projection
     ///   stalls on more contacts than the free discs have directions (a
     ///   frictionless disc caged by held discs), instead of kicking the
-    ///   whole pack, which
-    ///   crept at 1e-8 m/s until the run ended `stuck`
+    ///   whole pack, which crept at 1e-8 m/s until the run ended `stuck`
     ///   (`Revision::rests_caged_discs_by_active_set`);
     /// - a plastic pair hit again and again at one instant (160 times at
-    ///   least), each count of its hits slower than the last, is a collapse
-    ///   however hard the hits
-    ///   (a light elastic disc between a wall and a heavy plastic one,
-    ///   caught a per cent slower each time, a thousand hits an instant,
-    ///   instant after instant, until `stuck`)
+    ///   least), each count of its hits slower than the last, is a
+    ///   collapse however hard the hits (a light elastic disc between a
+    ///   wall and a heavy plastic one, caught a per cent slower each time,
+    ///   a thousand hits an instant, instant after instant, until `stuck`)
     ///   (`Revision::collapses_decaying_plastic_rings`).
     R12,
 }
