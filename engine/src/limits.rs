@@ -81,6 +81,17 @@ pub(crate) const REPEAT_HITS: u32 = 16;
 /// a cradle is the model's answer.)
 pub(crate) const EARLY_REPEAT_HITS: u32 = 8;
 
+/// From the twelfth revision, hits of one plastic pair at one instant from
+/// which it is taken as a collapse where its hits slow from one count to
+/// the next, gentle or not (see `Repeats::decaying`): a light elastic disc
+/// rung between a wall and a heavy plastic one slows by a per cent a
+/// cycle, hundreds of hits an instant. Counted from fewer (32, or 128),
+/// the rule also took shorter rings whose hits are the model's answer (a
+/// light frictionless disc rung among four others and the floor at one
+/// impact), and their plastic limit sent runs that reached their horizon
+/// under the eleventh revision into the event cap or `stuck`.
+pub(crate) const DECAYING_RING_HITS: u32 = 160;
+
 /// From the fifth revision, the fraction of the speed of the fastest disc
 /// they involve under which every approach at one instant must stay for
 /// [`REPEAT_HITS`] to take it as a collapse: discs pressed together while
@@ -285,6 +296,9 @@ struct PairHits {
     /// The pair's slots (the second `None` for an obstacle).
     slots: (usize, Option<usize>),
     hits: u32,
+    /// From the twelfth revision, how fast the pair approached at its
+    /// latest count (see [`Repeats::decaying`]).
+    counted: Option<f64>,
 }
 
 /// From the fifth revision, each inelastic pair's hits at the current
@@ -305,6 +319,10 @@ pub(crate) struct Repeats {
     since_count: f64,
     /// The fastest speed of a disc after a hit at this instant.
     moving: f64,
+    /// From the twelfth revision, a plastic pair's count is also taken
+    /// where the pair approached slower than at its previous count (see
+    /// [`Repeats::decaying`]).
+    decaying: bool,
 }
 
 impl Repeats {
@@ -317,7 +335,26 @@ impl Repeats {
             fastest: 0.0,
             since_count: 0.0,
             moving: 0.0,
+            decaying: false,
         }
+    }
+
+    /// From the twelfth revision: a plastic pair (restitution 0) hit at
+    /// least [`DECAYING_RING_HITS`] times whose count comes round again, its
+    /// hits slower than at its previous count, is a collapse however hard
+    /// its hits. A plastic hit leaves the pair
+    /// no approach; to be hit again at the same instant, something else
+    /// must have driven it back, every time with less: a light elastic disc
+    /// between a wall and a heavy plastic one pushing it bounces off the
+    /// wall and is caught again, its speed a per cent lower each time (the
+    /// ratio of the masses), a thousand hits an instant until the crawl
+    /// rule took the limit, instant after instant until the run ended
+    /// `stuck`. Its hits are not gentle (each approaches at twice the
+    /// speed of the discs), but they are no impact ringing through to an
+    /// end either: the sequence has none, only a limit.
+    pub(crate) fn decaying(mut self, on: bool) -> Self {
+        self.decaying = on;
+        self
     }
 
     /// A new instant, begun by `event`, whose bodies approached at
@@ -369,22 +406,34 @@ impl Repeats {
         self.since_count = self.since_count.max(approach.abs());
         let speed = |c: usize| world.speed_at_last_event(c);
         self.moving = self.moving.max(speed(sa)).max(sb.map_or(0.0, speed));
-        let hits = match self.hits.iter_mut().find(|h| h.pair == pair) {
-            Some(h) => {
-                h.hits += 1;
-                h.hits
+        let k = match self.hits.iter().position(|h| h.pair == pair) {
+            Some(k) => {
+                self.hits[k].hits += 1;
+                k
             }
             None => {
                 self.hits.push(PairHits {
                     pair,
                     slots: (sa, sb),
                     hits: 1,
+                    counted: None,
                 });
-                1
+                self.hits.len() - 1
             }
         };
-        if hits % self.every != 0 {
+        if !self.hits[k].hits.is_multiple_of(self.every) {
             return false;
+        }
+        // From the twelfth revision, a plastic pair hit slower than at its
+        // previous count (see `Repeats::decaying`).
+        let decayed = self.decaying
+            && plastic
+            && self.hits[k].hits >= DECAYING_RING_HITS
+            && self.hits[k]
+                .counted
+                .is_some_and(|before| approach.abs() < before);
+        if self.decaying && plastic {
+            self.hits[k].counted = Some(approach.abs());
         }
         // From the tenth revision, a plastic pair's count is also taken where
         // the hits since the last such count were gentle (see
@@ -395,7 +444,7 @@ impl Repeats {
         if window {
             self.since_count = 0.0;
         }
-        gentle
+        gentle || decayed
     }
 
     /// The pairs hit more than once at this instant (slots; `None` for an
@@ -438,5 +487,79 @@ pub(crate) trait Watched {
         if !matches!(event.kind, EventKind::BodyBody { .. }) {
             recent.push(usize::MAX);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two discs (slots 0 and 1, ids 1 and 2) of one restitution, each
+    /// moving at 1 m/s after every hit.
+    struct Pair(f64);
+
+    impl Watched for Pair {
+        fn slot_of(&self, id: BodyId) -> Option<usize> {
+            (id.0 >= 1 && id.0 <= 2).then(|| id.0 as usize - 1)
+        }
+        fn fastest_and_smallest(&self, _: f64) -> (f64, f64) {
+            (1.0, 1.0)
+        }
+        fn fastest_and_smallest_of(&self, _: &[usize], _: f64) -> (f64, f64) {
+            (1.0, 1.0)
+        }
+        fn restitution(&self, _: usize, _: Option<usize>) -> f64 {
+            self.0
+        }
+        fn speed_at_last_event(&self, _: usize) -> f64 {
+            1.0
+        }
+    }
+
+    fn hit() -> Event {
+        Event {
+            t: 1.0,
+            kind: EventKind::BodyBody {
+                a: BodyId(1),
+                b: BodyId(2),
+            },
+        }
+    }
+
+    /// The hit (1-based, up to the 400th) at which `repeats` first takes
+    /// the instant as a collapse, the pair approaching at `approach(k)` at
+    /// its `k`-th hit.
+    fn collapse_at(
+        world: &Pair,
+        mut repeats: Repeats,
+        approach: impl Fn(u32) -> f64,
+    ) -> Option<u32> {
+        repeats.start(hit(), approach(1));
+        (2..=400).find(|&k| repeats.note(world, &hit(), approach(k)))
+    }
+
+    #[test]
+    fn a_plastic_pair_rung_ever_slower_but_never_gently_is_a_collapse_from_the_twelfth_revision() {
+        // Each hit approaches a per cent slower than the one before, at
+        // twice the discs' speed at first and still above 1/100 of it at the
+        // 400th: never gentle.
+        let decaying = |k: u32| 2.0 * 0.99f64.powi(k as i32);
+        let plastic = Pair(0.0);
+        let r11 = Repeats::new(EARLY_REPEAT_HITS);
+        assert_eq!(collapse_at(&plastic, r11, decaying), None);
+        let r12 = Repeats::new(EARLY_REPEAT_HITS).decaying(true);
+        assert_eq!(
+            collapse_at(&plastic, r12, decaying),
+            Some(DECAYING_RING_HITS)
+        );
+    }
+
+    #[test]
+    fn a_ring_that_does_not_slow_or_has_restitution_is_left_to_its_hits() {
+        let steady = |_: u32| 2.0;
+        let r12 = || Repeats::new(EARLY_REPEAT_HITS).decaying(true);
+        assert_eq!(collapse_at(&Pair(0.0), r12(), steady), None);
+        let decaying = |k: u32| 2.0 * 0.99f64.powi(k as i32);
+        assert_eq!(collapse_at(&Pair(0.5), r12(), decaying), None);
     }
 }

@@ -171,6 +171,24 @@ pub(crate) fn press_gap(rev: Revision) -> f64 {
 /// before it stops.
 pub(crate) const PRESS_SPEED: f64 = 0.05;
 
+/// The most kinetic energy the pressing kick between a pair alone adds, as
+/// a fraction of the pair's: `m w^2 / 2` of its reduced mass `m` with `w`
+/// at most [`PRESS_SPEED`] of the sum of their speeds `a + b`, and
+/// `m (a + b)^2 <= 2 m (a^2 + b^2) <= 4` times their energy (`m` is below
+/// either mass), so at most `2 PRESS_SPEED^2`.
+pub(crate) const PRESS_GAIN: f64 = 2.0 * PRESS_SPEED * PRESS_SPEED;
+
+/// From the twelfth revision, the most kinetic energy a pressing kick over
+/// a cluster adds, as a fraction of the scene's (see
+/// `World::press_cluster`): twice the bound of a pair alone,
+/// [`PRESS_GAIN`], for the kick parts the pair hit and, from the fourth
+/// revision, the pairs its projection leaves pressed. Held to a fraction
+/// of the cluster's own energy instead, the kicks of a pair pressed for
+/// seconds in a cluster, each a few per cent of the cluster's energy and
+/// far less of the scene's, parted it so slowly that runs which reached
+/// their horizon under the eleventh revision ran into the event cap.
+pub(crate) const CLUSTER_PRESS_GAIN: f64 = 2.0 * PRESS_GAIN;
+
 /// Two discs pressed together obliquely: the separation speed to add to a
 /// hit between them, or `None` where the model is exact.
 ///

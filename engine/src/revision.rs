@@ -173,6 +173,27 @@ pub enum Revision {
     R11,
     /// The twelfth, as the eleventh but (rules being written; not yet the
     /// default):
+    /// - a pressing kick over a cluster adds no more than 0.01 of the
+    ///   scene's kinetic energy, twice the bound of the kick between a
+    ///   pressed pair alone (`push::CLUSTER_PRESS_GAIN`): where one of the
+    ///   pair is jammed, the projection gave the whole separation to what
+    ///   it could move, a disc forty times heavier set moving at the light
+    ///   one's bounce speed (7.3e-2 of a scene's energy at one event);
+    ///   held, the kick is the blend of the cluster's plastic limit and the
+    ///   biased projection within that bound
+    ///   (`Revision::bounds_cluster_kick_energy`);
+    /// - the eleventh revision's rest of a pressed pair, its braking discs
+    ///   held, is found by the active-set method where the projection
+    ///   stalls on more contacts than the free discs have directions (a
+    ///   frictionless disc caged by held discs), instead of kicking the
+    ///   whole pack, which crept at 1e-8 m/s until the run ended `stuck`
+    ///   (`Revision::rests_caged_discs_by_active_set`);
+    /// - a plastic pair hit again and again at one instant (160 times at
+    ///   least), each count of its hits slower than the last, is a
+    ///   collapse however hard the hits (a light elastic disc between a
+    ///   wall and a heavy plastic one, caught a per cent slower each time,
+    ///   a thousand hits an instant, instant after instant, until `stuck`)
+    ///   (`Revision::collapses_decaying_plastic_rings`);
     /// - a touching pair of moving discs that neither approaches nor parts
     ///   faster than rounding noise is still sought 1e-10 of its contact
     ///   distance inside it (as the third revision seeks one approaching
@@ -265,6 +286,30 @@ impl Revision {
     /// Whether this revision has the twelfth revision's rules.
     pub fn at_least_r12(self) -> bool {
         self >= Revision::R12
+    }
+
+    /// Whether a pressing kick over a cluster adds no more than 0.01 of the
+    /// scene's kinetic energy, twice what the kick between a pressed pair
+    /// alone may add of the pair's (the twelfth revision; see
+    /// `World::press_cluster`).
+    pub fn bounds_cluster_kick_energy(self) -> bool {
+        self.at_least_r12()
+    }
+
+    /// Whether the rest of a pressed pair's braking discs (the eleventh
+    /// revision's held projection) is found by the active-set method where
+    /// projected Gauss–Seidel stalls (the twelfth revision; see
+    /// `World::press_cluster`).
+    pub fn rests_caged_discs_by_active_set(self) -> bool {
+        self.at_least_r12()
+    }
+
+    /// Whether a plastic pair hit at one instant again and again, each
+    /// count of its hits slower than the last, is taken as a collapse
+    /// however hard its hits (the twelfth revision; see
+    /// `limits::Repeats::decaying`).
+    pub fn collapses_decaying_plastic_rings(self) -> bool {
+        self.at_least_r12()
     }
 }
 
