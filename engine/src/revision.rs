@@ -171,8 +171,19 @@ pub enum Revision {
     ///   settling it back to rest, ended `stuck` with no collapse taken.
     #[default]
     R11,
-    /// The twelfth, as the eleventh but (rules being written; not yet the
-    /// default):
+    /// The twelfth, as the eleventh but (not yet the default):
+    /// - a disc that takes part in at least half of the latest events of a
+    ///   block of `limits::CRAWL_EVENTS` and moved no more than
+    ///   `limits::CRAWL` of its radius over it, while the block as a whole
+    ///   moved something, is jammed (`limits::Crawl::jammed`): it comes to
+    ///   rest, and whatever touches it and would run into it is stopped
+    ///   against it, as the eighth revision's crawl rest does
+    ///   (`World::crawl_rest`). A light frictionless disc in a corner,
+    ///   pressed into it by a heavy disc sliding past, rang between the
+    ///   two walls and that disc, a wall hit and a hit of the pair at each
+    ///   of a run of instants nanoseconds apart (never eight hits of a
+    ///   pair at one instant), while the sliding disc moved too far for
+    ///   the block to be still, until the event cap.
     R12,
 }
 
@@ -256,6 +267,15 @@ impl Revision {
     /// Whether this revision has the twelfth revision's rules.
     pub fn at_least_r12(self) -> bool {
         self >= Revision::R12
+    }
+
+    /// Whether a disc that barely moves while it takes half the hits of a
+    /// block of events that moves something else (a light disc jammed in a
+    /// corner, pressed by one sliding past) comes to rest, and what presses
+    /// it is stopped against it (a twelfth revision rule, see
+    /// `limits::Crawl::jammed`).
+    pub fn rests_jammed_disc(self) -> bool {
+        self.at_least_r12()
     }
 }
 

@@ -526,7 +526,8 @@ impl World {
         let stuck_after = STUCK_EVENTS + STUCK_EVENTS_PER_BODY * self.slots.len() as u64;
         // Worked out only once events have shared an instant.
         let mut tick: Option<f64> = None;
-        let mut crawl = Crawl::new(self.last_event_t, self.config.revision.at_least_r8());
+        let mut crawl = Crawl::new(self.last_event_t, self.config.revision.at_least_r8())
+            .finding_jams(self.config.revision.rests_jammed_disc());
         let r5 = self.config.revision.at_least_r5();
         let mut repeats = Repeats::new(if self.config.revision.at_least_r10() {
             EARLY_REPEAT_HITS
@@ -621,6 +622,10 @@ impl World {
                         } else {
                             self.collapse(&mut latest, t, crawl.span());
                         }
+                    } else if let Some(jammed) = crawl.jammed() {
+                        // From the twelfth revision, a jammed disc comes to
+                        // rest and what presses it is stopped against it.
+                        self.crawl_rest(&mut vec![jammed], t, crawl.span());
                     }
                 }
                 events_left -= 1;
@@ -745,7 +750,9 @@ impl World {
     /// momentum, where the earlier revisions ended `stuck`. Where every
     /// disc touching them is elastic nothing is stopped: they lose no
     /// energy, and the run ends `stuck` if it goes on. Counted as a
-    /// collapse.
+    /// collapse. From the twelfth revision the same is done with a jammed
+    /// disc alone (see `Crawl::jammed`) at the end of a block that moved
+    /// something else.
     fn crawl_rest(&mut self, recent: &mut Vec<usize>, t: f64, span: f64) {
         recent.retain(|&c| c != usize::MAX && self.slots.get(c).is_some_and(|s| s.alive));
         recent.sort_unstable();
