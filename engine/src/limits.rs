@@ -191,11 +191,6 @@ pub(crate) struct Crawl {
     /// Slots of the latest [`COLLAPSE_WINDOW`] events of the block
     /// (`usize::MAX` for a hit on an obstacle), as `World::collapse` takes.
     recent: Vec<usize>,
-    /// From the twelfth revision: blocks that moved something are searched
-    /// for a jammed disc (see [`Crawl::jammed`]).
-    jams: bool,
-    /// The jammed disc the block just ended found, if any.
-    jammed: Option<usize>,
 }
 
 impl Crawl {
@@ -210,16 +205,7 @@ impl Crawl {
             still: 0,
             span: 0.0,
             recent: Vec::new(),
-            jams: false,
-            jammed: None,
         }
-    }
-
-    /// From the twelfth revision, a block that moved something is also
-    /// searched for a jammed disc (see [`Crawl::jammed`]).
-    pub(crate) fn finding_jams(mut self, on: bool) -> Self {
-        self.jams = on;
-        self
     }
 
     /// Counts `event`, at `t`. At the end of a block of [`CRAWL_EVENTS`]
@@ -263,17 +249,8 @@ impl Crawl {
             Some(recent)
         } else {
             self.still = 0;
-            if self.jams {
-                self.jammed = jammed_in(world, &recent, t, self.span);
-            }
             None
         }
-    }
-
-    /// The jammed disc the block just ended found (see [`jammed_in`]),
-    /// once.
-    pub(crate) fn jammed(&mut self) -> Option<usize> {
-        self.jammed.take()
     }
 
     /// Moves the block's start `by` seconds earlier: the world's working
@@ -291,32 +268,6 @@ impl Crawl {
     pub(crate) fn span(&self) -> f64 {
         self.span
     }
-}
-
-/// From the twelfth revision, the disc of a block's latest events
-/// (`recent`, slots; `usize::MAX` for an obstacle) that is in at least half
-/// of them and moved, over the block's `span`, no more than [`CRAWL`] of
-/// its radius: a disc jammed where it cannot go (a light disc in a corner,
-/// touching both walls) that a disc sliding past it presses again and
-/// again. Its hits ring between it, the walls and the pressing disc, a
-/// wall hit and a hit of the pair at each of a run of instants a few
-/// picoseconds to nanoseconds apart, never enough hits of a pair at one
-/// instant for [`REPEAT_HITS`], while the pressing disc slides on too fast
-/// for the block to be still. `None` where no disc is.
-fn jammed_in(world: &impl Watched, recent: &[usize], t: f64, span: f64) -> Option<usize> {
-    let mut best: Option<(usize, usize)> = None;
-    for &c in recent.iter().filter(|&&c| c != usize::MAX) {
-        let n = recent.iter().filter(|&&d| d == c).count();
-        if best.is_none_or(|(_, m)| n > m) {
-            best = Some((c, n));
-        }
-    }
-    let (c, n) = best?;
-    if (n as u64) * 2 < COLLAPSE_WINDOW {
-        return None;
-    }
-    let (speed, radius) = world.fastest_and_smallest_of(&[c], t);
-    (span * speed <= CRAWL * radius).then_some(c)
 }
 
 /// What two bodies hit: two discs (ids in order), or a disc and a line or

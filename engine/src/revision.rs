@@ -172,18 +172,18 @@ pub enum Revision {
     #[default]
     R11,
     /// The twelfth, as the eleventh but (not yet the default):
-    /// - a disc that takes part in at least half of the latest events of a
-    ///   block of `limits::CRAWL_EVENTS` and moved no more than
-    ///   `limits::CRAWL` of its radius over it, while the block as a whole
-    ///   moved something, is jammed (`limits::Crawl::jammed`): it comes to
-    ///   rest, and whatever touches it and would run into it is stopped
-    ///   against it, as the eighth revision's crawl rest does
-    ///   (`World::crawl_rest`). A light frictionless disc in a corner,
-    ///   pressed into it by a heavy disc sliding past, rang between the
-    ///   two walls and that disc, a wall hit and a hit of the pair at each
-    ///   of a run of instants nanoseconds apart (never eight hits of a
-    ///   pair at one instant), while the sliding disc moved too far for
-    ///   the block to be still, until the event cap.
+    /// - a plastic hit between two discs, gentle (its approach within
+    ///   `limits::GENTLE` of the faster disc's speed), on the lighter one
+    ///   where it is plastic and lies in a corner (touches two obstacles
+    ///   that are not parallel), is taken at once as the plastic limit of
+    ///   the two, every disc touching either through a plastic contact,
+    ///   and the obstacles the plastic ones touch (`World::cornered_hit`).
+    ///   A light plastic disc in a corner, pressed by a heavier one
+    ///   sliding past, was sent by each hit into one wall, which it hit a
+    ///   picosecond to a nanosecond later, its partner hitting it again
+    ///   at that same instant and losing only the light disc's share of
+    ///   its approach: two or three hits an instant, never the tenth
+    ///   revision's eight hits of a pair, until the event cap.
     R12,
 }
 
@@ -269,12 +269,11 @@ impl Revision {
         self >= Revision::R12
     }
 
-    /// Whether a disc that barely moves while it takes half the hits of a
-    /// block of events that moves something else (a light disc jammed in a
-    /// corner, pressed by one sliding past) comes to rest, and what presses
-    /// it is stopped against it (a twelfth revision rule, see
-    /// `limits::Crawl::jammed`).
-    pub fn rests_jammed_disc(self) -> bool {
+    /// Whether a gentle plastic hit on a light plastic disc lying in a
+    /// corner is taken as one plastic limit with the walls it touches and
+    /// the discs pressing on it (a twelfth revision rule, see
+    /// `World::cornered_hit`).
+    pub fn takes_cornered_hit_with_walls(self) -> bool {
         self.at_least_r12()
     }
 }
