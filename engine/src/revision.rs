@@ -172,8 +172,8 @@ pub enum Revision {
     #[default]
     R11,
     /// The twelfth, as the eleventh but (not yet the default):
-    /// - a plastic hit between two discs, gentle (its approach within
-    ///   `limits::GENTLE` of the faster disc's speed), on the lighter one
+    /// - a plastic hit between two discs, gentle (its approach within 1e-3
+    ///   of the faster disc's speed), on the lighter one
     ///   where it is plastic and lies in a corner (touches two obstacles
     ///   that are not parallel), is taken at once as the plastic limit of
     ///   the two, every disc touching either through a plastic contact,
