@@ -202,7 +202,19 @@ pub enum Revision {
     ///   two discs left side by side by a plastic ring at one instant,
     ///   braked differently along a normal turning as one pulls ahead,
     ///   came together from a tangent, below the noise of an approach, and
-    ///   went 1.8e-8 of their contact distance into each other.
+    ///   went 1.8e-8 of their contact distance into each other;
+    /// - a plastic hit between two discs, gentle (its approach within 1e-3
+    ///   of the faster disc's speed), on the lighter one
+    ///   where it is plastic and lies in a corner (touches two obstacles
+    ///   that are not parallel), is taken at once as the plastic limit of
+    ///   the two, every disc touching either through a plastic contact,
+    ///   and the obstacles the plastic ones touch (`World::cornered_hit`).
+    ///   A light plastic disc in a corner, pressed by a heavier one
+    ///   sliding past, was sent by each hit into one wall, which it hit a
+    ///   picosecond to a nanosecond later, its partner hitting it again
+    ///   at that same instant and losing only the light disc's share of
+    ///   its approach: two or three hits an instant, never the tenth
+    ///   revision's eight hits of a pair, until the event cap.
     R12,
 }
 
@@ -309,6 +321,14 @@ impl Revision {
     /// however hard its hits (the twelfth revision; see
     /// `limits::Repeats::decaying`).
     pub fn collapses_decaying_plastic_rings(self) -> bool {
+        self.at_least_r12()
+    }
+
+    /// Whether a gentle plastic hit on a light plastic disc lying in a
+    /// corner is taken as one plastic limit with the walls it touches and
+    /// the discs pressing on it (a twelfth revision rule, see
+    /// `World::cornered_hit`).
+    pub fn takes_cornered_hit_with_walls(self) -> bool {
         self.at_least_r12()
     }
 }

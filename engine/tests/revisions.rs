@@ -724,3 +724,20 @@ fn a_light_elastic_disc_rung_between_a_wall_and_a_heavy_plastic_one_collapses() 
         assert!(overlap < 1e-9, "{name}: overlap {overlap:e}");
     }
 }
+
+#[test]
+fn a_plastic_hit_on_a_light_disc_in_a_corner_is_taken_with_both_walls() {
+    // Light frictionless plastic disc 1 lies in the corner; heavier braking
+    // plastic disc 5, with disc 6 against it, slides past and presses it.
+    // Each hit sent disc 1 into a wall, which it hit 5e-11 s later (the
+    // median), disc 5 hitting it again at that same instant and losing only
+    // disc 1's small share of its approach: never eight hits of a pair at
+    // one instant, too much motion for the crawl, the event cap at 0.89 s.
+    // From revision 12 a gentle plastic hit on a light plastic disc in a
+    // corner is the plastic limit of the pair, the discs touching them
+    // through plastic contacts and the walls, at once.
+    reaches_the_horizon_from(Revision::R12, "mixed-box-1168", 100.0);
+    // The same with elastic disc 5 (the pair plastic through disc 1), the
+    // event cap at 0.11 s.
+    reaches_the_horizon_from(Revision::R12, "mixed-box-98865", 100.0);
+}
