@@ -1762,8 +1762,9 @@ impl World {
     fn cornered_hit(&mut self, i: usize, j: usize, t: f64) -> bool {
         let plastic = |w: &World, c: usize| w.material[c].restitution == 0.0;
         let mut members = vec![i, j];
+        let at = self.positions(t);
         for m in [i, j] {
-            for c in self.touching(m, t) {
+            for c in self.touching(m, &at) {
                 if !members.contains(&c) && (plastic(self, m) || plastic(self, c)) {
                     members.push(c);
                 }
