@@ -169,10 +169,8 @@ pub enum Revision {
     ///   is not lossless (`World::all_elastic`): a frictionless disc
     ///   rattling at one instant against a resting braking one, each hit
     ///   settling it back to rest, ended `stuck` with no collapse taken.
-    #[default]
     R11,
-    /// The twelfth, as the eleventh but (rules being written; not yet the
-    /// default):
+    /// The twelfth, as the eleventh but:
     /// - a pressing kick over a cluster adds no more than 0.01 of the
     ///   scene's kinetic energy, twice the bound of the kick between a
     ///   pressed pair alone (`push::CLUSTER_PRESS_GAIN`): where one of the
@@ -215,12 +213,13 @@ pub enum Revision {
     ///   at that same instant and losing only the light disc's share of
     ///   its approach: two or three hits an instant, never the tenth
     ///   revision's eight hits of a pair, until the event cap.
+    #[default]
     R12,
 }
 
 impl Revision {
     /// The revision new computations use.
-    pub const LATEST: Revision = Revision::R11;
+    pub const LATEST: Revision = Revision::R12;
 
     /// Every revision, oldest first.
     pub const ALL: [Revision; 12] = [
