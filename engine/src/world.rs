@@ -2108,6 +2108,14 @@ impl World {
     }
 }
 
+/// The kinetic energy of discs at velocities `v` with inverse masses `inv`.
+fn kinetic_energy(v: &[DVec2], inv: &[f64]) -> f64 {
+    v.iter()
+        .zip(inv)
+        .map(|(v, &k)| 0.5 * v.length_squared() / k)
+        .sum()
+}
+
 /// From the twelfth revision, the kick over a cluster `after` (from the
 /// velocities `vel` of discs with inverse masses `inv`, the `contacts`
 /// biased where a pair presses) held to add no more than
@@ -2133,12 +2141,7 @@ fn within_press_bound(
     after: Vec<DVec2>,
     scene: f64,
 ) -> Option<Vec<DVec2>> {
-    let energy = |v: &[DVec2]| -> f64 {
-        v.iter()
-            .zip(inv)
-            .map(|(v, &k)| 0.5 * v.length_squared() / k)
-            .sum()
-    };
+    let energy = |v: &[DVec2]| kinetic_energy(v, inv);
     let before = energy(vel);
     let budget = before + push::CLUSTER_PRESS_GAIN * scene.max(before);
     if energy(&after) <= budget {
@@ -2175,11 +2178,24 @@ fn within_press_bound(
 mod tests {
     use super::*;
 
-    fn energy(v: &[DVec2], inv: &[f64]) -> f64 {
-        v.iter()
-            .zip(inv)
-            .map(|(v, &k)| 0.5 * v.length_squared() / k)
-            .sum()
+    use super::kinetic_energy as energy;
+
+    /// Disc 0 sliding along a wall at 1 m/s, touching disc 1 (at rest) on
+    /// its other side, the pair parting at 0.05 m/s: the velocities and
+    /// the contacts of the kick.
+    fn against_a_wall() -> ([DVec2; 2], [collapse::Contact; 2]) {
+        (
+            [DVec2::new(0.0, 1.0), DVec2::ZERO],
+            [
+                collapse::Contact::plastic(0, None, DVec2::X),
+                collapse::Contact {
+                    a: 1,
+                    b: Some(0),
+                    n: DVec2::X,
+                    bias: 0.05,
+                },
+            ],
+        )
     }
 
     #[test]
@@ -2189,17 +2205,8 @@ mod tests {
         // 0.05 m/s. Disc 0 cannot move into the wall, so the biased
         // projection sets disc 1 moving at 0.05 m/s: 1.25e-3 J, a quarter
         // of the 5e-3 J the two have.
-        let vel = [DVec2::new(0.0, 1.0), DVec2::ZERO];
+        let (vel, contacts) = against_a_wall();
         let inv = [100.0, 1.0];
-        let contacts = [
-            collapse::Contact::plastic(0, None, DVec2::X),
-            collapse::Contact {
-                a: 1,
-                b: Some(0),
-                n: DVec2::X,
-                bias: 0.05,
-            },
-        ];
         let after = collapse::resolve(&vel, &inv, &contacts, PRESS_SWEEPS).expect("a kick");
         assert!((after[1].x - 0.05).abs() < 1e-12, "{after:?}");
         let held = within_press_bound(&vel, &inv, &contacts, after, energy(&vel, &inv))
@@ -2217,17 +2224,8 @@ mod tests {
     #[test]
     fn a_kick_within_its_bound_is_left_as_the_projection_gives_it() {
         // The same, disc 1 as light as disc 0: 1.25e-5 J of 5e-3 J.
-        let vel = [DVec2::new(0.0, 1.0), DVec2::ZERO];
+        let (vel, contacts) = against_a_wall();
         let inv = [100.0, 100.0];
-        let contacts = [
-            collapse::Contact::plastic(0, None, DVec2::X),
-            collapse::Contact {
-                a: 1,
-                b: Some(0),
-                n: DVec2::X,
-                bias: 0.05,
-            },
-        ];
         let after = collapse::resolve(&vel, &inv, &contacts, PRESS_SWEEPS).expect("a kick");
         let held = within_press_bound(&vel, &inv, &contacts, after.clone(), energy(&vel, &inv));
         assert_eq!(held, Some(after));
