@@ -215,6 +215,8 @@ pub enum Revision {
     ///   revision's eight hits of a pair, until the event cap.
     #[default]
     R12,
+    /// The thirteenth, as the twelfth but:
+    R13,
 }
 
 impl Revision {
@@ -222,7 +224,7 @@ impl Revision {
     pub const LATEST: Revision = Revision::R12;
 
     /// Every revision, oldest first.
-    pub const ALL: [Revision; 12] = [
+    pub const ALL: [Revision; 13] = [
         Revision::R1,
         Revision::R2,
         Revision::R3,
@@ -235,6 +237,7 @@ impl Revision {
         Revision::R10,
         Revision::R11,
         Revision::R12,
+        Revision::R13,
     ];
 
     /// Whether this revision has the second revision's rules.
@@ -299,6 +302,11 @@ impl Revision {
         self >= Revision::R12
     }
 
+    /// Whether this revision has the thirteenth revision's rules.
+    pub fn at_least_r13(self) -> bool {
+        self >= Revision::R13
+    }
+
     /// Whether a pressing kick over a cluster adds no more than 0.01 of the
     /// scene's kinetic energy, twice what the kick between a pressed pair
     /// alone may add of the pair's (the twelfth revision; see
@@ -357,10 +365,10 @@ mod tests {
         for (k, r) in Revision::ALL.into_iter().enumerate() {
             assert_eq!(format!("r{}", k + 1).parse(), Ok(r));
         }
-        let err = "r13".parse::<Revision>().unwrap_err();
+        let err = "r14".parse::<Revision>().unwrap_err();
         assert_eq!(
             err.to_string(),
-            "no engine revision named \"r13\" (r1, r2, ...)"
+            "no engine revision named \"r14\" (r1, r2, ...)"
         );
     }
 }
