@@ -244,6 +244,10 @@ pub struct Report {
     pub worst_press_gain: f64,
     /// CPU time of the run.
     pub elapsed: Duration,
+    /// The most events in a row at one time (the same `f64`): a livelock
+    /// at one instant runs this up to the event cap, a long run that
+    /// advances in time does not.
+    pub longest_instant: u64,
 }
 
 impl fmt::Display for Report {
@@ -251,13 +255,14 @@ impl fmt::Display for Report {
         let names: Vec<&str> = self.failures.iter().map(|x| x.name()).collect();
         write!(
             f,
-            "{} events, end {:?}, worst overlap {:.3e}, worst energy gain {:.3e} ({:.3e} pressing), {:.1} ms, failures [{}]",
+            "{} events, end {:?}, worst overlap {:.3e}, worst energy gain {:.3e} ({:.3e} pressing), {:.1} ms, longest run at one time {} events, failures [{}]",
             self.events,
             self.end,
             self.worst_overlap,
             self.worst_gain,
             self.worst_press_gain,
             self.elapsed.as_secs_f64() * 1e3,
+            self.longest_instant,
             names.join(", ")
         )
     }
@@ -1005,6 +1010,9 @@ struct Checker {
     worst_press_gain: f64,
     /// Hits of the pressing approximation so far.
     pressed: u64,
+    /// Events in a row at the latest event's time, and the most seen.
+    instant: u64,
+    longest_instant: u64,
 }
 
 impl Checker {
@@ -1169,6 +1177,12 @@ impl EventHandler for Checker {
         if event.t < self.last {
             self.fail(Failure::Backwards);
         }
+        self.instant = if event.t == self.last {
+            self.instant + 1
+        } else {
+            1
+        };
+        self.longest_instant = self.longest_instant.max(self.instant);
         self.last = event.t;
         self.collisions += event.kind.is_collision() as u64;
         for id in event.kind.bodies() {
@@ -1193,6 +1207,12 @@ pub fn run(h: &Hostile) -> Report {
 
 /// Runs one hostile scene under the engine's `revision` and checks it.
 pub fn run_under(h: &Hostile, revision: Revision) -> Report {
+    run_capped(h, revision, MAX_EVENTS)
+}
+
+/// Runs one hostile scene under the engine's `revision` with an event cap
+/// of `max_events` (a run that reaches it is a livelock) and checks it.
+pub fn run_capped(h: &Hostile, revision: Revision, max_events: u64) -> Report {
     let started = ThreadTime::now();
     let mut report = Report {
         failures: Vec::new(),
@@ -1202,6 +1222,7 @@ pub fn run_under(h: &Hostile, revision: Revision) -> Report {
         worst_gain: 0.0,
         worst_press_gain: 0.0,
         elapsed: Duration::ZERO,
+        longest_instant: 0,
     };
     let config = WorldConfig {
         revision,
@@ -1248,6 +1269,8 @@ pub fn run_under(h: &Hostile, revision: Revision) -> Report {
         worst_gain: 0.0,
         worst_press_gain: 0.0,
         pressed: 0,
+        instant: 0,
+        longest_instant: 0,
     };
     let bodies = &h.scene.bodies;
     let energy: f64 = bodies
@@ -1269,7 +1292,7 @@ pub fn run_under(h: &Hostile, revision: Revision) -> Report {
     let limits = Limits {
         until: h.until,
         max_collisions: u64::MAX,
-        max_events: MAX_EVENTS,
+        max_events,
     };
     let end = world.run(&limits, &mut checker);
     report.events = world.stats().events;
@@ -1307,12 +1330,14 @@ pub fn run_under(h: &Hostile, revision: Revision) -> Report {
     report.worst_overlap = checker.worst;
     report.worst_gain = checker.worst_gain;
     report.worst_press_gain = checker.worst_press_gain;
+    report.longest_instant = checker.longest_instant;
     report
 }
 
-/// Runs `h`, turning a panic into a [`Failure::Panic`].
-pub fn run_caught(h: &Hostile, revision: Revision) -> Report {
-    match std::panic::catch_unwind(|| run_under(h, revision)) {
+/// Runs `h` under `revision` with an event cap of `max_events`, turning a
+/// panic into a [`Failure::Panic`].
+pub fn run_caught(h: &Hostile, revision: Revision, max_events: u64) -> Report {
+    match std::panic::catch_unwind(|| run_capped(h, revision, max_events)) {
         Ok(r) => r,
         Err(_) => Report {
             failures: vec![Failure::Panic],
@@ -1322,6 +1347,7 @@ pub fn run_caught(h: &Hostile, revision: Revision) -> Report {
             worst_gain: 0.0,
             worst_press_gain: 0.0,
             elapsed: Duration::ZERO,
+            longest_instant: 0,
         },
     }
 }
@@ -1329,6 +1355,25 @@ pub fn run_caught(h: &Hostile, revision: Revision) -> Report {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_longest_run_at_one_time_counts_a_cradles_hits_at_one_instant() {
+        // Three equal elastic discs in a row, touching, the first moving
+        // into the others: its hit passes down the row at one instant (two
+        // hits at t = 0), and the last disc slides off alone.
+        let bodies = (0..3u32)
+            .map(|k| {
+                let vel = if k == 0 { DVec2::X } else { DVec2::ZERO };
+                let pos = DVec2::new(0.1 * f64::from(k), 0.0);
+                disc(u64::from(k) + 1, pos, vel, 0.05, 1.0, 0.0, 1.0)
+            })
+            .collect();
+        let h = Hostile::plain(Kind::Cradle, 0, scene(bodies, Vec::new(), Vec::new()));
+        let report = run(&h);
+        assert!(report.failures.is_empty(), "{report}");
+        assert_eq!(report.events, 2, "{report}");
+        assert_eq!(report.longest_instant, 2, "{report}");
+    }
 
     #[test]
     fn every_kind_generates_valid_scenes() {
@@ -1391,7 +1436,7 @@ mod tests {
         for kind in Kind::ALL {
             for seed in 0..seeds(kind) {
                 let h = Hostile::generate(kind, seed);
-                let mut report = run_caught(&h, Revision::LATEST);
+                let mut report = run_caught(&h, Revision::LATEST, MAX_EVENTS);
                 run += 1;
                 // Speed is measured by the `hostile` binary, not here.
                 report.failures.retain(|f| *f != Failure::Slow);

@@ -4,7 +4,7 @@
 
 use clap::Parser;
 use engine::Revision;
-use lab::hostile::{run_caught, Failure, Hostile, Kind, Report};
+use lab::hostile::{run_caught, Failure, Hostile, Kind, Report, MAX_EVENTS};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -43,6 +43,11 @@ struct Args {
     /// latest (`engine::Revision::LATEST`) when not given.
     #[arg(long)]
     revision: Option<Revision>,
+    /// The event cap of one run: a run that reaches it fails as a
+    /// livelock (`lab::hostile::MAX_EVENTS` unless told otherwise; a larger
+    /// cap tells a long run from one that never ends).
+    #[arg(long, default_value_t = MAX_EVENTS)]
+    max_events: u64,
     /// Threads running scenes.
     #[arg(long, default_value_t = 1)]
     jobs: u64,
@@ -101,6 +106,8 @@ fn main() -> ExitCode {
     }
     let jobs = args.jobs.max(1);
     let revision = args.revision.unwrap_or(Revision::LATEST);
+    let max_events = args.max_events;
+    let mut instant = (0u64, Kind::PushChain, 0u64);
     for &kind in &kinds {
         let mut dumped = 0;
         // Each thread runs every `jobs`-th seed; reports are folded in seed
@@ -112,7 +119,14 @@ fn main() -> ExitCode {
                         (args.seed + j..args.seed + per_kind)
                             .step_by(jobs as usize)
                             .map(|seed| {
-                                (seed, run_caught(&Hostile::generate(kind, seed), revision))
+                                (
+                                    seed,
+                                    run_caught(
+                                        &Hostile::generate(kind, seed),
+                                        revision,
+                                        max_events,
+                                    ),
+                                )
                             })
                             .collect::<Vec<_>>()
                     })
@@ -136,6 +150,9 @@ fn main() -> ExitCode {
             }
             if report.worst_gain > gain.0 {
                 gain = (report.worst_gain, kind, seed);
+            }
+            if report.longest_instant > instant.0 {
+                instant = (report.longest_instant, kind, seed);
             }
             if report.worst_press_gain > press_gain.0 {
                 press_gain = (report.worst_press_gain, kind, seed);
@@ -184,6 +201,12 @@ fn main() -> ExitCode {
         press_gain.0,
         press_gain.1.name(),
         press_gain.2
+    );
+    println!(
+        "longest run of events at one time {} ({} seed {})",
+        instant.0,
+        instant.1.name(),
+        instant.2
     );
     if !table.is_empty() {
         println!("| kind | failure | scenes |\n| --- | --- | ---: |");
