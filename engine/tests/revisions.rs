@@ -741,3 +741,58 @@ fn a_plastic_hit_on_a_light_disc_in_a_corner_is_taken_with_both_walls() {
     // event cap at 0.11 s.
     reaches_the_horizon_from(Revision::R12, "mixed-box-98865", 100.0);
 }
+
+/// Revision 12 ends `name` `stuck` before the mixed boxes' horizon;
+/// revision 13 (and every one after it) reaches the horizon or comes to
+/// rest, within the cap and without overlap.
+fn unstuck_from_r13(name: &str) {
+    assert_eq!(
+        run_until(name, Revision::R12, 100.0).0,
+        EndReason::Stuck,
+        "{name} under R12"
+    );
+    for revision in Revision::ALL[index(Revision::R13)..].iter().copied() {
+        let (reason, events, overlap) = run_until(name, revision, 100.0);
+        assert!(
+            matches!(reason, EndReason::Until | EndReason::Rest),
+            "{name} under {revision:?}: {reason:?}"
+        );
+        assert!(events < CAP, "{name}: {events} events");
+        assert!(overlap < 1e-9, "{name}: overlap {overlap:e}");
+    }
+}
+
+#[test]
+fn a_frictionless_disc_resting_on_a_pushed_elastic_pair_joins_its_push() {
+    // In mixed-box 188734 frictionless elastic disc 2 follows the elastic
+    // pair 3-4 (3 frictionless, 4 braking) along the floor at 7.5e-8 m/s,
+    // its velocity 1.4e-9 of theirs off, beyond the tolerance that joins a
+    // pushed chain: 2 hit 3 at once, the hit gave 3 its own braking back
+    // (none), 3 hit 4, the pair's push pooled its braking again, 20,000
+    // hits at one instant, and the run ended stuck with no collapse taken
+    // (every disc elastic). From revision 13 an elastic ring with a braking
+    // disc whose contacts approach and part gently is a collapse.
+    unstuck_from_r13("mixed-box-188734");
+    // The same ring in mixed-box 193803 (frictionless 1 behind braking
+    // 2-3) and 594826 (frictionless 2 behind braking 3-4).
+    unstuck_from_r13("mixed-box-193803");
+    unstuck_from_r13("mixed-box-594826");
+}
+
+#[test]
+fn an_elastic_pair_chattering_as_it_brakes_collapses_instead_of_crawling() {
+    // In mixed-box 100860 elastic discs 3 and 4 (braking at 0.17 and 61
+    // m/s^2) slide together at 2.4e-8 m/s, bouncing 1.9e-12 m/s apart, a
+    // bounce every 6.4e-14 s: some 40,000 bounces before they stop, which
+    // the crawl rule (blocks of 1,000 events that move nothing) ended
+    // stuck after 23,000, taking no collapse (both elastic).
+    unstuck_from_r13("mixed-box-100860");
+}
+
+#[test]
+fn two_elastic_discs_resting_in_a_corner_ring_no_longer_without_end() {
+    // In mixed-box 449875 elastic discs 1 (braking at 268 m/s^2) and 2
+    // lie side by side in the corner: 1-2, 2-wall, 2-1, 1-wall, 5,000 times
+    // each at one instant, every approach below 1e-8 m/s, until stuck.
+    unstuck_from_r13("mixed-box-449875");
+}
