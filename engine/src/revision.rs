@@ -225,7 +225,15 @@ pub enum Revision {
     ///   frictionless disc behind a pushed elastic pair, its velocity
     ///   1.4e-9 of theirs off, hit the middle disc 20,000 times at one
     ///   instant, each hit giving it its own braking back, until `stuck`
-    ///   (`Revision::collapses_resting_elastic_rings`).
+    ///   (`Revision::collapses_resting_elastic_rings`);
+    /// - the collapse of an instant's repeated inelastic hits
+    ///   (`World::collapse_repeated`) takes in the elastic pairs hit more
+    ///   than once at that instant too: a light elastic disc between a
+    ///   heavy plastic one and an elastic one resting on a wall rang
+    ///   between them, a few per cent slower each time, and the collapse
+    ///   of the plastic pair alone drove it into its elastic neighbour
+    ///   again, 20,000 hits at one instant, until `stuck`
+    ///   (`Revision::collapses_rings_with_elastic_pairs`).
     R13,
 }
 
@@ -347,6 +355,13 @@ impl Revision {
     /// limit as an inelastic collapse is (the thirteenth revision; see
     /// `World::elastic_ring_rests`).
     pub fn collapses_resting_elastic_rings(self) -> bool {
+        self.at_least_r13()
+    }
+
+    /// Whether the collapse of an instant's repeated inelastic hits also
+    /// takes in the elastic pairs hit more than once at that instant (the
+    /// thirteenth revision; see `limits::Repeats::with_elastic`).
+    pub fn collapses_rings_with_elastic_pairs(self) -> bool {
         self.at_least_r13()
     }
 

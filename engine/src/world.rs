@@ -549,7 +549,8 @@ impl World {
         } else {
             REPEAT_HITS
         })
-        .decaying(self.config.revision.collapses_decaying_plastic_rings());
+        .decaying(self.config.revision.collapses_decaying_plastic_rings())
+        .with_elastic(self.config.revision.collapses_rings_with_elastic_pairs());
         // From the seventh revision: the fine clock (see `clock`), and the
         // current instant's tick (see `World::instant_tick`), worked out
         // only once an event comes near it.
@@ -903,7 +904,9 @@ impl World {
     /// with restitution that was hit once (the last disc of a chain, sent
     /// off by the collapse behind it) is left to the hits that follow;
     /// from the eleventh revision, not one with an obstacle, which the
-    /// limit would otherwise drive a disc into a picosecond later.
+    /// limit would otherwise drive a disc into a picosecond later. From the
+    /// thirteenth, `pairs` names the elastic pairs hit more than once too
+    /// (see `limits::Repeats::with_elastic`).
     fn collapse_repeated(&mut self, pairs: &[(usize, Option<usize>)], t: f64) {
         // From the eleventh revision, with every obstacle a member touches
         // (see `Revision::R11`).

@@ -796,3 +796,35 @@ fn two_elastic_discs_resting_in_a_corner_ring_no_longer_without_end() {
     // each at one instant, every approach below 1e-8 m/s, until stuck.
     unstuck_from_r13("mixed-box-449875");
 }
+
+#[test]
+fn a_light_elastic_disc_rung_between_a_plastic_one_and_an_elastic_one_collapses_with_both() {
+    // In mixed-box 249506 light frictionless elastic disc 2 lies between
+    // elastic disc 1, against the left wall, and heavy plastic disc 3,
+    // which a disc sliding past presses towards the wall: 3 hits 2
+    // (plastic), 2 hits 1 (elastic), 1 the wall, 6,600 times each at one
+    // instant, a few per cent slower each time. The collapse after eight
+    // plastic hits took 2 and 3 alone (elastic pairs were never counted)
+    // and drove 2 into 1 again, until stuck. From revision 13 the collapse
+    // takes in the elastic pairs hit more than once at the instant.
+    unstuck_from_r13("mixed-box-249506");
+    // The same ring in mixed-box 430604 (light frictionless 2 between
+    // elastic 1 on the wall and plastic 3) and 499283 (light frictionless
+    // 4 between elastic 3 and plastic 8).
+    unstuck_from_r13("mixed-box-430604");
+    unstuck_from_r13("mixed-box-499283");
+}
+
+#[test]
+fn a_ring_that_ended_stuck_against_its_own_definition_reaches_the_horizon() {
+    // In mixed-box 491744 the crawl rule ended the run stuck on the discs
+    // of a pressed ring (6, 7 and 10, with 7 and 9 stopping again and
+    // again) while disc 13 crossed the box at 2.2 m/s: stuck as
+    // docs/model.md has it from revision 8 (the blocks' discs moved
+    // nothing), not as the hostile runner checks it (the next event came
+    // long after the fastest disc had moved 1e-9 of a radius). From
+    // revision 13 a collapse before the ring formed takes in an elastic
+    // pair hit more than once at its instant, the discs settle otherwise,
+    // and the run reaches the horizon in some 3,500 events.
+    unstuck_from_r13("mixed-box-491744");
+}
