@@ -216,6 +216,24 @@ pub enum Revision {
     #[default]
     R12,
     /// The thirteenth, as the twelfth but:
+    /// - an elastic ring (every disc touching it elastic) at one instant or
+    ///   crawling, with a braking disc in it, whose contacts approach and
+    ///   part no faster than `limits::GENTLE` of its fastest disc, is
+    ///   taken as the seventh revision takes an inelastic collapse (and
+    ///   the eighth its crawl): it rests on itself, a chatter to rest over
+    ///   more than two discs, not a chain rattling between walls. A
+    ///   frictionless disc behind a pushed elastic pair, its velocity
+    ///   1.4e-9 of theirs off, hit the middle disc 20,000 times at one
+    ///   instant, each hit giving it its own braking back, until `stuck`
+    ///   (`Revision::collapses_resting_elastic_rings`);
+    /// - the collapse of an instant's repeated inelastic hits
+    ///   (`World::collapse_repeated`) takes in the elastic pairs hit more
+    ///   than once at that instant too: a light elastic disc between a
+    ///   heavy plastic one and an elastic one resting on a wall rang
+    ///   between them, a few per cent slower each time, and the collapse
+    ///   of the plastic pair alone drove it into its elastic neighbour
+    ///   again, 20,000 hits at one instant, until `stuck`
+    ///   (`Revision::collapses_rings_with_elastic_pairs`).
     R13,
 }
 
@@ -329,6 +347,22 @@ impl Revision {
     /// `limits::Repeats::decaying`).
     pub fn collapses_decaying_plastic_rings(self) -> bool {
         self.at_least_r12()
+    }
+
+    /// Whether an elastic cluster with a braking disc, ringing at one
+    /// instant or crawling while its contacts approach and part no faster
+    /// than `limits::GENTLE` of its fastest disc, is taken to its plastic
+    /// limit as an inelastic collapse is (the thirteenth revision; see
+    /// `World::elastic_ring_rests`).
+    pub fn collapses_resting_elastic_rings(self) -> bool {
+        self.at_least_r13()
+    }
+
+    /// Whether the collapse of an instant's repeated inelastic hits also
+    /// takes in the elastic pairs hit more than once at that instant (the
+    /// thirteenth revision; see `limits::Repeats::with_elastic`).
+    pub fn collapses_rings_with_elastic_pairs(self) -> bool {
+        self.at_least_r13()
     }
 
     /// Whether a gentle plastic hit on a light plastic disc lying in a

@@ -32,8 +32,8 @@ use crate::impulse;
 use crate::instant::same_instant;
 use crate::limits::{
     snap, Crawl, Repeats, Watched, COLLAPSE_EVENTS, COLLAPSE_WINDOW, CRAWL_EVENTS,
-    EARLY_REPEAT_HITS, FAR_FUTURE, MAX_COLLAPSE, MAX_COORDINATE, PRESS_ROUNDS, PRESS_SWEEPS,
-    REPEAT_HITS, SETTLE, SNAP, STUCK_EVENTS, STUCK_EVENTS_PER_BODY,
+    EARLY_REPEAT_HITS, FAR_FUTURE, GENTLE, MAX_COLLAPSE, MAX_COORDINATE, PRESS_ROUNDS,
+    PRESS_SWEEPS, REPEAT_HITS, SETTLE, SNAP, STUCK_EVENTS, STUCK_EVENTS_PER_BODY,
 };
 use crate::obstacle::{Line, LineGeom, Point};
 use crate::push;
@@ -549,7 +549,8 @@ impl World {
         } else {
             REPEAT_HITS
         })
-        .decaying(self.config.revision.collapses_decaying_plastic_rings());
+        .decaying(self.config.revision.collapses_decaying_plastic_rings())
+        .with_elastic(self.config.revision.collapses_rings_with_elastic_pairs());
         // From the seventh revision: the fine clock (see `clock`), and the
         // current instant's tick (see `World::instant_tick`), worked out
         // only once an event comes near it.
@@ -729,11 +730,16 @@ impl World {
     /// the third, so is a chain that touches an obstacle.
     /// Whatever is left ends the run as `stuck` if it goes on.
     /// From the seventh revision, nothing is taken where every disc
-    /// touching the ones involved is elastic: their hits lose no energy.
+    /// touching the ones involved is elastic: their hits lose no energy;
+    /// from the thirteenth, unless they rest on each other
+    /// ([`World::elastic_ring_rests`]).
     fn collapse(&mut self, recent: &mut Vec<usize>, t: f64, span: f64) {
         recent.sort_unstable();
         recent.dedup();
-        if self.config.revision.at_least_r7() && self.all_elastic(recent, t, span) {
+        if self.config.revision.at_least_r7()
+            && self.all_elastic(recent, t, span)
+            && !self.elastic_ring_rests(recent, t)
+        {
             return;
         }
         let taken = self.collapse_chain(recent, t)
@@ -761,13 +767,16 @@ impl World {
     /// whatever their speed: an approximation that loses energy and
     /// momentum, where the earlier revisions ended `stuck`. Where every
     /// disc touching them is elastic nothing is stopped: they lose no
-    /// energy, and the run ends `stuck` if it goes on. Counted as a
-    /// collapse.
+    /// energy, and the run ends `stuck` if it goes on (from the thirteenth
+    /// revision, unless they rest on each other,
+    /// [`World::elastic_ring_rests`]). Counted as a collapse.
     fn crawl_rest(&mut self, recent: &mut Vec<usize>, t: f64, span: f64) {
         recent.retain(|&c| c != usize::MAX && self.slots.get(c).is_some_and(|s| s.alive));
         recent.sort_unstable();
         recent.dedup();
-        if recent.is_empty() || self.all_elastic(recent, t, span) {
+        if recent.is_empty()
+            || (self.all_elastic(recent, t, span) && !self.elastic_ring_rests(recent, t))
+        {
             return;
         }
         let (members, mut contacts) = self.touching_cluster(recent.clone(), t);
@@ -844,6 +853,48 @@ impl World {
             && !(self.config.revision.at_least_r10() && members.iter().any(|&c| braked(c)))
     }
 
+    /// From the thirteenth revision, whether the elastic discs of `recent`
+    /// (slots; `usize::MAX` for an obstacle), ringing at one instant or
+    /// crawling, rest on each other rather than rattle: one of them brakes,
+    /// and none of the contacts among them (or with the lines and points
+    /// they touch) approaches or parts faster than [`GENTLE`] of the speed
+    /// of the fastest of them. Such a ring is then taken as an inelastic
+    /// collapse is (`World::collapse`, `World::crawl_rest`), though every
+    /// disc touching it is elastic: it is a chatter to rest
+    /// (`push::chatters`) spread over more than two discs, or too slow to
+    /// end. A frictionless disc pushing a braked pair, its velocity a few
+    /// parts in a billion off theirs (beyond `push::SAME`, so never joined
+    /// to their push), hit the middle disc at once, each hit giving that
+    /// disc its own braking back, which the pair's push pooled again at
+    /// once: 20,000 hits at one instant. An elastic pair on a braking floor
+    /// bounced 1e-12 m/s apart, a bounce every 6e-14 s, for some 40,000
+    /// hits before it would stop. Their plastic limit, the discs pressed
+    /// together moving as one, differs from their hits by the ring's speeds
+    /// and loses no more than their energy. A chain pinned between two
+    /// walls, or any ring without braking, rattles at the speeds of its
+    /// discs and is left to end `stuck` with its energy.
+    fn elastic_ring_rests(&self, recent: &[usize], t: f64) -> bool {
+        if !self.config.revision.collapses_resting_elastic_rings() {
+            return false;
+        }
+        let mut ring: Vec<usize> = recent
+            .iter()
+            .copied()
+            .filter(|&c| c != usize::MAX && self.slots.get(c).is_some_and(|s| s.alive))
+            .collect();
+        ring.sort_unstable();
+        ring.dedup();
+        let contacts = self.contacts_among(&ring, t);
+        let (vel, _) = self.motion(&ring, t);
+        let fastest = vel.iter().map(|v| v.length()).fold(0.0, f64::max);
+        let brakes = ring.iter().any(|&c| self.material[c].mu > 0.0);
+        let gentle = contacts.iter().all(|c| {
+            let rel = vel[c.a] - c.b.map_or(DVec2::ZERO, |b| vel[b]);
+            rel.dot(c.n).abs() <= GENTLE * fastest
+        });
+        brakes && fastest > 0.0 && !contacts.is_empty() && gentle
+    }
+
     /// From the fifth revision, an instant at which one inelastic pair has
     /// been hit [`REPEAT_HITS`] times: the limit of the collapse, taken as
     /// the plastic projection of the contacts it involves: the `pairs` hit
@@ -853,7 +904,9 @@ impl World {
     /// with restitution that was hit once (the last disc of a chain, sent
     /// off by the collapse behind it) is left to the hits that follow;
     /// from the eleventh revision, not one with an obstacle, which the
-    /// limit would otherwise drive a disc into a picosecond later.
+    /// limit would otherwise drive a disc into a picosecond later. From the
+    /// thirteenth, `pairs` names the elastic pairs hit more than once too
+    /// (see `limits::Repeats::with_elastic`).
     fn collapse_repeated(&mut self, pairs: &[(usize, Option<usize>)], t: f64) {
         // From the eleventh revision, with every obstacle a member touches
         // (see `Revision::R11`).

@@ -741,3 +741,90 @@ fn a_plastic_hit_on_a_light_disc_in_a_corner_is_taken_with_both_walls() {
     // event cap at 0.11 s.
     reaches_the_horizon_from(Revision::R12, "mixed-box-98865", 100.0);
 }
+
+/// Revision 12 ends `name` `stuck` before the mixed boxes' horizon;
+/// revision 13 (and every one after it) reaches the horizon or comes to
+/// rest, within the cap and without overlap.
+fn unstuck_from_r13(name: &str) {
+    assert_eq!(
+        run_until(name, Revision::R12, 100.0).0,
+        EndReason::Stuck,
+        "{name} under R12"
+    );
+    for revision in Revision::ALL[index(Revision::R13)..].iter().copied() {
+        let (reason, events, overlap) = run_until(name, revision, 100.0);
+        assert!(
+            matches!(reason, EndReason::Until | EndReason::Rest),
+            "{name} under {revision:?}: {reason:?}"
+        );
+        assert!(events < CAP, "{name}: {events} events");
+        assert!(overlap < 1e-9, "{name}: overlap {overlap:e}");
+    }
+}
+
+#[test]
+fn a_frictionless_disc_resting_on_a_pushed_elastic_pair_joins_its_push() {
+    // In mixed-box 188734 frictionless elastic disc 2 follows the elastic
+    // pair 3-4 (3 frictionless, 4 braking) along the floor at 7.5e-8 m/s,
+    // its velocity 1.4e-9 of theirs off, beyond the tolerance that joins a
+    // pushed chain: 2 hit 3 at once, the hit gave 3 its own braking back
+    // (none), 3 hit 4, the pair's push pooled its braking again, 20,000
+    // hits at one instant, and the run ended stuck with no collapse taken
+    // (every disc elastic). From revision 13 an elastic ring with a braking
+    // disc whose contacts approach and part gently is a collapse.
+    unstuck_from_r13("mixed-box-188734");
+    // The same ring in mixed-box 193803 (frictionless 1 behind braking
+    // 2-3) and 594826 (frictionless 2 behind braking 3-4).
+    unstuck_from_r13("mixed-box-193803");
+    unstuck_from_r13("mixed-box-594826");
+}
+
+#[test]
+fn an_elastic_pair_chattering_as_it_brakes_collapses_instead_of_crawling() {
+    // In mixed-box 100860 elastic discs 3 and 4 (braking at 0.17 and 61
+    // m/s^2) slide together at 2.4e-8 m/s, bouncing 1.9e-12 m/s apart, a
+    // bounce every 6.4e-14 s: some 40,000 bounces before they stop, which
+    // the crawl rule (blocks of 1,000 events that move nothing) ended
+    // stuck after 23,000, taking no collapse (both elastic).
+    unstuck_from_r13("mixed-box-100860");
+}
+
+#[test]
+fn two_elastic_discs_resting_in_a_corner_ring_no_longer_without_end() {
+    // In mixed-box 449875 elastic discs 1 (braking at 268 m/s^2) and 2
+    // lie side by side in the corner: 1-2, 2-wall, 2-1, 1-wall, 5,000 times
+    // each at one instant, every approach below 1e-8 m/s, until stuck.
+    unstuck_from_r13("mixed-box-449875");
+}
+
+#[test]
+fn a_light_elastic_disc_rung_between_a_plastic_one_and_an_elastic_one_collapses_with_both() {
+    // In mixed-box 249506 light frictionless elastic disc 2 lies between
+    // elastic disc 1, against the left wall, and heavy plastic disc 3,
+    // which a disc sliding past presses towards the wall: 3 hits 2
+    // (plastic), 2 hits 1 (elastic), 1 the wall, 6,600 times each at one
+    // instant, a few per cent slower each time. The collapse after eight
+    // plastic hits took 2 and 3 alone (elastic pairs were never counted)
+    // and drove 2 into 1 again, until stuck. From revision 13 the collapse
+    // takes in the elastic pairs hit more than once at the instant.
+    unstuck_from_r13("mixed-box-249506");
+    // The same ring in mixed-box 430604 (light frictionless 2 between
+    // elastic 1 on the wall and plastic 3) and 499283 (light frictionless
+    // 4 between elastic 3 and plastic 8).
+    unstuck_from_r13("mixed-box-430604");
+    unstuck_from_r13("mixed-box-499283");
+}
+
+#[test]
+fn a_ring_that_ended_stuck_against_its_own_definition_reaches_the_horizon() {
+    // In mixed-box 491744 the crawl rule ended the run stuck on the discs
+    // of a pressed ring (6, 7 and 10, with 7 and 9 stopping again and
+    // again) while disc 13 crossed the box at 2.2 m/s: stuck as
+    // docs/model.md has it from revision 8 (the blocks' discs moved
+    // nothing), not as the hostile runner checks it (the next event came
+    // long after the fastest disc had moved 1e-9 of a radius). From
+    // revision 13 a collapse before the ring formed takes in an elastic
+    // pair hit more than once at its instant, the discs settle otherwise,
+    // and the run reaches the horizon in some 3,500 events.
+    unstuck_from_r13("mixed-box-491744");
+}
