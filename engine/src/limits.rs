@@ -323,6 +323,9 @@ pub(crate) struct Repeats {
     /// where the pair approached slower than at its previous count (see
     /// [`Repeats::decaying`]).
     decaying: bool,
+    /// From the thirteenth revision, elastic pairs' hits are kept too, for
+    /// [`Repeats::repeated`] (see [`Repeats::with_elastic`]).
+    elastic: bool,
 }
 
 impl Repeats {
@@ -336,7 +339,24 @@ impl Repeats {
             since_count: 0.0,
             moving: 0.0,
             decaying: false,
+            elastic: false,
         }
+    }
+
+    /// From the thirteenth revision: an elastic pair's hits at the instant
+    /// are kept as well (they never make it a collapse themselves, and
+    /// change nothing the counts of inelastic pairs decide), so that
+    /// [`Repeats::repeated`] names the elastic pairs hit more than once
+    /// too. A light elastic disc between a heavy elastic one and a heavy
+    /// plastic one, pushed by the first into the second, rings between
+    /// them, a plastic hit on one side and an elastic one on the other, a
+    /// per cent slower each time: the plastic pair's count took the
+    /// instant as a collapse, but of the plastic pair alone, which its
+    /// last hit had already closed, and the ring went on until the
+    /// collapse after `COLLAPSE_EVENTS`, instant after instant.
+    pub(crate) fn with_elastic(mut self, on: bool) -> Self {
+        self.elastic = on;
+        self
     }
 
     /// From the twelfth revision: a plastic pair (restitution 0) hit at
@@ -399,6 +419,9 @@ impl Repeats {
         };
         let restitution = world.restitution(sa, sb);
         if restitution >= 1.0 {
+            if self.elastic {
+                self.keep(pair, (sa, sb));
+            }
             return false;
         }
         let plastic = restitution == 0.0;
@@ -447,8 +470,23 @@ impl Repeats {
         gentle || decayed
     }
 
+    /// From the thirteenth revision, one more hit of an elastic pair (see
+    /// [`Repeats::with_elastic`]).
+    #[cold]
+    fn keep(&mut self, pair: Pair, slots: (usize, Option<usize>)) {
+        match self.hits.iter_mut().find(|h| h.pair == pair) {
+            Some(h) => h.hits += 1,
+            None => self.hits.push(PairHits {
+                pair,
+                slots,
+                hits: 1,
+                counted: None,
+            }),
+        }
+    }
+
     /// The pairs hit more than once at this instant (slots; `None` for an
-    /// obstacle).
+    /// obstacle); from the thirteenth revision, elastic ones too.
     pub(crate) fn repeated(&self) -> Vec<(usize, Option<usize>)> {
         self.hits
             .iter()

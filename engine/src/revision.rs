@@ -331,6 +331,14 @@ impl Revision {
         self.at_least_r12()
     }
 
+    /// Whether the collapse taken after repeated hits of an inelastic pair
+    /// at one instant (`World::collapse_repeated`) takes in the elastic
+    /// pairs hit more than once at that instant too (the thirteenth
+    /// revision; see `limits::Repeats::with_elastic`).
+    pub fn collapses_rings_through_elastic_pairs(self) -> bool {
+        self.at_least_r13()
+    }
+
     /// Whether a gentle plastic hit on a light plastic disc lying in a
     /// corner is taken as one plastic limit with the walls it touches and
     /// the discs pressing on it (a twelfth revision rule, see

@@ -549,7 +549,8 @@ impl World {
         } else {
             REPEAT_HITS
         })
-        .decaying(self.config.revision.collapses_decaying_plastic_rings());
+        .decaying(self.config.revision.collapses_decaying_plastic_rings())
+        .with_elastic(self.config.revision.collapses_rings_through_elastic_pairs());
         // From the seventh revision: the fine clock (see `clock`), and the
         // current instant's tick (see `World::instant_tick`), worked out
         // only once an event comes near it.

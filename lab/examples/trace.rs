@@ -25,6 +25,8 @@ struct Trace {
     events: Vec<(Event, u64, u64, f64)>,
     /// Bodies whose state is kept after each event (`TRACE_BODIES=1,5`).
     watch: Vec<u64>,
+    /// Their velocities in full, with their braking (`TRACE_FULL=1`).
+    full: bool,
     states: Vec<String>,
 }
 
@@ -40,10 +42,22 @@ impl EventHandler for Trace {
         let mut line = String::new();
         for b in world.bodies().filter(|b| self.watch.contains(&b.id.0)) {
             let (p, v) = (b.trajectory.position(t), b.trajectory.velocity(t));
-            line += &format!(
-                " [{} p ({:.12},{:.12}) v ({:.4e},{:.4e})]",
-                b.id.0, p.x, p.y, v.x, v.y
-            );
+            line += &if self.full {
+                format!(
+                    " [{} p ({:e},{:e}) v ({:e},{:e}) a {:e}]",
+                    b.id.0,
+                    p.x,
+                    p.y,
+                    v.x,
+                    v.y,
+                    b.trajectory.alpha()
+                )
+            } else {
+                format!(
+                    " [{} p ({:.12},{:.12}) v ({:.4e},{:.4e})]",
+                    b.id.0, p.x, p.y, v.x, v.y
+                )
+            };
         }
         self.states.push(line);
     }
@@ -109,6 +123,7 @@ fn main() -> ExitCode {
     let mut trace = Trace {
         events: Vec::new(),
         watch,
+        full: std::env::var("TRACE_FULL").is_ok_and(|f| f == "1"),
         states: Vec::new(),
     };
     let end = world.run(&limits, &mut trace);
