@@ -593,6 +593,41 @@ mod tests {
     }
 
     #[test]
+    fn elastic_pairs_are_named_among_the_repeated_from_the_thirteenth_revision_but_never_decide() {
+        // The elastic pair is hit again and again, gently: no collapse
+        // either way, and only from the thirteenth revision is it named.
+        let elastic = Pair(1.0);
+        for on in [false, true] {
+            let slow = |_: u32| 1e-6;
+            let repeats = Repeats::new(EARLY_REPEAT_HITS)
+                .decaying(true)
+                .with_elastic(on);
+            assert_eq!(collapse_at(&elastic, repeats, slow), None);
+            let mut repeats = Repeats::new(EARLY_REPEAT_HITS)
+                .decaying(true)
+                .with_elastic(on);
+            repeats.start(hit(), 1e-6);
+            assert!(!repeats.note(&elastic, &hit(), 1e-6));
+            let named = if on { vec![(0, Some(1))] } else { vec![] };
+            assert_eq!(repeats.repeated(), named);
+        }
+    }
+
+    #[test]
+    fn a_plastic_pair_collapses_at_the_same_hit_whether_elastic_pairs_are_kept_or_not() {
+        let decaying = |k: u32| 2.0 * 0.99f64.powi(k as i32);
+        let plastic = Pair(0.0);
+        let without = Repeats::new(EARLY_REPEAT_HITS).decaying(true);
+        let with = Repeats::new(EARLY_REPEAT_HITS)
+            .decaying(true)
+            .with_elastic(true);
+        assert_eq!(
+            collapse_at(&plastic, without, decaying),
+            collapse_at(&plastic, with, decaying)
+        );
+    }
+
+    #[test]
     fn a_ring_that_does_not_slow_or_has_restitution_is_left_to_its_hits() {
         let steady = |_: u32| 2.0;
         let r12 = || Repeats::new(EARLY_REPEAT_HITS).decaying(true);

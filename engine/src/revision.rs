@@ -216,6 +216,17 @@ pub enum Revision {
     #[default]
     R12,
     /// The thirteenth, as the twelfth but:
+    /// - the collapse after repeated hits of an inelastic pair at one
+    ///   instant (`World::collapse_repeated`) takes in the elastic pairs
+    ///   hit more than once at that instant too: a light elastic disc
+    ///   between a heavy elastic one and a heavy plastic one, pushed by the
+    ///   first into the second, rings between them, a plastic hit on one
+    ///   side and an elastic one on the other, each cycle slower; the
+    ///   plastic pair's count took the instant as a collapse of the
+    ///   plastic pair alone, which its own last hit had just closed, and
+    ///   the ring ran on to the collapse after 2,000 events at one
+    ///   instant, instant after instant, until the event cap
+    ///   (`Revision::collapses_rings_through_elastic_pairs`).
     R13,
 }
 

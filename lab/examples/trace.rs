@@ -113,7 +113,12 @@ fn main() -> ExitCode {
     let limits = Limits {
         until: h.until,
         max_collisions: u64::MAX,
-        max_events: MAX_EVENTS,
+        // `TRACE_CAP=N` stops the run after N events, to look at the
+        // middle of a run.
+        max_events: std::env::var("TRACE_CAP")
+            .ok()
+            .and_then(|c| c.parse().ok())
+            .unwrap_or(MAX_EVENTS),
     };
     let watch = std::env::var("TRACE_BODIES")
         .unwrap_or_default()
