@@ -226,7 +226,16 @@ pub enum Revision {
     ///   plastic pair alone, which its own last hit had just closed, and
     ///   the ring ran on to the collapse after 2,000 events at one
     ///   instant, instant after instant, until the event cap
-    ///   (`Revision::collapses_rings_through_elastic_pairs`).
+    ///   (`Revision::collapses_rings_through_elastic_pairs`);
+    /// - a pair with restitution pressed together by its braking so hard
+    ///   that its bounce would stay within 1e-9 of its contact distance
+    ///   (half of `push::TOUCHING`) is taken as the end of its chatter, one
+    ///   plastic hit, as the second revision takes a pair parting slower
+    ///   than `push::CAPTURE`: a heavy frictionless elastic disc pushing a
+    ///   light braking elastic one sent it off at every hit at the same
+    ///   speed, 7.5e-6 of theirs, its braking bringing it back 1.7e-7 s
+    ///   later, millions of hits until the event cap
+    ///   (`Revision::ends_bounces_within_touch`).
     R13,
 }
 
@@ -347,6 +356,14 @@ impl Revision {
     /// pairs hit more than once at that instant too (the thirteenth
     /// revision; see `limits::Repeats::with_elastic`).
     pub fn collapses_rings_through_elastic_pairs(self) -> bool {
+        self.at_least_r13()
+    }
+
+    /// Whether a pair with restitution whose braking presses it together
+    /// so hard that its bounce never leaves touching distance is taken as
+    /// the end of its chatter, one plastic hit (the thirteenth revision;
+    /// see `push::bounces_within_touch`).
+    pub fn ends_bounces_within_touch(self) -> bool {
         self.at_least_r13()
     }
 
