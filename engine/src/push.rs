@@ -126,7 +126,8 @@ pub(crate) fn chatters(
 }
 
 /// From the thirteenth revision, whether the discs on `ti` and `tj`, just
-/// hit along `n` (from `j` to `i`) at contact distance `s`, are pressed
+/// hit along `n` (from `j` to `i`) at contact distance `s` and both sliding
+/// along that line (to [`SAME`] of their speeds), are pressed
 /// together by their braking so hard for the speed at which they part that
 /// the bounce never leaves touching distance: the gap it opens before their
 /// braking closes it again, `w^2 / 2a` (`w` the separation speed, `a` the
@@ -155,7 +156,14 @@ pub(crate) fn bounces_within_touch(
     if !(a < 0.0) || !ti.is_moving_at(now) || !tj.is_moving_at(now) {
         return false;
     }
-    let w = (ti.velocity(now) - tj.velocity(now)).dot(n);
+    // Head-on only: both slide along the line of centres (an oblique pair
+    // turns as it slides, and is the pressing kick's).
+    let (vi, vj) = (ti.velocity(now), tj.velocity(now));
+    let along = |v: DVec2| v.perp_dot(n).abs() <= SAME * v.length();
+    if !along(vi) || !along(vj) {
+        return false;
+    }
+    let w = (vi - vj).dot(n);
     w * w <= TOUCHING * s * -a
 }
 
@@ -460,6 +468,16 @@ mod tests {
         assert!(!bounces_within_touch(&rear, &free, n, s, 0.0));
         let braking_rear = sliding(-s, 1.858e-2, 1.63);
         assert!(!bounces_within_touch(&braking_rear, &free, n, s, 0.0));
+        // Nor an oblique pair, which turns as it slides: the same discs
+        // sliding 30 degrees off their line of centres.
+        let turn = |v: f64| DVec2::new(v * 0.75f64.sqrt(), v * 0.5);
+        let oblique =
+            |v: f64, x: f64, alpha: f64| Trajectory::new(0.0, DVec2::new(x, 0.0), turn(v), alpha);
+        let (rear, front) = (
+            oblique(1.858e-2, -s, 0.0),
+            oblique(1.858e-2 + 1.4e-7, 0.0, 1.63),
+        );
+        assert!(!bounces_within_touch(&rear, &front, n, s, 0.0));
     }
 
     #[test]

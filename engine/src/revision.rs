@@ -227,7 +227,8 @@ pub enum Revision {
     ///   the ring ran on to the collapse after 2,000 events at one
     ///   instant, instant after instant, until the event cap
     ///   (`Revision::collapses_rings_through_elastic_pairs`);
-    /// - a pair with restitution pressed together by its braking so hard
+    /// - a pair with restitution sliding head-on (both along the line of
+    ///   centres) pressed together by its braking so hard
     ///   that its bounce would stay within 1e-9 of its contact distance
     ///   (half of `push::TOUCHING`) is taken as the end of its chatter, one
     ///   plastic hit, as the second revision takes a pair parting slower
