@@ -2,7 +2,10 @@
 //! how the time advanced over the run, which pairs the last events hit,
 //! how far apart in time, and the discs still moving at the end.
 //! `cargo run --release -p lab --example trace -- mixed-box 1168 r12 [TAIL]`
-//! (kind, seed, revision, events listed at the end).
+//! (kind, seed, revision, events listed at the end). `TRACE_BODIES=1,5`
+//! adds those discs' states after each listed event, `TRACE_FULL=1` prints
+//! them in full with their braking, `TRACE_CAP=N` stops the run after N
+//! events (to look at the middle of a run).
 
 use engine::{Event, EventHandler, EventKind, Limits, Revision, World, WorldConfig};
 use lab::hostile::{Hostile, Kind, MAX_EVENTS};
