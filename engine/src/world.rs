@@ -1735,7 +1735,11 @@ impl World {
             Trajectory::new(t, pj, vj, alpha[1]),
         );
         let origin = self.clock.origin();
-        if e > 0.0 && push::chatters(&new_i, &new_j, n, t, origin, self.config.revision) {
+        if e > 0.0
+            && (push::chatters(&new_i, &new_j, n, t, origin, self.config.revision)
+                || (self.config.revision.ends_bounces_within_touch()
+                    && push::bounces_within_touch(&new_i, &new_j, n, s, t)))
+        {
             // The pair would bounce ever faster into a pressing contact:
             // take the chatter's end, one plastic hit, now.
             (vi, vj) = impulse::body_body(ui, uj, mi.mass, mj.mass, 0.0, n);

@@ -828,3 +828,38 @@ fn a_ring_that_ended_stuck_against_its_own_definition_reaches_the_horizon() {
     // and the run reaches the horizon in some 3,500 events.
     unstuck_from_r13("mixed-box-491744");
 }
+
+#[test]
+fn a_light_elastic_disc_rung_between_a_heavy_elastic_one_and_a_heavy_plastic_one_collapses() {
+    // In mixed-box 95435 light frictionless elastic disc 6 lies between
+    // heavy frictionless elastic disc 2 and heavy braking plastic disc 11;
+    // pushed by 2 into 11 it rings between them at one instant, an elastic
+    // hit on one side and a plastic one on the other, each cycle a few per
+    // cent slower. The plastic pair's count took the instant as a collapse,
+    // but of the plastic pair alone, which its own hit had just closed, and
+    // the ring ran on to the collapse after 2,000 events at one instant,
+    // instant after instant, until the event cap at 0.40 s. From revision
+    // 13 the collapse takes in the elastic pairs hit more than once at
+    // that instant.
+    reaches_the_horizon_from(Revision::R13, "mixed-box-95435", 100.0);
+    // Elastic discs 1 to 4 in a row along the floor against the left wall,
+    // pressed by heavy frictionless plastic disc 11 sliding past disc 4:
+    // each instant rang through the row and both walls, about 500 events,
+    // only the pair 4-11 counted, the event cap at 2.6 s.
+    reaches_the_horizon_from(Revision::R13, "mixed-box-56565", 100.0);
+}
+
+#[test]
+fn an_elastic_pair_pressed_so_hard_that_its_bounce_never_leaves_touching_moves_as_one() {
+    // In mixed-box 205984 heavy frictionless elastic disc 3 pushes light
+    // braking elastic disc 4 along the floor at 1.9e-2 m/s: every hit sends
+    // 4 ahead at 1.4e-7 m/s, its braking brings it back 1.7e-7 s later, a
+    // gap of 2e-13 of the contact distance, and the elastic hit keeps that
+    // speed: millions of hits before 3 stops, the event cap at 0.55 s.
+    // From revision 13 such a bounce, within touching distance, is the end
+    // of a chatter, one plastic hit, and the two slide as one.
+    reaches_the_horizon_from(Revision::R13, "mixed-box-205984", 100.0);
+    // The same between the pushed pair 2-3 and light disc 4 ahead of it,
+    // the event cap at 20 s.
+    reaches_the_horizon_from(Revision::R13, "mixed-box-155239", 100.0);
+}

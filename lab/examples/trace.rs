@@ -2,7 +2,10 @@
 //! how the time advanced over the run, which pairs the last events hit,
 //! how far apart in time, and the discs still moving at the end.
 //! `cargo run --release -p lab --example trace -- mixed-box 1168 r12 [TAIL]`
-//! (kind, seed, revision, events listed at the end).
+//! (kind, seed, revision, events listed at the end). `TRACE_BODIES=1,5`
+//! adds those discs' states after each listed event, `TRACE_FULL=1` prints
+//! them in full with their braking, `TRACE_CAP=N` stops the run after N
+//! events (to look at the middle of a run).
 
 use engine::{Event, EventHandler, EventKind, Limits, Revision, World, WorldConfig};
 use lab::hostile::{Hostile, Kind, MAX_EVENTS};
@@ -25,6 +28,8 @@ struct Trace {
     events: Vec<(Event, u64, u64, f64)>,
     /// Bodies whose state is kept after each event (`TRACE_BODIES=1,5`).
     watch: Vec<u64>,
+    /// Their velocities in full, with their braking (`TRACE_FULL=1`).
+    full: bool,
     states: Vec<String>,
 }
 
@@ -40,10 +45,22 @@ impl EventHandler for Trace {
         let mut line = String::new();
         for b in world.bodies().filter(|b| self.watch.contains(&b.id.0)) {
             let (p, v) = (b.trajectory.position(t), b.trajectory.velocity(t));
-            line += &format!(
-                " [{} p ({:.12},{:.12}) v ({:.4e},{:.4e})]",
-                b.id.0, p.x, p.y, v.x, v.y
-            );
+            line += &if self.full {
+                format!(
+                    " [{} p ({:e},{:e}) v ({:e},{:e}) a {:e}]",
+                    b.id.0,
+                    p.x,
+                    p.y,
+                    v.x,
+                    v.y,
+                    b.trajectory.alpha()
+                )
+            } else {
+                format!(
+                    " [{} p ({:.12},{:.12}) v ({:.4e},{:.4e})]",
+                    b.id.0, p.x, p.y, v.x, v.y
+                )
+            };
         }
         self.states.push(line);
     }
@@ -99,7 +116,12 @@ fn main() -> ExitCode {
     let limits = Limits {
         until: h.until,
         max_collisions: u64::MAX,
-        max_events: MAX_EVENTS,
+        // `TRACE_CAP=N` stops the run after N events, to look at the
+        // middle of a run.
+        max_events: std::env::var("TRACE_CAP")
+            .ok()
+            .and_then(|c| c.parse().ok())
+            .unwrap_or(MAX_EVENTS),
     };
     let watch = std::env::var("TRACE_BODIES")
         .unwrap_or_default()
@@ -109,6 +131,7 @@ fn main() -> ExitCode {
     let mut trace = Trace {
         events: Vec::new(),
         watch,
+        full: std::env::var("TRACE_FULL").is_ok_and(|f| f == "1"),
         states: Vec::new(),
     };
     let end = world.run(&limits, &mut trace);
