@@ -456,6 +456,33 @@ mod tests {
     }
 
     #[test]
+    fn a_pair_parting_lower_than_the_pressing_gap_bounces_within_it() {
+        // A frictionless disc pushing a braking one (5 m/s^2) head-on at
+        // 0.1 m/s, contact distance 0.02 m: the gap is 2e-6 m, reached by
+        // a bounce at sqrt(2 * 5 * 2e-6) = 4.47e-3 m/s.
+        let pair = |w: f64| (sliding(0.02, 0.1 + w, 5.0), sliding(0.0, 0.1, 0.0));
+        let within = |w: f64| {
+            let (front, rear) = pair(w);
+            bounces_within_gap(&front, &rear, DVec2::X, 0.02, 0.0, Revision::R13)
+        };
+        assert!(within(3.9e-5));
+        assert!(within(4.4e-3));
+        assert!(!within(4.6e-3), "higher than the gap");
+        assert!(!within(0.0), "not parting");
+        assert!(!within(-1e-5), "approaching");
+        // The front disc braking less runs away: nothing presses.
+        let (front, rear) = (sliding(0.02, 0.1, 0.0), sliding(0.0, 0.1 - 1e-5, 5.0));
+        assert!(!bounces_within_gap(
+            &front,
+            &rear,
+            DVec2::X,
+            0.02,
+            0.0,
+            Revision::R13
+        ));
+    }
+
+    #[test]
     fn a_pair_with_no_braking_disc_is_never_spent_within_the_gap() {
         let v = [DVec2::ZERO, DVec2::new(1e-20, 0.0)];
         assert!(!spent_within_gap(
