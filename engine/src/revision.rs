@@ -348,6 +348,14 @@ impl Revision {
         self.at_least_r13()
     }
 
+    /// Whether a plastic hit that drives a light plastic disc into an
+    /// obstacle it touches is taken as one plastic limit with that
+    /// obstacle and the discs pressing on it, however hard (a thirteenth
+    /// revision rule, see `World::walled_hit`).
+    pub fn takes_walled_hit_with_wall(self) -> bool {
+        self.at_least_r13()
+    }
+
     /// Whether a gentle plastic hit on a light plastic disc lying in a
     /// corner is taken as one plastic limit with the walls it touches and
     /// the discs pressing on it (a twelfth revision rule, see
