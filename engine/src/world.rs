@@ -1848,6 +1848,20 @@ impl World {
         }
         let (vi, vj) = impulse::body_body(u[0], u[1], mi, mj, 0.0, n);
         let v_light = [vi, vj][light];
+        // A pair its braking presses together is left to the pressing
+        // contact: its limit would be kicked apart at once, and hit again.
+        let (pi, pj) = (
+            self.slots[i].traj.position(t),
+            self.slots[j].traj.position(t),
+        );
+        let acc = [
+            Trajectory::new(t, pi, vi, self.material[i].mu * self.g).acceleration(t),
+            Trajectory::new(t, pj, vj, self.material[j].mu * self.g).acceleration(t),
+        ];
+        let s = self.material[i].radius + self.material[j].radius;
+        if push::bounce_speed([vi, vj], acc, n, s, self.config.revision).is_some() {
+            return false;
+        }
         let mut members = vec![i, j];
         let at = self.positions(t);
         for m in [i, j] {
