@@ -1871,6 +1871,10 @@ impl World {
                 }
             }
         }
+        // Only a pair that touches no other disc through a plastic contact.
+        if members.len() > 2 {
+            return false;
+        }
         let mut contacts = self.contacts_among(&members, t);
         if !contacts.iter().any(|c| c.a == 0 && c.b == Some(1)) {
             return false;

@@ -771,3 +771,31 @@ fn an_elastic_pair_pushed_head_on_within_the_pressing_gap_slides_as_one_body() {
         }
     }
 }
+
+#[test]
+fn a_plastic_hit_driving_a_light_disc_into_a_wall_is_taken_with_the_wall() {
+    // In mixed-box 18564 light plastic disc 9 (1.6 g) slides up the left
+    // wall, and heavy plastic disc 10 (0.41 kg) beside it presses it into
+    // the wall as both slide: each plastic hit sends disc 9 into the wall,
+    // a rounding of a position away, which it hits 1.2e-13 s later, and
+    // disc 10, still approaching, hits it again at that same instant: one
+    // hit of the pair an instant, 50,000 instants in 3 ms, until the event
+    // cap. In 331110 and 590381 a heavy frictionless plastic disc presses
+    // a lighter frictionless plastic one into a wall in the same ring.
+    // From revision 13 such a hit is the plastic limit of the pair and
+    // the wall at once.
+    for name in ["mixed-box-18564", "mixed-box-331110", "mixed-box-590381"] {
+        let (old, events, _) = run_until(name, Revision::R12, 100.0);
+        assert_eq!(old, EndReason::MaxEvents, "{name} under R12");
+        assert_eq!(events, CAP);
+        for revision in Revision::ALL[index(Revision::R13)..].iter().copied() {
+            let (reason, events, overlap) = run_until(name, revision, 100.0);
+            assert!(
+                matches!(reason, EndReason::Until | EndReason::Rest),
+                "{name} under {revision:?}: {reason:?}"
+            );
+            assert!(events < 5_000, "{name} under {revision:?}: {events} events");
+            assert!(overlap < 1e-9, "{name}: overlap {overlap:e}");
+        }
+    }
+}
