@@ -224,6 +224,15 @@ pub enum Revision {
     ///   frictionless disc pushing a light braking one along the floor hit
     ///   it every 16 microseconds, each bounce 1.5e-10 m high, for over a
     ///   second (`Revision::joins_pair_bouncing_within_gap`).
+    /// - a plastic hit between two discs that touch no other disc through
+    ///   a plastic contact, which drives the lighter one, plastic, into an
+    ///   obstacle it touches, is taken at once as the plastic limit of the
+    ///   pair and the obstacle, unless their braking presses them together
+    ///   (`World::walled_hit`): a heavy disc sliding along a light one on a
+    ///   wall hit it into the wall, which it hit 1.2e-13 s later, and hit
+    ///   it again at that instant, losing a fraction of its approach, one
+    ///   hit of the pair an instant, until the event cap
+    ///   (`Revision::takes_walled_hit_with_wall`).
     R13,
 }
 
@@ -349,8 +358,8 @@ impl Revision {
     }
 
     /// Whether a plastic hit that drives a light plastic disc into an
-    /// obstacle it touches is taken as one plastic limit with that
-    /// obstacle and the discs pressing on it, however hard (a thirteenth
+    /// obstacle it touches, the pair touching no other disc, is taken as
+    /// one plastic limit with that obstacle, however hard (a thirteenth
     /// revision rule, see `World::walled_hit`).
     pub fn takes_walled_hit_with_wall(self) -> bool {
         self.at_least_r13()

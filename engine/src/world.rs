@@ -1827,18 +1827,24 @@ impl World {
     /// slots `i` and `j` (velocities `u` before it, normal `n` from `j` to
     /// `i`) whose lighter disc is plastic, touches an obstacle and is
     /// driven into it by the hit, taken at once as the plastic limit of the
-    /// two, every disc touching either of them through a plastic contact,
-    /// and the obstacles the plastic ones touch (see
-    /// `World::collapse_contacts`). Taken alone, the hit sends the light
+    /// two and the obstacles the plastic ones touch (see
+    /// `World::collapse_contacts`), where neither touches another disc
+    /// through a plastic contact and their braking does not press them
+    /// together. Taken alone, the hit sends the light
     /// disc into the obstacle, a rounding of a position away, which it hits
     /// a tenth of a picosecond later; the heavy one, still approaching,
     /// hits it again at that same instant, losing only the light disc's
     /// share of its approach: an inelastic collapse against the wall whose
     /// every instant holds one hit of the pair (a heavy disc sliding along
-    /// a light one against a wall, 50,000 such instants in 3 ms). Its
+    /// a light one against a wall, 10,000 such instants in 3.2 ms). Its
     /// limit, the plastic projection of the pair and the wall, is what the
-    /// hits converge to. `false` (nothing done) where no such disc is, the
-    /// two are not found touching, or the limit changes nothing.
+    /// hits converge to. A pressed pair is left to the pressing contact
+    /// (its limit, kicked apart at once, was hit again at every event), and
+    /// a pair within a pile to its hits (taken within a struck pile of
+    /// five, the limit sent mixed-box 270, near the event cap under the
+    /// twelfth revision, over it). `false` (nothing done) where no such
+    /// disc is, the two are not found touching, or the limit changes
+    /// nothing.
     fn walled_hit(&mut self, i: usize, j: usize, u: [DVec2; 2], n: DVec2, t: f64) -> bool {
         let plastic = |w: &World, c: usize| w.material[c].restitution == 0.0;
         let (mi, mj) = (self.material[i].mass, self.material[j].mass);
