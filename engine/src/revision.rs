@@ -243,7 +243,24 @@ pub enum Revision {
     ///   light braking elastic one sent it off at every hit at the same
     ///   speed, 7.5e-6 of theirs, its braking bringing it back 1.7e-7 s
     ///   later, millions of hits until the event cap
-    ///   (`Revision::ends_bounces_within_touch`).
+    ///   (`Revision::ends_bounces_within_touch`);
+    /// - an elastic hit that leaves two discs sliding head-on, pressed
+    ///   together by their braking, parting so slowly that the gap they
+    ///   open before they meet again is no wider than the pressing
+    ///   contact's (`push::WIDE_PRESS_GAP`), pushes them together at once
+    ///   (a plastic hit, the exact pushed pair after it): a heavy
+    ///   frictionless disc pushing a light braking one along the floor hit
+    ///   it every 16 microseconds, each bounce 1.5e-10 m high, for over a
+    ///   second (`Revision::joins_pair_bouncing_within_gap`);
+    /// - a plastic hit between two discs that touch no other disc through
+    ///   a plastic contact, which drives the lighter one, plastic, into an
+    ///   obstacle it touches, is taken at once as the plastic limit of the
+    ///   pair and the obstacle, unless their braking presses them together
+    ///   (`World::walled_hit`): a heavy disc sliding along a light one on a
+    ///   wall hit it into the wall, which it hit 1.2e-13 s later, and hit
+    ///   it again at that instant, losing a fraction of its approach, one
+    ///   hit of the pair an instant, until the event cap
+    ///   (`Revision::takes_walled_hit_with_wall`).
     R13,
 }
 
@@ -380,6 +397,23 @@ impl Revision {
     /// the end of its chatter, one plastic hit (the thirteenth revision;
     /// see `push::bounces_within_touch`).
     pub fn ends_bounces_within_touch(self) -> bool {
+        self.at_least_r13()
+    }
+
+    /// Whether an elastic pair that bounces apart no higher than the
+    /// pressing contact's gap while its braking presses it together, head-on,
+    /// is pushed together at once (a plastic hit) instead of bouncing at
+    /// that height for as long as both slide (a thirteenth revision rule,
+    /// see `push::bounces_within_gap`).
+    pub fn joins_pair_bouncing_within_gap(self) -> bool {
+        self.at_least_r13()
+    }
+
+    /// Whether a plastic hit that drives a light plastic disc into an
+    /// obstacle it touches, the pair touching no other disc, is taken as
+    /// one plastic limit with that obstacle, however hard (a thirteenth
+    /// revision rule, see `World::walled_hit`).
+    pub fn takes_walled_hit_with_wall(self) -> bool {
         self.at_least_r13()
     }
 

@@ -863,3 +863,61 @@ fn an_elastic_pair_pressed_so_hard_that_its_bounce_never_leaves_touching_moves_a
     // the event cap at 20 s.
     reaches_the_horizon_from(Revision::R13, "mixed-box-155239", 100.0);
 }
+
+// Revision 13: a pair bouncing within the pressing contact's gap.
+
+#[test]
+fn an_elastic_pair_pushed_head_on_within_the_pressing_gap_slides_as_one_body() {
+    // In mixed-box 84063 heavy frictionless elastic disc 3 (0.12 kg)
+    // pushes light elastic disc 4 (2.7 g, braking at 5.1 m/s^2) along the
+    // floor at 0.12 m/s: every hit parts them at 3.9e-5 m/s, a bounce
+    // 1.5e-10 m high, and they meet again 1.6e-5 s later, until the event
+    // cap at 1.93 s. In 323554 heavy disc 3 (0.96 kg) pushes disc 4
+    // (5.2 g, braking at 276 m/s^2), a hit every 7.9e-9 s (the cap at
+    // 0.10 s); in 45436 frictionless disc 3 (0.47 kg) pushes disc 4
+    // (3.1 g) at 1.5e-4 m/s, a hit every 3.1e-8 s. From revision 13 a pair
+    // pressed by its braking that bounces no higher than the pressing
+    // contact's gap is pushed together at once, and slides as one body.
+    for name in ["mixed-box-84063", "mixed-box-323554", "mixed-box-45436"] {
+        let (old, events, _) = run_until(name, Revision::R12, 100.0);
+        assert_eq!(old, EndReason::MaxEvents, "{name} under R12");
+        assert_eq!(events, CAP);
+        for revision in Revision::ALL[index(Revision::R13)..].iter().copied() {
+            let (reason, events, overlap) = run_until(name, revision, 100.0);
+            assert!(
+                matches!(reason, EndReason::Until | EndReason::Rest),
+                "{name} under {revision:?}: {reason:?}"
+            );
+            assert!(events < 1_000, "{name} under {revision:?}: {events} events");
+            assert!(overlap < 1e-9, "{name}: overlap {overlap:e}");
+        }
+    }
+}
+
+#[test]
+fn a_plastic_hit_driving_a_light_disc_into_a_wall_is_taken_with_the_wall() {
+    // In mixed-box 18564 light plastic disc 9 (1.6 g) slides up the left
+    // wall, and heavy plastic disc 10 (0.41 kg) beside it presses it into
+    // the wall as both slide: each plastic hit sends disc 9 into the wall,
+    // a rounding of a position away, which it hits 1.2e-13 s later, and
+    // disc 10, still approaching, hits it again at that same instant: one
+    // hit of the pair an instant, 50,000 instants in 3 ms, until the event
+    // cap. In 331110 and 590381 a heavy frictionless plastic disc presses
+    // a lighter frictionless plastic one into a wall in the same ring.
+    // From revision 13 such a hit is the plastic limit of the pair and
+    // the wall at once.
+    for name in ["mixed-box-18564", "mixed-box-331110", "mixed-box-590381"] {
+        let (old, events, _) = run_until(name, Revision::R12, 100.0);
+        assert_eq!(old, EndReason::MaxEvents, "{name} under R12");
+        assert_eq!(events, CAP);
+        for revision in Revision::ALL[index(Revision::R13)..].iter().copied() {
+            let (reason, events, overlap) = run_until(name, revision, 100.0);
+            assert!(
+                matches!(reason, EndReason::Until | EndReason::Rest),
+                "{name} under {revision:?}: {reason:?}"
+            );
+            assert!(events < 5_000, "{name} under {revision:?}: {events} events");
+            assert!(overlap < 1e-9, "{name}: overlap {overlap:e}");
+        }
+    }
+}
