@@ -60,6 +60,12 @@ const CORNER_SINE: f64 = 0.5;
 /// then ran to the event cap.
 const CORNER_GENTLE: f64 = 1e-3;
 
+/// From the thirteenth revision, the fraction of the faster disc's speed
+/// beyond which a plastic hit drives a disc into an obstacle and its
+/// partner back into it (see `World::hit_into_wall`): beyond the rounding
+/// of the velocities the impulse forms.
+const WALL_RING_NOISE: f64 = 1e-12;
+
 /// Which pairs of bodies are considered.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -1674,6 +1680,16 @@ impl World {
             self.stats.collapses += 1;
             return;
         }
+        // From the thirteenth revision, a plastic hit that drives a light
+        // plastic disc into an obstacle it touches, and would ring between
+        // the two, is taken with the obstacle.
+        if e == 0.0
+            && self.config.revision.takes_hit_into_wall_with_wall()
+            && self.hit_into_wall(i, j, n, [ui, uj], t)
+        {
+            self.stats.collapses += 1;
+            return;
+        }
         let (mut vi, mut vj) = impulse::body_body(ui, uj, mi.mass, mj.mass, e, n);
         // Each gets its own friction back (a pushed pair shares one).
         let alpha = [mi.mu * self.g, mj.mu * self.g];
@@ -1796,6 +1812,105 @@ impl World {
             return false;
         }
         self.collapse_contacts(&members, contacts, t)
+    }
+
+    /// From the thirteenth revision, a plastic hit between the discs in
+    /// slots `i` and `j` (unit normal `n` towards `i`, velocities `u`
+    /// before it) that drives the lighter of the two (or either, of equal
+    /// mass), a plastic one, into an obstacle it touches so that, once it
+    /// has hit that obstacle, its partner approaches it again: taken at
+    /// once as the plastic limit of the two, every disc touching either of
+    /// them through a plastic contact, and the obstacles the plastic ones
+    /// touch (the limit `World::cornered_hit` takes). That sequence of
+    /// hits, pair, obstacle, pair again, has no end, only that limit: the
+    /// partner loses the light disc's share of its approach at each turn.
+    /// Taken hit by hit, the light disc's obstacle hit moved it by the
+    /// rounding of its position, its partner met it again picoseconds
+    /// later, a new instant, and a heavy disc driven slowly into a light
+    /// one against a wall rang three events a turn, losing a few parts in
+    /// a thousand of its speed each, until the event cap, however straight
+    /// the hit. `false` (nothing done) where no such disc is, the hit does
+    /// not ring, the two are not found touching, or the limit changes
+    /// nothing.
+    fn hit_into_wall(&mut self, i: usize, j: usize, n: DVec2, u: [DVec2; 2], t: f64) -> bool {
+        let (mi, mj) = (self.material[i].mass, self.material[j].mass);
+        let (vi, vj) = impulse::body_body(u[0], u[1], mi, mj, 0.0, n);
+        let plastic = |w: &World, c: usize| w.material[c].restitution == 0.0;
+        let mut members = vec![i, j];
+        let at = self.positions(t);
+        for m in [i, j] {
+            for c in self.touching(m, &at) {
+                if !members.contains(&c) && (plastic(self, m) || plastic(self, c)) {
+                    members.push(c);
+                }
+            }
+        }
+        let mut contacts = self.contacts_among(&members, t);
+        if !contacts.iter().any(|c| c.a == 0 && c.b == Some(1)) {
+            return false;
+        }
+        contacts.retain(|c| match c.b {
+            Some(b) => plastic(self, members[c.a]) || plastic(self, members[b]),
+            None => plastic(self, members[c.a]),
+        });
+        let noise = WALL_RING_NOISE * u[0].length().max(u[1].length());
+        // Disc `k` of the two (0 for `i`), with velocity `v` after the hit,
+        // hits its obstacles (plastic, each in turn), and the pair
+        // approaches again.
+        let rings = |k: usize, v: DVec2| {
+            if !plastic(self, members[k]) {
+                return false;
+            }
+            let mut after = v;
+            let mut hit = false;
+            for c in contacts.iter().filter(|c| c.a == k && c.b.is_none()) {
+                let into = after.dot(c.n);
+                if into < -noise {
+                    after -= c.n * into;
+                    hit = true;
+                }
+            }
+            let (wi, wj) = if k == 0 { (after, vj) } else { (vi, after) };
+            hit && (wi - wj).dot(n) < -noise
+        };
+        if !(rings(0, vi) || rings(1, vj)) {
+            return false;
+        }
+        self.collapse_few_contacts(&members, contacts, t)
+    }
+
+    /// As `World::collapse_contacts`, for the few contacts of one hit and
+    /// its neighbours (see `World::hit_into_wall`): the plastic limit by
+    /// the active-set method first, which solves it in as many steps as
+    /// contacts push, and by the projection only where that fails. A
+    /// light disc between a heavy one and walls stalls projected
+    /// Gauss–Seidel, and where the exact solve of what it pushes is left
+    /// approaching by rounding, the projection ran all its sweeps every
+    /// time.
+    fn collapse_few_contacts(
+        &mut self,
+        members: &[usize],
+        mut contacts: Vec<collapse::Contact>,
+        t: f64,
+    ) -> bool {
+        let (vel, inv) = self.motion(members, t);
+        let plastic = collapse::active_set(&vel, &inv, &contacts)
+            .or_else(|| collapse::resolve(&vel, &inv, &contacts, collapse::MAX_SWEEPS));
+        let Some(mut after) = plastic else {
+            return false;
+        };
+        let alpha = self.braking(members);
+        if self.press_biases(members, &mut contacts, &after, &alpha) {
+            if let Some(kicked) = self.press_closure(members, &mut contacts, &after, &inv, &alpha) {
+                after = kicked;
+                self.stats.pressed += 1;
+            }
+        }
+        let changed = self.set_velocities(members, &vel, &after, t);
+        for &c in &changed {
+            self.predict(c, true);
+        }
+        !changed.is_empty()
     }
 
     /// What the approximated pressing contact does to two discs just hit
