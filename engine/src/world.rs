@@ -66,6 +66,15 @@ const CORNER_GENTLE: f64 = 1e-3;
 /// of the velocities the impulse forms.
 const WALL_RING_NOISE: f64 = 1e-12;
 
+/// From the thirteenth revision, turns of a disc between an obstacle and a
+/// plastic partner (obstacle hit, pair hit) after which the sequence is
+/// taken to its limit (see `World::hit_into_wall`): as many as the hits
+/// of one pair at one instant that the tenth revision takes as a collapse
+/// (`limits::EARLY_REPEAT_HITS`). A sequence that ends sooner (a light
+/// disc knocking a heavy one against a wall, which stops it within a few
+/// turns) is left to its hits.
+const WALL_RINGS: usize = 8;
+
 /// Which pairs of bodies are considered.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -1680,9 +1689,9 @@ impl World {
             self.stats.collapses += 1;
             return;
         }
-        // From the thirteenth revision, a plastic hit that drives a light
-        // plastic disc into an obstacle it touches, and would ring between
-        // the two, is taken with the obstacle.
+        // From the thirteenth revision, a plastic hit that drives a disc
+        // into an obstacle it touches, the two then ringing between the
+        // obstacle and each other, is taken with the obstacle.
         if e == 0.0
             && self.config.revision.takes_hit_into_wall_with_wall()
             && self.hit_into_wall(i, j, n, [ui, uj], t)
@@ -1816,22 +1825,26 @@ impl World {
 
     /// From the thirteenth revision, a plastic hit between the discs in
     /// slots `i` and `j` (unit normal `n` towards `i`, velocities `u`
-    /// before it) that drives the lighter of the two (or either, of equal
-    /// mass), a plastic one, into an obstacle it touches so that, once it
-    /// has hit that obstacle, its partner approaches it again: taken at
-    /// once as the plastic limit of the two, every disc touching either of
-    /// them through a plastic contact, and the obstacles the plastic ones
-    /// touch (the limit `World::cornered_hit` takes). That sequence of
-    /// hits, pair, obstacle, pair again, has no end, only that limit: the
-    /// partner loses the light disc's share of its approach at each turn.
-    /// Taken hit by hit, the light disc's obstacle hit moved it by the
-    /// rounding of its position, its partner met it again picoseconds
-    /// later, a new instant, and a heavy disc driven slowly into a light
-    /// one against a wall rang three events a turn, losing a few parts in
-    /// a thousand of its speed each, until the event cap, however straight
-    /// the hit. `false` (nothing done) where no such disc is, the hit does
-    /// not ring, the two are not found touching, or the limit changes
-    /// nothing.
+    /// before it) that drives one of them into an obstacle it touches,
+    /// where the hits that follow, played in memory (that disc hits the
+    /// obstacle with its restitution, its partner meets it again, a plastic
+    /// hit), still ring after [`WALL_RINGS`] turns: taken at once as the
+    /// plastic limit of the two, every disc touching either of them through
+    /// a plastic contact, the obstacles the plastic ones touch and those
+    /// of the disc that rings (the limit `World::cornered_hit` takes).
+    /// Such a sequence has no end, only that limit: the partner loses the
+    /// driven disc's share of its approach at each turn. Hit by hit, a
+    /// heavy disc driven slowly into a light plastic one against a wall
+    /// lost a few parts in a thousand of its speed a turn; each obstacle
+    /// hit moved the light disc by the rounding of its position, so that
+    /// its partner met it again picoseconds later, at a new instant, three
+    /// events a turn until the event cap, however straight the hit; a light
+    /// elastic disc between a wall and a heavy plastic one rang so at one
+    /// instant, the collapse taken after repeated hits ending each ring
+    /// only for the next to begin. A sequence that ends within those turns
+    /// (a light disc knocking a heavy one against a wall) is left to its
+    /// hits. `false` (nothing done) where no such disc is, the two are not
+    /// found touching, or the limit changes nothing.
     fn hit_into_wall(&mut self, i: usize, j: usize, n: DVec2, u: [DVec2; 2], t: f64) -> bool {
         let (mi, mj) = (self.material[i].mass, self.material[j].mass);
         let (vi, vj) = impulse::body_body(u[0], u[1], mi, mj, 0.0, n);
@@ -1849,33 +1862,43 @@ impl World {
         if !contacts.iter().any(|c| c.a == 0 && c.b == Some(1)) {
             return false;
         }
-        contacts.retain(|c| match c.b {
-            Some(b) => plastic(self, members[c.a]) || plastic(self, members[b]),
-            None => plastic(self, members[c.a]),
-        });
         let noise = WALL_RING_NOISE * u[0].length().max(u[1].length());
-        // Disc `k` of the two (0 for `i`), with velocity `v` after the hit,
-        // hits its obstacles (plastic, each in turn), and the pair
-        // approaches again.
-        let rings = |k: usize, v: DVec2| {
-            if !plastic(self, members[k]) {
-                return false;
-            }
-            let mut after = v;
-            let mut hit = false;
-            for c in contacts.iter().filter(|c| c.a == k && c.b.is_none()) {
-                let into = after.dot(c.n);
-                if into < -noise {
-                    after -= c.n * into;
-                    hit = true;
+        let masses = [mi, mj];
+        // Whether the hits that follow, played in memory, still ring after
+        // `WALL_RINGS` turns: disc `k` of the two (0 for `i`) hits the
+        // obstacles it touches and approaches (each in turn, with its
+        // restitution), and the pair approaches again and hits (plastic).
+        let rings = |k: usize| {
+            let e = self.material[members[k]].restitution;
+            let mut w = [vi, vj];
+            for _ in 0..WALL_RINGS {
+                let mut hit = false;
+                for c in contacts.iter().filter(|c| c.a == k && c.b.is_none()) {
+                    let into = w[k].dot(c.n);
+                    if into < -noise {
+                        w[k] -= c.n * ((1.0 + e) * into);
+                        hit = true;
+                    }
                 }
+                if !hit || (w[0] - w[1]).dot(n) >= -noise {
+                    return false;
+                }
+                let (a, b) = impulse::body_body(w[0], w[1], masses[0], masses[1], 0.0, n);
+                w = [a, b];
             }
-            let (wi, wj) = if k == 0 { (after, vj) } else { (vi, after) };
-            hit && (wi - wj).dot(n) < -noise
+            true
         };
-        if !(rings(0, vi) || rings(1, vj)) {
+        let ringing = [rings(0), rings(1)];
+        if !(ringing[0] || ringing[1]) {
             return false;
         }
+        // The plastic contacts, and the obstacles of a disc that rings
+        // against them whatever its restitution: its partner's plastic
+        // hits take what it brings back from them.
+        contacts.retain(|c| match c.b {
+            Some(b) => plastic(self, members[c.a]) || plastic(self, members[b]),
+            None => plastic(self, members[c.a]) || (c.a < 2 && ringing[c.a]),
+        });
         self.collapse_few_contacts(&members, contacts, t)
     }
 
