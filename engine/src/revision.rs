@@ -219,7 +219,8 @@ pub enum Revision {
     /// - a plastic hit between two discs that drives one of them into an
     ///   obstacle it touches, where the hits that follow (that disc off the
     ///   obstacle, its partner meeting it again), played in memory, still
-    ///   ring after eight turns, is taken at once as the plastic limit of
+    ///   ring after eight turns with a fifth of their approach left, is
+    ///   taken at once as the plastic limit of
     ///   the two, the discs touching them through plastic contacts and the
     ///   obstacles of the plastic and ringing ones
     ///   (`World::hit_into_wall`), however hard or straight the hit: a
