@@ -1857,23 +1857,17 @@ impl World {
     /// instant, the collapse taken after repeated hits ending each ring
     /// only for the next to begin. A sequence that ends within those turns,
     /// or loses its approach faster (a light disc knocking a heavy one
-    /// against a wall), is left to its hits. `false` (nothing done) where no such disc is, the two are not
-    /// found touching, or the limit changes nothing.
+    /// against a wall), is left to its hits. `false` (nothing done) where
+    /// no such disc is, the two are not found touching, or the limit
+    /// changes nothing.
     fn hit_into_wall(&mut self, i: usize, j: usize, n: DVec2, u: [DVec2; 2], t: f64) -> bool {
         let (mi, mj) = (self.material[i].mass, self.material[j].mass);
         let (vi, vj) = impulse::body_body(u[0], u[1], mi, mj, 0.0, n);
         let plastic = |w: &World, c: usize| w.material[c].restitution == 0.0;
-        let mut members = vec![i, j];
-        let at = self.positions(t);
-        for m in [i, j] {
-            for c in self.touching(m, &at) {
-                if !members.contains(&c) && (plastic(self, m) || plastic(self, c)) {
-                    members.push(c);
-                }
-            }
-        }
-        let mut contacts = self.contacts_among(&members, t);
-        if !contacts.iter().any(|c| c.a == 0 && c.b == Some(1)) {
+        // The pair's own contacts first (most plastic hits drive nothing
+        // into an obstacle): the neighbours only where it rings.
+        let pair = self.contacts_among(&[i, j], t);
+        if !pair.iter().any(|c| c.a == 0 && c.b == Some(1)) {
             return false;
         }
         let noise = WALL_RING_NOISE * u[0].length().max(u[1].length());
@@ -1883,13 +1877,13 @@ impl World {
         // obstacles it touches and approaches (each in turn, with its
         // restitution), and the pair approaches again and hits (plastic).
         let rings = |k: usize| {
-            let e = self.material[members[k]].restitution;
+            let e = self.material[[i, j][k]].restitution;
             let mut w = [vi, vj];
             let mut first = None;
             let mut approach = 0.0;
             for _ in 0..WALL_RINGS {
                 let mut hit = false;
-                for c in contacts.iter().filter(|c| c.a == k && c.b.is_none()) {
+                for c in pair.iter().filter(|c| c.a == k && c.b.is_none()) {
                     let into = w[k].dot(c.n);
                     if into < -noise {
                         w[k] -= c.n * ((1.0 + e) * into);
@@ -1912,6 +1906,16 @@ impl World {
         if !(ringing[0] || ringing[1]) {
             return false;
         }
+        let mut members = vec![i, j];
+        let at = self.positions(t);
+        for m in [i, j] {
+            for c in self.touching(m, &at) {
+                if !members.contains(&c) && (plastic(self, m) || plastic(self, c)) {
+                    members.push(c);
+                }
+            }
+        }
+        let mut contacts = self.contacts_among(&members, t);
         // The plastic contacts, and the obstacles of a disc that rings
         // against them whatever its restitution: its partner's plastic
         // hits take what it brings back from them.
