@@ -216,6 +216,21 @@ pub enum Revision {
     #[default]
     R12,
     /// The thirteenth, as the twelfth but:
+    /// - a plastic hit between two discs that drives one of them into an
+    ///   obstacle it touches, where the hits that follow (that disc off the
+    ///   obstacle, its partner meeting it again), played in memory, still
+    ///   ring after eight turns with a fifth of their approach left, is
+    ///   taken at once as the plastic limit of
+    ///   the two, the discs touching them through plastic contacts and the
+    ///   obstacles of the plastic and ringing ones
+    ///   (`World::hit_into_wall`), however hard or straight the hit: a
+    ///   heavy disc driven slowly into a light plastic one against a wall
+    ///   lost a few parts in a thousand of its speed a turn, each obstacle
+    ///   hit moving the light disc by the rounding of its position, so that
+    ///   its partner met it again picoseconds later at a new instant, three
+    ///   events a turn until the event cap; a light elastic disc between a
+    ///   wall and a heavy plastic one rang so at one instant, ring after
+    ///   ring (`Revision::takes_hit_into_wall_with_wall`);
     /// - an elastic ring (every disc touching it elastic) at one instant or
     ///   crawling, with a braking disc in it, whose contacts approach and
     ///   part no faster than `limits::GENTLE` of its fastest disc, is
@@ -423,6 +438,14 @@ impl Revision {
     /// `World::cornered_hit`).
     pub fn takes_cornered_hit_with_walls(self) -> bool {
         self.at_least_r12()
+    }
+
+    /// Whether a plastic hit that drives a disc into an obstacle it
+    /// touches, the two then ringing between the obstacle and each other,
+    /// is taken at once as one plastic limit with the obstacles (a
+    /// thirteenth revision rule, see `World::hit_into_wall`).
+    pub fn takes_hit_into_wall_with_wall(self) -> bool {
+        self.at_least_r13()
     }
 }
 

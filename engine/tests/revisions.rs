@@ -921,3 +921,41 @@ fn a_plastic_hit_driving_a_light_disc_into_a_wall_is_taken_with_the_wall() {
         }
     }
 }
+
+#[test]
+fn a_heavy_disc_driven_into_a_light_plastic_one_against_a_wall_stops_with_it() {
+    // In mixed-box 9775 heavy frictionless disc 2 is driven left at 2.5e-7
+    // m/s into light plastic disc 1, which lies against the left wall.
+    // Each plastic hit sent disc 1 into the wall; the wall hit moved it by
+    // the rounding of its position, so disc 2 met it again 2.3e-11 s later,
+    // a new instant, having lost 0.6 per cent of its speed: three events a
+    // turn, never the eight hits of a pair at one instant, until the event
+    // cap at 14.3 s. From revision 13 a plastic hit that drives a disc into
+    // an obstacle, where the hits that follow still ring after eight turns,
+    // is the plastic limit of the pair, its plastic neighbours and the
+    // obstacles at once.
+    reaches_the_horizon_from(Revision::R13, "mixed-box-9775", 100.0);
+    // Heavy plastic disc 12 drives light plastic disc 6 into disc 2, which
+    // lies on the floor: the ring is at one instant, 6-12, 6-2, 2 and the
+    // floor, until the cap at 0.79 s; revision 13 brings the box to rest.
+    let name = "mixed-box-22113";
+    let (old, old_events, _) = run_until(name, Revision::R12, 100.0);
+    assert_eq!(old, EndReason::MaxEvents, "{name} under R12");
+    assert_eq!(old_events, CAP);
+    let (reason, events, overlap) = run_until(name, Revision::R13, 100.0);
+    assert_eq!(reason, EndReason::Rest, "{name}");
+    assert!(events < 20_000, "{name}: {events} events");
+    assert!(overlap < 1e-9, "{name}: overlap {overlap:e}");
+}
+
+#[test]
+fn a_light_elastic_disc_rung_in_a_corner_by_a_heavy_plastic_one_is_taken_with_the_wall() {
+    // In mixed-box 211026 light elastic disc 1 slides up the left wall
+    // from the corner, heavy frictionless plastic disc 2 pressing it into
+    // the wall at 3.3e-6 m/s: each plastic hit sent disc 1 into the wall,
+    // it bounced back off it into disc 2, 2.3e-11 s a turn (the median),
+    // until the event cap at 1.61 s. Played in memory the turns still ring after eight, so
+    // from revision 13 the hit is the plastic limit of the two with the
+    // wall of the ringing disc.
+    reaches_the_horizon_from(Revision::R13, "mixed-box-211026", 100.0);
+}
