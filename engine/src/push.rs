@@ -167,41 +167,6 @@ pub(crate) fn bounces_within_touch(
     w * w <= TOUCHING * s * -a
 }
 
-/// From the thirteenth revision: whether two discs just hit along `n` (from
-/// `j` to `i`, trajectories `ti`, `tj` after the hit, contact distance `s`)
-/// part so slowly while their braking presses them together that the
-/// highest gap they open before they meet again, `w^2 / (2 |a|)` (`w` the
-/// separation speed, `a` the pressing deceleration along `n`), is no wider
-/// than the gap the approximated pressing contact keeps a pair within
-/// (`press_gap`). An elastic pair so caught bounces at that height for as
-/// long as both slide (a heavy frictionless disc pushing a light braking
-/// one loses a few parts in a million of its speed at each hit), every
-/// bounce `2 w / |a|` after the last: its centre of mass moves exactly as
-/// the pair pushed together does (friction acts on each sliding disc either
-/// way), and each disc stays within the gap of it. Taking the pair as one
-/// pushed body at once (a plastic hit) is that limit, exact to the
-/// approximation's own gap, and only takes out the pair's relative energy
-/// `m w^2 / 2` (`m` its reduced mass). `false` where neither brakes, one
-/// does not slide or they do not part.
-pub(crate) fn bounces_within_gap(
-    ti: &Trajectory,
-    tj: &Trajectory,
-    n: DVec2,
-    s: f64,
-    now: f64,
-    rev: Revision,
-) -> bool {
-    if ti.alpha() == 0.0 && tj.alpha() == 0.0 {
-        return false;
-    }
-    let a = (ti.acceleration(now) - tj.acceleration(now)).dot(n);
-    if !(a < 0.0) || !ti.is_moving_at(now) || !tj.is_moving_at(now) {
-        return false;
-    }
-    let w = (ti.velocity(now) - tj.velocity(now)).dot(n);
-    w > 0.0 && w * w <= 2.0 * -a * press_gap(rev) * s
-}
-
 /// Whether a bounce `dt` after a hit at absolute time `at` falls within the
 /// rounding of that time (see [`same_instant`]): a pressed pair that
 /// bounces so fast has come to rest for all a reported time can show.
@@ -529,33 +494,6 @@ mod tests {
         assert!(spent_within_gap(fast, m, alpha, 0.0242, Revision::R11));
         let faster = [v[0], v[1] * 1e5];
         assert!(!spent_within_gap(faster, m, alpha, 0.0242, Revision::R11));
-    }
-
-    #[test]
-    fn a_pair_parting_lower_than_the_pressing_gap_bounces_within_it() {
-        // A frictionless disc pushing a braking one (5 m/s^2) head-on at
-        // 0.1 m/s, contact distance 0.02 m: the gap is 2e-6 m, reached by
-        // a bounce at sqrt(2 * 5 * 2e-6) = 4.47e-3 m/s.
-        let pair = |w: f64| (sliding(0.02, 0.1 + w, 5.0), sliding(0.0, 0.1, 0.0));
-        let within = |w: f64| {
-            let (front, rear) = pair(w);
-            bounces_within_gap(&front, &rear, DVec2::X, 0.02, 0.0, Revision::R13)
-        };
-        assert!(within(3.9e-5));
-        assert!(within(4.4e-3));
-        assert!(!within(4.6e-3), "higher than the gap");
-        assert!(!within(0.0), "not parting");
-        assert!(!within(-1e-5), "approaching");
-        // The front disc braking less runs away: nothing presses.
-        let (front, rear) = (sliding(0.02, 0.1, 0.0), sliding(0.0, 0.1 - 1e-5, 5.0));
-        assert!(!bounces_within_gap(
-            &front,
-            &rear,
-            DVec2::X,
-            0.02,
-            0.0,
-            Revision::R13
-        ));
     }
 
     #[test]

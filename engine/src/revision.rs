@@ -213,7 +213,6 @@ pub enum Revision {
     ///   at that same instant and losing only the light disc's share of
     ///   its approach: two or three hits an instant, never the tenth
     ///   revision's eight hits of a pair, until the event cap.
-    #[default]
     R12,
     /// The thirteenth, as the twelfth but:
     /// - a plastic hit between two discs that drives one of them into an
@@ -259,14 +258,6 @@ pub enum Revision {
     ///   speed, 7.5e-6 of theirs, its braking bringing it back 1.7e-7 s
     ///   later, millions of hits until the event cap
     ///   (`Revision::ends_bounces_within_touch`);
-    /// - an elastic hit that leaves two discs sliding head-on, pressed
-    ///   together by their braking, parting so slowly that the gap they
-    ///   open before they meet again is no wider than the pressing
-    ///   contact's (`push::WIDE_PRESS_GAP`), pushes them together at once
-    ///   (a plastic hit, the exact pushed pair after it): a heavy
-    ///   frictionless disc pushing a light braking one along the floor hit
-    ///   it every 16 microseconds, each bounce 1.5e-10 m high, for over a
-    ///   second (`Revision::joins_pair_bouncing_within_gap`);
     /// - a plastic hit between two discs that touch no other disc through
     ///   a plastic contact, which drives the lighter one, plastic, into an
     ///   obstacle it touches, is taken at once as the plastic limit of the
@@ -276,12 +267,13 @@ pub enum Revision {
     ///   it again at that instant, losing a fraction of its approach, one
     ///   hit of the pair an instant, until the event cap
     ///   (`Revision::takes_walled_hit_with_wall`).
+    #[default]
     R13,
 }
 
 impl Revision {
     /// The revision new computations use.
-    pub const LATEST: Revision = Revision::R12;
+    pub const LATEST: Revision = Revision::R13;
 
     /// Every revision, oldest first.
     pub const ALL: [Revision; 13] = [
@@ -412,15 +404,6 @@ impl Revision {
     /// the end of its chatter, one plastic hit (the thirteenth revision;
     /// see `push::bounces_within_touch`).
     pub fn ends_bounces_within_touch(self) -> bool {
-        self.at_least_r13()
-    }
-
-    /// Whether an elastic pair that bounces apart no higher than the
-    /// pressing contact's gap while its braking presses it together, head-on,
-    /// is pushed together at once (a plastic hit) instead of bouncing at
-    /// that height for as long as both slide (a thirteenth revision rule,
-    /// see `push::bounces_within_gap`).
-    pub fn joins_pair_bouncing_within_gap(self) -> bool {
         self.at_least_r13()
     }
 

@@ -1794,22 +1794,6 @@ impl World {
                 Trajectory::new(t, pj, vj, alpha[1]),
             );
         }
-        if e > 0.0
-            && self.config.revision.joins_pair_bouncing_within_gap()
-            && push::bounces_within_gap(&new_i, &new_j, n, s, t, self.config.revision)
-        {
-            // From the thirteenth revision, a pair that bounces no higher
-            // than the pressing contact's gap: pushed together, if the
-            // plastic hit leaves it pushing (head-on).
-            let (wi, wj) = impulse::body_body(ui, uj, mi.mass, mj.mass, 0.0, n);
-            let (joined_i, joined_j) = (
-                Trajectory::new(t, pi, wi, alpha[0]),
-                Trajectory::new(t, pj, wj, alpha[1]),
-            );
-            if push::pushing(&joined_i, pi, &joined_j, pj, t) {
-                (vi, vj, new_i, new_j) = (wi, wj, joined_i, joined_j);
-            }
-        }
         if push::pushing(&new_i, pi, &new_j, pj, t) {
             self.slots[i].traj = new_i;
             self.slots[j].traj = new_j;

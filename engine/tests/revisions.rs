@@ -864,35 +864,7 @@ fn an_elastic_pair_pressed_so_hard_that_its_bounce_never_leaves_touching_moves_a
     reaches_the_horizon_from(Revision::R13, "mixed-box-155239", 100.0);
 }
 
-// Revision 13: a pair bouncing within the pressing contact's gap.
-
-#[test]
-fn an_elastic_pair_pushed_head_on_within_the_pressing_gap_slides_as_one_body() {
-    // In mixed-box 84063 heavy frictionless elastic disc 3 (0.12 kg)
-    // pushes light elastic disc 4 (2.7 g, braking at 5.1 m/s^2) along the
-    // floor at 0.12 m/s: every hit parts them at 3.9e-5 m/s, a bounce
-    // 1.5e-10 m high, and they meet again 1.6e-5 s later, until the event
-    // cap at 1.93 s. In 323554 heavy disc 3 (0.96 kg) pushes disc 4
-    // (5.2 g, braking at 276 m/s^2), a hit every 7.9e-9 s (the cap at
-    // 0.10 s); in 45436 frictionless disc 3 (0.47 kg) pushes disc 4
-    // (3.1 g) at 1.5e-4 m/s, a hit every 3.1e-8 s. From revision 13 a pair
-    // pressed by its braking that bounces no higher than the pressing
-    // contact's gap is pushed together at once, and slides as one body.
-    for name in ["mixed-box-84063", "mixed-box-323554", "mixed-box-45436"] {
-        let (old, events, _) = run_until(name, Revision::R12, 100.0);
-        assert_eq!(old, EndReason::MaxEvents, "{name} under R12");
-        assert_eq!(events, CAP);
-        for revision in Revision::ALL[index(Revision::R13)..].iter().copied() {
-            let (reason, events, overlap) = run_until(name, revision, 100.0);
-            assert!(
-                matches!(reason, EndReason::Until | EndReason::Rest),
-                "{name} under {revision:?}: {reason:?}"
-            );
-            assert!(events < 1_000, "{name} under {revision:?}: {events} events");
-            assert!(overlap < 1e-9, "{name}: overlap {overlap:e}");
-        }
-    }
-}
+// Revision 13: a plastic hit driving a light disc into a wall.
 
 #[test]
 fn a_plastic_hit_driving_a_light_disc_into_a_wall_is_taken_with_the_wall() {
