@@ -110,19 +110,30 @@ pub(crate) fn chatters(
     origin: f64,
     rev: Revision,
 ) -> bool {
-    // Cheapest test first: without pressing braking (frictionless pairs,
-    // Galperin's billiard) nothing else is looked at.
-    if ti.alpha() == 0.0 && tj.alpha() == 0.0 {
+    let Some(a) = pressing_deceleration(ti, tj, n, now) else {
         return false;
-    }
-    let a = (ti.acceleration(now) - tj.acceleration(now)).dot(n);
-    if !(a < 0.0) || !ti.is_moving_at(now) || !tj.is_moving_at(now) {
-        return false;
-    }
+    };
     let (vi, vj) = (ti.velocity(now), tj.velocity(now));
     let w = (vi - vj).dot(n);
     w <= CAPTURE * (vi.length() + vj.length())
         || (rev.at_least_r3() && next_within_rounding(origin + now, 2.0 * w / -a))
+}
+
+/// The deceleration `a < 0` with which the braking of the discs on `ti`
+/// and `tj` presses them together along `n` (from `j` to `i`) at `now`,
+/// both sliding; `None` where it does not. Cheapest test first: without
+/// braking (frictionless pairs, Galperin's billiard) nothing else is
+/// looked at.
+#[inline]
+fn pressing_deceleration(ti: &Trajectory, tj: &Trajectory, n: DVec2, now: f64) -> Option<f64> {
+    if ti.alpha() == 0.0 && tj.alpha() == 0.0 {
+        return None;
+    }
+    let a = (ti.acceleration(now) - tj.acceleration(now)).dot(n);
+    if !(a < 0.0) || !ti.is_moving_at(now) || !tj.is_moving_at(now) {
+        return None;
+    }
+    Some(a)
 }
 
 /// From the thirteenth revision, whether the discs on `ti` and `tj`, just
@@ -149,13 +160,9 @@ pub(crate) fn bounces_within_touch(
     s: f64,
     now: f64,
 ) -> bool {
-    if ti.alpha() == 0.0 && tj.alpha() == 0.0 {
+    let Some(a) = pressing_deceleration(ti, tj, n, now) else {
         return false;
-    }
-    let a = (ti.acceleration(now) - tj.acceleration(now)).dot(n);
-    if !(a < 0.0) || !ti.is_moving_at(now) || !tj.is_moving_at(now) {
-        return false;
-    }
+    };
     // Head-on only: both slide along the line of centres (an oblique pair
     // turns as it slides, and is the pressing kick's).
     let (vi, vj) = (ti.velocity(now), tj.velocity(now));

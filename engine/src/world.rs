@@ -1043,7 +1043,7 @@ impl World {
     fn collapse_contacts(
         &mut self,
         members: &[usize],
-        mut contacts: Vec<collapse::Contact>,
+        contacts: Vec<collapse::Contact>,
         t: f64,
     ) -> bool {
         let (vel, inv) = self.motion(members, t);
@@ -1062,17 +1062,35 @@ impl World {
         } else {
             collapse::plastic(&vel, &inv, &contacts)
         };
-        let Some(mut after) = plastic else {
+        let Some(after) = plastic else {
             return false;
         };
+        self.take_plastic_limit(members, contacts, (&vel, &inv), after, r3, t)
+    }
+
+    /// Sets the velocities of `members` (slots; `vel` and `inv` their
+    /// velocities and inverse masses before) to the plastic limit `after`
+    /// of their `contacts`, where `press` is set (the third revision on)
+    /// kicked apart first where it leaves pairs pressed (see
+    /// `collapse_cluster`), and predicts the discs it changed. `true` if
+    /// any velocity changed.
+    fn take_plastic_limit(
+        &mut self,
+        members: &[usize],
+        mut contacts: Vec<collapse::Contact>,
+        (vel, inv): (&[DVec2], &[f64]),
+        mut after: Vec<DVec2>,
+        press: bool,
+        t: f64,
+    ) -> bool {
         let alpha = self.braking(members);
-        if r3 && self.press_biases(members, &mut contacts, &after, &alpha) {
-            if let Some(kicked) = self.press_closure(members, &mut contacts, &after, &inv, &alpha) {
+        if press && self.press_biases(members, &mut contacts, &after, &alpha) {
+            if let Some(kicked) = self.press_closure(members, &mut contacts, &after, inv, &alpha) {
                 after = kicked;
                 self.stats.pressed += 1;
             }
         }
-        let changed = self.set_velocities(members, &vel, &after, t);
+        let changed = self.set_velocities(members, vel, &after, t);
         for &c in &changed {
             self.predict(c, true);
         }
@@ -2075,27 +2093,16 @@ impl World {
     fn collapse_few_contacts(
         &mut self,
         members: &[usize],
-        mut contacts: Vec<collapse::Contact>,
+        contacts: Vec<collapse::Contact>,
         t: f64,
     ) -> bool {
         let (vel, inv) = self.motion(members, t);
         let plastic = collapse::active_set(&vel, &inv, &contacts)
             .or_else(|| collapse::resolve(&vel, &inv, &contacts, collapse::MAX_SWEEPS));
-        let Some(mut after) = plastic else {
+        let Some(after) = plastic else {
             return false;
         };
-        let alpha = self.braking(members);
-        if self.press_biases(members, &mut contacts, &after, &alpha) {
-            if let Some(kicked) = self.press_closure(members, &mut contacts, &after, &inv, &alpha) {
-                after = kicked;
-                self.stats.pressed += 1;
-            }
-        }
-        let changed = self.set_velocities(members, &vel, &after, t);
-        for &c in &changed {
-            self.predict(c, true);
-        }
-        !changed.is_empty()
+        self.take_plastic_limit(members, contacts, (&vel, &inv), after, true, t)
     }
 
     /// What the approximated pressing contact does to two discs just hit
