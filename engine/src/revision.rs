@@ -269,6 +269,8 @@ pub enum Revision {
     ///   (`Revision::takes_walled_hit_with_wall`).
     #[default]
     R13,
+    /// The fourteenth, as the thirteenth but:
+    R14,
 }
 
 impl Revision {
@@ -276,7 +278,7 @@ impl Revision {
     pub const LATEST: Revision = Revision::R13;
 
     /// Every revision, oldest first.
-    pub const ALL: [Revision; 13] = [
+    pub const ALL: [Revision; 14] = [
         Revision::R1,
         Revision::R2,
         Revision::R3,
@@ -290,6 +292,7 @@ impl Revision {
         Revision::R11,
         Revision::R12,
         Revision::R13,
+        Revision::R14,
     ];
 
     /// Whether this revision has the second revision's rules.
@@ -357,6 +360,11 @@ impl Revision {
     /// Whether this revision has the thirteenth revision's rules.
     pub fn at_least_r13(self) -> bool {
         self >= Revision::R13
+    }
+
+    /// Whether this revision has the fourteenth revision's rules.
+    pub fn at_least_r14(self) -> bool {
+        self >= Revision::R14
     }
 
     /// Whether a pressing kick over a cluster adds no more than 0.01 of the
@@ -457,10 +465,10 @@ mod tests {
         for (k, r) in Revision::ALL.into_iter().enumerate() {
             assert_eq!(format!("r{}", k + 1).parse(), Ok(r));
         }
-        let err = "r14".parse::<Revision>().unwrap_err();
+        let err = "r15".parse::<Revision>().unwrap_err();
         assert_eq!(
             err.to_string(),
-            "no engine revision named \"r14\" (r1, r2, ...)"
+            "no engine revision named \"r15\" (r1, r2, ...)"
         );
     }
 }
