@@ -1786,7 +1786,7 @@ impl World {
         // obstacle and each other, is taken with the obstacle.
         if e == 0.0
             && self.config.revision.takes_hit_into_wall_with_wall()
-            && self.hit_into_wall(i, j, n, [ui, uj], t)
+            && self.hit_into_wall(i, j, n, [ui, uj], false, t)
         {
             self.stats.collapses += 1;
             return;
@@ -1804,6 +1804,15 @@ impl World {
                 || (self.config.revision.ends_bounces_within_touch()
                     && push::bounces_within_touch(&new_i, &new_j, n, s, t)))
         {
+            // From the fourteenth revision, a chatter's end that drives a
+            // disc into an obstacle it touches, the two then ringing, is
+            // taken with the obstacle, as a plastic hit is.
+            if self.config.revision.takes_captured_hit_into_wall_with_wall()
+                && self.hit_into_wall(i, j, n, [ui, uj], true, t)
+            {
+                self.stats.collapses += 1;
+                return;
+            }
             // The pair would bounce ever faster into a pressing contact:
             // take the chatter's end, one plastic hit, now.
             (vi, vj) = impulse::body_body(ui, uj, mi.mass, mj.mass, 0.0, n);
@@ -2016,7 +2025,21 @@ impl World {
     /// against a wall), is left to its hits. `false` (nothing done) where
     /// no such disc is, the two are not found touching, or the limit
     /// changes nothing.
-    fn hit_into_wall(&mut self, i: usize, j: usize, n: DVec2, u: [DVec2; 2], t: f64) -> bool {
+    ///
+    /// From the fourteenth revision, the same for a hit of a pair with
+    /// restitution taken as the end of its chatter (`chatter_end`, see
+    /// `push::chatters`): that hit is plastic too, and so is every hit of
+    /// the pair the ring would bring, so that the limit takes the pair's
+    /// own contact with the obstacles, whatever the discs' restitution.
+    fn hit_into_wall(
+        &mut self,
+        i: usize,
+        j: usize,
+        n: DVec2,
+        u: [DVec2; 2],
+        chatter_end: bool,
+        t: f64,
+    ) -> bool {
         let (mi, mj) = (self.material[i].mass, self.material[j].mass);
         let (vi, vj) = impulse::body_body(u[0], u[1], mi, mj, 0.0, n);
         let plastic = |w: &World, c: usize| w.material[c].restitution == 0.0;
@@ -2076,7 +2099,11 @@ impl World {
         // against them whatever its restitution: its partner's plastic
         // hits take what it brings back from them.
         contacts.retain(|c| match c.b {
-            Some(b) => plastic(self, members[c.a]) || plastic(self, members[b]),
+            Some(b) => {
+                plastic(self, members[c.a])
+                    || plastic(self, members[b])
+                    || (chatter_end && c.a == 0 && b == 1)
+            }
             None => plastic(self, members[c.a]) || (c.a < 2 && ringing[c.a]),
         });
         self.collapse_few_contacts(&members, contacts, t)
