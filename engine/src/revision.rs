@@ -460,6 +460,16 @@ impl Revision {
     pub fn takes_captured_hit_into_wall_with_wall(self) -> bool {
         self.at_least_r14()
     }
+
+    /// Whether a gentle plastic hit (its approach within `limits::GENTLE`
+    /// of the faster disc's speed) that drives a disc into an obstacle it
+    /// touches, the disc then coming back into its partner, is taken at
+    /// once as one plastic limit with the obstacles, however fast the
+    /// ring would fade (a fourteenth revision rule, see
+    /// `World::hit_into_wall`).
+    pub fn takes_gentle_hit_into_wall_with_wall(self) -> bool {
+        self.at_least_r14()
+    }
 }
 
 /// A revision name that names no revision.

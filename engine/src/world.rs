@@ -1807,7 +1807,10 @@ impl World {
             // From the fourteenth revision, a chatter's end that drives a
             // disc into an obstacle it touches, the two then ringing, is
             // taken with the obstacle, as a plastic hit is.
-            if self.config.revision.takes_captured_hit_into_wall_with_wall()
+            if self
+                .config
+                .revision
+                .takes_captured_hit_into_wall_with_wall()
                 && self.hit_into_wall(i, j, n, [ui, uj], true, t)
             {
                 self.stats.collapses += 1;
@@ -2055,12 +2058,14 @@ impl World {
         // `WALL_RINGS` turns: disc `k` of the two (0 for `i`) hits the
         // obstacles it touches and approaches (each in turn, with its
         // restitution), and the pair approaches again and hits (plastic).
-        let rings = |k: usize| {
+        // The pair's approach at its first and last turn, where it still
+        // rings after `turns`.
+        let play = |k: usize, turns: usize| {
             let e = self.material[[i, j][k]].restitution;
             let mut w = [vi, vj];
             let mut first = None;
             let mut approach = 0.0;
-            for _ in 0..WALL_RINGS {
+            for _ in 0..turns {
                 let mut hit = false;
                 for c in pair.iter().filter(|c| c.a == k && c.b.is_none()) {
                     let into = w[k].dot(c.n);
@@ -2071,17 +2076,27 @@ impl World {
                 }
                 approach = -(w[0] - w[1]).dot(n);
                 if !hit || approach <= noise {
-                    return false;
+                    return None;
                 }
                 first.get_or_insert(approach);
                 let (a, b) = impulse::body_body(w[0], w[1], masses[0], masses[1], 0.0, n);
                 w = [a, b];
             }
-            // Slowly: a ring that loses more falls below the rounding of
-            // the speeds within a few hundred hits, and is left to them.
-            first.is_some_and(|first| approach >= WALL_RING_KEEPS * first)
+            first.map(|first| (first, approach))
         };
-        let ringing = [rings(0), rings(1)];
+        // Slowly: a ring that loses more falls below the rounding of
+        // the speeds within a few hundred hits, and is left to them.
+        let rings = |k: usize| {
+            play(k, WALL_RINGS).is_some_and(|(first, last)| last >= WALL_RING_KEEPS * first)
+        };
+        // From the fourteenth revision, a gentle hit whose driven disc
+        // comes back into its partner at all, however fast the ring fades.
+        let gentle = self.config.revision.takes_gentle_hit_into_wall_with_wall()
+            && (u[1] - u[0]).dot(n) <= GENTLE * u[0].length().max(u[1].length());
+        let ringing = [
+            rings(0) || (gentle && play(0, 1).is_some()),
+            rings(1) || (gentle && play(1, 1).is_some()),
+        ];
         if !(ringing[0] || ringing[1]) {
             return false;
         }

@@ -931,3 +931,85 @@ fn a_light_elastic_disc_rung_in_a_corner_by_a_heavy_plastic_one_is_taken_with_th
     // wall of the ringing disc.
     reaches_the_horizon_from(Revision::R13, "mixed-box-211026", 100.0);
 }
+
+// Revision 14: rings of a disc between a wall and its partner at one
+// instant that the thirteenth revision's rules let through.
+
+/// The revision before `since` ends `name` `stuck` before the mixed boxes'
+/// horizon; `since` and every revision after it reach the horizon or come
+/// to rest, within the cap and without overlap.
+fn unstuck_from(since: Revision, name: &str) {
+    let previous = Revision::ALL[index(since) - 1];
+    assert_eq!(
+        run_until(name, previous, 100.0).0,
+        EndReason::Stuck,
+        "{name} under {previous:?}"
+    );
+    for revision in Revision::ALL[index(since)..].iter().copied() {
+        let (reason, events, overlap) = run_until(name, revision, 100.0);
+        assert!(
+            matches!(reason, EndReason::Until | EndReason::Rest),
+            "{name} under {revision:?}: {reason:?}"
+        );
+        assert!(events < CAP, "{name}: {events} events");
+        assert!(overlap < 1e-9, "{name}: overlap {overlap:e}");
+    }
+}
+
+#[test]
+fn a_light_elastic_disc_whose_chatter_with_a_heavy_one_ends_into_a_wall_is_taken_with_the_wall() {
+    // In mixed-box 186302 light braking elastic disc 1 (1.0 g) lies on the
+    // floor against the left wall, and heavy braking elastic disc 2 (0.36
+    // kg) beside it slides into it at 5.5e-8 m/s. Each hit of the pair was
+    // taken as the end of a chatter (one plastic hit), which left disc 1
+    // moving into the wall at disc 2's speed; the elastic wall sent it back
+    // into disc 2 at that same instant, and disc 2 lost twice the light
+    // disc's share of its speed a turn (0.57 per cent): 20,000 hits at one
+    // instant until the event cap, no rule counting them (every disc and
+    // wall elastic). From revision 14 such a chatter's end that drives a
+    // disc into a wall, the two then ringing, is the plastic limit of the
+    // two (their own contact with it) and the wall at once.
+    reaches_the_horizon_from(Revision::R14, "mixed-box-186302", 100.0);
+    // The same ring in mixed-box 222181 (disc 1, 15 g, braking at 79
+    // m/s^2, against disc 2, 0.28 kg), and in 418002 (disc 1, 1.4 g,
+    // against frictionless disc 2, 0.31 kg), which ended stuck.
+    reaches_the_horizon_from(Revision::R14, "mixed-box-222181", 100.0);
+    unstuck_from(Revision::R14, "mixed-box-418002");
+}
+
+#[test]
+fn a_gentle_plastic_hit_driving_a_disc_into_a_wall_is_taken_with_the_wall_however_fast_its_ring_fades(
+) {
+    // In mixed-box 506944 light braking elastic disc 2 slides along the
+    // floor at 6.1e-3 m/s, and braking plastic disc 5, behind and above
+    // it, slides down its back, pressing it into the floor: each plastic
+    // hit sent disc 2 into the floor, which sent it back into disc 5 at
+    // that same instant, its approach a seventh of the last each turn, some
+    // twenty hits until the rounding of the speeds ended them; the pair's
+    // braking pressed it together again microseconds later, instant after
+    // instant, until the event cap at 9.97 s. The thirteenth revision's
+    // hit into a wall took only a ring that keeps a fifth of its approach
+    // over eight turns. From revision 14 a gentle hit (its approach within
+    // 1e-2 of the faster disc's speed) whose disc comes back off the wall
+    // into its partner is the plastic limit with the wall at once.
+    reaches_the_horizon_from(Revision::R14, "mixed-box-506944", 100.0);
+    // Light frictionless elastic disc 7 sliding along the floor under
+    // heavy frictionless plastic disc 12 (the wall hit 7e-13 s after the
+    // pair's, a new instant each turn, the event cap at 28.6 s); light
+    // braking plastic disc 8 against the top wall between plastic disc 2
+    // and heavy frictionless disc 4 pushing it (14.9 s); plastic disc 4 on
+    // the floor rung by lighter plastic disc 7 (2.25 s); and three pairs
+    // in the corner: elastic 1 and plastic 2 (84278, 4.23 s), plastic 1
+    // and lighter elastic 2 (85530, 38.4 s), plastic 1 and lighter
+    // elastic 5 (452415, 0.48 s).
+    for name in [
+        "mixed-box-70495",
+        "mixed-box-556463",
+        "mixed-box-453647",
+        "mixed-box-84278",
+        "mixed-box-85530",
+        "mixed-box-452415",
+    ] {
+        reaches_the_horizon_from(Revision::R14, name, 100.0);
+    }
+}
