@@ -282,7 +282,22 @@ pub enum Revision {
     ///   moving into the wall, which sent it back into its partner at the
     ///   same instant, the partner losing twice the light disc's share of
     ///   its speed a turn, 20,000 hits at one instant until the event cap
-    ///   (`Revision::takes_captured_hit_into_wall_with_wall`).
+    ///   (`Revision::takes_captured_hit_into_wall_with_wall`);
+    /// - a gentle plastic hit (its approach within `limits::GENTLE` of the
+    ///   faster disc's speed: discs pressed together as they slide, not an
+    ///   impact) that drives a plastic disc into an obstacle its normal
+    ///   meets at an angle, the disc then coming back into its partner, is
+    ///   taken at once as that same plastic limit (`World::hit_into_wall`)
+    ///   unless their braking presses them together,
+    ///   however fast the ring would fade, not only where it keeps a fifth
+    ///   of its approach over eight turns: a plastic disc on the floor,
+    ///   rung by a lighter plastic one sliding against it, stopped against
+    ///   the floor and was caught again at one instant, a tenth of the
+    ///   approach left each turn, until the rounding of the speeds ended
+    ///   the ring, and the light disc, pressed between it and a third,
+    ///   drove into it again tens of microseconds later, until the event
+    ///   cap
+    ///   (`Revision::takes_gentle_hit_into_wall_with_wall`).
     R14,
 }
 
@@ -462,10 +477,10 @@ impl Revision {
     }
 
     /// Whether a gentle plastic hit (its approach within `limits::GENTLE`
-    /// of the faster disc's speed) that drives a disc into an obstacle it
-    /// touches, the disc then coming back into its partner, is taken at
-    /// once as one plastic limit with the obstacles, however fast the
-    /// ring would fade (a fourteenth revision rule, see
+    /// of the faster disc's speed) that drives a plastic disc into an
+    /// obstacle it touches, the disc then coming back into its partner, is
+    /// taken at once as one plastic limit with the obstacles, however fast
+    /// the ring would fade (a fourteenth revision rule, see
     /// `World::hit_into_wall`).
     pub fn takes_gentle_hit_into_wall_with_wall(self) -> bool {
         self.at_least_r14()
