@@ -270,6 +270,34 @@ pub enum Revision {
     #[default]
     R13,
     /// The fourteenth, as the thirteenth but:
+    /// - a hit of a pair with restitution taken as the end of its chatter
+    ///   (one plastic hit, `push::chatters`, `push::bounces_within_touch`)
+    ///   that drives one of the two into an obstacle it touches, where the
+    ///   turns that follow, played in memory, ring as the thirteenth
+    ///   revision's hit into a wall does, is taken at once as the plastic
+    ///   limit of the two, their plastic neighbours and the obstacles
+    ///   (`World::hit_into_wall`), their own contact with them: a light
+    ///   elastic disc against a wall, a heavy elastic one sliding into it,
+    ///   each hit of the pair a chatter's end that left the light disc
+    ///   moving into the wall, which sent it back into its partner at the
+    ///   same instant, the partner losing twice the light disc's share of
+    ///   its speed a turn, 20,000 hits at one instant until the event cap
+    ///   (`Revision::takes_captured_hit_into_wall_with_wall`);
+    /// - a gentle plastic hit (its approach within `limits::GENTLE` of the
+    ///   faster disc's speed: discs pressed together as they slide, not an
+    ///   impact) that drives a plastic disc into an obstacle its normal
+    ///   meets at an angle, the disc then coming back into its partner, is
+    ///   taken at once as that same plastic limit (`World::hit_into_wall`)
+    ///   unless their braking presses them together,
+    ///   however fast the ring would fade, not only where it keeps a fifth
+    ///   of its approach over eight turns: a plastic disc on the floor,
+    ///   rung by a lighter plastic one sliding against it, stopped against
+    ///   the floor and was caught again at one instant, a tenth of the
+    ///   approach left each turn, until the rounding of the speeds ended
+    ///   the ring, and the light disc, pressed between it and a third,
+    ///   drove into it again tens of microseconds later, until the event
+    ///   cap
+    ///   (`Revision::takes_gentle_hit_into_wall_with_wall`).
     R14,
 }
 
@@ -437,6 +465,25 @@ impl Revision {
     /// thirteenth revision rule, see `World::hit_into_wall`).
     pub fn takes_hit_into_wall_with_wall(self) -> bool {
         self.at_least_r13()
+    }
+
+    /// Whether a hit taken as a chatter's end (one plastic hit of a pair
+    /// with restitution) that drives a disc into an obstacle it touches,
+    /// the two then ringing between the obstacle and each other, is taken
+    /// at once as one plastic limit with the obstacles, their own contact
+    /// with them (a fourteenth revision rule, see `World::hit_into_wall`).
+    pub fn takes_captured_hit_into_wall_with_wall(self) -> bool {
+        self.at_least_r14()
+    }
+
+    /// Whether a gentle plastic hit (its approach within `limits::GENTLE`
+    /// of the faster disc's speed) that drives a plastic disc into an
+    /// obstacle it touches, the disc then coming back into its partner, is
+    /// taken at once as one plastic limit with the obstacles, however fast
+    /// the ring would fade (a fourteenth revision rule, see
+    /// `World::hit_into_wall`).
+    pub fn takes_gentle_hit_into_wall_with_wall(self) -> bool {
+        self.at_least_r14()
     }
 }
 

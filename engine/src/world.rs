@@ -87,6 +87,13 @@ const WALL_RINGS: usize = 8;
 /// but sent 1 and 7 of those 59 back to a failure.
 const WALL_RING_KEEPS: f64 = 0.2;
 
+/// From the fourteenth revision, the least cosine between a gentle hit's
+/// normal and an obstacle's for the hit to count as driving a disc into
+/// that obstacle (see `World::hit_into_wall`): a hit along a row of discs
+/// lying on a wall, its normal parallel to the wall, drives them into it
+/// only by the rounding of the impulse.
+const GENTLE_WALL_COSINE: f64 = 1e-2;
+
 /// Which pairs of bodies are considered.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -1786,7 +1793,7 @@ impl World {
         // obstacle and each other, is taken with the obstacle.
         if e == 0.0
             && self.config.revision.takes_hit_into_wall_with_wall()
-            && self.hit_into_wall(i, j, n, [ui, uj], t)
+            && self.hit_into_wall(i, j, n, [ui, uj], false, t)
         {
             self.stats.collapses += 1;
             return;
@@ -1804,6 +1811,18 @@ impl World {
                 || (self.config.revision.ends_bounces_within_touch()
                     && push::bounces_within_touch(&new_i, &new_j, n, s, t)))
         {
+            // From the fourteenth revision, a chatter's end that drives a
+            // disc into an obstacle it touches, the two then ringing, is
+            // taken with the obstacle, as a plastic hit is.
+            if self
+                .config
+                .revision
+                .takes_captured_hit_into_wall_with_wall()
+                && self.hit_into_wall(i, j, n, [ui, uj], true, t)
+            {
+                self.stats.collapses += 1;
+                return;
+            }
             // The pair would bounce ever faster into a pressing contact:
             // take the chatter's end, one plastic hit, now.
             (vi, vj) = impulse::body_body(ui, uj, mi.mass, mj.mass, 0.0, n);
@@ -2016,7 +2035,39 @@ impl World {
     /// against a wall), is left to its hits. `false` (nothing done) where
     /// no such disc is, the two are not found touching, or the limit
     /// changes nothing.
-    fn hit_into_wall(&mut self, i: usize, j: usize, n: DVec2, u: [DVec2; 2], t: f64) -> bool {
+    ///
+    /// From the fourteenth revision, the same for a hit of a pair with
+    /// restitution taken as the end of its chatter (`chatter_end`, see
+    /// `push::chatters`): that hit is plastic too, and so is every hit of
+    /// the pair the ring would bring, so that the limit takes the pair's
+    /// own contact with the obstacles, whatever the discs' restitution.
+    /// From the fourteenth revision, too, a gentle hit (its approach within
+    /// [`GENTLE`] of the faster disc's speed: discs pressed together as
+    /// they slide, not an impact) that drives a plastic disc into an
+    /// obstacle its normal meets at an angle ([`GENTLE_WALL_COSINE`]), the
+    /// disc then coming back into its partner, is taken however fast its
+    /// ring would fade, unless the pair's braking presses it together
+    /// (`World::braking_presses`): every hit of that ring is plastic, the
+    /// disc stopping against the obstacle and its partner catching it
+    /// again, and the ring's end is the limit the plastic projection takes
+    /// at once. Hit by
+    /// hit it ended at the rounding of the speeds, a tenth of the approach
+    /// left each turn, and the light partner, pressed between it and a
+    /// third disc, drove into it again tens of microseconds later, until
+    /// the event cap (mixed-box 453647). An elastic disc is left to its
+    /// hits: its ring ends with it bouncing off the obstacle, which the
+    /// limit would take from it (a disc grazing over an elastic one on the
+    /// floor, each hit so taken, met it again at once, 10,000 such limits
+    /// until the event cap, mixed-box 98120).
+    fn hit_into_wall(
+        &mut self,
+        i: usize,
+        j: usize,
+        n: DVec2,
+        u: [DVec2; 2],
+        chatter_end: bool,
+        t: f64,
+    ) -> bool {
         let (mi, mj) = (self.material[i].mass, self.material[j].mass);
         let (vi, vj) = impulse::body_body(u[0], u[1], mi, mj, 0.0, n);
         let plastic = |w: &World, c: usize| w.material[c].restitution == 0.0;
@@ -2032,12 +2083,14 @@ impl World {
         // `WALL_RINGS` turns: disc `k` of the two (0 for `i`) hits the
         // obstacles it touches and approaches (each in turn, with its
         // restitution), and the pair approaches again and hits (plastic).
-        let rings = |k: usize| {
+        // The pair's approach at its first and last turn, where it still
+        // rings after `turns`.
+        let play = |k: usize, turns: usize| {
             let e = self.material[[i, j][k]].restitution;
             let mut w = [vi, vj];
             let mut first = None;
             let mut approach = 0.0;
-            for _ in 0..WALL_RINGS {
+            for _ in 0..turns {
                 let mut hit = false;
                 for c in pair.iter().filter(|c| c.a == k && c.b.is_none()) {
                     let into = w[k].dot(c.n);
@@ -2048,17 +2101,50 @@ impl World {
                 }
                 approach = -(w[0] - w[1]).dot(n);
                 if !hit || approach <= noise {
-                    return false;
+                    return None;
                 }
                 first.get_or_insert(approach);
                 let (a, b) = impulse::body_body(w[0], w[1], masses[0], masses[1], 0.0, n);
                 w = [a, b];
             }
-            // Slowly: a ring that loses more falls below the rounding of
-            // the speeds within a few hundred hits, and is left to them.
-            first.is_some_and(|first| approach >= WALL_RING_KEEPS * first)
+            first.map(|first| (first, approach))
         };
-        let ringing = [rings(0), rings(1)];
+        // Slowly: a ring that loses more falls below the rounding of
+        // the speeds within a few hundred hits, and is left to them.
+        let rings = |k: usize| {
+            play(k, WALL_RINGS).is_some_and(|(first, last)| last >= WALL_RING_KEEPS * first)
+        };
+        // From the fourteenth revision, a gentle hit whose driven disc
+        // comes back into its partner at all, however fast the ring fades.
+        let gentle = self.config.revision.takes_gentle_hit_into_wall_with_wall()
+            && (u[1] - u[0]).dot(n) <= GENTLE * u[0].length().max(u[1].length())
+            && !self.braking_presses(i, j, [vi, vj], n, t);
+        // One turn of it, counting only the obstacles the pair's normal
+        // meets at an angle (`GENTLE_WALL_COSINE`): a hit along a row on a
+        // wall drives its discs into the wall by rounding alone.
+        let gentle_turn = |k: usize| {
+            let e = self.material[[i, j][k]].restitution;
+            if e != 0.0 {
+                return false;
+            }
+            let mut w = [vi, vj];
+            let mut hit = false;
+            for c in pair
+                .iter()
+                .filter(|c| c.a == k && c.b.is_none() && c.n.dot(n).abs() >= GENTLE_WALL_COSINE)
+            {
+                let into = w[k].dot(c.n);
+                if into < -noise {
+                    w[k] -= c.n * ((1.0 + e) * into);
+                    hit = true;
+                }
+            }
+            hit && -(w[0] - w[1]).dot(n) > noise
+        };
+        let ringing = [
+            rings(0) || (gentle && gentle_turn(0)),
+            rings(1) || (gentle && gentle_turn(1)),
+        ];
         if !(ringing[0] || ringing[1]) {
             return false;
         }
@@ -2076,10 +2162,33 @@ impl World {
         // against them whatever its restitution: its partner's plastic
         // hits take what it brings back from them.
         contacts.retain(|c| match c.b {
-            Some(b) => plastic(self, members[c.a]) || plastic(self, members[b]),
+            Some(b) => {
+                plastic(self, members[c.a])
+                    || plastic(self, members[b])
+                    || (chatter_end && c.a == 0 && b == 1)
+            }
             None => plastic(self, members[c.a]) || (c.a < 2 && ringing[c.a]),
         });
         self.collapse_few_contacts(&members, contacts, t)
+    }
+
+    /// Whether the discs in slots `i` and `j`, leaving a hit along `n` (from
+    /// `j` to `i`) at velocities `v`, are pressed together by their braking
+    /// (`push::bounce_speed`), as `World::walled_hit` asks: such a pair is
+    /// left to the pressing contact (a fourteenth revision rule's limit,
+    /// taken instead, let a disc sliding up a wall into a resting one hit
+    /// it again at once, 8,677 times until the event cap, mixed-box 21985).
+    fn braking_presses(&self, i: usize, j: usize, v: [DVec2; 2], n: DVec2, t: f64) -> bool {
+        let (pi, pj) = (
+            self.slots[i].traj.position(t),
+            self.slots[j].traj.position(t),
+        );
+        let acc = [
+            Trajectory::new(t, pi, v[0], self.material[i].mu * self.g).acceleration(t),
+            Trajectory::new(t, pj, v[1], self.material[j].mu * self.g).acceleration(t),
+        ];
+        let s = self.material[i].radius + self.material[j].radius;
+        push::bounce_speed(v, acc, n, s, self.config.revision).is_some()
     }
 
     /// As `World::collapse_contacts`, for the few contacts of one hit and
