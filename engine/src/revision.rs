@@ -270,6 +270,19 @@ pub enum Revision {
     #[default]
     R13,
     /// The fourteenth, as the thirteenth but:
+    /// - a plastic hit between two discs after which one of them runs into
+    ///   a third disc it touches, where the hits that follow, played in
+    ///   memory (that disc and the third, the pair again), still ring
+    ///   after eight turns with a fifth of their approach left, is taken
+    ///   at once as the plastic limit of the pair, the ringing disc, the
+    ///   discs touching the pair through plastic contacts and the
+    ///   obstacles of the plastic ones (`World::hit_through_disc`), as the
+    ///   thirteenth revision takes a ring against an obstacle: a heavy
+    ///   frictionless disc driving a light plastic one into a resting
+    ///   braking one stopped it at each hit, the third disc settling back
+    ///   to rest, and met it again 3e-10 s later, losing a third of a per
+    ///   cent of its speed a turn, two hits an instant until the event cap
+    ///   (`Revision::takes_hit_through_disc`).
     R14,
 }
 
@@ -429,6 +442,14 @@ impl Revision {
     /// `World::cornered_hit`).
     pub fn takes_cornered_hit_with_walls(self) -> bool {
         self.at_least_r12()
+    }
+
+    /// Whether a plastic hit that drives one of its discs into a third disc
+    /// it touches, the three then ringing between each other, is taken at
+    /// once as one plastic limit with that disc (a fourteenth revision
+    /// rule, see `World::hit_through_disc`).
+    pub fn takes_hit_through_disc(self) -> bool {
+        self.at_least_r14()
     }
 
     /// Whether a plastic hit that drives a disc into an obstacle it

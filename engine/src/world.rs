@@ -1791,6 +1791,16 @@ impl World {
             self.stats.collapses += 1;
             return;
         }
+        // From the fourteenth revision, a plastic hit that drives one of
+        // the two into a third disc it touches, the three then ringing
+        // between each other, is taken to its limit with that disc.
+        if e == 0.0
+            && self.config.revision.takes_hit_through_disc()
+            && self.hit_through_disc(i, j, n, [ui, uj], t)
+        {
+            self.stats.collapses += 1;
+            return;
+        }
         let (mut vi, mut vj) = impulse::body_body(ui, uj, mi.mass, mj.mass, e, n);
         // Each gets its own friction back (a pushed pair shares one).
         let alpha = [mi.mu * self.g, mj.mu * self.g];
@@ -2080,6 +2090,121 @@ impl World {
             None => plastic(self, members[c.a]) || (c.a < 2 && ringing[c.a]),
         });
         self.collapse_few_contacts(&members, contacts, t)
+    }
+
+    /// From the fourteenth revision, a plastic hit between the discs in
+    /// slots `i` and `j` (unit normal `n` towards `i`, velocities `u`
+    /// before it) after which one of them runs into a third disc it
+    /// touches, where the hits that follow, played in memory (that disc
+    /// and the third, with the restitution of their contact, then the
+    /// pair again, a plastic hit), still ring after [`WALL_RINGS`] turns
+    /// with [`WALL_RING_KEEPS`] of their approach left: taken at once as
+    /// the plastic limit of the pair, the discs that ring with it, every
+    /// disc touching the pair through a plastic contact and the obstacles
+    /// the plastic ones touch, as `World::hit_into_wall` takes a ring
+    /// against an obstacle. A light disc between two heavier ones that
+    /// press on each other through it (a heavy frictionless disc driving
+    /// it into a resting braking one) is such a ring: each hit of the pair
+    /// sends it into the third disc, which stops it, and the pair meets
+    /// again, losing only the light disc's share of its approach, two hits
+    /// an instant, instant after instant, until the event cap or `stuck`.
+    /// The limit of those plastic hits is the plastic projection of their
+    /// contacts; a ring that ends within those turns (the middle disc
+    /// heavy) is left to its hits. `false` (nothing done) where no disc
+    /// rings so, the two are not found touching, or the limit changes
+    /// nothing.
+    fn hit_through_disc(&mut self, i: usize, j: usize, n: DVec2, u: [DVec2; 2], t: f64) -> bool {
+        let masses = [self.material[i].mass, self.material[j].mass];
+        let (vi, vj) = impulse::body_body(u[0], u[1], masses[0], masses[1], 0.0, n);
+        let noise = WALL_RING_NOISE * u[0].length().max(u[1].length());
+        let at = self.positions(t);
+        // Whether the hits that follow, played in memory, still ring after
+        // `WALL_RINGS` turns: disc `k` of the two (0 for `i`) and the disc
+        // in slot `c` it touches hit with their restitution, and the pair
+        // approaches again and hits (plastic).
+        let rings = |k: usize, c: usize| {
+            let m = [i, j][k];
+            let nc = (at[m] - at[c]).normalize_or_zero();
+            let e = self.restitution(m, Some(c));
+            let mc = self.material[c].mass;
+            let mut w = [vi, vj];
+            let mut wc = self.slots[c].traj.velocity(t);
+            let mut first = None;
+            let mut approach = 0.0;
+            for _ in 0..WALL_RINGS {
+                if (wc - w[k]).dot(nc) <= noise {
+                    return false;
+                }
+                (w[k], wc) = impulse::body_body(w[k], wc, masses[k], mc, e, nc);
+                approach = -(w[0] - w[1]).dot(n);
+                if approach <= noise {
+                    return false;
+                }
+                first.get_or_insert(approach);
+                let (a, b) = impulse::body_body(w[0], w[1], masses[0], masses[1], 0.0, n);
+                w = [a, b];
+            }
+            // Slowly, as `World::hit_into_wall` takes a ring.
+            first.is_some_and(|first| approach >= WALL_RING_KEEPS * first)
+        };
+        let mut ringing: Vec<(usize, usize)> = Vec::new();
+        for (k, m) in [i, j].into_iter().enumerate() {
+            for c in self.touching(m, &at) {
+                if c != i && c != j && rings(k, c) {
+                    ringing.push((m, c));
+                }
+            }
+        }
+        if ringing.is_empty() {
+            return false;
+        }
+        let plastic = |w: &World, c: usize| w.material[c].restitution == 0.0;
+        let mut members = vec![i, j];
+        for m in [i, j] {
+            for c in self.touching(m, &at) {
+                if !members.contains(&c)
+                    && (plastic(self, m) || plastic(self, c) || ringing.contains(&(m, c)))
+                {
+                    members.push(c);
+                }
+            }
+        }
+        let mut contacts = self.contacts_among(&members, t);
+        if !contacts.iter().any(|c| c.a == 0 && c.b == Some(1)) {
+            return false;
+        }
+        // The plastic contacts, and those of the ring whatever their
+        // restitution: the pair's plastic hits take what comes back.
+        contacts.retain(|c| match c.b {
+            Some(b) => {
+                let (ma, mb) = (members[c.a], members[b]);
+                plastic(self, ma)
+                    || plastic(self, mb)
+                    || ringing.contains(&(ma, mb))
+                    || ringing.contains(&(mb, ma))
+            }
+            None => plastic(self, members[c.a]),
+        });
+        // The limit by the active-set method first, as
+        // `World::collapse_few_contacts` finds it, but not kicked apart
+        // where it leaves discs pressed: a chain it leaves moving as one
+        // pushes with its pooled braking (`World::push_chain`), where a
+        // kick sent the front disc off, its braking bringing the rest
+        // onto it again a few hundred nanoseconds later, a chatter of as
+        // many turns as the ring it replaced.
+        let (vel, inv) = self.motion(&members, t);
+        let plastic = collapse::active_set(&vel, &inv, &contacts)
+            .or_else(|| collapse::resolve(&vel, &inv, &contacts, collapse::MAX_SWEEPS));
+        let Some(after) = plastic else {
+            return false;
+        };
+        if !self.take_plastic_limit(&members, contacts, (&vel, &inv), after, false, t) {
+            return false;
+        }
+        if self.slots[i].traj.velocity(t).length() > 0.0 {
+            self.push_chain(i, j, t);
+        }
+        true
     }
 
     /// As `World::collapse_contacts`, for the few contacts of one hit and
