@@ -931,3 +931,77 @@ fn a_light_elastic_disc_rung_in_a_corner_by_a_heavy_plastic_one_is_taken_with_th
     // wall of the ringing disc.
     reaches_the_horizon_from(Revision::R13, "mixed-box-211026", 100.0);
 }
+
+// Revision 14: a plastic hit ringing through a third disc, no wall.
+
+#[test]
+fn a_light_disc_driven_into_a_resting_disc_by_a_heavy_one_is_taken_with_both() {
+    // In mixed-box 105173 heavy frictionless elastic disc 2 (0.62 kg)
+    // drives light braking plastic disc 3 (2.2 g) along the floor into
+    // resting braking disc 4 (0.27 kg): the plastic hit 3-4 left both at
+    // rest (too slow to slide beyond the rounding of a position), 2 hit 3
+    // again at that instant, and 3 met 4 again 3e-10 s later, 2 losing a
+    // third of a per cent of its speed a turn: two hits an instant, never
+    // eight of a pair, until the event cap at 28 s. From revision 14 a
+    // plastic hit whose ring through a third disc, played in memory, still
+    // rings after eight turns is the plastic limit of the three at once,
+    // and the chain it leaves pushes with its pooled braking.
+    reaches_the_horizon_from(Revision::R14, "mixed-box-105173", 100.0);
+    // The same ring: light plastic 3 between elastic 2 and 4 (108358),
+    // light plastic 2 between heavy 1 and heavy frictionless 3 (143264),
+    // elastic 3 between plastic 2 and light plastic 4 (196517).
+    reaches_the_horizon_from(Revision::R14, "mixed-box-108358", 100.0);
+    reaches_the_horizon_from(Revision::R14, "mixed-box-143264", 100.0);
+    reaches_the_horizon_from(Revision::R14, "mixed-box-196517", 100.0);
+}
+
+/// Revision 13 ends `name` `stuck` before the mixed boxes' horizon;
+/// revision 14 (and every one after it) reaches the horizon or comes to
+/// rest, within the cap and without overlap.
+fn unstuck_from_r14(name: &str) {
+    assert_eq!(
+        run_until(name, Revision::R13, 100.0).0,
+        EndReason::Stuck,
+        "{name} under R13"
+    );
+    for revision in Revision::ALL[index(Revision::R14)..].iter().copied() {
+        let (reason, events, overlap) = run_until(name, revision, 100.0);
+        assert!(
+            matches!(reason, EndReason::Until | EndReason::Rest),
+            "{name} under {revision:?}: {reason:?}"
+        );
+        assert!(events < CAP, "{name}: {events} events");
+        assert!(overlap < 1e-9, "{name}: overlap {overlap:e}");
+    }
+}
+
+#[test]
+fn a_disc_rung_through_an_elastic_contact_and_a_plastic_one_is_taken_with_both() {
+    // In mixed-box 156655 elastic disc 3 lies on the floor between plastic
+    // disc 2 and heavy elastic disc 4, the three sliding at 7e-6 m/s, 2
+    // braking less than the pair 3-4 ahead of it: 3-4 and 3-2 hit in turn
+    // at one instant, their velocities a part in 10^4 apart and ever
+    // closer, never one push, 8,139 times each in the last 20,000 events,
+    // until the event cap at 4.9 s. In mixed-box 57249 heavy braking
+    // elastic disc 2 presses light elastic disc 6 obliquely into resting
+    // plastic disc 7: 6-2 kicks 6 off, 6-7 stops it, 6-2 again, 20,000
+    // hits at one instant until stuck at 4.5 s. From revision 14 a plastic
+    // hit whose ring through a third disc still rings after eight turns
+    // is taken with the contact it rings through, elastic or not, as the
+    // thirteenth revision's collapse of repeated hits takes the elastic
+    // pairs of its instant.
+    reaches_the_horizon_from(Revision::R14, "mixed-box-156655", 100.0);
+    unstuck_from_r14("mixed-box-57249");
+}
+
+#[test]
+fn a_struck_pile_taken_to_its_limit_at_the_strike_no_longer_sticks_later() {
+    // In mixed-box 439482 frictionless plastic disc 2 of a packed pile
+    // hits resting braking plastic disc 3 at 5e-26 m/s, 3 settles back to
+    // rest each time and 2 keeps 93 per cent of its speed: 20,000 hits at
+    // one instant until stuck at 9.3 s. That ring itself is not what
+    // revision 14 takes: the hit 11-6 of disc 14's strike on the pile at
+    // 1.17 s rings through a third disc and is taken to its limit at once,
+    // and the run, on another course from there, reaches the horizon.
+    unstuck_from_r14("mixed-box-439482");
+}
