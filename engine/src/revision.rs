@@ -276,7 +276,7 @@ pub enum Revision {
     ///   after eight turns with a fifth of their approach left, is taken
     ///   at once as the plastic limit of the pair, the ringing disc, the
     ///   discs touching the pair through plastic contacts and the
-    ///   obstacles of the plastic ones (`World::hit_through_disc`), as the
+    ///   obstacles they touch (`World::hit_through_disc`), as the
     ///   thirteenth revision takes a ring against an obstacle: a heavy
     ///   frictionless disc driving a light plastic one into a resting
     ///   braking one stopped it at each hit, the third disc settling back
