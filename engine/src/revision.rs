@@ -270,7 +270,8 @@ pub enum Revision {
     #[default]
     R13,
     /// The fourteenth, as the thirteenth but:
-    /// - a plastic hit between two discs after which one of them runs into
+    /// - a plastic hit between two discs hit together among the latest
+    ///   four hits between discs, after which one of them runs into
     ///   a third disc it touches, where the hits that follow, played in
     ///   memory (that disc and the third, the pair again), still ring
     ///   after eight turns with a fifth of their approach left, is taken
