@@ -283,7 +283,14 @@ pub enum Revision {
     ///   braking one stopped it at each hit, the third disc settling back
     ///   to rest, and met it again 3e-10 s later, losing a third of a per
     ///   cent of its speed a turn, two hits an instant until the event cap
-    ///   (`Revision::takes_hit_through_disc`).
+    ///   (`Revision::takes_hit_through_disc`);
+    /// - the pressing kick after a collapse's plastic limit adds no more
+    ///   than 0.01 of the scene's kinetic energy over the limit, as the
+    ///   twelfth revision holds a kick over a cluster: a light frictionless
+    ///   disc sliding down a wall along a resting one 440 times heavier,
+    ///   each hit taken to a plastic limit, set the heavy one moving with
+    ///   the whole separation, 2.4e-2 of the scene's largest energy at one
+    ///   event (`Revision::bounds_collapse_kick_energy`).
     R14,
 }
 
@@ -435,6 +442,15 @@ impl Revision {
     /// revision rule, see `World::walled_hit`).
     pub fn takes_walled_hit_with_wall(self) -> bool {
         self.at_least_r13()
+    }
+
+    /// Whether the pressing kick that follows a collapse's plastic limit
+    /// (`World::take_plastic_limit`) adds no more than 0.01 of the scene's
+    /// kinetic energy over the limit, as the twelfth revision holds a
+    /// pressing kick over a cluster (a fourteenth revision rule, see
+    /// `within_press_bound`).
+    pub fn bounds_collapse_kick_energy(self) -> bool {
+        self.at_least_r14()
     }
 
     /// Whether a gentle plastic hit on a light plastic disc lying in a

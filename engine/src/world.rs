@@ -1101,7 +1101,15 @@ impl World {
         let alpha = self.braking(members);
         if press && self.press_biases(members, &mut contacts, &after, &alpha) {
             if let Some(kicked) = self.press_closure(members, &mut contacts, &after, inv, &alpha) {
-                after = kicked;
+                after = if self.config.revision.bounds_collapse_kick_energy() {
+                    // From the fourteenth revision, held as the twelfth
+                    // holds a pressing kick over a cluster: no more than
+                    // its share of the scene's energy over the limit.
+                    let scene = self.scene_energy(t);
+                    within_press_bound(&after, inv, &contacts, kicked, scene).unwrap_or(after)
+                } else {
+                    kicked
+                };
                 self.stats.pressed += 1;
             }
         }
@@ -1110,6 +1118,17 @@ impl World {
             self.predict(c, true);
         }
         !changed.is_empty()
+    }
+
+    /// The kinetic energy of every live disc at `t`, as their trajectories
+    /// stand.
+    fn scene_energy(&self, t: f64) -> f64 {
+        self.slots
+            .iter()
+            .zip(&self.material)
+            .filter(|(s, _)| s.alive)
+            .map(|(s, m)| 0.5 * m.mass * s.traj.velocity(t).length_squared())
+            .sum()
     }
 
     /// From the third revision, the pressing kick of a hit between `i` and
