@@ -298,6 +298,27 @@ pub enum Revision {
     ///   drove into it again tens of microseconds later, until the event
     ///   cap
     ///   (`Revision::takes_gentle_hit_into_wall_with_wall`).
+    /// - a plastic hit between two discs hit together among the latest
+    ///   four hits between discs, after which one of them runs into
+    ///   a third disc it touches, where the hits that follow, played in
+    ///   memory (that disc and the third, the pair again), still ring
+    ///   after eight turns with a fifth of their approach left, is taken
+    ///   at once as the plastic limit of the pair, the ringing disc, the
+    ///   discs touching the pair through plastic contacts and the
+    ///   obstacles they touch (`World::hit_through_disc`), as the
+    ///   thirteenth revision takes a ring against an obstacle: a heavy
+    ///   frictionless disc driving a light plastic one into a resting
+    ///   braking one stopped it at each hit, the third disc settling back
+    ///   to rest, and met it again 3e-10 s later, losing a third of a per
+    ///   cent of its speed a turn, two hits an instant until the event cap
+    ///   (`Revision::takes_hit_through_disc`);
+    /// - the pressing kick after a collapse's plastic limit adds no more
+    ///   than 0.01 of the scene's kinetic energy over the limit, as the
+    ///   twelfth revision holds a kick over a cluster: a light frictionless
+    ///   disc sliding down a wall along a resting one 440 times heavier,
+    ///   each hit taken to a plastic limit, set the heavy one moving with
+    ///   the whole separation, 2.4e-2 of the scene's largest energy at one
+    ///   event (`Revision::bounds_collapse_kick_energy`).
     R14,
 }
 
@@ -451,12 +472,29 @@ impl Revision {
         self.at_least_r13()
     }
 
+    /// Whether the pressing kick that follows a collapse's plastic limit
+    /// (`World::take_plastic_limit`) adds no more than 0.01 of the scene's
+    /// kinetic energy over the limit, as the twelfth revision holds a
+    /// pressing kick over a cluster (a fourteenth revision rule, see
+    /// `within_press_bound`).
+    pub fn bounds_collapse_kick_energy(self) -> bool {
+        self.at_least_r14()
+    }
+
     /// Whether a gentle plastic hit on a light plastic disc lying in a
     /// corner is taken as one plastic limit with the walls it touches and
     /// the discs pressing on it (a twelfth revision rule, see
     /// `World::cornered_hit`).
     pub fn takes_cornered_hit_with_walls(self) -> bool {
         self.at_least_r12()
+    }
+
+    /// Whether a plastic hit that drives one of its discs into a third disc
+    /// it touches, the three then ringing between each other, is taken at
+    /// once as one plastic limit with that disc (a fourteenth revision
+    /// rule, see `World::hit_through_disc`).
+    pub fn takes_hit_through_disc(self) -> bool {
+        self.at_least_r14()
     }
 
     /// Whether a plastic hit that drives a disc into an obstacle it
