@@ -19,6 +19,8 @@ const RING_CLUSTER: usize = 12;
 /// its impulses form (`WALL_RING_NOISE`'s bound).
 const RING_NOISE: f64 = 1e-12;
 
+const PRESS_AFTER_RING: bool = false;
+
 impl World {
     /// From the fourteenth revision, a plastic hit between the discs in
     /// slots `i` and `j` (unit normal `n` towards `i`, velocities `u`
@@ -111,6 +113,12 @@ impl World {
             limit.push(crate::collapse::Contact { a, b, ..c });
         }
         let slots: Vec<usize> = keep.iter().map(|&k| members[k]).collect();
-        self.collapse_few_contacts(&slots, limit, t)
+        let (vel, inv) = self.motion(&slots, t);
+        let Some(after) = crate::collapse::active_set(&vel, &inv, &limit)
+            .or_else(|| crate::collapse::resolve(&vel, &inv, &limit, crate::collapse::MAX_SWEEPS))
+        else {
+            return false;
+        };
+        self.take_plastic_limit(&slots, limit, (&vel, &inv), after, PRESS_AFTER_RING, t)
     }
 }
