@@ -33,8 +33,8 @@ pub(crate) const RING_KEEPS: f64 = 0.2;
 /// restitution `restitution[k]` wherever it approaches faster than
 /// `noise`: [`RING_SWEEPS`] sweeps over the contacts in order. `Some`,
 /// with each contact's count of hits, where the last sweep still hit a
-/// contact that is not elastic as often as the first and its fastest
-/// approach kept at least [`RING_KEEPS`] of the first sweep's: a ring
+/// contact that is not elastic and its fastest approach kept at least
+/// [`RING_KEEPS`] of the first sweep's: a ring
 /// that goes on, losing little at each turn. `None` where a sweep hit
 /// nothing (the ring ended), or it lost its approach faster, or only
 /// elastic contacts ring (their sequence loses no energy and is left to
