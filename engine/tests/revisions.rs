@@ -943,7 +943,10 @@ fn a_heavy_disc_pressing_a_chain_against_a_wall_through_a_light_one_is_taken_at_
     // counts, nor a disc driven straight into the wall that the hit into a
     // wall plays. In 183958, 377043, 452632, 476703, 536920 and 567321 a
     // heavy disc rings a light one against a disc on a wall so, four or
-    // five discs and the wall each time. From revision 14 a plastic hit
+    // five discs and the wall each time; in 136800 heavy elastic disc 3
+    // drives light plastic disc 2 into heavy elastic disc 1 in the corner,
+    // seven hits a turn (2-1 three times, 1 and the left wall, 2 and the
+    // floor), a turn every 6e-13 s. From revision 14 a plastic hit
     // whose touching cluster, played in memory, still rings after sixteen
     // sweeps is the plastic limit of the contacts that ring at once.
     for name in [
@@ -954,6 +957,7 @@ fn a_heavy_disc_pressing_a_chain_against_a_wall_through_a_light_one_is_taken_at_
         "mixed-box-476703",
         "mixed-box-536920",
         "mixed-box-567321",
+        "mixed-box-136800",
     ] {
         reaches_the_horizon_from(Revision::R14, name, 100.0);
     }
