@@ -21,6 +21,11 @@ const RING_CLUSTER: usize = 12;
 /// its impulses form (`WALL_RING_NOISE`'s bound).
 const RING_NOISE: f64 = 1e-12;
 
+/// Whether the limit of a ring is followed by the pressing kick of the
+/// pairs it leaves pressed (as `World::hit_into_wall`'s is): not. Kicked,
+/// a pair of frictionless discs pressing a braking one at 1e-16 m/s was
+/// parted after every limit and met again 7e-15 s later, until `stuck`
+/// (mixed-box 452632); the plastic limit alone adds no energy.
 const PRESS_AFTER_RING: bool = false;
 
 impl World {
@@ -39,8 +44,11 @@ impl World {
     /// hits of one pair that `World::collapse_repeated` counts, nor an
     /// obstacle hit by the driven disc itself that `World::hit_into_wall`
     /// plays. The limit is the projection every collapse takes, which adds
-    /// no energy. `false` (nothing done) where the cluster is the pair
-    /// alone, too large, does not ring, or the limit changes nothing.
+    /// no energy. A pair its braking presses together is left to the
+    /// pressing contact (taken, its limit was hit again 2.5e-5 s later,
+    /// tens of thousands of times). `false` (nothing done) where the pair
+    /// is pressed, the cluster is the pair alone or too large, it does not
+    /// ring, or the limit changes nothing.
     pub(super) fn cluster_ring(
         &mut self,
         i: usize,
