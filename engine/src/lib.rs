@@ -27,7 +27,8 @@
 //! [`trajectory`] (closed-form motion), [`obstacle`] (points and lines),
 //! [`contact`] (when two things touch), [`impulse`] (what a contact does),
 //! [`push`] (touching discs that brake unequally and press together),
-//! [`collapse`] (the limit of endless hits at one instant),
+//! [`collapse`] (the limit of endless hits at one instant), [`ring`] (a
+//! ring of hits at one instant played in memory),
 //! [`calendar`] and [`grid`] (which event is next, who is near whom),
 //! [`instant`] (when two event times are one moment), [`limits`] (when a
 //! run stops, and the guards that make sure it does), [`world`] (the event
@@ -56,6 +57,7 @@ pub mod obstacle;
 pub mod presets;
 pub mod push;
 pub mod revision;
+pub mod ring;
 pub mod rng;
 pub mod roots;
 pub mod scene;

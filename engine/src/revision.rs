@@ -319,6 +319,18 @@ pub enum Revision {
     ///   each hit taken to a plastic limit, set the heavy one moving with
     ///   the whole separation, 2.4e-2 of the scene's largest energy at one
     ///   event (`Revision::bounds_collapse_kick_energy`).
+    /// - a plastic hit between two discs whose touching cluster (at most
+    ///   twelve discs and the obstacles they touch), its hits played in
+    ///   memory from the hit, contact after contact with each one's
+    ///   restitution, still rings after sixteen sweeps with a fifth of its
+    ///   approach left, is taken at once as the plastic limit of the
+    ///   contacts that ring (`World::cluster_ring`): a heavy disc pressing
+    ///   a light plastic one against a disc resting on a wall, or a pushed
+    ///   chain driven into a disc in a corner, lost a per cent of its
+    ///   approach a turn, each turn a new instant picoseconds after the
+    ///   last with a few hits, never the eight hits of one pair that the
+    ///   collapse after repeated hits counts, until the event cap
+    ///   (`Revision::takes_cluster_rings_at_once`).
     R14,
 }
 
@@ -414,6 +426,14 @@ impl Revision {
     /// Whether this revision has the fourteenth revision's rules.
     pub fn at_least_r14(self) -> bool {
         self >= Revision::R14
+    }
+
+    /// Whether a plastic hit whose touching cluster, its hits played in
+    /// memory, rings without end is taken at once as the plastic limit of
+    /// the contacts that ring (a fourteenth revision rule, see
+    /// `World::cluster_ring`).
+    pub fn takes_cluster_rings_at_once(self) -> bool {
+        self.at_least_r14()
     }
 
     /// Whether a pressing kick over a cluster adds no more than 0.01 of the

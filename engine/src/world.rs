@@ -16,6 +16,7 @@
 //! When a run stops, and the guards that stop one with no finite answer,
 //! are [`crate::limits`]'s; this module drives them.
 
+mod cluster_ring;
 pub mod handler;
 
 pub use crate::limits::{End, EndReason, Limits};
@@ -1839,6 +1840,15 @@ impl World {
         // the two into a third disc it touches, the three then ringing
         // between each other, is taken to its limit with that disc.
         if e == 0.0 && rehit && self.hit_through_disc(i, j, n, [ui, uj], t) {
+            self.stats.collapses += 1;
+            return;
+        }
+        // From the fourteenth revision, a plastic hit whose touching
+        // cluster rings without end is taken to the limit of its ring.
+        if e == 0.0
+            && self.config.revision.takes_cluster_rings_at_once()
+            && self.cluster_ring(i, j, n, [ui, uj], t)
+        {
             self.stats.collapses += 1;
             return;
         }

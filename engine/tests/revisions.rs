@@ -1057,3 +1057,34 @@ fn the_kick_after_a_collapse_sets_no_heavy_disc_moving_behind_a_jammed_light_one
         assert_eq!(reason, EndReason::Until, "{name} under {revision:?}");
     }
 }
+
+#[test]
+fn a_heavy_disc_pressing_a_chain_against_a_wall_through_a_light_one_is_taken_at_its_limit() {
+    // In mixed-box 345081 braking disc 4 pushes heavy disc 3 and light
+    // frictionless disc 2 along the floor into disc 1, which lies in the
+    // corner: each plastic hit of 2 into 1 sent 1 into the left wall, and
+    // 3, still pressing, met 2 again a picosecond later, having lost about
+    // a per cent of its speed, a new instant of about ten hits, never
+    // the eight hits of one pair at one instant the repeated-hits collapse
+    // counts, nor a disc driven straight into the wall that the hit into a
+    // wall plays. In 183958, 377043, 452632, 476703, 536920 and 567321 a
+    // heavy disc rings a light one against a disc on a wall so, four or
+    // five discs and the wall each time; in 136800 heavy elastic disc 3
+    // drives light plastic disc 2 into heavy elastic disc 1 in the corner,
+    // seven hits a turn (2-1 three times, 1 and the left wall, 2 and the
+    // floor), a turn every 6e-13 s. From revision 14 a plastic hit
+    // whose touching cluster, played in memory, still rings after sixteen
+    // sweeps is the plastic limit of the contacts that ring at once.
+    for name in [
+        "mixed-box-345081",
+        "mixed-box-183958",
+        "mixed-box-377043",
+        "mixed-box-452632",
+        "mixed-box-476703",
+        "mixed-box-536920",
+        "mixed-box-567321",
+        "mixed-box-136800",
+    ] {
+        reaches_the_horizon_from(Revision::R14, name, 100.0);
+    }
+}
