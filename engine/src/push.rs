@@ -326,6 +326,111 @@ pub(crate) fn spent_within_gap(
     weakest.is_finite() && energy <= weakest * press_gap(rev) * s
 }
 
+/// From the fourteenth revision: a pressed pair taken as one sliding body
+/// where a disc `H` slides nearly past a strongly braked one `L` and has to
+/// wedge it aside (see `World::carried_press`). `v` are the velocities just
+/// after a plastic hit along `n` (unit, from `j` to `i`; both share their
+/// component along it), `m` the masses, `alpha` the own brakings (`mu g`),
+/// `s` the contact distance. `L` is the disc that brakes harder, `H` the
+/// other, and `L` must move along the normal only (it was at rest, or
+/// moved along the line of centres), towards where `H` drives it.
+///
+/// Pushed by the contact alone, `L` (whose inertia is negligible against
+/// the contact force) moves along the line of centres at the speed that
+/// keeps it touching, while `H` keeps its line: `L` follows the tractrix
+/// of `H`'s path, the angle `theta` between `H`'s direction and the normal
+/// growing as `tan(theta / 2) = tan(theta0 / 2) e^(y / s)` with `H`'s
+/// travel `y`, and the friction of `L` takes `F s ln(sin theta /
+/// sin theta0)` out of the pair (`F = m_L alpha_L`), `H`'s own braking
+/// `m_H alpha_H y`. Where that work reaches the pair's kinetic energy
+/// before `H` has passed (`theta` reaches a right angle), `H` stops there,
+/// at `y*`: both are given that stop, `H` along its line with the uniform
+/// deceleration that ends it at `y*`, `L` along the normal with the
+/// normal share of `H`'s velocity, decelerating to rest at the same moment.
+/// `L` then moves by the projection of `H`'s travel on the normal, so
+/// that the two only part (their distance grows as the tangential part of
+/// that travel), never overlap, and no energy is added: both only slow
+/// down. `L` is moved a little further than the tractrix takes it (its
+/// final position off by at most `y*^2 / 2 s`). The pair then does in two
+/// trajectories what the approximated pressing contact did in thousands
+/// of bounces, each capped at [`PRESS_SPEED`] of their speeds, `L`
+/// stopping between them. `None` where the pair does not press obliquely,
+/// `H` has the energy to pass (it then leaves `L` behind, and the pressing
+/// contact's bounces end by themselves), or the shape does not fit; else
+/// the decelerations of `i` and `j`.
+pub(crate) fn carried(
+    [vi, vj]: [DVec2; 2],
+    m: [f64; 2],
+    alpha: [f64; 2],
+    n: DVec2,
+    s: f64,
+    rev: Revision,
+) -> Option<[f64; 2]> {
+    // `L` brakes harder; the normal from `H` to `L`.
+    let l = usize::from(alpha[1] > alpha[0]);
+    let h = 1 - l;
+    let v = [vi, vj];
+    let to_l = if l == 0 { n } else { -n };
+    let (vh, vl) = (v[h], v[l]);
+    let speed = vh.length();
+    let c = vh.dot(to_l);
+    if !(alpha[l] > 0.0 && speed > 0.0 && c > 0.0 && c < speed) {
+        return None;
+    }
+    // `L` carried along the normal only, at `H`'s normal speed.
+    if (vl - to_l * c).length() > SAME * speed {
+        return None;
+    }
+    // Pressed obliquely, with the bounce of the approximated contact capped
+    // by its speeds (the chatter this takes at once).
+    let acc = [
+        -alpha[0] * vi.normalize_or_zero(),
+        -alpha[1] * vj.normalize_or_zero(),
+    ];
+    let (_, w_min, g2) = pressing(v, acc, n, s, rev)?;
+    if w_min * w_min >= 2.0 * -g2 * press_gap(rev) * s {
+        return None;
+    }
+    let cos0 = c / speed;
+    let sin0 = (1.0 - cos0 * cos0).sqrt();
+    // ln tan(theta0 / 2), negative below a right angle.
+    let psi0 = (sin0 / (1.0 + cos0)).ln();
+    let (force, own) = (m[l] * alpha[l], m[h] * alpha[h]);
+    let work = |y: f64| own * y + force * s * (psi0.cosh() / (psi0 + y / s).cosh()).ln();
+    let pass = -psi0 * s;
+    let energy = pair_energy(v, m);
+    if !(pass > 0.0 && energy < work(pass)) {
+        return None;
+    }
+    // `work` grows on [0, pass]: bisect to where it spends the energy.
+    let (mut lo, mut hi) = (0.0, pass);
+    for _ in 0..CARRY_BISECTIONS {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if work(mid) < energy {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let stop = hi;
+    if !(stop > 0.0) {
+        return None;
+    }
+    // Both stop together after `2 y* / |v_H|`.
+    let duration = 2.0 * stop / speed;
+    let mut out = [0.0; 2];
+    out[h] = speed / duration;
+    out[l] = c / duration;
+    Some(out)
+}
+
+/// Most bisection steps [`carried`] takes to find where a pushing disc
+/// stops (each halves the interval; 64 reach the rounding of a double).
+const CARRY_BISECTIONS: usize = 64;
+
 /// The kinetic energy of a pair (velocities `v`, masses `m`).
 pub(crate) fn pair_energy(v: [DVec2; 2], m: [f64; 2]) -> f64 {
     0.5 * (m[0] * v[0].length_squared() + m[1] * v[1].length_squared())

@@ -270,6 +270,17 @@ pub enum Revision {
     #[default]
     R13,
     /// The fourteenth, as the thirteenth but:
+    /// - a disc sliding nearly past a harder-braked one, touching something
+    ///   else that holds it to its line (a wall, a disc), and pressing it
+    ///   obliquely so that it has to wedge it aside, takes it along as one
+    ///   sliding body: the pushed disc along the normal, the pair stopping
+    ///   together where the pushed disc's friction, along the tractrix it
+    ///   follows, has spent the pair's energy, where that comes before the
+    ///   pusher has passed (`push::carried`). A heavy frictionless disc
+    ///   sliding along a wall past a light braking one kicked it aside at
+    ///   every hit by the pressing contact's capped bounce; it stopped
+    ///   microseconds later and was caught again, two events a cycle until
+    ///   the event cap (`Revision::carries_wedged_discs`).
     R14,
 }
 
@@ -429,6 +440,14 @@ impl Revision {
     /// `World::cornered_hit`).
     pub fn takes_cornered_hit_with_walls(self) -> bool {
         self.at_least_r12()
+    }
+
+    /// Whether a disc that wedges a harder-braked one aside as it slides
+    /// past, held to its line by something else it touches, takes it along
+    /// as one sliding body to their common stop (a fourteenth revision
+    /// rule, see `push::carried`).
+    pub fn carries_wedged_discs(self) -> bool {
+        self.at_least_r14()
     }
 
     /// Whether a plastic hit that drives a disc into an obstacle it
