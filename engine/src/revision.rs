@@ -280,7 +280,12 @@ pub enum Revision {
     ///   sliding along a wall past a light braking one kicked it aside at
     ///   every hit by the pressing contact's capped bounce; it stopped
     ///   microseconds later and was caught again, two events a cycle until
-    ///   the event cap (`Revision::carries_wedged_discs`).
+    ///   the event cap (`Revision::carries_wedged_discs`);
+    /// - the thirteenth revision's end of a head-on pressed pair's bounces
+    ///   reaches bounces ten times higher, 1e-8 of the contact distance
+    ///   (`push::WIDE_TOUCH`): a heavy frictionless elastic disc pushing a
+    ///   light braking elastic one bounced 6.6e-9 of it high, 170,000
+    ///   hits to their stop (`Revision::ends_bounces_within_wide_touch`).
     R14,
 }
 
@@ -447,6 +452,13 @@ impl Revision {
     /// as one sliding body to their common stop (a fourteenth revision
     /// rule, see `push::carried`).
     pub fn carries_wedged_discs(self) -> bool {
+        self.at_least_r14()
+    }
+
+    /// Whether a head-on pressed pair whose bounce stays within 1e-8 of
+    /// its contact distance is taken as the end of its chatter (a
+    /// fourteenth revision rule, see `push::WIDE_TOUCH`).
+    pub fn ends_bounces_within_wide_touch(self) -> bool {
         self.at_least_r14()
     }
 

@@ -1810,7 +1810,9 @@ impl World {
         if e > 0.0
             && (push::chatters(&new_i, &new_j, n, t, origin, self.config.revision)
                 || (self.config.revision.ends_bounces_within_touch()
-                    && push::bounces_within_touch(&new_i, &new_j, n, s, t)))
+                    && push::bounces_within_touch(&new_i, &new_j, n, s, t))
+                || (self.config.revision.ends_bounces_within_wide_touch()
+                    && push::bounces_within(&new_i, &new_j, n, s, t, push::WIDE_TOUCH)))
         {
             // The pair would bounce ever faster into a pressing contact:
             // take the chatter's end, one plastic hit, now.
@@ -1906,7 +1908,20 @@ impl World {
         }
         let (vi, vj) = impulse::body_body(ui, uj, mi.mass, mj.mass, 0.0, n);
         let s = mi.radius + mj.radius;
-        let Some(braking) = push::carried(
+        // Only where the approximated contact would kick the pair apart
+        // (not where it rests it: too slow to slide beyond its gap, or its
+        // next bounce within the rounding of the time).
+        let plastic = (
+            Trajectory::new(t, pi, vi, alpha[0]),
+            Trajectory::new(t, pj, vj, alpha[1]),
+        );
+        if !matches!(
+            self.pressing(&plastic.0, &plastic.1, n, s, t),
+            Some(push::Press::Part(_))
+        ) {
+            return false;
+        }
+        let Some([(vi, ai), (vj, aj)]) = push::carried(
             [vi, vj],
             [mi.mass, mj.mass],
             alpha,
@@ -1925,8 +1940,18 @@ impl World {
         if !held {
             return false;
         }
-        self.slots[i].traj = Trajectory::new(t, pi, vi, braking[0]);
-        self.slots[j].traj = Trajectory::new(t, pj, vj, braking[1]);
+        // Both at rest if neither would move beyond the rounding of `t`
+        // (as `World::collide` leaves a hit).
+        let (mut new_i, mut new_j) = (
+            Trajectory::new(t, pi, vi, ai),
+            Trajectory::new(t, pj, vj, aj),
+        );
+        let (rest_i, rest_j) = (self.settled(new_i, t), self.settled(new_j, t));
+        if !rest_i.is_moving() && !rest_j.is_moving() {
+            (new_i, new_j) = (rest_i, rest_j);
+        }
+        self.slots[i].traj = new_i;
+        self.slots[j].traj = new_j;
         self.slots[i].gen = self.slots[i].gen.wrapping_add(1);
         self.slots[j].gen = self.slots[j].gen.wrapping_add(1);
         let pair = self.predict_with(i, true, Some((j, None)));
