@@ -172,7 +172,7 @@ pub(crate) fn bounces_within_touch(
 /// ([`WIDE_PRESS_GAP`]); the energy of its relative motion, lost, is the
 /// reduced mass's `m w^2 / 2`. A heavy frictionless elastic disc pushing a
 /// light braking elastic one along a wall bounced 6.6e-9 of their contact
-/// distance high, every 1.6e-5 s, 170,000 hits to their stop.
+/// distance high, every 1.6e-5 s, until the event cap.
 pub(crate) const WIDE_TOUCH: f64 = 2e-8;
 
 /// Whether a head-on pressed pair bounces within `bound / 2` of its
@@ -811,5 +811,93 @@ mod tests {
             "{out:?}"
         );
         assert_eq!(out[2].x, 5.0);
+    }
+
+    /// A light disc `L` at rest (braking `alpha_l`), touching a heavy one
+    /// `H` sliding at `vh` with its centre `ahead` along `H`'s line and the
+    /// rest across it, just hit plastically by `H`: velocities after the
+    /// hit and the normal from `H` to `L` (`L` first, as `i`).
+    fn wedged(s: f64, ahead: f64, vh: DVec2, m: [f64; 2]) -> ([DVec2; 2], DVec2) {
+        let along = vh.normalize();
+        let across = along.perp();
+        let n = (along * ahead + across * (s * s - ahead * ahead).sqrt()) / s;
+        let (vl, vh) = impulse::body_body(DVec2::ZERO, vh, m[0], m[1], 0.0, n);
+        ([vl, vh], n)
+    }
+
+    /// The friction `L` meets along its tractrix while `H` travels `y`
+    /// from contact angle `theta0` (cosine `cos0`), with `H`'s own braking
+    /// force `own` and `L`'s `force`.
+    fn tractrix_work(y: f64, cos0: f64, s: f64, own: f64, force: f64) -> f64 {
+        let psi0 = ((1.0 - cos0 * cos0).sqrt() / (1.0 + cos0)).ln();
+        own * y + force * s * (psi0.cosh() / (psi0 + y / s).cosh()).ln()
+    }
+
+    #[test]
+    fn a_disc_wedging_a_braking_one_aside_stops_with_it_where_the_tractrix_spends_their_energy() {
+        // Mixed-box 587207: heavy frictionless disc 9 (0.936 kg) slides up
+        // the left wall at 6.3e-4 m/s past light disc 10 (2.26e-3 kg,
+        // 2.943 m/s^2), whose centre lies 1.85 mm ahead of its own.
+        let (s, m, alpha) = (0.049, [2.261e-3, 0.9357], [2.943, 0.0]);
+        let (v, n) = wedged(s, 1.85e-3, DVec2::new(0.0, 6.3e-4), m);
+        let out = carried(v, m, alpha, n, s, Revision::R14).expect("a wedged pair");
+        let [(vl, al), (vh, ah)] = out;
+        // Both keep the plastic hit's velocities: `L` along the normal at
+        // `H`'s normal speed, and both stop at the same moment.
+        assert_eq!((vl, vh), (v[0], v[1]));
+        assert!(vl.perp_dot(n).abs() <= 1e-15 * vl.length());
+        let (stop_l, stop_h) = (vl.length() / al, vh.length() / ah);
+        assert!(
+            (stop_l - stop_h).abs() <= 1e-12 * stop_h,
+            "{stop_l} {stop_h}"
+        );
+        // `H` stops where `L`'s friction along the tractrix has taken the
+        // pair's energy, short of where it would have passed.
+        let travel = vh.length_squared() / (2.0 * ah);
+        let cos0 = vh.normalize().dot(n);
+        let work = tractrix_work(travel, cos0, s, 0.0, m[0] * alpha[0]);
+        let energy = pair_energy(v, m);
+        assert!(
+            (work - energy).abs() <= 1e-9 * energy,
+            "{work:e} {energy:e}"
+        );
+        assert!(travel < 1.85e-3, "{travel}");
+    }
+
+    #[test]
+    fn a_disc_with_the_energy_to_pass_pays_the_whole_tractrix_and_carries_the_other_ahead() {
+        // Mixed-box 134484: heavy frictionless disc 2 (0.896 kg) slides
+        // along the floor at 7.9e-4 m/s past light disc 10 (2.02e-3 kg,
+        // 2.943 m/s^2), whose centre lies 2.24 mm ahead of its own.
+        let (s, m, alpha) = (0.0552, [2.018e-3, 0.8956], [2.943, 0.0]);
+        let (v, n) = wedged(s, 2.237e-3, DVec2::new(7.9e-4, 0.0), m);
+        let [(vl, al), (vh, ah)] = carried(v, m, alpha, n, s, Revision::R14).expect("passes");
+        // `H` keeps its line and its own braking, slower by the whole
+        // tractrix's friction.
+        assert_eq!(ah, 0.0);
+        assert!(vh.perp_dot(v[1]).abs() <= 1e-15 * v[1].length_squared());
+        let cos0 = v[1].normalize().dot(n);
+        let pass = -((1.0 - cos0 * cos0).sqrt() / (1.0 + cos0)).ln() * s;
+        let lost = 0.5 * m[1] * (v[1].length_squared() - vh.length_squared());
+        let whole = tractrix_work(pass, cos0, s, 0.0, m[0] * alpha[0]);
+        assert!((lost - whole).abs() <= 1e-9 * whole, "{lost:e} {whole:e}");
+        // `L` is carried along the normal and rests as `H` passes, never
+        // gaining the pair energy.
+        assert!(vl.perp_dot(n).abs() <= 1e-15 * vl.length());
+        let rests = vl.length() / al;
+        assert!((rests * vh.length() - pass).abs() <= 1e-9 * pass);
+        assert!(pair_energy([vl, vh], m) <= pair_energy(v, m));
+    }
+
+    #[test]
+    fn a_pair_pushed_head_on_or_without_a_harder_braked_disc_is_not_carried() {
+        let (s, m) = (0.049, [2.261e-3, 0.9357]);
+        // Head on: the exact pushing model.
+        let v = [DVec2::new(0.0, 6.3e-4); 2];
+        let n = DVec2::new(0.0, 1.0);
+        assert_eq!(carried(v, m, [2.943, 0.0], n, s, Revision::R14), None);
+        // Obliquely, but neither brakes.
+        let (v, n) = wedged(s, 1.85e-3, DVec2::new(0.0, 6.3e-4), m);
+        assert_eq!(carried(v, m, [0.0, 0.0], n, s, Revision::R14), None);
     }
 }

@@ -284,8 +284,9 @@ pub enum Revision {
     /// - the thirteenth revision's end of a head-on pressed pair's bounces
     ///   reaches bounces ten times higher, 1e-8 of the contact distance
     ///   (`push::WIDE_TOUCH`): a heavy frictionless elastic disc pushing a
-    ///   light braking elastic one bounced 6.6e-9 of it high, 170,000
-    ///   hits to their stop (`Revision::ends_bounces_within_wide_touch`).
+    ///   light braking elastic one bounced 6.6e-9 of it high, every
+    ///   1.6e-5 s, until the event cap
+    ///   (`Revision::ends_bounces_within_wide_touch`).
     R14,
 }
 
