@@ -359,7 +359,8 @@ pub(crate) fn spent_within_gap(
 /// component along it), `m` the masses, `alpha` the own brakings (`mu g`),
 /// `s` the contact distance. `L` is the disc that brakes harder, `H` the
 /// other, and `L` must move along the normal only (it was at rest, or
-/// moved along the line of centres), towards where `H` drives it.
+/// moved along the line of centres), towards where `H` drives it, and at
+/// most a tenth of `H`'s mass.
 ///
 /// Pushed by the contact alone, `L` (whose inertia is negligible against
 /// the contact force) moves along the line of centres at the speed that
@@ -408,6 +409,7 @@ pub(crate) fn carried(
     if !(alpha[l] > 0.0 && speed > 0.0 && c > 0.0 && c < speed) {
         return None;
     }
+
     // `L` carried along the normal only, at `H`'s normal speed.
     if (vl - to_l * c).length() > SAME * speed {
         return None;
@@ -424,6 +426,9 @@ pub(crate) fn carried(
     }
     let cos0 = c / speed;
     let sin0 = (1.0 - cos0 * cos0).sqrt();
+    if !(sin0 >= CARRIED_SINE) {
+        return None;
+    }
     // ln tan(theta0 / 2), negative below a right angle.
     let psi0 = (sin0 / (1.0 + cos0)).ln();
     let (force, own) = (m[l] * alpha[l], m[h] * alpha[h]);
@@ -480,6 +485,12 @@ pub(crate) fn carried(
     out[l] = (vl, c / duration);
     Some(out)
 }
+
+/// Least sine of the angle between the pushing disc's direction and the
+/// normal for which [`carried`] takes a pair: nearer the line of centres
+/// the two part sideways by less than rounding noise over the whole
+/// carry, and the pair, left touching, is hit again at once.
+const CARRIED_SINE: f64 = 1e-3;
 
 /// Most bisection steps [`carried`] takes to find where a pushing disc
 /// stops (each halves the interval; 64 reach the rounding of a double).

@@ -1884,7 +1884,8 @@ impl World {
     /// along the tractrix, instead of the approximated contact's bounces.
     /// Only where the pushing disc touches something else that takes the
     /// sideways part of the contact force (a wall it slides along, a disc
-    /// it slides past): a free one would be turned away by it. The hit is
+    /// it slides past): a free one would be turned away by it; and only
+    /// where the pushed disc touches nothing else. The hit is
     /// plastic (an elastic pair so pressed is at the end of its chatter, as
     /// `push::chatters` takes one). A heavy frictionless disc sliding along
     /// a wall past a light disc braking at 3 m/s^2, a tenth of a millimetre
@@ -1932,12 +1933,15 @@ impl World {
             return false;
         };
         // The pushing disc (the one braking less) must touch something
-        // besides its partner.
+        // besides its partner, and the pushed one nothing else (carried
+        // along the normal, it would be driven into it, and hit back at
+        // once: the cluster is the pressing kick's).
         let (h, l) = if alpha[1] > alpha[0] { (i, j) } else { (j, i) };
         let at = self.positions(t);
         let held =
             self.touching(h, &at).any(|c| c != l) || !self.contacts_among(&[h], t).is_empty();
-        if !held {
+        let free = self.touching(l, &at).all(|c| c == h) && self.contacts_among(&[l], t).is_empty();
+        if !(held && free) {
             return false;
         }
         // Both at rest if neither would move beyond the rounding of `t`
