@@ -1907,6 +1907,12 @@ impl World {
         if alpha[0] == 0.0 && alpha[1] == 0.0 {
             return false;
         }
+        // Once an instant: a pair already carried (or hit) at `t` that
+        // meets again at `t` is pressed by something else as well, and is
+        // left to the pressing contact and the collapse rules.
+        if self.slots[i].traj.start_time() == t || self.slots[j].traj.start_time() == t {
+            return false;
+        }
         let (vi, vj) = impulse::body_body(ui, uj, mi.mass, mj.mass, 0.0, n);
         let s = mi.radius + mj.radius;
         // Only where the approximated contact would kick the pair apart
