@@ -273,10 +273,11 @@ pub enum Revision {
     /// - a disc sliding nearly past a harder-braked one, touching something
     ///   else that holds it to its line (a wall, a disc), and pressing it
     ///   obliquely so that it has to wedge it aside, takes it along as one
-    ///   sliding body: the pushed disc along the normal, the pair stopping
-    ///   together where the pushed disc's friction, along the tractrix it
-    ///   follows, has spent the pair's energy, where that comes before the
-    ///   pusher has passed (`push::carried`). A heavy frictionless disc
+    ///   sliding body, once an instant: the pushed disc along the normal,
+    ///   the pair stopping together where the pushed disc's friction,
+    ///   along the tractrix it follows, has spent the pair's energy, or,
+    ///   where the pusher has the energy to pass, the pusher paying that
+    ///   friction at once (`push::carried`). A heavy frictionless disc
     ///   sliding along a wall past a light braking one kicked it aside at
     ///   every hit by the pressing contact's capped bounce; it stopped
     ///   microseconds later and was caught again, two events a cycle until
