@@ -401,6 +401,9 @@ pub(crate) fn carried(
     // `L` brakes harder; the normal from `H` to `L`.
     let l = usize::from(alpha[1] > alpha[0]);
     let h = 1 - l;
+    if !(alpha[l] > alpha[h]) {
+        return None;
+    }
     let v = [vi, vj];
     let to_l = if l == 0 { n } else { -n };
     let (vh, vl) = (v[h], v[l]);

@@ -1904,7 +1904,9 @@ impl World {
     ) -> bool {
         let (mi, mj) = (self.material[i], self.material[j]);
         let alpha = [mi.mu * self.g, mj.mu * self.g];
-        if alpha[0] == 0.0 && alpha[1] == 0.0 {
+        // One disc brakes harder (never so between discs of one material,
+        // as in the game: the test ends there).
+        if alpha[0] == alpha[1] {
             return false;
         }
         // Once an instant: a pair already carried (or hit) at `t` that
