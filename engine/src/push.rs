@@ -454,6 +454,11 @@ pub(crate) fn carried(
         let passing = passing.sqrt();
         let duration = 2.0 * pass / (passing + (passing * passing - 2.0 * alpha[h] * pass).sqrt());
         let ahead = pass * cos0;
+        // A pass that moves `L` no further than the gap the pressing
+        // contact keeps (a grazing one, `s cos^2 theta0`) is its bounces'.
+        if !(ahead > press_gap(rev) * s) {
+            return None;
+        }
         let carried = 2.0 * ahead / duration;
         // Never closer than the contact distance once `L` rests, and no
         // energy gained.

@@ -1881,16 +1881,19 @@ impl World {
     /// harder and carried along the normal only (see [`push::carried`]):
     /// taken at once as the pair's pressing limit, one sliding body that
     /// stops where the pushed disc's friction has spent the pair's energy
-    /// along the tractrix, instead of the approximated contact's bounces.
+    /// along the tractrix (or, where the pusher can pass, has it pay that
+    /// friction at once), instead of the approximated contact's bounces.
     /// Only where the pushing disc touches something else that takes the
     /// sideways part of the contact force (a wall it slides along, a disc
-    /// it slides past): a free one would be turned away by it; and only
-    /// where the pushed disc touches nothing else. The hit is
+    /// it slides past): a free one would be turned away by it; only where
+    /// the pushed disc touches nothing else; and once an instant (neither
+    /// disc already hit at `t`: a pair carried and pressed again at once
+    /// by its neighbours rang at one instant). The hit is
     /// plastic (an elastic pair so pressed is at the end of its chatter, as
     /// `push::chatters` takes one). A heavy frictionless disc sliding along
-    /// a wall past a light disc braking at 3 m/s^2, a tenth of a millimetre
-    /// off its line, kicked it aside at 5.6e-5 m/s, 2.4e-5 m/s of its own
-    /// 6.3e-4 m/s towards it; the light disc stopped 1.9e-5 s later and
+    /// a wall past a light disc braking at 2.9 m/s^2, whose centre lay 1.9
+    /// mm ahead of its own, kicked it aside at 5.6e-5 m/s, 2.4e-5 m/s of
+    /// its own 6.3e-4 m/s towards it; the light disc stopped 1.9e-5 s later and
     /// was caught again 3.6e-6 s after that, two events a cycle until the
     /// event cap. `false` (nothing done) where the rule does not apply.
     fn carried_press(
