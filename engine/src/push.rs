@@ -386,7 +386,8 @@ pub(crate) fn spent_within_gap(
 /// its own braking, and `L` is carried ahead along the normal, starting at
 /// twice the normal share of `H`'s velocity and decelerating to rest just
 /// as `H` passes, again by the projection of `H`'s travel or more (only
-/// where that adds no energy and leaves `L` out of `H`'s way). `None`
+/// where that adds no energy, leaves `L` out of `H`'s way and carries it
+/// beyond the gap the pressing contact keeps). `None`
 /// where the pair does not press obliquely, the bounce is not capped, or
 /// the shape does not fit; else the velocities and decelerations of `i`
 /// and `j`.
