@@ -1955,6 +1955,18 @@ impl World {
         if !(held && free) {
             return false;
         }
+        // Nor where the hit drives the pushing disc into an obstacle it
+        // touches: the obstacle's hit, at once, takes its carried braking
+        // away, and the pushed disc stops before it passes.
+        let v_h = if h == i { vi } else { vj };
+        let noise = 1e-12 * v_h.length();
+        if self
+            .contacts_among(&[h], t)
+            .iter()
+            .any(|c| c.b.is_none() && v_h.dot(c.n) < -noise)
+        {
+            return false;
+        }
         // Both at rest if neither would move beyond the rounding of `t`
         // (as `World::collide` leaves a hit).
         let (mut new_i, mut new_j) = (
