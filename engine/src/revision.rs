@@ -277,11 +277,12 @@ pub enum Revision {
     ///   the pair stopping together where the pushed disc's friction,
     ///   along the tractrix it follows, has spent the pair's energy, or,
     ///   where the pusher has the energy to pass, the pusher paying that
-    ///   friction at once (`push::carried`). A heavy frictionless disc
-    ///   sliding along a wall past a light braking one kicked it aside at
-    ///   every hit by the pressing contact's capped bounce; it stopped
-    ///   microseconds later and was caught again, two events a cycle until
-    ///   the event cap (`Revision::carries_wedged_discs`);
+    ///   friction at once (`push::carried`), unless the hit drives the
+    ///   pusher into an obstacle it touches. A heavy frictionless disc
+    ///   sliding past a light braking one kicked it aside at every hit by
+    ///   the pressing contact's capped bounce; it stopped a microsecond
+    ///   later and was caught again, two events a cycle until the event
+    ///   cap (`Revision::carries_wedged_discs`);
     /// - the thirteenth revision's end of a head-on pressed pair's bounces
     ///   reaches bounces ten times higher, 1e-8 of the contact distance
     ///   (`push::WIDE_TOUCH`): a heavy frictionless elastic disc pushing a

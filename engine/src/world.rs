@@ -1890,11 +1890,13 @@ impl World {
     /// disc already hit at `t`: a pair carried and pressed again at once
     /// by its neighbours rang at one instant). The hit is
     /// plastic (an elastic pair so pressed is at the end of its chatter, as
-    /// `push::chatters` takes one). A heavy frictionless disc sliding along
-    /// a wall past a light disc braking at 2.9 m/s^2, whose centre lay 1.9
-    /// mm ahead of its own, kicked it aside at 5.6e-5 m/s, 2.4e-5 m/s of
-    /// its own 6.3e-4 m/s towards it; the light disc stopped 1.9e-5 s later and
-    /// was caught again 3.6e-6 s after that, two events a cycle until the
+    /// `push::chatters` takes one). Nor where the hit drives the pushing
+    /// disc into an obstacle it touches (a disc sliding along a wall): the
+    /// obstacle's hit, at once, took its carried braking away, and the
+    /// pushed disc stopped before it passed. A heavy frictionless disc
+    /// touching another slid past a light disc braking at 150 m/s^2, which
+    /// the pressing contact kicked aside at every hit; it stopped a
+    /// microsecond later and was caught again, two events a cycle until the
     /// event cap. `false` (nothing done) where the rule does not apply.
     fn carried_press(
         &mut self,
