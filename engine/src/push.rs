@@ -160,6 +160,32 @@ pub(crate) fn bounces_within_touch(
     s: f64,
     now: f64,
 ) -> bool {
+    bounces_within(ti, tj, n, s, now, TOUCHING)
+}
+
+/// From the fourteenth revision, the bound of [`bounces_within_touch`]
+/// widened tenfold: a head-on pressed pair whose bounce stays within
+/// `WIDE_TOUCH / 2` (1e-8) of its contact distance is at the end of its
+/// chatter. Taken as one plastic hit, its positions differ from the
+/// bouncing ones by at most that, ten thousand times less than the gap
+/// the approximated pressing contact already allows
+/// ([`WIDE_PRESS_GAP`]); the energy of its relative motion, lost, is the
+/// reduced mass's `m w^2 / 2`. A heavy frictionless elastic disc pushing a
+/// light braking elastic one along a wall bounced 6.6e-9 of their contact
+/// distance high, every 1.6e-5 s, until the event cap.
+pub(crate) const WIDE_TOUCH: f64 = 2e-8;
+
+/// Whether a head-on pressed pair bounces within `bound / 2` of its
+/// contact distance `s` (see [`bounces_within_touch`]).
+#[inline]
+pub(crate) fn bounces_within(
+    ti: &Trajectory,
+    tj: &Trajectory,
+    n: DVec2,
+    s: f64,
+    now: f64,
+    bound: f64,
+) -> bool {
     let Some(a) = pressing_deceleration(ti, tj, n, now) else {
         return false;
     };
@@ -171,7 +197,7 @@ pub(crate) fn bounces_within_touch(
         return false;
     }
     let w = (vi - vj).dot(n);
-    w * w <= TOUCHING * s * -a
+    w * w <= bound * s * -a
 }
 
 /// Whether a bounce `dt` after a hit at absolute time `at` falls within the
@@ -325,6 +351,159 @@ pub(crate) fn spent_within_gap(
         .fold(f64::INFINITY, f64::min);
     weakest.is_finite() && energy <= weakest * press_gap(rev) * s
 }
+
+/// From the fourteenth revision: a pressed pair taken as one sliding body
+/// where a disc `H` slides nearly past a strongly braked one `L` and has to
+/// wedge it aside (see `World::carried_press`). `v` are the velocities just
+/// after a plastic hit along `n` (unit, from `j` to `i`; both share their
+/// component along it), `m` the masses, `alpha` the own brakings (`mu g`),
+/// `s` the contact distance. `L` is the disc that brakes harder, `H` the
+/// other, and `L` must move along the normal only (it was at rest, or
+/// moved along the line of centres), towards where `H` drives it, and at
+/// most a tenth of `H`'s mass.
+///
+/// Pushed by the contact alone, `L` (whose inertia is negligible against
+/// the contact force) moves along the line of centres at the speed that
+/// keeps it touching, while `H` keeps its line: `L` follows the tractrix
+/// of `H`'s path, the angle `theta` between `H`'s direction and the normal
+/// growing as `tan(theta / 2) = tan(theta0 / 2) e^(y / s)` with `H`'s
+/// travel `y`, and the friction of `L` takes `F s ln(sin theta /
+/// sin theta0)` out of the pair (`F = m_L alpha_L`), `H`'s own braking
+/// `m_H alpha_H y`. Where that work reaches the pair's kinetic energy
+/// before `H` has passed (`theta` reaches a right angle), `H` stops there,
+/// at `y*`: both are given that stop, `H` along its line with the uniform
+/// deceleration that ends it at `y*`, `L` along the normal with the
+/// normal share of `H`'s velocity, decelerating to rest at the same moment.
+/// `L` then moves by the projection of `H`'s travel on the normal, so
+/// that the two only part (their distance grows as the tangential part of
+/// that travel), never overlap, and no energy is added: both only slow
+/// down. `L` is moved a little further than the tractrix takes it (its
+/// final position off by at most `y*^2 / 2 s`). The pair then does in two
+/// trajectories what the approximated pressing contact did in thousands
+/// of bounces, each capped at [`PRESS_SPEED`] of their speeds, `L`
+/// stopping between them. Where `H` has the energy to pass, it pays the
+/// whole tractrix's friction `F s ln(1 / sin theta0)` at once and keeps
+/// its own braking, and `L` is carried ahead along the normal, starting at
+/// twice the normal share of `H`'s velocity and decelerating to rest just
+/// as `H` passes, again by the projection of `H`'s travel or more (only
+/// where that adds no energy, leaves `L` out of `H`'s way and carries it
+/// beyond the gap the pressing contact keeps). `None`
+/// where the pair does not press obliquely, the bounce is not capped, or
+/// the shape does not fit; else the velocities and decelerations of `i`
+/// and `j`.
+pub(crate) fn carried(
+    [vi, vj]: [DVec2; 2],
+    m: [f64; 2],
+    alpha: [f64; 2],
+    n: DVec2,
+    s: f64,
+    rev: Revision,
+) -> Option<[(DVec2, f64); 2]> {
+    // `L` brakes harder; the normal from `H` to `L`.
+    let l = usize::from(alpha[1] > alpha[0]);
+    let h = 1 - l;
+    if !(alpha[l] > alpha[h]) {
+        return None;
+    }
+    let v = [vi, vj];
+    let to_l = if l == 0 { n } else { -n };
+    let (vh, vl) = (v[h], v[l]);
+    let speed = vh.length();
+    let c = vh.dot(to_l);
+    if !(alpha[l] > 0.0 && speed > 0.0 && c > 0.0 && c < speed) {
+        return None;
+    }
+
+    // `L` carried along the normal only, at `H`'s normal speed.
+    if (vl - to_l * c).length() > SAME * speed {
+        return None;
+    }
+    // Pressed obliquely, with the bounce of the approximated contact capped
+    // by its speeds (the chatter this takes at once).
+    let acc = [
+        -alpha[0] * vi.normalize_or_zero(),
+        -alpha[1] * vj.normalize_or_zero(),
+    ];
+    let (_, w_min, g2) = pressing(v, acc, n, s, rev)?;
+    if w_min * w_min >= 2.0 * -g2 * press_gap(rev) * s {
+        return None;
+    }
+    let cos0 = c / speed;
+    let sin0 = (1.0 - cos0 * cos0).sqrt();
+    if !(sin0 >= CARRIED_SINE) {
+        return None;
+    }
+    // ln tan(theta0 / 2), negative below a right angle.
+    let psi0 = (sin0 / (1.0 + cos0)).ln();
+    let (force, own) = (m[l] * alpha[l], m[h] * alpha[h]);
+    let work = |y: f64| own * y + force * s * (psi0.cosh() / (psi0 + y / s).cosh()).ln();
+    let pass = -psi0 * s;
+    let energy = pair_energy(v, m);
+    if !(pass > 0.0) {
+        return None;
+    }
+    let mut out = [(DVec2::ZERO, 0.0); 2];
+    if energy >= work(pass) {
+        // `H` passes: it pays the friction of `L` along the whole tractrix
+        // at once, `L` is carried ahead of it along the normal and stops
+        // when `H` has passed, `H` keeping its own braking.
+        let lost = force * s * psi0.cosh().ln();
+        let passing = speed * speed - 2.0 * lost / m[h];
+        if !(passing > 2.0 * alpha[h] * pass) {
+            return None;
+        }
+        let passing = passing.sqrt();
+        let duration = 2.0 * pass / (passing + (passing * passing - 2.0 * alpha[h] * pass).sqrt());
+        let ahead = pass * cos0;
+        // A pass that moves `L` no further than the gap the pressing
+        // contact keeps (a grazing one, `s cos^2 theta0`) is its bounces'.
+        if !(ahead > press_gap(rev) * s) {
+            return None;
+        }
+        let carried = 2.0 * ahead / duration;
+        // Never closer than the contact distance once `L` rests, and no
+        // energy gained.
+        let after = 0.5 * (m[h] * passing * passing + m[l] * carried * carried);
+        if !((s + ahead) * sin0 >= s && after <= energy) {
+            return None;
+        }
+        out[h] = (vh * (passing / speed), alpha[h]);
+        out[l] = (to_l * carried, carried / duration);
+        return Some(out);
+    }
+    // `work` grows on [0, pass]: bisect to where it spends the energy.
+    let (mut lo, mut hi) = (0.0, pass);
+    for _ in 0..CARRY_BISECTIONS {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if work(mid) < energy {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let stop = hi;
+    if !(stop > 0.0) {
+        return None;
+    }
+    // Both stop together after `2 y* / |v_H|`.
+    let duration = 2.0 * stop / speed;
+    out[h] = (vh, speed / duration);
+    out[l] = (vl, c / duration);
+    Some(out)
+}
+
+/// Least sine of the angle between the pushing disc's direction and the
+/// normal for which [`carried`] takes a pair: nearer the line of centres
+/// the two part sideways by less than rounding noise over the whole
+/// carry, and the pair, left touching, is hit again at once.
+const CARRIED_SINE: f64 = 1e-3;
+
+/// Most bisection steps [`carried`] takes to find where a pushing disc
+/// stops (each halves the interval; 64 reach the rounding of a double).
+const CARRY_BISECTIONS: usize = 64;
 
 /// The kinetic energy of a pair (velocities `v`, masses `m`).
 pub(crate) fn pair_energy(v: [DVec2; 2], m: [f64; 2]) -> f64 {
@@ -652,5 +831,93 @@ mod tests {
             "{out:?}"
         );
         assert_eq!(out[2].x, 5.0);
+    }
+
+    /// A light disc `L` at rest (braking `alpha_l`), touching a heavy one
+    /// `H` sliding at `vh` with its centre `ahead` along `H`'s line and the
+    /// rest across it, just hit plastically by `H`: velocities after the
+    /// hit and the normal from `H` to `L` (`L` first, as `i`).
+    fn wedged(s: f64, ahead: f64, vh: DVec2, m: [f64; 2]) -> ([DVec2; 2], DVec2) {
+        let along = vh.normalize();
+        let across = along.perp();
+        let n = (along * ahead + across * (s * s - ahead * ahead).sqrt()) / s;
+        let (vl, vh) = impulse::body_body(DVec2::ZERO, vh, m[0], m[1], 0.0, n);
+        ([vl, vh], n)
+    }
+
+    /// The friction `L` meets along its tractrix while `H` travels `y`
+    /// from contact angle `theta0` (cosine `cos0`), with `H`'s own braking
+    /// force `own` and `L`'s `force`.
+    fn tractrix_work(y: f64, cos0: f64, s: f64, own: f64, force: f64) -> f64 {
+        let psi0 = ((1.0 - cos0 * cos0).sqrt() / (1.0 + cos0)).ln();
+        own * y + force * s * (psi0.cosh() / (psi0 + y / s).cosh()).ln()
+    }
+
+    #[test]
+    fn a_disc_wedging_a_braking_one_aside_stops_with_it_where_the_tractrix_spends_their_energy() {
+        // Mixed-box 587207: heavy frictionless disc 9 (0.936 kg) slides up
+        // the left wall at 6.3e-4 m/s past light disc 10 (2.26e-3 kg,
+        // 2.943 m/s^2), whose centre lies 1.85 mm ahead of its own.
+        let (s, m, alpha) = (0.049, [2.261e-3, 0.9357], [2.943, 0.0]);
+        let (v, n) = wedged(s, 1.85e-3, DVec2::new(0.0, 6.3e-4), m);
+        let out = carried(v, m, alpha, n, s, Revision::R14).expect("a wedged pair");
+        let [(vl, al), (vh, ah)] = out;
+        // Both keep the plastic hit's velocities: `L` along the normal at
+        // `H`'s normal speed, and both stop at the same moment.
+        assert_eq!((vl, vh), (v[0], v[1]));
+        assert!(vl.perp_dot(n).abs() <= 1e-15 * vl.length());
+        let (stop_l, stop_h) = (vl.length() / al, vh.length() / ah);
+        assert!(
+            (stop_l - stop_h).abs() <= 1e-12 * stop_h,
+            "{stop_l} {stop_h}"
+        );
+        // `H` stops where `L`'s friction along the tractrix has taken the
+        // pair's energy, short of where it would have passed.
+        let travel = vh.length_squared() / (2.0 * ah);
+        let cos0 = vh.normalize().dot(n);
+        let work = tractrix_work(travel, cos0, s, 0.0, m[0] * alpha[0]);
+        let energy = pair_energy(v, m);
+        assert!(
+            (work - energy).abs() <= 1e-9 * energy,
+            "{work:e} {energy:e}"
+        );
+        assert!(travel < 1.85e-3, "{travel}");
+    }
+
+    #[test]
+    fn a_disc_with_the_energy_to_pass_pays_the_whole_tractrix_and_carries_the_other_ahead() {
+        // Mixed-box 134484: heavy frictionless disc 2 (0.896 kg) slides
+        // along the floor at 7.9e-4 m/s past light disc 10 (2.02e-3 kg,
+        // 2.943 m/s^2), whose centre lies 2.24 mm ahead of its own.
+        let (s, m, alpha) = (0.0552, [2.018e-3, 0.8956], [2.943, 0.0]);
+        let (v, n) = wedged(s, 2.237e-3, DVec2::new(7.9e-4, 0.0), m);
+        let [(vl, al), (vh, ah)] = carried(v, m, alpha, n, s, Revision::R14).expect("passes");
+        // `H` keeps its line and its own braking, slower by the whole
+        // tractrix's friction.
+        assert_eq!(ah, 0.0);
+        assert!(vh.perp_dot(v[1]).abs() <= 1e-15 * v[1].length_squared());
+        let cos0 = v[1].normalize().dot(n);
+        let pass = -((1.0 - cos0 * cos0).sqrt() / (1.0 + cos0)).ln() * s;
+        let lost = 0.5 * m[1] * (v[1].length_squared() - vh.length_squared());
+        let whole = tractrix_work(pass, cos0, s, 0.0, m[0] * alpha[0]);
+        assert!((lost - whole).abs() <= 1e-9 * whole, "{lost:e} {whole:e}");
+        // `L` is carried along the normal and rests as `H` passes, never
+        // gaining the pair energy.
+        assert!(vl.perp_dot(n).abs() <= 1e-15 * vl.length());
+        let rests = vl.length() / al;
+        assert!((rests * vh.length() - pass).abs() <= 1e-9 * pass);
+        assert!(pair_energy([vl, vh], m) <= pair_energy(v, m));
+    }
+
+    #[test]
+    fn a_pair_pushed_head_on_or_without_a_harder_braked_disc_is_not_carried() {
+        let (s, m) = (0.049, [2.261e-3, 0.9357]);
+        // Head on: the exact pushing model.
+        let v = [DVec2::new(0.0, 6.3e-4); 2];
+        let n = DVec2::new(0.0, 1.0);
+        assert_eq!(carried(v, m, [2.943, 0.0], n, s, Revision::R14), None);
+        // Obliquely, but neither brakes.
+        let (v, n) = wedged(s, 1.85e-3, DVec2::new(0.0, 6.3e-4), m);
+        assert_eq!(carried(v, m, [0.0, 0.0], n, s, Revision::R14), None);
     }
 }

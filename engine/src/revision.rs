@@ -331,6 +331,25 @@ pub enum Revision {
     ///   last with a few hits, never the eight hits of one pair that the
     ///   collapse after repeated hits counts, until the event cap
     ///   (`Revision::takes_cluster_rings_at_once`).
+    /// - a disc sliding nearly past a harder-braked one, touching something
+    ///   else that holds it to its line (a wall, a disc), and pressing it
+    ///   obliquely so that it has to wedge it aside, takes it along as one
+    ///   sliding body, once an instant: the pushed disc along the normal,
+    ///   the pair stopping together where the pushed disc's friction,
+    ///   along the tractrix it follows, has spent the pair's energy, or,
+    ///   where the pusher has the energy to pass, the pusher paying that
+    ///   friction at once (`push::carried`), unless the hit drives the
+    ///   pusher into an obstacle it touches. A heavy frictionless disc
+    ///   sliding past a light braking one kicked it aside at every hit by
+    ///   the pressing contact's capped bounce; it stopped a microsecond
+    ///   later and was caught again, two events a cycle until the event
+    ///   cap (`Revision::carries_wedged_discs`);
+    /// - the thirteenth revision's end of a head-on pressed pair's bounces
+    ///   reaches bounces ten times higher, 1e-8 of the contact distance
+    ///   (`push::WIDE_TOUCH`): a heavy frictionless elastic disc pushing a
+    ///   light braking elastic one bounced 6.6e-9 of it high, every
+    ///   1.6e-5 s, until the event cap
+    ///   (`Revision::ends_bounces_within_wide_touch`).
     R14,
 }
 
@@ -514,6 +533,21 @@ impl Revision {
     /// once as one plastic limit with that disc (a fourteenth revision
     /// rule, see `World::hit_through_disc`).
     pub fn takes_hit_through_disc(self) -> bool {
+        self.at_least_r14()
+    }
+
+    /// Whether a disc that wedges a harder-braked one aside as it slides
+    /// past, held to its line by something else it touches, takes it along
+    /// as one sliding body to their common stop (a fourteenth revision
+    /// rule, see `push::carried`).
+    pub fn carries_wedged_discs(self) -> bool {
+        self.at_least_r14()
+    }
+
+    /// Whether a head-on pressed pair whose bounce stays within 1e-8 of
+    /// its contact distance is taken as the end of its chatter (a
+    /// fourteenth revision rule, see `push::WIDE_TOUCH`).
+    pub fn ends_bounces_within_wide_touch(self) -> bool {
         self.at_least_r14()
     }
 

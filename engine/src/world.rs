@@ -1852,6 +1852,14 @@ impl World {
             self.stats.collapses += 1;
             return;
         }
+        // From the fourteenth revision, a disc wedging a strongly braked
+        // one aside as it slides past takes it along as one body.
+        if self.config.revision.carries_wedged_discs()
+            && self.carried_press(i, j, [pi, pj], [ui, uj], n, t)
+        {
+            self.stats.pressed += 1;
+            return;
+        }
         let (mut vi, mut vj) = impulse::body_body(ui, uj, mi.mass, mj.mass, e, n);
         // Each gets its own friction back (a pushed pair shares one).
         let alpha = [mi.mu * self.g, mj.mu * self.g];
@@ -1863,7 +1871,9 @@ impl World {
         if e > 0.0
             && (push::chatters(&new_i, &new_j, n, t, origin, self.config.revision)
                 || (self.config.revision.ends_bounces_within_touch()
-                    && push::bounces_within_touch(&new_i, &new_j, n, s, t)))
+                    && push::bounces_within_touch(&new_i, &new_j, n, s, t))
+                || (self.config.revision.ends_bounces_within_wide_touch()
+                    && push::bounces_within(&new_i, &new_j, n, s, t, push::WIDE_TOUCH)))
         {
             // From the fourteenth revision, a chatter's end that drives a
             // disc into an obstacle it touches, the two then ringing, is
@@ -1935,6 +1945,120 @@ impl World {
         // The pair (i, j) is solved once, for both.
         let pair = self.predict_with(i, true, Some((j, None)));
         self.predict_with(j, true, Some((i, pair)));
+    }
+
+    /// From the fourteenth revision, a hit between the discs in slots `i`
+    /// and `j` (at `p`, unit normal `n` towards `i`, velocities `u` before
+    /// it) after which one of them, sliding nearly past the other, presses
+    /// it obliquely and has to wedge it aside, the pushed one braking
+    /// harder and carried along the normal only (see [`push::carried`]):
+    /// taken at once as the pair's pressing limit, one sliding body that
+    /// stops where the pushed disc's friction has spent the pair's energy
+    /// along the tractrix (or, where the pusher can pass, has it pay that
+    /// friction at once), instead of the approximated contact's bounces.
+    /// Only where the pushing disc touches something else that takes the
+    /// sideways part of the contact force (a wall it slides along, a disc
+    /// it slides past): a free one would be turned away by it; only where
+    /// the pushed disc touches nothing else; and once an instant (neither
+    /// disc already hit at `t`: a pair carried and pressed again at once
+    /// by its neighbours rang at one instant). The hit is
+    /// plastic (an elastic pair so pressed is at the end of its chatter, as
+    /// `push::chatters` takes one). Nor where the hit drives the pushing
+    /// disc into an obstacle it touches (a disc sliding along a wall): the
+    /// obstacle's hit, at once, took its carried braking away, and the
+    /// pushed disc stopped before it passed. A heavy frictionless disc
+    /// touching another slid past a light disc braking at 150 m/s^2, which
+    /// the pressing contact kicked aside at every hit; it stopped a
+    /// microsecond later and was caught again, two events a cycle until the
+    /// event cap. `false` (nothing done) where the rule does not apply.
+    fn carried_press(
+        &mut self,
+        i: usize,
+        j: usize,
+        [pi, pj]: [DVec2; 2],
+        [ui, uj]: [DVec2; 2],
+        n: DVec2,
+        t: f64,
+    ) -> bool {
+        let (mi, mj) = (self.material[i], self.material[j]);
+        let alpha = [mi.mu * self.g, mj.mu * self.g];
+        // One disc brakes harder (never so between discs of one material,
+        // as in the game: the test ends there).
+        if alpha[0] == alpha[1] {
+            return false;
+        }
+        // Once an instant: a pair already carried (or hit) at `t` that
+        // meets again at `t` is pressed by something else as well, and is
+        // left to the pressing contact and the collapse rules.
+        if self.slots[i].traj.start_time() == t || self.slots[j].traj.start_time() == t {
+            return false;
+        }
+        let (vi, vj) = impulse::body_body(ui, uj, mi.mass, mj.mass, 0.0, n);
+        let s = mi.radius + mj.radius;
+        // Only where the approximated contact would kick the pair apart
+        // (not where it rests it: too slow to slide beyond its gap, or its
+        // next bounce within the rounding of the time).
+        let plastic = (
+            Trajectory::new(t, pi, vi, alpha[0]),
+            Trajectory::new(t, pj, vj, alpha[1]),
+        );
+        if !matches!(
+            self.pressing(&plastic.0, &plastic.1, n, s, t),
+            Some(push::Press::Part(_))
+        ) {
+            return false;
+        }
+        let Some([(vi, ai), (vj, aj)]) = push::carried(
+            [vi, vj],
+            [mi.mass, mj.mass],
+            alpha,
+            n,
+            s,
+            self.config.revision,
+        ) else {
+            return false;
+        };
+        // The pushing disc (the one braking less) must touch something
+        // besides its partner, and the pushed one nothing else (carried
+        // along the normal, it would be driven into it, and hit back at
+        // once: the cluster is the pressing kick's).
+        let (h, l) = if alpha[1] > alpha[0] { (i, j) } else { (j, i) };
+        let at = self.positions(t);
+        let held =
+            self.touching(h, &at).any(|c| c != l) || !self.contacts_among(&[h], t).is_empty();
+        let free = self.touching(l, &at).all(|c| c == h) && self.contacts_among(&[l], t).is_empty();
+        if !(held && free) {
+            return false;
+        }
+        // Nor where the hit drives the pushing disc into an obstacle it
+        // touches: the obstacle's hit, at once, takes its carried braking
+        // away, and the pushed disc stops before it passes.
+        let v_h = if h == i { vi } else { vj };
+        let noise = 1e-12 * v_h.length();
+        if self
+            .contacts_among(&[h], t)
+            .iter()
+            .any(|c| c.b.is_none() && v_h.dot(c.n) < -noise)
+        {
+            return false;
+        }
+        // Both at rest if neither would move beyond the rounding of `t`
+        // (as `World::collide` leaves a hit).
+        let (mut new_i, mut new_j) = (
+            Trajectory::new(t, pi, vi, ai),
+            Trajectory::new(t, pj, vj, aj),
+        );
+        let (rest_i, rest_j) = (self.settled(new_i, t), self.settled(new_j, t));
+        if !rest_i.is_moving() && !rest_j.is_moving() {
+            (new_i, new_j) = (rest_i, rest_j);
+        }
+        self.slots[i].traj = new_i;
+        self.slots[j].traj = new_j;
+        self.slots[i].gen = self.slots[i].gen.wrapping_add(1);
+        self.slots[j].gen = self.slots[j].gen.wrapping_add(1);
+        let pair = self.predict_with(i, true, Some((j, None)));
+        self.predict_with(j, true, Some((i, pair)));
+        true
     }
 
     /// From the twelfth revision, a gentle plastic hit between the discs in
