@@ -160,32 +160,6 @@ pub(crate) fn bounces_within_touch(
     s: f64,
     now: f64,
 ) -> bool {
-    bounces_within(ti, tj, n, s, now, TOUCHING)
-}
-
-/// From the fourteenth revision, the bound of [`bounces_within_touch`]
-/// widened tenfold: a head-on pressed pair whose bounce stays within
-/// `WIDE_TOUCH / 2` (1e-8) of its contact distance is at the end of its
-/// chatter. Taken as one plastic hit, its positions differ from the
-/// bouncing ones by at most that, ten thousand times less than the gap
-/// the approximated pressing contact already allows
-/// ([`WIDE_PRESS_GAP`]); the energy of its relative motion, lost, is the
-/// reduced mass's `m w^2 / 2`. A heavy frictionless elastic disc pushing a
-/// light braking elastic one along a wall bounced 6.6e-9 of their contact
-/// distance high, every 1.6e-5 s, until the event cap.
-pub(crate) const WIDE_TOUCH: f64 = 2e-8;
-
-/// Whether a head-on pressed pair bounces within `bound / 2` of its
-/// contact distance `s` (see [`bounces_within_touch`]).
-#[inline]
-pub(crate) fn bounces_within(
-    ti: &Trajectory,
-    tj: &Trajectory,
-    n: DVec2,
-    s: f64,
-    now: f64,
-    bound: f64,
-) -> bool {
     let Some(a) = pressing_deceleration(ti, tj, n, now) else {
         return false;
     };
@@ -197,7 +171,7 @@ pub(crate) fn bounces_within(
         return false;
     }
     let w = (vi - vj).dot(n);
-    w * w <= bound * s * -a
+    w * w <= TOUCHING * s * -a
 }
 
 /// Whether a bounce `dt` after a hit at absolute time `at` falls within the

@@ -267,7 +267,6 @@ pub enum Revision {
     ///   it again at that instant, losing a fraction of its approach, one
     ///   hit of the pair an instant, until the event cap
     ///   (`Revision::takes_walled_hit_with_wall`).
-    #[default]
     R13,
     /// The fourteenth, as the thirteenth but:
     /// - a hit of a pair with restitution taken as the end of its chatter
@@ -288,7 +287,8 @@ pub enum Revision {
     ///   impact) that drives a plastic disc into an obstacle its normal
     ///   meets at an angle, the disc then coming back into its partner, is
     ///   taken at once as that same plastic limit (`World::hit_into_wall`)
-    ///   unless their braking presses them together,
+    ///   unless their braking presses them together or it lies in a pile
+    ///   (more than four discs with the plastic neighbours),
     ///   however fast the ring would fade, not only where it keeps a fifth
     ///   of its approach over eight turns: a plastic disc on the floor,
     ///   rung by a lighter plastic one sliding against it, stopped against
@@ -297,28 +297,14 @@ pub enum Revision {
     ///   the ring, and the light disc, pressed between it and a third,
     ///   drove into it again tens of microseconds later, until the event
     ///   cap
-    ///   (`Revision::takes_gentle_hit_into_wall_with_wall`).
-    /// - a plastic hit between two discs hit together among the latest
-    ///   four hits between discs, after which one of them runs into
-    ///   a third disc it touches, where the hits that follow, played in
-    ///   memory (that disc and the third, the pair again), still ring
-    ///   after eight turns with a fifth of their approach left, is taken
-    ///   at once as the plastic limit of the pair, the ringing disc, the
-    ///   discs touching the pair through plastic contacts and the
-    ///   obstacles they touch (`World::hit_through_disc`), as the
-    ///   thirteenth revision takes a ring against an obstacle: a heavy
-    ///   frictionless disc driving a light plastic one into a resting
-    ///   braking one stopped it at each hit, the third disc settling back
-    ///   to rest, and met it again 3e-10 s later, losing a third of a per
-    ///   cent of its speed a turn, two hits an instant until the event cap
-    ///   (`Revision::takes_hit_through_disc`);
+    ///   (`Revision::takes_gentle_hit_into_wall_with_wall`);
     /// - the pressing kick after a collapse's plastic limit adds no more
     ///   than 0.01 of the scene's kinetic energy over the limit, as the
     ///   twelfth revision holds a kick over a cluster: a light frictionless
     ///   disc sliding down a wall along a resting one 440 times heavier,
     ///   each hit taken to a plastic limit, set the heavy one moving with
     ///   the whole separation, 2.4e-2 of the scene's largest energy at one
-    ///   event (`Revision::bounds_collapse_kick_energy`).
+    ///   event (`Revision::bounds_collapse_kick_energy`);
     /// - a plastic hit between two discs whose touching cluster (at most
     ///   twelve discs and the obstacles they touch), its hits played in
     ///   memory from the hit, contact after contact with each one's
@@ -330,7 +316,7 @@ pub enum Revision {
     ///   approach a turn, each turn a new instant picoseconds after the
     ///   last with a few hits, never the eight hits of one pair that the
     ///   collapse after repeated hits counts, until the event cap
-    ///   (`Revision::takes_cluster_rings_at_once`).
+    ///   (`Revision::takes_cluster_rings_at_once`);
     /// - a disc sliding nearly past a harder-braked one, touching something
     ///   else that holds it to its line (a wall, a disc), and pressing it
     ///   obliquely so that it has to wedge it aside, takes it along as one
@@ -343,19 +329,14 @@ pub enum Revision {
     ///   sliding past a light braking one kicked it aside at every hit by
     ///   the pressing contact's capped bounce; it stopped a microsecond
     ///   later and was caught again, two events a cycle until the event
-    ///   cap (`Revision::carries_wedged_discs`);
-    /// - the thirteenth revision's end of a head-on pressed pair's bounces
-    ///   reaches bounces ten times higher, 1e-8 of the contact distance
-    ///   (`push::WIDE_TOUCH`): a heavy frictionless elastic disc pushing a
-    ///   light braking elastic one bounced 6.6e-9 of it high, every
-    ///   1.6e-5 s, until the event cap
-    ///   (`Revision::ends_bounces_within_wide_touch`).
+    ///   cap (`Revision::carries_wedged_discs`).
+    #[default]
     R14,
 }
 
 impl Revision {
     /// The revision new computations use.
-    pub const LATEST: Revision = Revision::R13;
+    pub const LATEST: Revision = Revision::R14;
 
     /// Every revision, oldest first.
     pub const ALL: [Revision; 14] = [
@@ -528,26 +509,11 @@ impl Revision {
         self.at_least_r12()
     }
 
-    /// Whether a plastic hit that drives one of its discs into a third disc
-    /// it touches, the three then ringing between each other, is taken at
-    /// once as one plastic limit with that disc (a fourteenth revision
-    /// rule, see `World::hit_through_disc`).
-    pub fn takes_hit_through_disc(self) -> bool {
-        self.at_least_r14()
-    }
-
     /// Whether a disc that wedges a harder-braked one aside as it slides
     /// past, held to its line by something else it touches, takes it along
     /// as one sliding body to their common stop (a fourteenth revision
     /// rule, see `push::carried`).
     pub fn carries_wedged_discs(self) -> bool {
-        self.at_least_r14()
-    }
-
-    /// Whether a head-on pressed pair whose bounce stays within 1e-8 of
-    /// its contact distance is taken as the end of its chatter (a
-    /// fourteenth revision rule, see `push::WIDE_TOUCH`).
-    pub fn ends_bounces_within_wide_touch(self) -> bool {
         self.at_least_r14()
     }
 

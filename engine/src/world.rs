@@ -95,15 +95,14 @@ const WALL_RING_KEEPS: f64 = 0.2;
 /// only by the rounding of the impulse.
 const GENTLE_WALL_COSINE: f64 = 1e-2;
 
-/// From the fourteenth revision, the latest hits between discs among which
-/// a plastic pair must have been hit already for its hit to be taken as a
-/// ring through a third disc (see `World::hit_through_disc`): a ring under
-/// way, whose pair comes round again every second hit, not the first
-/// impact of a pile. Taken at any such hit, a draft of the rule failed 5
-/// of the first 100,000 mixed boxes that revision 13 passes (a first
-/// draft, which left the obstacles of its elastic discs out of the limit,
-/// 10), ending 1 of revision 13's 6 there.
-const RING_MEMORY: usize = 4;
+/// From the fourteenth revision, the most discs a gentle hit into an
+/// obstacle is taken with (the pair and the discs touching it through
+/// plastic contacts; see `World::hit_into_wall`): in a plastic pile on a
+/// line struck from above, each such limit at one instant set the next
+/// pair of the pile ringing, 23,500 limits at one instant until `stuck`
+/// (plastic-lines 5172), where the collapse rules of the instant take the
+/// pile.
+const GENTLE_WALL_MEMBERS: usize = 4;
 
 /// Which pairs of bodies are considered.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -304,10 +303,6 @@ pub struct World {
     /// The speed at which the latest hit's bodies approached (see
     /// [`Repeats`]).
     last_approach: f64,
-    /// From the fourteenth revision, the pairs of discs (slots, the
-    /// smaller first) of the latest [`RING_MEMORY`] hits between discs,
-    /// and where the next goes (see `World::hit_through_disc`).
-    recent_hits: ([(usize, usize); RING_MEMORY], usize),
 }
 
 impl Watched for World {
@@ -455,7 +450,6 @@ impl World {
             grid: None,
             stats: Stats::default(),
             last_approach: 0.0,
-            recent_hits: ([(usize::MAX, usize::MAX); RING_MEMORY], 0),
         };
         let use_grid = match config.broad_phase {
             BroadPhase::AllPairs => false,
@@ -1804,9 +1798,6 @@ impl World {
         let e = mi.restitution.min(mj.restitution);
         let (ui, uj) = (ti.velocity(t), tj.velocity(t));
         self.last_approach = (uj - ui).dot(n);
-        // From the fourteenth revision, whether the pair was hit among the
-        // latest hits between discs (see `World::hit_through_disc`).
-        let rehit = self.config.revision.takes_hit_through_disc() && self.rehit(i, j);
         // From the twelfth revision, a gentle plastic hit on a light disc
         // in a corner is taken with the walls it touches.
         if e == 0.0
@@ -1833,13 +1824,6 @@ impl World {
             && self.config.revision.takes_hit_into_wall_with_wall()
             && self.hit_into_wall(i, j, n, [ui, uj], false, t)
         {
-            self.stats.collapses += 1;
-            return;
-        }
-        // From the fourteenth revision, a plastic hit that drives one of
-        // the two into a third disc it touches, the three then ringing
-        // between each other, is taken to its limit with that disc.
-        if e == 0.0 && rehit && self.hit_through_disc(i, j, n, [ui, uj], t) {
             self.stats.collapses += 1;
             return;
         }
@@ -1871,9 +1855,7 @@ impl World {
         if e > 0.0
             && (push::chatters(&new_i, &new_j, n, t, origin, self.config.revision)
                 || (self.config.revision.ends_bounces_within_touch()
-                    && push::bounces_within_touch(&new_i, &new_j, n, s, t))
-                || (self.config.revision.ends_bounces_within_wide_touch()
-                    && push::bounces_within(&new_i, &new_j, n, s, t, push::WIDE_TOUCH)))
+                    && push::bounces_within_touch(&new_i, &new_j, n, s, t)))
         {
             // From the fourteenth revision, a chatter's end that drives a
             // disc into an obstacle it touches, the two then ringing, is
@@ -2319,9 +2301,10 @@ impl World {
             }
             hit && -(w[0] - w[1]).dot(n) > noise
         };
+        let slow = [rings(0), rings(1)];
         let ringing = [
-            rings(0) || (gentle && gentle_turn(0)),
-            rings(1) || (gentle && gentle_turn(1)),
+            slow[0] || (gentle && gentle_turn(0)),
+            slow[1] || (gentle && gentle_turn(1)),
         ];
         if !(ringing[0] || ringing[1]) {
             return false;
@@ -2334,6 +2317,11 @@ impl World {
                     members.push(c);
                 }
             }
+        }
+        // A gentle hit in a pile is left to the collapse rules of its
+        // instant (`GENTLE_WALL_MEMBERS`).
+        if !(slow[0] || slow[1]) && members.len() > GENTLE_WALL_MEMBERS {
+            return false;
         }
         let mut contacts = self.contacts_among(&members, t);
         // The plastic contacts, and the obstacles of a disc that rings
@@ -2367,149 +2355,6 @@ impl World {
         ];
         let s = self.material[i].radius + self.material[j].radius;
         push::bounce_speed(v, acc, n, s, self.config.revision).is_some()
-    }
-
-    /// From the fourteenth revision, whether the discs in slots `i` and `j`
-    /// were hit together among the latest [`RING_MEMORY`] hits between
-    /// discs; counts their hit among them.
-    fn rehit(&mut self, i: usize, j: usize) -> bool {
-        let pair = (i.min(j), i.max(j));
-        let (hits, next) = &mut self.recent_hits;
-        let again = hits.contains(&pair);
-        hits[*next] = pair;
-        *next = (*next + 1) % RING_MEMORY;
-        again
-    }
-
-    /// From the fourteenth revision, a plastic hit between the discs in
-    /// slots `i` and `j` (unit normal `n` towards `i`, velocities `u`
-    /// before it), hit together among the latest [`RING_MEMORY`] hits
-    /// between discs (a ring under way), after which one of them runs
-    /// into a third disc it touches, where the hits that follow, played in memory (that disc
-    /// and the third, with the restitution of their contact, then the
-    /// pair again, a plastic hit), still ring after [`WALL_RINGS`] turns
-    /// with [`WALL_RING_KEEPS`] of their approach left: taken at once as
-    /// the plastic limit of the pair, the discs that ring with it, every
-    /// disc touching the pair through a plastic contact and every obstacle
-    /// these touch, as `World::hit_into_wall` takes a ring against an
-    /// obstacle. Without the obstacles of its elastic discs, the limit
-    /// drove one into a wall it touched, which it hit a nanosecond later,
-    /// its partner meeting it again at that instant, a turn of two events
-    /// without end (mixed-box 12524 and 37349 under a draft). A light disc between two heavier ones that
-    /// press on each other through it (a heavy frictionless disc driving
-    /// it into a resting braking one) is such a ring: each hit of the pair
-    /// sends it into the third disc, which stops it, and the pair meets
-    /// again, losing only the light disc's share of its approach, two hits
-    /// an instant, instant after instant, until the event cap or `stuck`.
-    /// The limit of those plastic hits is the plastic projection of their
-    /// contacts; a ring that ends within those turns (the middle disc
-    /// heavy) is left to its hits. `false` (nothing done) where no disc
-    /// rings so, the two are not found touching, or the limit changes
-    /// nothing.
-    fn hit_through_disc(&mut self, i: usize, j: usize, n: DVec2, u: [DVec2; 2], t: f64) -> bool {
-        let masses = [self.material[i].mass, self.material[j].mass];
-        let (vi, vj) = impulse::body_body(u[0], u[1], masses[0], masses[1], 0.0, n);
-        let noise = WALL_RING_NOISE * u[0].length().max(u[1].length());
-        let at = self.positions(t);
-        // Whether the hits that follow, played in memory, still ring after
-        // `WALL_RINGS` turns: disc `k` of the two (0 for `i`) and the disc
-        // in slot `c` it touches hit with their restitution, and the pair
-        // approaches again and hits (plastic).
-        let rings = |k: usize, c: usize| {
-            let m = [i, j][k];
-            let nc = (at[m] - at[c]).normalize_or_zero();
-            let e = self.restitution(m, Some(c));
-            let mc = self.material[c].mass;
-            let mut w = [vi, vj];
-            let mut wc = self.slots[c].traj.velocity(t);
-            let mut first = None;
-            let mut approach = 0.0;
-            for _ in 0..WALL_RINGS {
-                if (wc - w[k]).dot(nc) <= noise {
-                    return false;
-                }
-                (w[k], wc) = impulse::body_body(w[k], wc, masses[k], mc, e, nc);
-                approach = -(w[0] - w[1]).dot(n);
-                if approach <= noise {
-                    return false;
-                }
-                first.get_or_insert(approach);
-                let (a, b) = impulse::body_body(w[0], w[1], masses[0], masses[1], 0.0, n);
-                w = [a, b];
-            }
-            // Slowly, as `World::hit_into_wall` takes a ring.
-            first.is_some_and(|first| approach >= WALL_RING_KEEPS * first)
-        };
-        let mut ringing: Vec<(usize, usize)> = Vec::new();
-        for (k, m) in [i, j].into_iter().enumerate() {
-            for c in self.touching(m, &at) {
-                if c != i && c != j && rings(k, c) {
-                    ringing.push((m, c));
-                }
-            }
-        }
-        if ringing.is_empty() {
-            return false;
-        }
-        let plastic = |w: &World, c: usize| w.material[c].restitution == 0.0;
-        let mut members = vec![i, j];
-        for m in [i, j] {
-            for c in self.touching(m, &at) {
-                if !members.contains(&c)
-                    && (plastic(self, m) || plastic(self, c) || ringing.contains(&(m, c)))
-                {
-                    members.push(c);
-                }
-            }
-        }
-        let mut contacts = self.contacts_among(&members, t);
-        if !contacts.iter().any(|c| c.a == 0 && c.b == Some(1)) {
-            return false;
-        }
-        // The plastic contacts, those of the ring whatever their
-        // restitution (the pair's plastic hits take what comes back) and
-        // every obstacle's.
-        contacts.retain(|c| match c.b {
-            Some(b) => {
-                let (ma, mb) = (members[c.a], members[b]);
-                plastic(self, ma)
-                    || plastic(self, mb)
-                    || ringing.contains(&(ma, mb))
-                    || ringing.contains(&(mb, ma))
-            }
-            None => true,
-        });
-        // The limit by the active-set method first, as
-        // `World::collapse_few_contacts` finds it. Where it leaves the
-        // discs that move as one chain along a line, the chain pushes
-        // with its pooled braking (`World::push_chain`) instead of being
-        // kicked apart where it presses: kicked, the front disc ran
-        // ahead, its braking bringing the rest onto it again a few hundred
-        // nanoseconds later, a chatter as long as the ring it replaced.
-        // Elsewhere (a disc pressing obliquely) it is kicked apart as
-        // every collapse is.
-        let (vel, inv) = self.motion(&members, t);
-        let plastic = collapse::active_set(&vel, &inv, &contacts)
-            .or_else(|| collapse::resolve(&vel, &inv, &contacts, collapse::MAX_SWEEPS));
-        let Some(after) = plastic else {
-            return false;
-        };
-        let speed = after[0].length();
-        let along = after[0] / speed;
-        let chain = speed > 0.0
-            && members.iter().zip(&after).all(|(&c, v)| {
-                *v == DVec2::ZERO
-                    || ((at[c] - at[i]).perp_dot(along).abs()
-                        <= push::SAME * (self.slots[c].radius + self.slots[i].radius)
-                        && (*v - after[0]).length() <= push::SAME * speed)
-            });
-        if !self.take_plastic_limit(&members, contacts, (&vel, &inv), after, !chain, t) {
-            return false;
-        }
-        if chain {
-            self.push_chain(i, j, t);
-        }
-        true
     }
 
     /// As `World::collapse_contacts`, for the few contacts of one hit and
