@@ -1914,12 +1914,20 @@ impl World {
             };
             self.stats.pressed += 1;
         }
-        // Both at rest if neither would move beyond the rounding of `t`
-        // (one alone at rest would be hit again by the other at once).
+        self.leave_hit(i, j, new_i, new_j, t);
+    }
+
+    /// Puts the discs in slots `i` and `j` on their trajectories out of a
+    /// hit at `t`, both at rest if neither would move beyond the rounding
+    /// of `t` (one alone at rest would be hit again by the other at once),
+    /// and predicts their next events.
+    fn leave_hit(&mut self, i: usize, j: usize, new_i: Trajectory, new_j: Trajectory, t: f64) {
         let (rest_i, rest_j) = (self.settled(new_i, t), self.settled(new_j, t));
-        if !rest_i.is_moving() && !rest_j.is_moving() {
-            (new_i, new_j) = (rest_i, rest_j);
-        }
+        let (new_i, new_j) = if !rest_i.is_moving() && !rest_j.is_moving() {
+            (rest_i, rest_j)
+        } else {
+            (new_i, new_j)
+        };
         self.slots[i].traj = new_i;
         self.slots[j].traj = new_j;
         self.slots[i].gen = self.slots[i].gen.wrapping_add(1);
@@ -2024,22 +2032,10 @@ impl World {
         {
             return false;
         }
-        // Both at rest if neither would move beyond the rounding of `t`
-        // (as `World::collide` leaves a hit).
-        let (mut new_i, mut new_j) = (
-            Trajectory::new(t, pi, vi, ai),
-            Trajectory::new(t, pj, vj, aj),
-        );
-        let (rest_i, rest_j) = (self.settled(new_i, t), self.settled(new_j, t));
-        if !rest_i.is_moving() && !rest_j.is_moving() {
-            (new_i, new_j) = (rest_i, rest_j);
-        }
-        self.slots[i].traj = new_i;
-        self.slots[j].traj = new_j;
-        self.slots[i].gen = self.slots[i].gen.wrapping_add(1);
-        self.slots[j].gen = self.slots[j].gen.wrapping_add(1);
-        let pair = self.predict_with(i, true, Some((j, None)));
-        self.predict_with(j, true, Some((i, pair)));
+        // Left as `World::collide` leaves a hit.
+        let new_i = Trajectory::new(t, pi, vi, ai);
+        let new_j = Trajectory::new(t, pj, vj, aj);
+        self.leave_hit(i, j, new_i, new_j, t);
         true
     }
 
@@ -2131,16 +2127,7 @@ impl World {
         let v_light = [vi, vj][light];
         // A pair its braking presses together is left to the pressing
         // contact: its limit would be kicked apart at once, and hit again.
-        let (pi, pj) = (
-            self.slots[i].traj.position(t),
-            self.slots[j].traj.position(t),
-        );
-        let acc = [
-            Trajectory::new(t, pi, vi, self.material[i].mu * self.g).acceleration(t),
-            Trajectory::new(t, pj, vj, self.material[j].mu * self.g).acceleration(t),
-        ];
-        let s = self.material[i].radius + self.material[j].radius;
-        if push::bounce_speed([vi, vj], acc, n, s, self.config.revision).is_some() {
+        if self.braking_presses(i, j, [vi, vj], n, t) {
             return false;
         }
         let mut members = vec![i, j];

@@ -6,9 +6,7 @@
 
 use super::World;
 use crate::impulse;
-use crate::push;
 use crate::ring;
-use crate::trajectory::Trajectory;
 use glam::DVec2;
 
 /// Discs of a hit's touching cluster beyond which its ring is not played:
@@ -61,16 +59,7 @@ impl World {
         let (vi, vj) = impulse::body_body(u[0], u[1], mi, mj, 0.0, n);
         // A pair its braking presses together is left to the pressing
         // contact, as `World::walled_hit` leaves it.
-        let (pi, pj) = (
-            self.slots[i].traj.position(t),
-            self.slots[j].traj.position(t),
-        );
-        let acc = [
-            Trajectory::new(t, pi, vi, self.material[i].mu * self.g).acceleration(t),
-            Trajectory::new(t, pj, vj, self.material[j].mu * self.g).acceleration(t),
-        ];
-        let s = self.material[i].radius + self.material[j].radius;
-        if push::bounce_speed([vi, vj], acc, n, s, self.config.revision).is_some() {
+        if self.braking_presses(i, j, [vi, vj], n, t) {
             return false;
         }
         // The touching cluster, grown no further than its bound.
