@@ -332,6 +332,8 @@ pub enum Revision {
     ///   cap (`Revision::carries_wedged_discs`).
     #[default]
     R14,
+    /// The fifteenth, as the fourteenth but:
+    R15,
 }
 
 impl Revision {
@@ -339,7 +341,7 @@ impl Revision {
     pub const LATEST: Revision = Revision::R14;
 
     /// Every revision, oldest first.
-    pub const ALL: [Revision; 14] = [
+    pub const ALL: [Revision; 15] = [
         Revision::R1,
         Revision::R2,
         Revision::R3,
@@ -354,6 +356,7 @@ impl Revision {
         Revision::R12,
         Revision::R13,
         Revision::R14,
+        Revision::R15,
     ];
 
     /// Whether this revision has the second revision's rules.
@@ -426,6 +429,11 @@ impl Revision {
     /// Whether this revision has the fourteenth revision's rules.
     pub fn at_least_r14(self) -> bool {
         self >= Revision::R14
+    }
+
+    /// Whether this revision has the fifteenth revision's rules.
+    pub fn at_least_r15(self) -> bool {
+        self >= Revision::R15
     }
 
     /// Whether a plastic hit whose touching cluster, its hits played in
@@ -570,10 +578,10 @@ mod tests {
         for (k, r) in Revision::ALL.into_iter().enumerate() {
             assert_eq!(format!("r{}", k + 1).parse(), Ok(r));
         }
-        let err = "r15".parse::<Revision>().unwrap_err();
+        let err = "r16".parse::<Revision>().unwrap_err();
         assert_eq!(
             err.to_string(),
-            "no engine revision named \"r15\" (r1, r2, ...)"
+            "no engine revision named \"r16\" (r1, r2, ...)"
         );
     }
 }
