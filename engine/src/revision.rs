@@ -333,6 +333,17 @@ pub enum Revision {
     #[default]
     R14,
     /// The fifteenth, as the fourteenth but:
+    /// - the plastic limit of a ring (`World::cluster_ring`,
+    ///   `World::hit_into_wall`) takes in each obstacle one of its discs
+    ///   touches that the limit of the ringing contacts alone would drive
+    ///   it into (pushing it there), solved again with it
+    ///   (`world::reached_walls`): a light
+    ///   plastic disc sliding past an elastic one in a corner rang it
+    ///   against the floor, and the limit of that ring slid it into the
+    ///   side wall at 3.9e-9 m/s; it met the wall 3.5e-9 s later, bounced
+    ///   into its partner at that instant, and the same limit sent it back,
+    ///   10,000 turns until the event cap
+    ///   (`Revision::takes_ring_limits_with_walls_they_reach`).
     R15,
 }
 
@@ -550,6 +561,14 @@ impl Revision {
     /// `World::hit_into_wall`).
     pub fn takes_gentle_hit_into_wall_with_wall(self) -> bool {
         self.at_least_r14()
+    }
+
+    /// Whether the plastic limit of a ring (`World::cluster_ring`,
+    /// `World::hit_into_wall`) takes in the obstacles its discs touch that
+    /// the limit of the ringing contacts alone would drive them into (a
+    /// fifteenth revision rule, see `world::reached_walls`).
+    pub fn takes_ring_limits_with_walls_they_reach(self) -> bool {
+        self.at_least_r15()
     }
 }
 

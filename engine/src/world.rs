@@ -18,6 +18,7 @@
 
 mod cluster_ring;
 pub mod handler;
+mod reached_walls;
 
 pub use crate::limits::{End, EndReason, Limits};
 pub use handler::{Counter, EventHandler, ExitResponse};
@@ -2311,6 +2312,17 @@ impl World {
             return false;
         }
         let mut contacts = self.contacts_among(&members, t);
+        // From the fifteenth revision, every obstacle a member touches, for
+        // those the limit drives its discs into.
+        let walls: Vec<_> = if self
+            .config
+            .revision
+            .takes_ring_limits_with_walls_they_reach()
+        {
+            contacts.iter().filter(|c| c.b.is_none()).copied().collect()
+        } else {
+            Vec::new()
+        };
         // The plastic contacts, and the obstacles of a disc that rings
         // against them whatever its restitution: its partner's plastic
         // hits take what it brings back from them.
@@ -2322,7 +2334,10 @@ impl World {
             }
             None => plastic(self, members[c.a]) || (c.a < 2 && ringing[c.a]),
         });
-        self.collapse_few_contacts(&members, contacts, t)
+        if walls.is_empty() {
+            return self.collapse_few_contacts(&members, contacts, t);
+        }
+        self.collapse_few_contacts_reaching(&members, contacts, &walls, noise, t)
     }
 
     /// Whether the discs in slots `i` and `j`, leaving a hit along `n` (from
@@ -2364,6 +2379,29 @@ impl World {
         let Some(after) = plastic else {
             return false;
         };
+        self.take_plastic_limit(members, contacts, (&vel, &inv), after, true, t)
+    }
+
+    /// As `World::collapse_few_contacts`, with those of `walls` (obstacle
+    /// contacts of `members`) that the limit drives its discs into faster
+    /// than `noise` (`reached_walls::with_walls_reached`; the fifteenth
+    /// revision's `World::hit_into_wall`).
+    fn collapse_few_contacts_reaching(
+        &mut self,
+        members: &[usize],
+        contacts: Vec<collapse::Contact>,
+        walls: &[collapse::Contact],
+        noise: f64,
+        t: f64,
+    ) -> bool {
+        let (vel, inv) = self.motion(members, t);
+        let plastic = collapse::active_set(&vel, &inv, &contacts)
+            .or_else(|| collapse::resolve(&vel, &inv, &contacts, collapse::MAX_SWEEPS));
+        let Some(after) = plastic else {
+            return false;
+        };
+        let (contacts, after) =
+            reached_walls::with_walls_reached(&vel, &inv, contacts, after, walls, noise);
         self.take_plastic_limit(members, contacts, (&vel, &inv), after, true, t)
     }
 

@@ -1059,3 +1059,33 @@ fn a_disc_wedging_a_braking_one_aside_as_it_slides_past_takes_it_along_to_their_
     // its tractrix has spent its energy.
     reaches_the_horizon_from(Revision::R14, "mixed-box-110080", 100.0);
 }
+
+#[test]
+fn a_ring_taken_at_its_limit_holds_its_discs_off_the_walls_they_touch() {
+    // In mixed-box 152599 light plastic disc 5 slides past elastic
+    // frictionless disc 1, which lies in the corner of the floor and the
+    // left wall. Each hit of the pair was taken as the limit of the
+    // contacts its cluster's ring played in memory hit more than once:
+    // disc 1's floor, not its left wall, which the first hit of the play
+    // did not reach. That limit slid disc 1 into the left wall at 3.9e-9
+    // m/s; it met the wall a rounding of a position away, bounced back
+    // into disc 5 at the same instant, and the same limit sent it back,
+    // 10,000 rings until the event cap. In 260765, 296399 and 531646
+    // (disc 2 between the floor and disc 5) a light disc rings so between
+    // a wall and a disc sliding past it. In 562850 elastic disc 9 (1.4 g),
+    // pushed up the right wall by heavy disc 7 into plastic disc 12
+    // sliding along the ceiling, was taken with 12 and 7 as a hit into a
+    // wall, the limit holding 12 off the ceiling but not 9 off the right
+    // wall: it met the wall 1.5e-11 s later and disc 12 again at once,
+    // until the event cap. From revision 15 the limit of a ring takes in
+    // each wall its discs touch that it would drive them into.
+    for name in [
+        "mixed-box-152599",
+        "mixed-box-260765",
+        "mixed-box-296399",
+        "mixed-box-531646",
+        "mixed-box-562850",
+    ] {
+        reaches_the_horizon_from(Revision::R15, name, 100.0);
+    }
+}

@@ -132,6 +132,29 @@ impl World {
         else {
             return false;
         };
+        // From the fifteenth revision, with the obstacles the limit drives
+        // its discs into.
+        let (limit, after) = if self
+            .config
+            .revision
+            .takes_ring_limits_with_walls_they_reach()
+        {
+            let walls: Vec<_> = contacts
+                .iter()
+                .filter(|c| c.b.is_none())
+                .filter_map(|c| index(c.a).map(|a| crate::collapse::Contact { a, ..*c }))
+                .collect();
+            super::reached_walls::with_walls_reached(
+                &vel,
+                &inv,
+                limit,
+                after,
+                &walls,
+                RING_NOISE * fastest,
+            )
+        } else {
+            (limit, after)
+        };
         self.take_plastic_limit(&slots, limit, (&vel, &inv), after, PRESS_AFTER_RING, t)
     }
 }
