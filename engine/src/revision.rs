@@ -333,6 +333,17 @@ pub enum Revision {
     #[default]
     R14,
     /// The fifteenth, as the fourteenth but:
+    /// - a plastic hit whose touching cluster rings (`World::cluster_ring`)
+    ///   and whose ringing discs have no more kinetic energy than each of
+    ///   their braking discs dissipates over the pressing gap comes to rest
+    ///   as revision 11's spent pair does: its braking discs held, its
+    ///   frictionless discs keeping only what does not run into them (the
+    ///   plastic limit against them): a frictionless disc sliding into a
+    ///   corner along a wall, its contact with a disc on the floor tilted a
+    ///   millionth from its motion, drove a braking pile at a millionth of
+    ///   its speed, each limit of the ring taking only that share of its
+    ///   motion, 20,000 limits at one instant until `stuck`
+    ///   (`Revision::rests_spent_rings`).
     R15,
 }
 
@@ -434,6 +445,15 @@ impl Revision {
     /// Whether this revision has the fifteenth revision's rules.
     pub fn at_least_r15(self) -> bool {
         self >= Revision::R15
+    }
+
+    /// Whether a ring of a touching cluster whose kinetic energy each of
+    /// its braking discs would spend within the pressing gap comes to
+    /// rest, its braking discs held and its frictionless ones projected
+    /// against them, instead of being taken to its plastic limit (a
+    /// fifteenth revision rule, see `World::spent_ring_rest`).
+    pub fn rests_spent_rings(self) -> bool {
+        self.at_least_r15()
     }
 
     /// Whether a plastic hit whose touching cluster, its hits played in

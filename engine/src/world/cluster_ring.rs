@@ -127,11 +127,96 @@ impl World {
         }
         let slots: Vec<usize> = keep.iter().map(|&k| members[k]).collect();
         let (vel, inv) = self.motion(&slots, t);
+        // From the fifteenth revision, a ring whose energy its braking
+        // spends within the pressing gap comes to rest.
+        if self.config.revision.rests_spent_rings() && self.spent_ring_rest(&slots, &vel, &inv, t) {
+            return true;
+        }
         let Some(after) = crate::collapse::active_set(&vel, &inv, &limit)
             .or_else(|| crate::collapse::resolve(&vel, &inv, &limit, crate::collapse::MAX_SWEEPS))
         else {
             return false;
         };
         self.take_plastic_limit(&slots, limit, (&vel, &inv), after, PRESS_AFTER_RING, t)
+    }
+
+    /// From the fifteenth revision, the discs of a ring (`slots`, with
+    /// velocities `vel` and inverse masses `inv` at `t`) whose kinetic
+    /// energy is no more than what the braking of each of its braking
+    /// discs dissipates over the pressing contact's gap
+    /// (`push::press_gap` of the smallest contact distance among them),
+    /// brought to rest as `World::press_cluster` rests such a pair (the
+    /// eleventh revision's `push::spent_within_gap`, over the ring): its
+    /// braking discs held where they are (friction taking all their
+    /// energy, none of them could slide beyond the gap), and its
+    /// frictionless discs keeping only what does not run into them or
+    /// into the obstacles they touch (the plastic limit against the held
+    /// discs, by the active-set method; a speed it leaves within 1e-12 of
+    /// the ring's fastest is none). A frictionless disc sliding down a
+    /// wall into the corner, its contact with a disc on the floor tilted
+    /// 1e-6 from its motion, drove that disc into braking ones at a
+    /// millionth of its speed: each ring's limit took from it only that
+    /// share, the braking discs stopped at once and were caught again at
+    /// the same instant, 20,000 limits until `stuck`, with the wedging
+    /// disc still sliding at 1e-10 m/s (mixed-box 442739), where the
+    /// braking it pushed would stop it within 1e-13 m. `false` (nothing
+    /// done) where the energy is more, no disc brakes, or the limit
+    /// against the held discs has no answer.
+    pub(super) fn spent_ring_rest(
+        &mut self,
+        slots: &[usize],
+        vel: &[DVec2],
+        inv: &[f64],
+        t: f64,
+    ) -> bool {
+        let alpha = self.braking(slots);
+        let weakest = slots
+            .iter()
+            .zip(&alpha)
+            .filter(|(_, &a)| a > 0.0)
+            .map(|(&c, &a)| self.material[c].mass * a)
+            .fold(f64::INFINITY, f64::min);
+        let smallest = slots
+            .iter()
+            .map(|&c| self.slots[c].radius)
+            .fold(f64::INFINITY, f64::min);
+        let gap = crate::push::press_gap(self.config.revision) * 2.0 * smallest;
+        let energy: f64 = vel
+            .iter()
+            .zip(inv)
+            .map(|(v, k)| 0.5 * v.length_squared() / k)
+            .sum();
+        if !weakest.is_finite() || energy > weakest * gap {
+            return false;
+        }
+        let still: Vec<bool> = alpha.iter().map(|&a| a > 0.0).collect();
+        let mut held = vel.to_vec();
+        let mut inv_held = inv.to_vec();
+        for k in (0..slots.len()).filter(|&k| still[k]) {
+            (held[k], inv_held[k]) = (DVec2::ZERO, 0.0);
+        }
+        let mut contacts = self.contacts_among(slots, t);
+        contacts.retain(|c| !still[c.a] || c.b.is_some_and(|b| !still[b]));
+        let after = if contacts.is_empty() {
+            Some(held)
+        } else {
+            crate::collapse::active_set(&held, &inv_held, &contacts).or_else(|| {
+                crate::collapse::resolve(&held, &inv_held, &contacts, super::PRESS_SWEEPS)
+            })
+        };
+        let Some(mut after) = after else {
+            return false;
+        };
+        let noise = 1e-12 * vel.iter().map(|v| v.length()).fold(0.0, f64::max);
+        for v in &mut after {
+            if v.length() <= noise {
+                *v = DVec2::ZERO;
+            }
+        }
+        let changed = self.set_velocities(slots, vel, &after, t);
+        for &c in &changed {
+            self.predict(c, true);
+        }
+        !changed.is_empty()
     }
 }
