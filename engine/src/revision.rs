@@ -334,9 +334,9 @@ pub enum Revision {
     R14,
     /// The fifteenth, as the fourteenth but:
     /// - a plastic hit whose touching cluster rings (`World::cluster_ring`)
-    ///   and whose ringing discs have no more kinetic energy than each of
-    ///   their braking discs dissipates over the pressing gap comes to rest
-    ///   as revision 11's spent pair does: its braking discs held, its
+    ///   and whose ringing discs have no more kinetic energy than the
+    ///   friction of each of their braking discs does over the rounding of
+    ///   its position comes to rest: its braking discs held, its
     ///   frictionless discs keeping only what does not run into them (the
     ///   plastic limit against them): a frictionless disc sliding into a
     ///   corner along a wall, its contact with a disc on the floor tilted a
@@ -448,10 +448,10 @@ impl Revision {
     }
 
     /// Whether a ring of a touching cluster whose kinetic energy each of
-    /// its braking discs would spend within the pressing gap comes to
-    /// rest, its braking discs held and its frictionless ones projected
-    /// against them, instead of being taken to its plastic limit (a
-    /// fifteenth revision rule, see `World::spent_ring_rest`).
+    /// its braking discs would spend within the rounding of its position
+    /// comes to rest, its braking discs held and its frictionless ones
+    /// projected against them, instead of being taken to its plastic
+    /// limit (a fifteenth revision rule, see `World::spent_ring_rest`).
     pub fn rests_spent_rings(self) -> bool {
         self.at_least_r15()
     }

@@ -1070,13 +1070,12 @@ fn a_ring_whose_braking_spends_its_energy_within_the_gap_comes_to_rest() {
     // Each hit of 2 and 3 rang through the cluster, and its plastic limit
     // took from disc 1 only that share of its motion; disc 3, braking,
     // was caught again at the same instant, 20,000 limits until `stuck`.
-    // The braking discs would spend the ring's energy within 1e-13 m. In
-    // 590795, 417622 and 511192 a disc slides into the corner so too; in
-    // 295252 frictionless discs 5 and 6 ring at 1e-21 m/s against braking
-    // disc 9 at rest. From revision 15 a ring whose energy each of its
-    // braking discs spends within the pressing gap comes to rest: its
-    // braking discs held, its frictionless ones kept only where they do
-    // not run into them.
+    // In 590795, 417622 and 511192 a disc slides into the corner so too;
+    // in 295252 frictionless discs 5 and 6 ring at 1e-21 m/s against
+    // braking disc 9 at rest. From revision 15 a ring whose energy each
+    // of its braking discs would spend within the rounding of its
+    // position comes to rest: its braking discs held, its frictionless
+    // ones kept only where they do not run into them.
     for name in [
         "mixed-box-442739",
         "mixed-box-590795",
