@@ -344,6 +344,17 @@ pub enum Revision {
     ///   into its partner at that instant, and the same limit sent it back,
     ///   10,000 turns until the event cap
     ///   (`Revision::takes_ring_limits_with_walls_they_reach`).
+    /// - a plastic hit whose touching cluster rings (`World::cluster_ring`)
+    ///   and whose ringing discs have no more kinetic energy than the
+    ///   friction of each of their braking discs does over the rounding of
+    ///   its position comes to rest: its braking discs held, its
+    ///   frictionless discs keeping only what does not run into them (the
+    ///   plastic limit against them): a frictionless disc sliding into a
+    ///   corner along a wall, its contact with a disc on the floor tilted a
+    ///   millionth from its motion, drove a braking pile at a millionth of
+    ///   its speed, each limit of the ring taking only that share of its
+    ///   motion, 20,000 limits at one instant until `stuck`
+    ///   (`Revision::rests_spent_rings`).
     R15,
 }
 
@@ -445,6 +456,15 @@ impl Revision {
     /// Whether this revision has the fifteenth revision's rules.
     pub fn at_least_r15(self) -> bool {
         self >= Revision::R15
+    }
+
+    /// Whether a ring of a touching cluster whose kinetic energy each of
+    /// its braking discs would spend within the rounding of its position
+    /// comes to rest, its braking discs held and its frictionless ones
+    /// projected against them, instead of being taken to its plastic
+    /// limit (a fifteenth revision rule, see `World::spent_ring_rest`).
+    pub fn rests_spent_rings(self) -> bool {
+        self.at_least_r15()
     }
 
     /// Whether a plastic hit whose touching cluster, its hits played in

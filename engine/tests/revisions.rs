@@ -1089,3 +1089,30 @@ fn a_ring_taken_at_its_limit_holds_its_discs_off_the_walls_they_touch() {
         reaches_the_horizon_from(Revision::R15, name, 100.0);
     }
 }
+
+#[test]
+fn a_ring_whose_braking_spends_its_energy_within_the_gap_comes_to_rest() {
+    // In mixed-box 442739 frictionless elastic disc 1 (0.46 kg) slides
+    // down the left wall into the corner at 3e-10 m/s, 7e-8 m above the
+    // floor: its contact with frictionless plastic disc 2, on the floor,
+    // is tilted 1.5e-6 from its motion, so that it drives disc 2, and
+    // the braking discs 3 and 4 ahead of it, at a millionth of its speed.
+    // Each hit of 2 and 3 rang through the cluster, and its plastic limit
+    // took from disc 1 only that share of its motion; disc 3, braking,
+    // was caught again at the same instant, 20,000 limits until `stuck`.
+    // In 590795, 417622 and 511192 a disc slides into the corner so too;
+    // in 295252 frictionless discs 5 and 6 ring at 1e-21 m/s against
+    // braking disc 9 at rest. From revision 15 a ring whose energy each
+    // of its braking discs would spend within the rounding of its
+    // position comes to rest: its braking discs held, its frictionless
+    // ones kept only where they do not run into them.
+    for name in [
+        "mixed-box-442739",
+        "mixed-box-590795",
+        "mixed-box-417622",
+        "mixed-box-511192",
+        "mixed-box-295252",
+    ] {
+        settles_from(Revision::R15, name, 100.0, EndReason::Stuck, CAP);
+    }
+}

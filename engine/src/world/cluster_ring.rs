@@ -6,6 +6,7 @@
 
 use super::World;
 use crate::impulse;
+use crate::limits::SETTLE;
 use crate::ring;
 use glam::DVec2;
 
@@ -127,6 +128,11 @@ impl World {
         }
         let slots: Vec<usize> = keep.iter().map(|&k| members[k]).collect();
         let (vel, inv) = self.motion(&slots, t);
+        // From the fifteenth revision, a ring whose energy its braking
+        // spends within the rounding of its positions comes to rest.
+        if self.config.revision.rests_spent_rings() && self.spent_ring_rest(&slots, &vel, &inv, t) {
+            return true;
+        }
         let Some(after) = crate::collapse::active_set(&vel, &inv, &limit)
             .or_else(|| crate::collapse::resolve(&vel, &inv, &limit, crate::collapse::MAX_SWEEPS))
         else {
@@ -156,5 +162,87 @@ impl World {
             (limit, after)
         };
         self.take_plastic_limit(&slots, limit, (&vel, &inv), after, PRESS_AFTER_RING, t)
+    }
+
+    /// From the fifteenth revision, the discs of a ring (`slots`, with
+    /// velocities `vel` and inverse masses `inv` at `t`) whose kinetic
+    /// energy is no more than what the friction of each of its braking
+    /// discs does over the rounding of that disc's position (`SETTLE` of
+    /// its largest coordinate), brought to rest: friction being all that
+    /// takes energy out of the ring's braking discs, none of them could
+    /// slide further than a position can show, so they are held where
+    /// they are (as `World::settled` puts a disc whose slide is that short
+    /// at rest), and its frictionless discs keep only what does not run
+    /// into them or into the obstacles they touch (the plastic limit
+    /// against the held discs, by the active-set method, as the eleventh
+    /// revision rests a spent pair in `World::press_cluster`; a speed it
+    /// leaves within 1e-12 of the ring's fastest is none). A frictionless
+    /// disc sliding down a wall into the corner, its contact with a disc
+    /// on the floor tilted 1.5e-6 from its motion, drove that disc into
+    /// braking ones at a millionth of its speed: each limit of the ring
+    /// took from it only that share, the braking discs, slowed by their
+    /// friction, were caught again at the same instant, 20,000 limits
+    /// until `stuck`, the wedging disc still sliding at 3e-10 m/s
+    /// (mixed-box 442739). `false` (nothing done) where the energy is
+    /// more, no disc brakes, or the limit against the held discs has no
+    /// answer. Held to the pressing contact's gap instead of the rounding,
+    /// the rest took rings far from rest, and a ring in a corner that
+    /// reached its horizon went on to `stuck` (mixed-box 136800).
+    pub(super) fn spent_ring_rest(
+        &mut self,
+        slots: &[usize],
+        vel: &[DVec2],
+        inv: &[f64],
+        t: f64,
+    ) -> bool {
+        let alpha = self.braking(slots);
+        // The least work a braking disc's friction does over the rounding
+        // of its position.
+        let weakest = slots
+            .iter()
+            .zip(&alpha)
+            .filter(|(_, &a)| a > 0.0)
+            .map(|(&c, &a)| {
+                let rounding = SETTLE * self.slots[c].traj.position(t).abs().max_element();
+                self.material[c].mass * a * rounding
+            })
+            .fold(f64::INFINITY, f64::min);
+        let energy: f64 = vel
+            .iter()
+            .zip(inv)
+            .map(|(v, k)| 0.5 * v.length_squared() / k)
+            .sum();
+        if !weakest.is_finite() || energy > weakest {
+            return false;
+        }
+        let still: Vec<bool> = alpha.iter().map(|&a| a > 0.0).collect();
+        let mut held = vel.to_vec();
+        let mut inv_held = inv.to_vec();
+        for k in (0..slots.len()).filter(|&k| still[k]) {
+            (held[k], inv_held[k]) = (DVec2::ZERO, 0.0);
+        }
+        let mut contacts = self.contacts_among(slots, t);
+        contacts.retain(|c| !still[c.a] || c.b.is_some_and(|b| !still[b]));
+        let after = if contacts.is_empty() {
+            Some(held)
+        } else {
+            crate::collapse::active_set(&held, &inv_held, &contacts).or_else(|| {
+                crate::collapse::resolve(&held, &inv_held, &contacts, super::PRESS_SWEEPS)
+            })
+        };
+        let Some(mut after) = after else {
+            return false;
+        };
+        let noise = 1e-12 * vel.iter().map(|v| v.length()).fold(0.0, f64::max);
+        for v in &mut after {
+            if v.length() <= noise {
+                *v = DVec2::ZERO;
+            }
+        }
+        let changed = self.set_velocities(slots, vel, &after, t);
+        for &c in &changed {
+            self.predict(c, true);
+        }
+        !changed.is_empty()
     }
 }
