@@ -475,6 +475,45 @@ pub(crate) fn carried(
 /// carry, and the pair, left touching, is hit again at once.
 const CARRIED_SINE: f64 = 1e-3;
 
+/// From the fifteenth revision: the plastic hit of a pair (velocities `u`
+/// before it, masses `m`, unit normal `n` from `j` to `i`) where disc `h`
+/// (0 for `i`, 1 for `j`) slides along an obstacle (unit normal `wall`,
+/// pointing from it to the disc) and the hit would drive it into it. The
+/// obstacle holds `h` to its line: its normal force takes the part of the
+/// contact force across it at once, as the sustained contact of a disc
+/// pushed along a wall does, instead of a second hit a moment later. So
+/// `h` moves along the obstacle only (the tangent `tau`), and the impulse
+/// `J` along `n` that stops the pair's approach is `w / (1 / m_l + (n .
+/// tau)^2 / m_h)` (`w` the approach): a plastic impact with a workless
+/// constraint, which keeps the momentum along the obstacle and adds no
+/// energy. `None` where `h` does not slide along the obstacle (to [`SAME`]
+/// of its speed) or the pair does not approach.
+pub(crate) fn plastic_along_wall(
+    u: [DVec2; 2],
+    m: [f64; 2],
+    h: usize,
+    n: DVec2,
+    wall: DVec2,
+) -> Option<[DVec2; 2]> {
+    let l = 1 - h;
+    if u[h].dot(wall).abs() > SAME * u[h].length() {
+        return None;
+    }
+    // The normal from `h` to `l`, and the approach along it.
+    let to_l = if l == 0 { n } else { -n };
+    let approach = (u[h] - u[l]).dot(to_l);
+    if !(approach > 0.0) {
+        return None;
+    }
+    let tau = wall.perp();
+    let along = to_l.dot(tau);
+    let impulse = approach / (1.0 / m[l] + along * along / m[h]);
+    let mut v = u;
+    v[h] = tau * (u[h].dot(tau) - impulse * along / m[h]);
+    v[l] = u[l] + to_l * (impulse / m[l]);
+    Some(v)
+}
+
 /// Most bisection steps [`carried`] takes to find where a pushing disc
 /// stops (each halves the interval; 64 reach the rounding of a double).
 const CARRY_BISECTIONS: usize = 64;

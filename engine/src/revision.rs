@@ -333,6 +333,16 @@ pub enum Revision {
     #[default]
     R14,
     /// The fifteenth, as the fourteenth but:
+    /// - a disc carried aside by one sliding past it (`push::carried`)
+    ///   where the plastic hit would drive the pushing disc into the one
+    ///   obstacle it slides along is taken with that obstacle holding it to
+    ///   its line through the hit (`push::plastic_along_wall`): a heavy
+    ///   frictionless disc sliding along the floor pressed a light braking
+    ///   one up and forward, each hit sending it into the floor by the
+    ///   light one's share of the approach, so that the carry was refused
+    ///   and the pressing contact kicked the pair apart every 1.8e-5 s
+    ///   until the event cap
+    ///   (`Revision::carries_wedged_discs_along_walls`);
     R15,
 }
 
@@ -550,6 +560,14 @@ impl Revision {
     /// `World::hit_into_wall`).
     pub fn takes_gentle_hit_into_wall_with_wall(self) -> bool {
         self.at_least_r14()
+    }
+
+    /// Whether a disc carried aside by one sliding along a wall
+    /// (`push::carried`) is taken with the wall holding the pushing disc
+    /// to its line through the hit, where the hit would drive it into the
+    /// wall (a fifteenth revision rule, see `World::hit_along_wall`).
+    pub fn carries_wedged_discs_along_walls(self) -> bool {
+        self.at_least_r15()
     }
 }
 
