@@ -343,6 +343,15 @@ pub enum Revision {
     ///   and the pressing contact kicked the pair apart every 1.8e-5 s
     ///   until the event cap
     ///   (`Revision::carries_wedged_discs_along_walls`);
+    /// - an elastic pair pressed head-on by its braking whose bounce stays
+    ///   within the pressing contact's gap (1e-4 of the contact distance)
+    ///   and would repeat at least 10,000 times before the pair stops is
+    ///   taken as the end of its chatter, one plastic hit, as the
+    ///   thirteenth revision takes one within 1e-9 of touching: a heavy
+    ///   frictionless elastic disc pushing a light braking one, its bounce
+    ///   6.6e-9 of the contact distance high, made 170,000 hits, a true
+    ///   sequence of constant-height bounces, beyond the event cap
+    ///   (`Revision::ends_long_bounces_within_gap`);
     R15,
 }
 
@@ -567,6 +576,15 @@ impl Revision {
     /// to its line through the hit, where the hit would drive it into the
     /// wall (a fifteenth revision rule, see `World::hit_along_wall`).
     pub fn carries_wedged_discs_along_walls(self) -> bool {
+        self.at_least_r15()
+    }
+
+    /// Whether an elastic pair pressed head-on whose bounces stay within
+    /// the pressing contact's gap and would number at least
+    /// `push::LONG_BOUNCES` before it stops is taken as the end of its
+    /// chatter, one plastic hit (a fifteenth revision rule, see
+    /// `push::bounces_long_within_gap`).
+    pub fn ends_long_bounces_within_gap(self) -> bool {
         self.at_least_r15()
     }
 }

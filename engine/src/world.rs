@@ -1855,7 +1855,18 @@ impl World {
         if e > 0.0
             && (push::chatters(&new_i, &new_j, n, t, origin, self.config.revision)
                 || (self.config.revision.ends_bounces_within_touch()
-                    && push::bounces_within_touch(&new_i, &new_j, n, s, t)))
+                    && push::bounces_within_touch(&new_i, &new_j, n, s, t))
+                || (e == 1.0
+                    && self.config.revision.ends_long_bounces_within_gap()
+                    && push::bounces_long_within_gap(
+                        &new_i,
+                        &new_j,
+                        [mi.mass, mj.mass],
+                        n,
+                        s,
+                        t,
+                        self.config.revision,
+                    )))
         {
             // From the fourteenth revision, a chatter's end that drives a
             // disc into an obstacle it touches, the two then ringing, is
