@@ -341,7 +341,8 @@ pub enum Revision {
     ///   one up and forward, each hit sending it into the floor by the
     ///   light one's share of the approach, so that the carry was refused
     ///   and the pressing contact kicked the pair apart every 1.8e-5 s
-    ///   until the event cap
+    ///   until the event cap; only where the pair stops together and the
+    ///   pushing disc touches no other disc
     ///   (`Revision::carries_wedged_discs_along_walls`);
     /// - an elastic pair pressed head-on by its braking whose bounce stays
     ///   within the pressing contact's gap (1e-4 of the contact distance)

@@ -1998,9 +1998,11 @@ impl World {
         // From the fifteenth revision, a pushing disc sliding along the one
         // obstacle it touches, which the hit would drive into it, is held
         // to it through the hit (see `World::hit_along_wall`).
+        let mut along_wall = false;
         if self.config.revision.carries_wedged_discs_along_walls() {
             if let Some([wi, wj]) = self.hit_along_wall(i, j, [ui, uj], [vi, vj], n, alpha, t) {
                 (vi, vj) = (wi, wj);
+                along_wall = true;
             }
         }
         let s = mi.radius + mj.radius;
@@ -2017,6 +2019,7 @@ impl World {
         ) {
             return false;
         }
+        let before = [vi, vj];
         let Some([(vi, ai), (vj, aj)]) = push::carried(
             [vi, vj],
             [mi.mass, mj.mass],
@@ -2027,6 +2030,25 @@ impl World {
         ) else {
             return false;
         };
+        // Held by the obstacle through the hit: only where the pair stops
+        // together (the pushing disc keeps its velocity and brakes to the
+        // common stop), not where it passes (the pushed disc, carried
+        // ahead, was stopped by a disc in its way and caught again, the
+        // pass paid again and again), and only where the pushing disc
+        // touches no other disc (a frictionless one sliding behind it
+        // caught it at once as it braked, and the two were hit in turn,
+        // a microsecond apart: mixed-box 62000 and 56990 ran so to the
+        // event cap).
+        if along_wall {
+            let h = usize::from(alpha[1] < alpha[0]);
+            let slot = if h == 0 { i } else { j };
+            let stops = [vi, vj][h] == before[h];
+            let at = self.positions(t);
+            let alone = self.touching(slot, &at).all(|c| c == i || c == j);
+            if !(stops && alone) {
+                return false;
+            }
+        }
         // The pushing disc (the one braking less) must touch something
         // besides its partner, and the pushed one nothing else (carried
         // along the normal, it would be driven into it, and hit back at
@@ -2071,7 +2093,9 @@ impl World {
     /// the carry was refused there, and the pressing contact kicked the
     /// pair apart every 1.8e-5 s until the event cap. `None` where `H`
     /// touches more than one obstacle, none that the hit drives it into,
-    /// or does not slide along it.
+    /// or does not slide along it; and `World::carried_press` takes the
+    /// carry so only where the pair stops together and `H` touches no
+    /// other disc (see there).
     #[allow(clippy::too_many_arguments)]
     fn hit_along_wall(
         &self,
