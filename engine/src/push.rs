@@ -697,6 +697,71 @@ mod tests {
     }
 
     #[test]
+    fn an_elastic_bounce_train_is_long_only_within_the_press_gap_and_above_ten_thousand_bounces() {
+        // Mixed-box 84063: a heavy frictionless elastic disc (0.122 kg)
+        // pushing a light one (2.72 g, braking at 5.058 m/s^2) along the
+        // floor, the pair parting at 3.93e-5 m/s at every hit, contact
+        // distance 0.0232 m (n from the front disc `j` to the rear `i`).
+        let (s, m) = (0.0232, [0.1224, 2.72e-3]);
+        let n = DVec2::new(-1.0, 0.0);
+        let long = |v: f64, w: f64| {
+            let rear = sliding(-s, v, 0.0);
+            let front = sliding(0.0, v + w, 5.058);
+            bounces_long_within_gap(&rear, &front, m, n, s, 0.0, Revision::R15)
+        };
+        // At 0.28 m/s the pair, braking at 0.11 m/s^2, bounces about
+        // 164,000 times before it stops; at 5e-3 m/s about 2,900.
+        assert!(long(0.28, 3.93e-5));
+        assert!(!long(5e-3, 3.93e-5));
+        // The bounce within the pressing gap (1e-4 of the contact
+        // distance), reached near 4.84e-3 m/s, however long the train.
+        assert!(long(100.0, 4.7e-3));
+        assert!(!long(100.0, 5.0e-3));
+        // Not a pair that approaches, nor a frictionless pair.
+        assert!(!long(0.28, -3.93e-5));
+        let free = sliding(0.0, 0.28 + 3.93e-5, 0.0);
+        let rear = sliding(-s, 0.28, 0.0);
+        assert!(!bounces_long_within_gap(
+            &rear,
+            &free,
+            m,
+            n,
+            s,
+            0.0,
+            Revision::R15
+        ));
+    }
+
+    #[test]
+    fn a_plastic_hit_along_a_wall_stops_the_approach_keeps_the_pusher_on_the_wall_and_adds_no_energy(
+    ) {
+        // Mixed-box 466219: a heavy frictionless disc (0.93 kg) sliding
+        // along the floor at 1.09e-4 m/s hits a light one (1.06 g) above
+        // and ahead of it (the normal `n` from the heavy disc `j` to the
+        // light one `i`, up and forward).
+        let to_light = DVec2::new(0.21, 0.978).normalize();
+        let (n, wall, m) = (to_light, DVec2::new(0.0, 1.0), [1.06e-3, 0.93]);
+        let u = [DVec2::ZERO, DVec2::new(1.09e-4, 0.0)];
+        let v = plastic_along_wall(u, m, 1, n, wall).expect("sliding along the floor");
+        // The pusher stays on the floor, the approach is gone, momentum
+        // along the floor is kept and no energy is added.
+        assert_eq!(v[1].y, 0.0);
+        assert!((v[0] - v[1]).dot(n).abs() <= 1e-15 * u[1].length());
+        let along = |v: [DVec2; 2]| m[0] * v[0].x + m[1] * v[1].x;
+        assert!((along(v) - along(u)).abs() <= 1e-15 * along(u));
+        assert!(pair_energy(v, m) <= pair_energy(u, m));
+        // The free plastic hit would have driven it into the floor.
+        let (_, free) = impulse::body_body(u[0], u[1], m[0], m[1], 0.0, n);
+        assert!(free.y < 0.0);
+        // Not where the pusher moves off the floor's line, nor where the
+        // pair does not approach.
+        let lifted = [DVec2::ZERO, DVec2::new(1.09e-4, 1e-6)];
+        assert!(plastic_along_wall(lifted, m, 1, n, wall).is_none());
+        let parting = [to_light * 1e-4, DVec2::new(1.09e-4, 0.0)];
+        assert!(plastic_along_wall(parting, m, 1, n, wall).is_none());
+    }
+
+    #[test]
     fn a_pressed_bounce_counts_as_touching_only_while_it_stays_within_touching_distance() {
         // Mixed-box 205984: a light braking disc (1.63 m/s^2) just sent
         // ahead of a frictionless one at 1.4e-7 m/s along the line of
