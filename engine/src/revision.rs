@@ -355,6 +355,26 @@ pub enum Revision {
     ///   its speed, each limit of the ring taking only that share of its
     ///   motion, 20,000 limits at one instant until `stuck`
     ///   (`Revision::rests_spent_rings`).
+    /// - a disc carried aside by one sliding past it (`push::carried`)
+    ///   where the plastic hit would drive the pushing disc into the one
+    ///   obstacle it slides along is taken with that obstacle holding it to
+    ///   its line through the hit (`push::plastic_along_wall`): a heavy
+    ///   frictionless disc sliding along the floor pressed a light braking
+    ///   one up and forward, each hit sending it into the floor by the
+    ///   light one's share of the approach, so that the carry was refused
+    ///   and the pressing contact kicked the pair apart every 1.8e-5 s
+    ///   until the event cap; only where the pair stops together and the
+    ///   pushing disc touches no other disc
+    ///   (`Revision::carries_wedged_discs_along_walls`);
+    /// - an elastic pair pressed head-on by its braking whose bounce stays
+    ///   within the pressing contact's gap (1e-4 of the contact distance)
+    ///   and would repeat at least 10,000 times before the pair stops is
+    ///   taken as the end of its chatter, one plastic hit, as the
+    ///   thirteenth revision takes one within 1e-9 of touching: a heavy
+    ///   frictionless elastic disc pushing a light braking one, its bounce
+    ///   6.6e-9 of the contact distance high, made 170,000 hits, a true
+    ///   sequence of constant-height bounces, beyond the event cap
+    ///   (`Revision::ends_long_bounces_within_gap`);
     R15,
 }
 
@@ -588,6 +608,23 @@ impl Revision {
     /// the limit of the ringing contacts alone would drive them into (a
     /// fifteenth revision rule, see `world::reached_walls`).
     pub fn takes_ring_limits_with_walls_they_reach(self) -> bool {
+        self.at_least_r15()
+    }
+
+    /// Whether a disc carried aside by one sliding along a wall
+    /// (`push::carried`) is taken with the wall holding the pushing disc
+    /// to its line through the hit, where the hit would drive it into the
+    /// wall (a fifteenth revision rule, see `World::hit_along_wall`).
+    pub fn carries_wedged_discs_along_walls(self) -> bool {
+        self.at_least_r15()
+    }
+
+    /// Whether an elastic pair pressed head-on whose bounces stay within
+    /// the pressing contact's gap and would number at least
+    /// `push::LONG_BOUNCES` before it stops is taken as the end of its
+    /// chatter, one plastic hit (a fifteenth revision rule, see
+    /// `push::bounces_long_within_gap`).
+    pub fn ends_long_bounces_within_gap(self) -> bool {
         self.at_least_r15()
     }
 }

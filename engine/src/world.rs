@@ -1856,7 +1856,18 @@ impl World {
         if e > 0.0
             && (push::chatters(&new_i, &new_j, n, t, origin, self.config.revision)
                 || (self.config.revision.ends_bounces_within_touch()
-                    && push::bounces_within_touch(&new_i, &new_j, n, s, t)))
+                    && push::bounces_within_touch(&new_i, &new_j, n, s, t))
+                || (e == 1.0
+                    && self.config.revision.ends_long_bounces_within_gap()
+                    && push::bounces_long_within_gap(
+                        &new_i,
+                        &new_j,
+                        [mi.mass, mj.mass],
+                        n,
+                        s,
+                        t,
+                        self.config.revision,
+                    )))
         {
             // From the fourteenth revision, a chatter's end that drives a
             // disc into an obstacle it touches, the two then ringing, is
@@ -1984,7 +1995,17 @@ impl World {
         if self.slots[i].traj.start_time() == t || self.slots[j].traj.start_time() == t {
             return false;
         }
-        let (vi, vj) = impulse::body_body(ui, uj, mi.mass, mj.mass, 0.0, n);
+        let (mut vi, mut vj) = impulse::body_body(ui, uj, mi.mass, mj.mass, 0.0, n);
+        // From the fifteenth revision, a pushing disc sliding along the one
+        // obstacle it touches, which the hit would drive into it, is held
+        // to it through the hit (see `World::hit_along_wall`).
+        let mut along_wall = false;
+        if self.config.revision.carries_wedged_discs_along_walls() {
+            if let Some([wi, wj]) = self.hit_along_wall(i, j, [ui, uj], [vi, vj], n, alpha, t) {
+                (vi, vj) = (wi, wj);
+                along_wall = true;
+            }
+        }
         let s = mi.radius + mj.radius;
         // Only where the approximated contact would kick the pair apart
         // (not where it rests it: too slow to slide beyond its gap, or its
@@ -1999,6 +2020,7 @@ impl World {
         ) {
             return false;
         }
+        let before = [vi, vj];
         let Some([(vi, ai), (vj, aj)]) = push::carried(
             [vi, vj],
             [mi.mass, mj.mass],
@@ -2009,6 +2031,25 @@ impl World {
         ) else {
             return false;
         };
+        // Held by the obstacle through the hit: only where the pair stops
+        // together (the pushing disc keeps its velocity and brakes to the
+        // common stop), not where it passes (the pushed disc, carried
+        // ahead, was stopped by a disc in its way and caught again, the
+        // pass paid again and again), and only where the pushing disc
+        // touches no other disc (a frictionless one sliding behind it
+        // caught it at once as it braked, and the two were hit in turn,
+        // a microsecond apart: mixed-box 62000 and 56990 ran so to the
+        // event cap).
+        if along_wall {
+            let h = usize::from(alpha[1] < alpha[0]);
+            let slot = if h == 0 { i } else { j };
+            let stops = [vi, vj][h] == before[h];
+            let at = self.positions(t);
+            let alone = self.touching(slot, &at).all(|c| c == i || c == j);
+            if !(stops && alone) {
+                return false;
+            }
+        }
         // The pushing disc (the one braking less) must touch something
         // besides its partner, and the pushed one nothing else (carried
         // along the normal, it would be driven into it, and hit back at
@@ -2038,6 +2079,51 @@ impl World {
         let new_j = Trajectory::new(t, pj, vj, aj);
         self.leave_hit(i, j, new_i, new_j, t);
         true
+    }
+
+    /// From the fifteenth revision, the plastic hit of a pair about to be
+    /// carried ([`World::carried_press`]) whose pushing disc `H` (the one
+    /// braking less) slides along the one obstacle it touches, the plastic
+    /// hit (`v`, from the velocities `u` before it) driving it into that
+    /// obstacle: taken with the obstacle holding `H` to its line (see
+    /// [`push::plastic_along_wall`]), so that `H` leaves along it and the
+    /// carry is not undone by the obstacle's hit a moment later. A heavy
+    /// frictionless disc sliding along the floor past a light braking one
+    /// above it pressed it up and forward, each plastic hit sending the
+    /// heavy disc into the floor by the light one's share of the approach:
+    /// the carry was refused there, and the pressing contact kicked the
+    /// pair apart every 1.8e-5 s until the event cap. `None` where `H`
+    /// touches more than one obstacle, none that the hit drives it into,
+    /// or does not slide along it; and `World::carried_press` takes the
+    /// carry so only where the pair stops together and `H` touches no
+    /// other disc (see there).
+    #[allow(clippy::too_many_arguments)]
+    fn hit_along_wall(
+        &self,
+        i: usize,
+        j: usize,
+        u: [DVec2; 2],
+        v: [DVec2; 2],
+        n: DVec2,
+        alpha: [f64; 2],
+        t: f64,
+    ) -> Option<[DVec2; 2]> {
+        let h = usize::from(alpha[1] < alpha[0]);
+        let slot = if h == 0 { i } else { j };
+        let walls: Vec<DVec2> = self
+            .contacts_among(&[slot], t)
+            .iter()
+            .filter(|c| c.b.is_none())
+            .map(|c| c.n)
+            .collect();
+        let [wall] = walls[..] else {
+            return None;
+        };
+        if !(v[h].dot(wall) < -1e-12 * v[h].length()) {
+            return None;
+        }
+        let m = [self.material[i].mass, self.material[j].mass];
+        push::plastic_along_wall(u, m, h, n, wall)
     }
 
     /// From the twelfth revision, a gentle plastic hit between the discs in

@@ -1116,3 +1116,46 @@ fn a_ring_whose_braking_spends_its_energy_within_the_gap_comes_to_rest() {
         settles_from(Revision::R15, name, 100.0, EndReason::Stuck, CAP);
     }
 }
+
+#[test]
+fn a_disc_sliding_along_the_floor_carries_a_braking_one_it_wedges_aside_with_the_floor_holding_it()
+{
+    // In mixed-box 466219 heavy frictionless plastic disc 8 (0.93 kg)
+    // slides along the floor at 1.1e-4 m/s past light braking disc 11
+    // (1.1 g) above and ahead of it, wedging it up and forward. Each
+    // plastic hit sent disc 8 into the floor by disc 11's share of the
+    // approach, so revision 14's carry was refused, and the pressing
+    // contact kicked the pair apart every 1.8e-5 s until the event cap.
+    // From revision 15 the floor holds the pushing disc to its line
+    // through the hit, and the pair is carried to its common stop.
+    reaches_the_horizon_from(Revision::R15, "mixed-box-466219", 100.0);
+}
+
+#[test]
+fn an_elastic_pair_bouncing_within_the_pressing_gap_for_ten_thousand_hits_pushes_as_one_and_stops_when_it_would(
+) {
+    // In mixed-box 84063 heavy frictionless elastic disc 3 pushes light
+    // elastic disc 4 (braking at 5.06 m/s^2) along the floor: a bounce of
+    // constant height, 1.5e-10 m (6.6e-9 of the contact distance), every
+    // 1.56e-5 s, 170,868 events in all before the box rests. From
+    // revision 15 the train is one push, whose centre of mass brakes as
+    // the bouncing pair's does: the box rests at the same time.
+    reaches_the_horizon_from(Revision::R15, "mixed-box-84063", 100.0);
+    let rest = |revision: Revision, max_events: u64| {
+        let scene = scene("mixed-box-84063");
+        let mut world = world(&scene, revision);
+        let limits = Limits {
+            until: 100.0,
+            max_events,
+            ..Limits::default()
+        };
+        let end = world.run(&limits, &mut Deepest::default());
+        assert_eq!(end.reason, EndReason::Rest, "{revision:?}");
+        end.t
+    };
+    let (bounced, pushed) = (rest(Revision::R14, 1_000_000), rest(Revision::R15, CAP));
+    assert!(
+        (bounced - pushed).abs() <= 1e-9 * bounced,
+        "rests at {pushed} s against {bounced} s bouncing"
+    );
+}
