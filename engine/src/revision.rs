@@ -333,6 +333,18 @@ pub enum Revision {
     #[default]
     R14,
     /// The fifteenth, as the fourteenth but:
+    /// - a disc that wedges a harder-braked one aside as it slides along
+    ///   the one obstacle it touches, the hit driving it into that
+    ///   obstacle, takes the hit with the obstacle (it keeps to the
+    ///   obstacle's line, the obstacle taking the normal share of the
+    ///   impulse) and carries the other along as the fourteenth revision
+    ///   carries a wedged disc, where the carried disc's whole slide keeps
+    ///   clear of every other disc (`World::walled_push`): a heavy
+    ///   frictionless disc sliding along the floor under a light braking
+    ///   one kicked it up at every hit, the fourteenth revision refusing the
+    ///   carry because the free hit drove the heavy disc into the floor; it
+    ///   stopped 2e-5 s later and was caught again, two events a cycle
+    ///   until the event cap (`Revision::carries_along_walls`).
     R15,
 }
 
@@ -523,6 +535,15 @@ impl Revision {
     /// rule, see `push::carried`).
     pub fn carries_wedged_discs(self) -> bool {
         self.at_least_r14()
+    }
+
+    /// Whether a disc that wedges a harder-braked one aside while it slides
+    /// along the one obstacle it touches, the hit driving it into that
+    /// obstacle, takes the hit with the obstacle and carries the other
+    /// along as the fourteenth revision carries a wedged disc (a fifteenth
+    /// revision rule, see `World::walled_push`).
+    pub fn carries_along_walls(self) -> bool {
+        self.at_least_r15()
     }
 
     /// Whether a plastic hit that drives a disc into an obstacle it
