@@ -344,7 +344,26 @@ pub enum Revision {
     ///   one kicked it up at every hit, the fourteenth revision refusing the
     ///   carry because the free hit drove the heavy disc into the floor; it
     ///   stopped 2e-5 s later and was caught again, two events a cycle
-    ///   until the event cap (`Revision::carries_along_walls`).
+    ///   until the event cap; only where the pusher passes, carrying the
+    ///   other ahead (stopped together a few nanometres on, the pair parted
+    ///   by less than the rounding of a position and was hit again before
+    ///   it stopped, carry after carry) (`Revision::carries_along_walls`);
+    /// - a pressed pair that rests by its energy (the eleventh revision's
+    ///   `push::spent_within_gap`), where the projection with its braking
+    ///   discs held has no answer, rests whole, its frictionless disc too,
+    ///   instead of being kicked: a light frictionless disc sliding down
+    ///   between a wall and a heavy braking disc at 7e-9 m/s, wedged
+    ///   against it at 1.4e-6 rad, kicked the heavy one off at every hit,
+    ///   which stopped 3e-11 s later and was hit again at once, until
+    ///   `stuck` (`Revision::rests_jammed_spent_pairs`);
+    /// - the pressing kick after a collapse's plastic limit is left out
+    ///   where the limit leaves its discs too little energy to move any
+    ///   braking disc of them beyond the approximation's gap
+    ///   (`World::limit_spent_within_gap`): a light braking disc between a
+    ///   wall and a heavier resting one, taken to the limit with the wall
+    ///   at every hit, set the heavier one moving at 5.7e-10 m/s by the
+    ///   kick, which stopped 1.3e-10 s later and was hit again at once,
+    ///   10,000 limits until `stuck` (`Revision::rests_spent_limits`).
     R15,
 }
 
@@ -535,6 +554,22 @@ impl Revision {
     /// rule, see `push::carried`).
     pub fn carries_wedged_discs(self) -> bool {
         self.at_least_r14()
+    }
+
+    /// Whether the pressing kick after a collapse's plastic limit is left
+    /// out where the limit leaves too little energy to move any braking
+    /// disc of it beyond the approximation's gap (a fifteenth revision
+    /// rule, see `World::limit_spent_within_gap`).
+    pub fn rests_spent_limits(self) -> bool {
+        self.at_least_r15()
+    }
+
+    /// Whether a pressed pair that rests by its energy
+    /// (`push::spent_within_gap`), where the projection with its braking
+    /// discs held has no answer, rests whole, its frictionless disc too (a
+    /// fifteenth revision rule, see `World::press_cluster`).
+    pub fn rests_jammed_spent_pairs(self) -> bool {
+        self.at_least_r15()
     }
 
     /// Whether a disc that wedges a harder-braked one aside while it slides
