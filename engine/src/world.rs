@@ -2080,13 +2080,13 @@ impl World {
         }
         // Where the obstacle took its share of the hit, the pushed disc's
         // whole carry must keep clear of every other disc: carried into a
-        // neighbour a few micrometres off, it was hit back, the pusher hit
+        // neighbour close by, it was hit back, the pusher hit
         // it again at that instant, and the carried braking was lost.
         // And only where the pusher passes, carrying the pushed disc ahead
         // beyond the pressing contact's gap: stopped together, a pair
         // carried a few nanometres parted by less than the rounding of a
         // position and was hit again before it stopped, carry after carry
-        // (16,711 in mixed-box 56990), until the event cap.
+        // (mixed-box 56990), until the event cap.
         if walled {
             let alpha_h = if h == i { alpha[0] } else { alpha[1] };
             let a_h = if h == i { ai } else { aj };
