@@ -355,15 +355,7 @@ pub enum Revision {
     ///   between a wall and a heavy braking disc at 7e-9 m/s, wedged
     ///   against it at 1.4e-6 rad, kicked the heavy one off at every hit,
     ///   which stopped 3e-11 s later and was hit again at once, until
-    ///   `stuck` (`Revision::rests_jammed_spent_pairs`);
-    /// - the pressing kick after a collapse's plastic limit is left out
-    ///   where the limit leaves its discs too little energy to move any
-    ///   braking disc of them beyond the approximation's gap
-    ///   (`World::limit_spent_within_gap`): a light braking disc between a
-    ///   wall and a heavier resting one, taken to the limit with the wall
-    ///   at every hit, set the heavier one moving at 5.7e-10 m/s by the
-    ///   kick, which stopped 1.3e-10 s later and was hit again at once,
-    ///   10,000 limits until `stuck` (`Revision::rests_spent_limits`).
+    ///   `stuck` (`Revision::rests_jammed_spent_pairs`).
     R15,
 }
 
@@ -554,14 +546,6 @@ impl Revision {
     /// rule, see `push::carried`).
     pub fn carries_wedged_discs(self) -> bool {
         self.at_least_r14()
-    }
-
-    /// Whether the pressing kick after a collapse's plastic limit is left
-    /// out where the limit leaves too little energy to move any braking
-    /// disc of it beyond the approximation's gap (a fifteenth revision
-    /// rule, see `World::limit_spent_within_gap`).
-    pub fn rests_spent_limits(self) -> bool {
-        self.at_least_r15()
     }
 
     /// Whether a pressed pair that rests by its energy

@@ -1057,38 +1057,6 @@ impl World {
     /// The plastic limit of the `contacts` among `members` (slots), and
     /// from the third revision the kick of whatever pairs it leaves
     /// pressed (see `collapse_cluster`). `true` if any velocity changed.
-    /// From the fifteenth revision, whether the discs in `members` (slots),
-    /// at velocities `after` a collapse's plastic limit with braking
-    /// `alpha`, have no more kinetic energy than the braking of the
-    /// lightest-braked braking disc among them dissipates over the
-    /// approximation's gap (of the smallest contact distance among them):
-    /// friction being the only thing that takes energy out of them, no
-    /// braking disc can then slide further than the gap, whatever the
-    /// frictionless ones do, as `push::spent_within_gap` says of a pressed
-    /// pair. The pressing kick that follows a limit
-    /// (`World::take_plastic_limit`) is then left out: it set the pair
-    /// moving at its bounce speed, tens of times what the limit left it. A
-    /// light braking disc between a wall and a resting heavier one, moving
-    /// along the wall at 1.1e-8 m/s, was taken to the limit with the wall
-    /// at every hit, and the kick after it sent the heavier disc off at
-    /// 5.7e-10 m/s: it stopped 1.3e-10 s later and was hit again at once,
-    /// 10,000 limits until the run ended `stuck`. `false` where none brakes.
-    fn limit_spent_within_gap(&self, members: &[usize], after: &[DVec2], alpha: &[f64]) -> bool {
-        let mut energy = 0.0;
-        let mut weakest = f64::INFINITY;
-        let mut radius = f64::INFINITY;
-        for (k, &c) in members.iter().enumerate() {
-            let mass = self.material[c].mass;
-            energy += 0.5 * mass * after[k].length_squared();
-            if alpha[k] > 0.0 {
-                weakest = weakest.min(mass * alpha[k]);
-            }
-            radius = radius.min(self.slots[c].radius);
-        }
-        let gap = push::press_gap(self.config.revision) * 2.0 * radius;
-        weakest.is_finite() && energy <= weakest * gap
-    }
-
     fn collapse_contacts(
         &mut self,
         members: &[usize],
@@ -1133,11 +1101,7 @@ impl World {
         t: f64,
     ) -> bool {
         let alpha = self.braking(members);
-        // From the fifteenth revision, no kick where the limit leaves too
-        // little energy to move any braking disc of it beyond the gap.
-        let spent = self.config.revision.rests_spent_limits()
-            && self.limit_spent_within_gap(members, &after, &alpha);
-        if press && !spent && self.press_biases(members, &mut contacts, &after, &alpha) {
+        if press && self.press_biases(members, &mut contacts, &after, &alpha) {
             if let Some(kicked) = self.press_closure(members, &mut contacts, &after, inv, &alpha) {
                 after = if self.config.revision.bounds_collapse_kick_energy() {
                     // From the fourteenth revision, held as the twelfth
