@@ -2104,11 +2104,11 @@ impl World {
     /// relative motion and gains nothing. `None` where it does not apply
     /// (no single obstacle, the pusher not sliding along it, the hit not
     /// driving it in); else the velocities of `i` and `j`. The carry that
-    /// follows is taken only where the pushed disc's whole slide keeps
-    /// clear of every other disc (`World::carried_press`). This is what
-    /// lets the fourteenth revision's carrying (`World::carried_press`)
-    /// take a heavy frictionless disc sliding along the floor under a
-    /// light braking one: the free hit drove the heavy disc into the floor
+    /// follows is taken only where the pusher passes and the pushed disc's
+    /// whole slide keeps clear of every other disc. This is what lets the
+    /// fourteenth revision's carrying (`World::carried_press`) take a
+    /// heavy frictionless disc sliding along the floor under a light
+    /// braking one: the free hit drove the heavy disc into the floor
     /// and was refused, the light one was kicked up by the pressing
     /// contact at every hit, stopped 2e-5 s later, and was caught again,
     /// two events a cycle until the event cap.
@@ -2917,9 +2917,6 @@ mod tests {
         assert_eq!(held, Some(after));
     }
 
-    /// A heavy frictionless disc driven at 1e-3 m/s into a light plastic
-    /// one that touches the wall `x = 0`, head-on, run under `revision`:
-    /// the end, the events and the heavy disc's velocity at the end.
     /// A heavy frictionless disc sliding along the floor at 7.4e-4 m/s
     /// into a light braking one that lies on it, 0.023 rad ahead of its
     /// top (mixed-box 559777's pair): the end, the events, the heavy disc's
@@ -2988,6 +2985,9 @@ mod tests {
         assert!(after <= before, "{after:e} > {before:e}");
     }
 
+    /// A heavy frictionless disc driven at 1e-3 m/s into a light plastic
+    /// one that touches the wall `x = 0`, head-on, run under `revision`:
+    /// the end, the events and the heavy disc's velocity at the end.
     fn heavy_into_light_against_a_wall(revision: Revision) -> (EndReason, u64, DVec2) {
         let r = 0.01;
         let scene = Scene {
