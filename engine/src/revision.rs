@@ -375,6 +375,29 @@ pub enum Revision {
     ///   6.6e-9 of the contact distance high, made 170,000 hits, a true
     ///   sequence of constant-height bounces, beyond the event cap
     ///   (`Revision::ends_long_bounces_within_gap`);
+    /// - a disc that wedges a harder-braked one aside as it slides along
+    ///   the one obstacle it touches, the hit driving it into that
+    ///   obstacle, takes the hit with the obstacle (it keeps to the
+    ///   obstacle's line, the obstacle taking the normal share of the
+    ///   impulse) and carries the other along as the fourteenth revision
+    ///   carries a wedged disc, where the carried disc's whole slide keeps
+    ///   clear of every other disc (`World::hit_along_wall`): a heavy
+    ///   frictionless disc sliding along the floor under a light braking
+    ///   one kicked it up at every hit, the fourteenth revision refusing the
+    ///   carry because the free hit drove the heavy disc into the floor; it
+    ///   stopped 2e-5 s later and was caught again, two events a cycle
+    ///   until the event cap; only where the pusher passes, carrying the
+    ///   other ahead (stopped together a few nanometres on, the pair parted
+    ///   by less than the rounding of a position and was hit again before
+    ///   it stopped, carry after carry) (`Revision::carries_along_walls`);
+    /// - a pressed pair that rests by its energy (the eleventh revision's
+    ///   `push::spent_within_gap`), where the projection with its braking
+    ///   discs held has no answer, rests whole, its frictionless disc too,
+    ///   instead of being kicked: a light frictionless disc sliding down
+    ///   between a wall and a heavy braking disc at 7e-9 m/s, wedged
+    ///   against it at 1.4e-6 rad, kicked the heavy one off at every hit,
+    ///   which stopped 3e-11 s later and was hit again at once, until
+    ///   `stuck` (`Revision::rests_jammed_spent_pairs`).
     R15,
 }
 
@@ -574,6 +597,23 @@ impl Revision {
     /// rule, see `push::carried`).
     pub fn carries_wedged_discs(self) -> bool {
         self.at_least_r14()
+    }
+
+    /// Whether a pressed pair that rests by its energy
+    /// (`push::spent_within_gap`), where the projection with its braking
+    /// discs held has no answer, rests whole, its frictionless disc too (a
+    /// fifteenth revision rule, see `World::press_cluster`).
+    pub fn rests_jammed_spent_pairs(self) -> bool {
+        self.at_least_r15()
+    }
+
+    /// Whether a disc that wedges a harder-braked one aside while it slides
+    /// along the one obstacle it touches, the hit driving it into that
+    /// obstacle, takes the hit with the obstacle and carries the other
+    /// along as the fourteenth revision carries a wedged disc (a fifteenth
+    /// revision rule, see `World::hit_along_wall`).
+    pub fn carries_along_walls(self) -> bool {
+        self.at_least_r15()
     }
 
     /// Whether a plastic hit that drives a disc into an obstacle it

@@ -1091,6 +1091,25 @@ fn a_ring_taken_at_its_limit_holds_its_discs_off_the_walls_they_touch() {
 }
 
 #[test]
+fn a_heavy_disc_sliding_along_the_floor_under_a_braking_one_takes_the_hit_with_the_floor_and_carries_it(
+) {
+    // In mixed-box 559777 heavy frictionless plastic disc 4 (0.66 kg)
+    // slides along the floor at 7.4e-4 m/s under light elastic disc 12
+    // (3.3 g, braking at 2.9 m/s^2), which lies a millimetre ahead of it:
+    // disc 4 has to wedge disc 12 up and aside. The free plastic hit drove
+    // disc 4 into the floor, so revision 14 did not carry disc 12; the
+    // pressing contact kicked it up at every hit, it stopped 2e-5 s later
+    // and was caught again, "12-4" then "12 stop", until the event cap at
+    // 96 s. In mixed-box 191612 heavy frictionless disc 4 (0.67 kg) does
+    // the same under light plastic disc 8 (2.7 g) until the cap at 39 s.
+    // From revision 15 the floor takes its share of the hit, disc 4 keeps
+    // to the floor, and the pair is carried as one sliding body.
+    for name in ["mixed-box-559777", "mixed-box-191612"] {
+        reaches_the_horizon_from(Revision::R15, name, 100.0);
+    }
+}
+
+#[test]
 fn a_ring_whose_braking_spends_its_energy_within_the_gap_comes_to_rest() {
     // In mixed-box 442739 frictionless elastic disc 1 (0.46 kg) slides
     // down the left wall into the corner at 3e-10 m/s, 7e-8 m above the
@@ -1158,4 +1177,36 @@ fn an_elastic_pair_bouncing_within_the_pressing_gap_for_ten_thousand_hits_pushes
         (bounced - pushed).abs() <= 1e-9 * bounced,
         "rests at {pushed} s against {bounced} s bouncing"
     );
+}
+
+#[test]
+fn a_pressed_pair_whose_energy_is_spent_rests_whole_where_a_frictionless_disc_of_it_is_jammed() {
+    // In mixed-box 536265 light frictionless elastic disc 1 (17 g), in the
+    // corner, slides down the left wall at 7e-9 m/s along heavy plastic
+    // disc 2 (0.92 kg, braking at 11.4 m/s^2), wedged against it at
+    // 1.4e-6 rad: far too little energy to push disc 2 aside, but each
+    // hit, taken to the plastic limit with the wall, was followed by the
+    // pressing kick that sent disc 2 off at 3.5e-10 m/s; it stopped 3e-11
+    // s later and was hit again at once, "2 stop" then "2-1", until the
+    // run ended `stuck`. Mixed-box 425978 ended `stuck` and 476556 and
+    // 242373 ran to the event cap. From revision 15 a pressed pair whose
+    // energy is spent within the gap, where the projection with its
+    // braking discs held has no answer, rests whole.
+    settles_from(
+        Revision::R15,
+        "mixed-box-536265",
+        100.0,
+        EndReason::Stuck,
+        CAP,
+    );
+    settles_from(
+        Revision::R15,
+        "mixed-box-425978",
+        100.0,
+        EndReason::Stuck,
+        CAP,
+    );
+    for name in ["mixed-box-476556", "mixed-box-242373"] {
+        reaches_the_horizon_from(Revision::R15, name, 100.0);
+    }
 }
