@@ -330,7 +330,6 @@ pub enum Revision {
     ///   the pressing contact's capped bounce; it stopped a microsecond
     ///   later and was caught again, two events a cycle until the event
     ///   cap (`Revision::carries_wedged_discs`).
-    #[default]
     R14,
     /// The fifteenth, as the fourteenth but:
     /// - the plastic limit of a ring (`World::cluster_ring`,
@@ -389,21 +388,14 @@ pub enum Revision {
     ///   until the event cap; only where the pusher passes, carrying the
     ///   other ahead (stopped together a few nanometres on, the pair parted
     ///   by less than the rounding of a position and was hit again before
-    ///   it stopped, carry after carry) (`Revision::carries_along_walls`);
-    /// - a pressed pair that rests by its energy (the eleventh revision's
-    ///   `push::spent_within_gap`), where the projection with its braking
-    ///   discs held has no answer, rests whole, its frictionless disc too,
-    ///   instead of being kicked: a light frictionless disc sliding down
-    ///   between a wall and a heavy braking disc at 7e-9 m/s, wedged
-    ///   against it at 1.4e-6 rad, kicked the heavy one off at every hit,
-    ///   which stopped 3e-11 s later and was hit again at once, until
-    ///   `stuck` (`Revision::rests_jammed_spent_pairs`).
+    ///   it stopped, carry after carry) (`Revision::carries_along_walls`).
+    #[default]
     R15,
 }
 
 impl Revision {
     /// The revision new computations use.
-    pub const LATEST: Revision = Revision::R14;
+    pub const LATEST: Revision = Revision::R15;
 
     /// Every revision, oldest first.
     pub const ALL: [Revision; 15] = [
@@ -597,14 +589,6 @@ impl Revision {
     /// rule, see `push::carried`).
     pub fn carries_wedged_discs(self) -> bool {
         self.at_least_r14()
-    }
-
-    /// Whether a pressed pair that rests by its energy
-    /// (`push::spent_within_gap`), where the projection with its braking
-    /// discs held has no answer, rests whole, its frictionless disc too (a
-    /// fifteenth revision rule, see `World::press_cluster`).
-    pub fn rests_jammed_spent_pairs(self) -> bool {
-        self.at_least_r15()
     }
 
     /// Whether a disc that wedges a harder-braked one aside while it slides

@@ -1237,23 +1237,11 @@ impl World {
                                 && energy <= mass * alpha[k] * gap);
                     }
                 }
-                // From the fifteenth revision, where the pair rests by its
-                // energy and neither hold has an answer (a frictionless disc
-                // jammed between its held partner and a wall or another
-                // held disc), the frictionless disc of the pair rests too.
-                let jammed = (kick.is_some() && self.config.revision.rests_jammed_spent_pairs())
-                    .then(|| {
-                        let mut all = still.clone();
-                        (all[0], all[1]) = (true, true);
-                        all
-                    })
-                    .filter(|all| *all != still && *all != firm);
-                let mut tries = if firm != still {
+                let tries = if firm != still {
                     vec![firm, still]
                 } else {
                     vec![still]
                 };
-                tries.extend(jammed);
                 let held_rest_by_active_set =
                     self.config.revision.rests_caged_discs_by_active_set();
                 let hold = |still: &[bool]| {

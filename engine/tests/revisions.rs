@@ -1178,35 +1178,3 @@ fn an_elastic_pair_bouncing_within_the_pressing_gap_for_ten_thousand_hits_pushes
         "rests at {pushed} s against {bounced} s bouncing"
     );
 }
-
-#[test]
-fn a_pressed_pair_whose_energy_is_spent_rests_whole_where_a_frictionless_disc_of_it_is_jammed() {
-    // In mixed-box 536265 light frictionless elastic disc 1 (17 g), in the
-    // corner, slides down the left wall at 7e-9 m/s along heavy plastic
-    // disc 2 (0.92 kg, braking at 11.4 m/s^2), wedged against it at
-    // 1.4e-6 rad: far too little energy to push disc 2 aside, but each
-    // hit, taken to the plastic limit with the wall, was followed by the
-    // pressing kick that sent disc 2 off at 3.5e-10 m/s; it stopped 3e-11
-    // s later and was hit again at once, "2 stop" then "2-1", until the
-    // run ended `stuck`. Mixed-box 425978 ended `stuck` and 476556 and
-    // 242373 ran to the event cap. From revision 15 a pressed pair whose
-    // energy is spent within the gap, where the projection with its
-    // braking discs held has no answer, rests whole.
-    settles_from(
-        Revision::R15,
-        "mixed-box-536265",
-        100.0,
-        EndReason::Stuck,
-        CAP,
-    );
-    settles_from(
-        Revision::R15,
-        "mixed-box-425978",
-        100.0,
-        EndReason::Stuck,
-        CAP,
-    );
-    for name in ["mixed-box-476556", "mixed-box-242373"] {
-        reaches_the_horizon_from(Revision::R15, name, 100.0);
-    }
-}
