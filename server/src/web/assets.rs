@@ -605,7 +605,7 @@ mod tests {
     /// What a browser that accepts brotli downloads: the figure a player
     /// waits for (428 KB when the budget was set; 444,146 bytes before the
     /// offline matches, 554,008 with them, 569,340 with the engine's
-    /// thirteenth revision).
+    /// thirteenth revision, 577,503 with its fifteenth).
     const WASM_BROTLI_BUDGET_BYTES: usize = 580_000;
 
     #[test]
