@@ -1110,7 +1110,7 @@ fn a_heavy_disc_sliding_along_the_floor_under_a_braking_one_takes_the_hit_with_t
 }
 
 #[test]
-fn a_ring_whose_braking_spends_its_energy_within_the_gap_comes_to_rest() {
+fn a_ring_whose_braking_spends_its_energy_within_a_rounding_of_its_positions_comes_to_rest() {
     // In mixed-box 442739 frictionless elastic disc 1 (0.46 kg) slides
     // down the left wall into the corner at 3e-10 m/s, 7e-8 m above the
     // floor: its contact with frictionless plastic disc 2, on the floor,

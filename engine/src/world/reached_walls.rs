@@ -18,9 +18,10 @@ use glam::DVec2;
 /// leaves the limit moving into the obstacle faster than `noise`, and the
 /// limit's impulses pushed it that way (a disc already moving into its
 /// wall before, and not pushed, meets it by itself). Solved again with
-/// them, until it drives into none: the limit and its velocities. Where the wider limit has no solution, the
-/// narrower one is kept. The plastic projection onto more contacts adds
-/// no energy: it only takes away approach.
+/// them, until it drives into none: the limit and its velocities. Where
+/// the wider limit has no solution, the narrower one is kept. The plastic
+/// projection onto more contacts adds no energy: it only takes away
+/// approach.
 pub(super) fn with_walls_reached(
     vel: &[DVec2],
     inv: &[f64],
