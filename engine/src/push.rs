@@ -160,18 +160,30 @@ pub(crate) fn bounces_within_touch(
     s: f64,
     now: f64,
 ) -> bool {
-    let Some(a) = pressing_deceleration(ti, tj, n, now) else {
+    let Some((a, w, _)) = head_on_bounce(ti, tj, n, now) else {
         return false;
     };
-    // Head-on only: both slide along the line of centres (an oblique pair
-    // turns as it slides, and is the pressing kick's).
+    w * w <= TOUCHING * s * -a
+}
+
+/// The pressing deceleration `a` (see [`pressing_deceleration`]), the
+/// separation speed `w` along `n` and the velocities at `now` of a pair
+/// pressed together by its braking and sliding head-on: both along the
+/// line of centres, to [`SAME`] of their speeds (an oblique pair turns as
+/// it slides, and is the pressing kick's). `None` otherwise.
+fn head_on_bounce(
+    ti: &Trajectory,
+    tj: &Trajectory,
+    n: DVec2,
+    now: f64,
+) -> Option<(f64, f64, [DVec2; 2])> {
+    let a = pressing_deceleration(ti, tj, n, now)?;
     let (vi, vj) = (ti.velocity(now), tj.velocity(now));
     let along = |v: DVec2| v.perp_dot(n).abs() <= SAME * v.length();
     if !along(vi) || !along(vj) {
-        return false;
+        return None;
     }
-    let w = (vi - vj).dot(n);
-    w * w <= TOUCHING * s * -a
+    Some((a, (vi - vj).dot(n), [vi, vj]))
 }
 
 /// From the fifteenth revision, whether an elastic pair just hit along `n`
@@ -202,15 +214,9 @@ pub(crate) fn bounces_long_within_gap(
     now: f64,
     rev: Revision,
 ) -> bool {
-    let Some(a) = pressing_deceleration(ti, tj, n, now) else {
+    let Some((a, w, [vi, vj])) = head_on_bounce(ti, tj, n, now) else {
         return false;
     };
-    let (vi, vj) = (ti.velocity(now), tj.velocity(now));
-    let along = |v: DVec2| v.perp_dot(n).abs() <= SAME * v.length();
-    if !along(vi) || !along(vj) {
-        return false;
-    }
-    let w = (vi - vj).dot(n);
     if !(w > 0.0) || w * w > 2.0 * -a * press_gap(rev) * s {
         return false;
     }

@@ -2119,8 +2119,9 @@ impl World {
     /// pair apart every 1.8e-5 s until the event cap. `None` where `H`
     /// touches more than one obstacle, none that the hit drives it into,
     /// or does not slide along it; and `World::carried_press` takes the
-    /// carry so only where the pair stops together and `H` touches no
-    /// other disc (see there).
+    /// carry so only in its two guarded cases: the pair stopping together
+    /// with `H` touching no other disc, or `H` passing with the carried
+    /// disc's slide clear of every other disc (see there).
     #[allow(clippy::too_many_arguments)]
     fn hit_along_wall(
         &self,
@@ -2948,6 +2949,35 @@ mod tests {
         assert_eq!(held, Some(after));
     }
 
+    /// `bodies` on a table with one solid line from `line[0]` to `line[1]`,
+    /// run under `revision` until `until` (at most 100,000 events): the
+    /// world after the run and how it ended.
+    fn run_against_a_line(
+        bodies: Vec<BodySpec>,
+        line: [DVec2; 2],
+        revision: Revision,
+        until: f64,
+    ) -> (World, End) {
+        let scene = Scene {
+            g: 9.81,
+            bodies,
+            lines: vec![Line::new(line[0], line[1], crate::LineKind::Line)],
+            ..Scene::default()
+        };
+        let config = WorldConfig {
+            revision,
+            ..WorldConfig::default()
+        };
+        let mut world = World::new(&scene, config).expect("a valid scene");
+        let limits = Limits {
+            until,
+            max_events: 100_000,
+            ..Limits::default()
+        };
+        let end = world.run(&limits, &mut ());
+        (world, end)
+    }
+
     /// A heavy frictionless disc sliding along the floor at 7.4e-4 m/s
     /// into a light braking one that lies on it, 0.023 rad ahead of its
     /// top (mixed-box 559777's pair): the end, the events, the heavy disc's
@@ -2960,33 +2990,15 @@ mod tests {
         let heavy = DVec2::new(0.0, rh);
         let light = heavy + DVec2::new(s * tilt.sin() + 1e-6, s * tilt.cos());
         let v = 7.447e-4;
-        let scene = Scene {
-            g: 9.81,
-            bodies: vec![
-                BodySpec::new(1, heavy, rh, 0.6626, 0.0)
-                    .with_restitution(0.0)
-                    .with_velocity(DVec2::new(v, 0.0)),
-                BodySpec::new(2, light, rl, 3.286e-3, 0.3),
-            ],
-            lines: vec![Line::new(
-                DVec2::new(-1.0, 0.0),
-                DVec2::new(1.0, 0.0),
-                crate::LineKind::Line,
-            )],
-            ..Scene::default()
-        };
-        let config = WorldConfig {
-            revision,
-            ..WorldConfig::default()
-        };
-        let mut world = World::new(&scene, config).expect("a valid scene");
+        let bodies = vec![
+            BodySpec::new(1, heavy, rh, 0.6626, 0.0)
+                .with_restitution(0.0)
+                .with_velocity(DVec2::new(v, 0.0)),
+            BodySpec::new(2, light, rl, 3.286e-3, 0.3),
+        ];
+        let floor = [DVec2::new(-1.0, 0.0), DVec2::new(1.0, 0.0)];
+        let (world, end) = run_against_a_line(bodies, floor, revision, 2.0);
         let before = 0.5 * 0.6626 * v * v;
-        let limits = Limits {
-            until: 2.0,
-            max_events: 100_000,
-            ..Limits::default()
-        };
-        let end = world.run(&limits, &mut ());
         let t = world.time();
         let after: f64 = world
             .bodies()
@@ -3021,31 +3033,13 @@ mod tests {
     /// the end, the events and the heavy disc's velocity at the end.
     fn heavy_into_light_against_a_wall(revision: Revision) -> (EndReason, u64, DVec2) {
         let r = 0.01;
-        let scene = Scene {
-            g: 9.81,
-            bodies: vec![
-                BodySpec::new(1, DVec2::new(r, 0.0), r, 1e-3, 0.3).with_restitution(0.0),
-                BodySpec::new(2, DVec2::new(3.0 * r + 1e-4, 0.0), r, 1.0, 0.0)
-                    .with_velocity(DVec2::new(-1e-3, 0.0)),
-            ],
-            lines: vec![Line::new(
-                DVec2::new(0.0, -1.0),
-                DVec2::new(0.0, 1.0),
-                crate::LineKind::Line,
-            )],
-            ..Scene::default()
-        };
-        let config = WorldConfig {
-            revision,
-            ..WorldConfig::default()
-        };
-        let mut world = World::new(&scene, config).expect("a valid scene");
-        let limits = Limits {
-            until: 10.0,
-            max_events: 100_000,
-            ..Limits::default()
-        };
-        let end = world.run(&limits, &mut ());
+        let bodies = vec![
+            BodySpec::new(1, DVec2::new(r, 0.0), r, 1e-3, 0.3).with_restitution(0.0),
+            BodySpec::new(2, DVec2::new(3.0 * r + 1e-4, 0.0), r, 1.0, 0.0)
+                .with_velocity(DVec2::new(-1e-3, 0.0)),
+        ];
+        let wall = [DVec2::new(0.0, -1.0), DVec2::new(0.0, 1.0)];
+        let (world, end) = run_against_a_line(bodies, wall, revision, 10.0);
         let heavy = world.body(BodyId(2)).expect("disc 2");
         (
             end.reason,

@@ -207,12 +207,7 @@ impl World {
                 self.material[c].mass * a * rounding
             })
             .fold(f64::INFINITY, f64::min);
-        let energy: f64 = vel
-            .iter()
-            .zip(inv)
-            .map(|(v, k)| 0.5 * v.length_squared() / k)
-            .sum();
-        if !weakest.is_finite() || energy > weakest {
+        if !weakest.is_finite() || super::kinetic_energy(vel, inv) > weakest {
             return false;
         }
         let still: Vec<bool> = alpha.iter().map(|&a| a > 0.0).collect();
