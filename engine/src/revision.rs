@@ -391,6 +391,8 @@ pub enum Revision {
     ///   it stopped, carry after carry) (`Revision::carries_along_walls`).
     #[default]
     R15,
+    /// The sixteenth, as the fifteenth but:
+    R16,
 }
 
 impl Revision {
@@ -398,7 +400,7 @@ impl Revision {
     pub const LATEST: Revision = Revision::R15;
 
     /// Every revision, oldest first.
-    pub const ALL: [Revision; 15] = [
+    pub const ALL: [Revision; 16] = [
         Revision::R1,
         Revision::R2,
         Revision::R3,
@@ -414,6 +416,7 @@ impl Revision {
         Revision::R13,
         Revision::R14,
         Revision::R15,
+        Revision::R16,
     ];
 
     /// Whether this revision has the second revision's rules.
@@ -491,6 +494,11 @@ impl Revision {
     /// Whether this revision has the fifteenth revision's rules.
     pub fn at_least_r15(self) -> bool {
         self >= Revision::R15
+    }
+
+    /// Whether this revision has the sixteenth revision's rules.
+    pub fn at_least_r16(self) -> bool {
+        self >= Revision::R16
     }
 
     /// Whether a ring of a touching cluster whose kinetic energy each of
@@ -678,10 +686,10 @@ mod tests {
         for (k, r) in Revision::ALL.into_iter().enumerate() {
             assert_eq!(format!("r{}", k + 1).parse(), Ok(r));
         }
-        let err = "r16".parse::<Revision>().unwrap_err();
+        let err = "r17".parse::<Revision>().unwrap_err();
         assert_eq!(
             err.to_string(),
-            "no engine revision named \"r16\" (r1, r2, ...)"
+            "no engine revision named \"r17\" (r1, r2, ...)"
         );
     }
 }
