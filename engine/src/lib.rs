@@ -27,6 +27,7 @@
 //! [`trajectory`] (closed-form motion), [`obstacle`] (points and lines),
 //! [`contact`] (when two things touch), [`impulse`] (what a contact does),
 //! [`push`] (touching discs that brake unequally and press together),
+//! [`wedge`] (a light disc wedged along a wall by one sliding past it),
 //! [`collapse`] (the limit of endless hits at one instant), [`ring`] (a
 //! ring of hits at one instant played in memory),
 //! [`calendar`] and [`grid`] (which event is next, who is near whom),
@@ -62,6 +63,7 @@ pub mod rng;
 pub mod roots;
 pub mod scene;
 pub mod trajectory;
+pub mod wedge;
 pub mod world;
 
 pub use event::{Event, EventKind};

@@ -299,6 +299,9 @@ struct PairHits {
     /// From the twelfth revision, how fast the pair approached at its
     /// latest count (see [`Repeats::decaying`]).
     counted: Option<f64>,
+    /// How fast the pair approached at its two latest hits before this
+    /// one, the older first (see [`Repeats::geometric`]).
+    approaches: [f64; 2],
 }
 
 /// From the fifth revision, each inelastic pair's hits at the current
@@ -326,6 +329,19 @@ pub(crate) struct Repeats {
     /// From the thirteenth revision, elastic pairs' hits are kept too (see
     /// [`Repeats::with_elastic`]).
     elastic: bool,
+    /// From the sixteenth revision, a plastic pair hit again at an instant
+    /// where one of its discs was hit by a third is a collapse (see
+    /// [`Repeats::squeezed`]).
+    squeezed: bool,
+    /// From the sixteenth revision, a squeezed disc's ring whose approach
+    /// shrinks by one ratio a turn, gentle or not, is a collapse (see
+    /// [`Repeats::geometric`]).
+    geometric: bool,
+    /// Whether the latest count was taken for a squeezed disc.
+    by_squeeze: bool,
+    /// Whether that count was taken for its ring's ratio (see
+    /// [`Repeats::geometric`]).
+    by_ratio: bool,
 }
 
 impl Repeats {
@@ -340,6 +356,10 @@ impl Repeats {
             moving: 0.0,
             decaying: false,
             elastic: false,
+            squeezed: false,
+            geometric: false,
+            by_squeeze: false,
+            by_ratio: false,
         }
     }
 
@@ -373,6 +393,49 @@ impl Repeats {
     /// end either: the sequence has none, only a limit.
     pub(crate) fn decaying(mut self, on: bool) -> Self {
         self.decaying = on;
+        self
+    }
+
+    /// From the sixteenth revision: a plastic pair of discs hit a second
+    /// time at one instant, one of its discs hit by a third disc at that
+    /// instant too, is a collapse at once, where every hit of the
+    /// instant was [`GENTLE`]. The disc they share is squeezed between the
+    /// two: each hit of one pair drives it into the other, whose hit drives
+    /// it back, a ring through it whose relative speeds shrink by a
+    /// constant ratio a turn (a half to two thirds in the rows below) and which
+    /// has no end, only its plastic limit. A light
+    /// frictionless disc on the floor between a braking one at rest and
+    /// one pressed into it from above rang between the two 16 hits an
+    /// instant before [`EARLY_REPEAT_HITS`] took the limit, every few
+    /// microseconds as the disc above was pressed again, until the event
+    /// cap (mixed-box 567963); so did rows of three on the floor, the
+    /// middle one's brakings pooled with one neighbour and then the other
+    /// (mixed-box 196517, 435983) and a disc between two in a corner
+    /// (mixed-box 266709). A pair hit twice with nothing between (one
+    /// driven back into the other by a wall, or by a disc it alone
+    /// touches) is left to the count: with every pair taken at its second
+    /// gentle hit, 12 of the first 100,000 mixed boxes failed against the
+    /// fifteenth revision's 2. The collapse is the plastic limit alone,
+    /// without the kick of the pairs it leaves pressed (as
+    /// `World::cluster_ring` takes its limit): kicked, a light disc on the
+    /// floor was parted from the braking one pressing it from above every
+    /// 3.7e-8 s until the event cap (mixed-box 84278), and a light disc
+    /// rang against the disc above it at one instant until the event cap
+    /// (mixed-box 37640). With the rule the first 100,000 mixed boxes
+    /// fail 3: the fifteenth revision's 2 and 81351, a row on the floor
+    /// at rest after the rule's limit sent off again at each hit of a
+    /// disc sliding down the wall beside it.
+    pub(crate) fn squeezed(mut self, on: bool) -> Self {
+        self.squeezed = on;
+        self
+    }
+
+    /// From the sixteenth revision: a plastic pair of discs one of which a
+    /// third disc hit at the instant too, whose approach at its latest
+    /// three hits shrank by one ratio a turn (within [`ONE_RATIO`]), is a
+    /// collapse, gentle or not: see [`Repeats::squeezed`].
+    pub(crate) fn geometric(mut self, on: bool) -> Self {
+        self.geometric = on;
         self
     }
 
@@ -439,10 +502,31 @@ impl Repeats {
                     slots: (sa, sb),
                     hits: 1,
                     counted: None,
+                    approaches: [f64::NAN; 2],
                 });
                 self.hits.len() - 1
             }
         };
+        let before = self.hits[k].approaches;
+        self.hits[k].approaches = [before[1], approach.abs()];
+        // From the sixteenth revision, a ring through a squeezed disc.
+        self.by_squeeze = false;
+        self.by_ratio = false;
+        if self.squeezed && plastic && self.squeezes(k) {
+            self.by_squeeze = self.fastest <= GENTLE * self.moving;
+            return self.by_squeeze;
+        }
+        // From the sixteenth revision, the same ring shrinking by one ratio
+        // a turn, gentle or not.
+        if self.geometric
+            && plastic
+            && self.shares_disc(k)
+            && shrinks_by_one_ratio(before, approach.abs())
+        {
+            self.by_squeeze = true;
+            self.by_ratio = true;
+            return true;
+        }
         if !self.hits[k].hits.is_multiple_of(self.every) {
             return false;
         }
@@ -469,6 +553,40 @@ impl Repeats {
         gentle || decayed
     }
 
+    /// Whether the pair of `self.hits[k]` is two discs hit for the second
+    /// time at this instant, one of which another pair of discs hit at
+    /// this instant shares (see [`Repeats::squeezed`]).
+    fn squeezes(&self, k: usize) -> bool {
+        let h = &self.hits[k];
+        h.hits == 2 && self.shares_disc(k)
+    }
+
+    /// Whether the pair of `self.hits[k]` is two discs one of which another
+    /// pair of discs hit at this instant shares.
+    fn shares_disc(&self, k: usize) -> bool {
+        let (a, Some(b)) = self.hits[k].slots else {
+            return false;
+        };
+        self.hits.iter().enumerate().any(|(o, g)| {
+            let (c, Some(d)) = g.slots else {
+                return false;
+            };
+            o != k && [c, d].iter().any(|&x| x == a || x == b)
+        })
+    }
+
+    /// Whether the latest collapse [`Repeats::note`] called for was a
+    /// squeezed disc's (see [`Repeats::squeezed`]).
+    pub(crate) fn by_squeeze(&self) -> bool {
+        self.by_squeeze
+    }
+
+    /// Whether it was taken for its ring's ratio (see
+    /// [`Repeats::geometric`]).
+    pub(crate) fn by_ratio(&self) -> bool {
+        self.by_ratio
+    }
+
     /// Adds a hit of an elastic pair (see [`Repeats::with_elastic`]).
     fn keep(&mut self, pair: Pair, slots: (usize, Option<usize>)) {
         match self.hits.iter_mut().find(|h| h.pair == pair) {
@@ -478,6 +596,7 @@ impl Repeats {
                 slots,
                 hits: 1,
                 counted: None,
+                approaches: [f64::NAN; 2],
             }),
         }
     }
@@ -491,6 +610,23 @@ impl Repeats {
             .map(|h| h.slots)
             .collect()
     }
+}
+
+/// From the sixteenth revision, how far apart the ratios of a pair's
+/// approaches from one of its hits to the next may lie for its ring to be
+/// taken as a geometric sequence (see [`Repeats::geometric`]), as a
+/// fraction of what the ring loses a turn.
+pub(crate) const ONE_RATIO: f64 = 1e-2;
+
+/// Whether approaches `before` (the older first) and `now` at a pair's
+/// three latest hits shrink by one ratio a turn (see [`ONE_RATIO`]).
+fn shrinks_by_one_ratio(before: [f64; 2], now: f64) -> bool {
+    let [a, b] = before;
+    if !(a > 0.0 && b > 0.0 && now > 0.0) {
+        return false;
+    }
+    let (r1, r2) = (b / a, now / b);
+    r1 < 1.0 && r2 < 1.0 && (r2 - r1).abs() <= ONE_RATIO * (1.0 - r1.max(r2))
 }
 
 /// What the guards read of the world they watch. The event loop's world
@@ -622,6 +758,55 @@ mod tests {
             collapse_at(&plastic, without, decaying),
             collapse_at(&plastic, with, decaying)
         );
+    }
+
+    /// Three plastic discs (slots 0 to 2, ids 1 to 3), each moving at
+    /// 1 m/s after every hit.
+    struct Row;
+
+    impl Watched for Row {
+        fn slot_of(&self, id: BodyId) -> Option<usize> {
+            (id.0 >= 1 && id.0 <= 3).then(|| id.0 as usize - 1)
+        }
+        fn fastest_and_smallest(&self, _: f64) -> (f64, f64) {
+            (1.0, 1.0)
+        }
+        fn fastest_and_smallest_of(&self, _: &[usize], _: f64) -> (f64, f64) {
+            (1.0, 1.0)
+        }
+        fn restitution(&self, _: usize, _: Option<usize>) -> f64 {
+            0.0
+        }
+        fn speed_at_last_event(&self, _: usize) -> f64 {
+            1.0
+        }
+    }
+
+    #[test]
+    fn a_disc_rung_between_two_by_one_ratio_a_turn_is_a_collapse_at_a_pairs_third_hit_from_the_sixteenth_revision(
+    ) {
+        // Disc 2 rings between discs 1 and 3, hits of 2-1 and 2-3 in
+        // turn, each approaching at 0.99 of the one before: never gentle.
+        let hit = |k: u32| Event {
+            t: 1.0,
+            kind: EventKind::BodyBody {
+                a: BodyId(2),
+                b: BodyId(if k % 2 == 1 { 1 } else { 3 }),
+            },
+        };
+        let approach = |k: u32| 2.0 * 0.99f64.powi(k as i32);
+        let collapse_at = |mut repeats: Repeats| {
+            repeats.start(hit(1), approach(1));
+            (2..=400).find(|&k| repeats.note(&Row, &hit(k), approach(k)))
+        };
+        let r15 = Repeats::new(EARLY_REPEAT_HITS).decaying(true);
+        assert_eq!(collapse_at(r15), Some(2 * DECAYING_RING_HITS - 1));
+        let r16 = Repeats::new(EARLY_REPEAT_HITS)
+            .decaying(true)
+            .squeezed(true)
+            .geometric(true);
+        // The third hit of 2-1 is the instant's fifth.
+        assert_eq!(collapse_at(r16), Some(5));
     }
 
     #[test]

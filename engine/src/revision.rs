@@ -389,15 +389,113 @@ pub enum Revision {
     ///   other ahead (stopped together a few nanometres on, the pair parted
     ///   by less than the rounding of a position and was hit again before
     ///   it stopped, carry after carry) (`Revision::carries_along_walls`).
-    #[default]
     R15,
     /// The sixteenth, as the fifteenth but:
+    /// - a gentle plastic hit (its approach within `limits::GENTLE` of the
+    ///   faster disc's speed) that drives an elastic disc into an obstacle
+    ///   its normal meets at an angle, the disc bouncing back into its
+    ///   partner, is taken at once as the fourteenth revision takes one
+    ///   on a plastic disc (`World::hit_into_wall`), the elastic disc's
+    ///   contact with the obstacle plastic in the limit, where that limit
+    ///   drives no disc of it into a disc outside it: a light elastic disc
+    ///   on the floor under a plastic one nine times heavier, pressed by a
+    ///   pile a heavy frictionless disc pushed at 1e-2 m/s, bounced off
+    ///   the floor back into it, 0.29 of its speed into the floor left a
+    ///   turn, the collapse after repeated hits ending each ring at its
+    ///   instant only for the next to begin microseconds later: 17,700 of
+    ///   the last 20,000 events until the event cap; unguarded, the limit
+    ///   of a disc grazing over an elastic one at the end of a frictionless
+    ///   row on the floor pushed the row into the corner, 10,102 limits
+    ///   until the event cap
+    ///   (`Revision::takes_gentle_hit_on_elastic_disc_into_wall`);
+    /// - a plastic hit into a wall that rings (`World::hit_into_wall`) and
+    ///   whose discs have no more kinetic energy than the friction of each
+    ///   of their braking discs does over the rounding of its position
+    ///   comes to rest as the fifteenth revision rests a spent cluster's
+    ///   ring (`World::spent_ring_rest`): a light frictionless disc on the
+    ///   side wall, 5.3e-8 m above the floor, slid down at 7.1e-9 m/s
+    ///   into a heavy braking one on the floor, their contact tilted
+    ///   1.45e-6 from level; each hit was taken with the wall and the
+    ///   pressing kick sent the braking disc off at 3.5e-10 m/s, to stop
+    ///   3.1e-11 s later 5e-21 m on (below the rounding of its position)
+    ///   and be hit again at once, 9,837 of the last 20,000 events before
+    ///   `stuck`, with
+    ///   4.4e-19 J against the 5.6e-16 J its friction does over that
+    ///   rounding; two frictionless discs on the side wall sliding at
+    ///   6.6e-17 m/s into a braking one did the same, 19,845 of them
+    ///   (`Revision::rests_spent_hits_into_walls`);
+    /// - a pair resting by its energy (`push::spent_within_gap`) whose
+    ///   plastic limit against its held braking discs stalls the
+    ///   projection on no more contacts than its free discs have
+    ///   directions is solved by the active-set method, as the twelfth
+    ///   revision solves a caged disc's: a frictionless disc on the side
+    ///   wall sliding down at 1.5e-8 m/s into a braking one on the floor,
+    ///   the wall's contact and the pair's 2e-5 from parallel, stalled the
+    ///   projection, so the pair was kicked apart instead of resting; the
+    ///   braking disc stopped 1e-10 s later and was hit again at that
+    ///   instant, the wedging disc gaining speed from the kicks, 6,640
+    ///   cycles of the last 20,000 events before `stuck` (`Revision::rests_wedged_spent_pairs`);
+    /// - a plastic pair of discs hit a second time at one gentle instant,
+    ///   one of its discs hit by a third disc at that instant too, is taken
+    ///   at once as the collapse of the instant's repeated pairs (their
+    ///   plastic limit alone, not kicked apart after it): the disc
+    ///   they share is squeezed between its two neighbours, each hit
+    ///   driving it into the other, a ring whose relative speeds shrink by
+    ///   a half to a third a turn and never end; a light frictionless disc on the floor between
+    ///   a braking one at rest and one pressed into it from above rang 16
+    ///   hits an instant before the eighth hit of a pair took the limit,
+    ///   again every few microseconds as the disc above was pressed, until
+    ///   the event cap (mixed-box 567963; rows of three on the floor in
+    ///   196517 and 435983, a disc between two in a corner in 266709)
+    ///   (`Revision::collapses_rings_through_squeezed_discs`);
+    /// - a light disc lying against the one obstacle it touches, wedged
+    ///   aside by a heavy disc sliding past it (at least 60 degrees off
+    ///   their line of centres) and braking less, held by another disc
+    ///   and touching no obstacle, is taken with the obstacle holding
+    ///   the light disc to its line and the heavy one to its own through
+    ///   the hit, and carried along the obstacle as the heavy one slides
+    ///   past (`wedge::carried_along_wall`): a heavy frictionless disc
+    ///   sliding towards a wall at 3.7e-4 m/s along a disc in the corner
+    ///   pressed a 1.6 g disc braking at 4.2 m/s^2 up the wall, one hit
+    ///   every 9.7e-6 s until the event cap at 5.6 s (7 s of such hits were
+    ///   left), the fourteenth revision's carry refused because the pushed
+    ///   disc touched the wall; it reaches the 100 s horizon in 11,039
+    ///   events (`Revision::carries_wedged_discs_along_their_walls`);
+    /// - a pushing disc carried aside (`push::carried`) that touches no
+    ///   wall but slides past a disc at rest pinned in a corner by its two
+    ///   walls against the push is held to the tangent at their contact
+    ///   through the hit, as the fifteenth revision holds one sliding
+    ///   along a wall (`World::pinning_disc`): carried along the line of
+    ///   centres, the heavy disc (0.98 kg, braking at 0.013 m/s^2) sliding
+    ///   at 2.1e-3 m/s past a frictionless disc in the corner was driven
+    ///   into it, hit it 1e-9 s later and lost the carried braking, and
+    ///   the light disc (2.4 g, braking at 99 m/s^2) it wedged aside was
+    ///   kicked, stopped and caught again every 2.3e-6 s until the event
+    ///   cap at 1.68 s (mixed-box 211562; a frictionless disc squeezed up
+    ///   at 1.3e-6 m/s between a disc in the corner and a braking one,
+    ///   to the cap at 3.7 s, in 549516); the boxes rest at 1.76 s and
+    ///   reach the 100 s horizon (`Revision::holds_pushers_on_pinned_discs`);
+    /// - a plastic pair of discs, one of which a third disc hit at that
+    ///   instant too, whose approach at its three latest hits shrank by one
+    ///   ratio a turn, gentle or not, is taken at once as the instant's
+    ///   collapse, its plastic limit alone, solved by the active-set method
+    ///   where a short projection does not reach it: a light plastic disc
+    ///   (1.1 g) on the floor between a 0.62 kg disc in the corner and a
+    ///   106 g frictionless one pushed into it every 1e-4 s rang between
+    ///   the two at one instant, each hit at
+    ///   the discs' full speed and 0.9879 of the one before, taken only
+    ///   at the 160th hit of a pair, 9,328 hits of one pair in the last
+    ///   20,000 events before the event cap at 6.04 s (mixed-box 143264;
+    ///   a light elastic disc between a heavy one in the corner and a
+    ///   plastic one, 52,923 events and 1.2 s to the horizon, in 376685)
+    ///   (`Revision::collapses_geometric_rings_through_squeezed_discs`).
+    #[default]
     R16,
 }
 
 impl Revision {
     /// The revision new computations use.
-    pub const LATEST: Revision = Revision::R15;
+    pub const LATEST: Revision = Revision::R16;
 
     /// Every revision, oldest first.
     pub const ALL: [Revision; 16] = [
@@ -508,6 +606,24 @@ impl Revision {
     /// limit (a fifteenth revision rule, see `World::spent_ring_rest`).
     pub fn rests_spent_rings(self) -> bool {
         self.at_least_r15()
+    }
+
+    /// Whether a plastic pair of discs hit a second time at one instant,
+    /// every hit of it gentle, one of its discs hit by a third disc at that
+    /// instant too, is taken at once as the instant's collapse, its
+    /// plastic limit alone, instead of at the eighth hit of a pair and
+    /// kicked (a sixteenth revision rule, see `limits::Repeats::squeezed`).
+    pub fn collapses_rings_through_squeezed_discs(self) -> bool {
+        self.at_least_r16()
+    }
+
+    /// Whether a plastic pair of discs one of which a third disc hit at
+    /// the same instant, its approach shrinking by one ratio over its three
+    /// latest hits, is taken at once as the instant's collapse, its
+    /// plastic limit alone, gentle or not (a sixteenth revision rule, see
+    /// `limits::Repeats::geometric`).
+    pub fn collapses_geometric_rings_through_squeezed_discs(self) -> bool {
+        self.at_least_r16()
     }
 
     /// Whether a plastic hit whose touching cluster, its hits played in
@@ -635,6 +751,17 @@ impl Revision {
         self.at_least_r14()
     }
 
+    /// Whether a gentle plastic hit that drives an elastic disc into an
+    /// obstacle it touches, the disc bouncing back into its partner, is
+    /// taken at once as one plastic limit with the obstacles, as the
+    /// fourteenth revision takes one on a plastic disc, where the limit
+    /// drives none of its discs into a disc outside it (a sixteenth
+    /// revision rule, see `World::hit_into_wall` and
+    /// `World::drives_into_others`).
+    pub fn takes_gentle_hit_on_elastic_disc_into_wall(self) -> bool {
+        self.at_least_r16()
+    }
+
     /// Whether the plastic limit of a ring (`World::cluster_ring`,
     /// `World::hit_into_wall`) takes in the obstacles its discs touch that
     /// the limit of the ringing contacts alone would drive them into (a
@@ -651,6 +778,15 @@ impl Revision {
         self.at_least_r15()
     }
 
+    /// Whether a disc carried aside by one sliding past it
+    /// (`push::carried`) while it lies against the one obstacle it
+    /// touches is carried along that obstacle, which holds it to its line
+    /// (a sixteenth revision rule, see `wedge::carried_along_wall` and
+    /// `World::wedged_along_wall`).
+    pub fn carries_wedged_discs_along_their_walls(self) -> bool {
+        self.at_least_r16()
+    }
+
     /// Whether an elastic pair pressed head-on whose bounces stay within
     /// the pressing contact's gap and would number at least
     /// `push::LONG_BOUNCES` before it stops is taken as the end of its
@@ -658,6 +794,34 @@ impl Revision {
     /// `push::bounces_long_within_gap`).
     pub fn ends_long_bounces_within_gap(self) -> bool {
         self.at_least_r15()
+    }
+
+    /// Whether a plastic hit into a wall that rings (`World::hit_into_wall`)
+    /// and whose discs have no more kinetic energy than the friction of each
+    /// of their braking discs does over the rounding of its position comes
+    /// to rest, as the fifteenth revision rests a spent cluster's ring (a
+    /// sixteenth revision rule, see `World::spent_ring_rest`).
+    pub fn rests_spent_hits_into_walls(self) -> bool {
+        self.at_least_r16()
+    }
+
+    /// Whether a pair resting by its energy (`push::spent_within_gap`)
+    /// whose plastic limit against its held braking discs stalls the
+    /// projection on no more contacts than its free discs have directions
+    /// is solved by the active-set method (a sixteenth revision rule, see
+    /// `World::press_cluster`).
+    pub fn rests_wedged_spent_pairs(self) -> bool {
+        self.at_least_r16()
+    }
+
+    /// Whether a pushing disc carried aside (`push::carried`) that touches
+    /// no wall but slides past a disc at rest pinned by its walls against
+    /// the push is held to that disc's tangent through the hit, as the
+    /// fifteenth revision holds one sliding along a wall (a sixteenth
+    /// revision rule, see `World::pinning_disc` and
+    /// `push::plastic_along_wall`).
+    pub fn holds_pushers_on_pinned_discs(self) -> bool {
+        self.at_least_r16()
     }
 }
 

@@ -43,6 +43,7 @@ use crate::revision::Revision;
 use crate::roots::Method;
 use crate::scene::{BodySpec, Scene, SceneError};
 use crate::trajectory::Trajectory;
+use crate::wedge;
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
 
@@ -50,6 +51,14 @@ use serde::{Deserialize, Serialize};
 /// normals above which a disc touching both lies in a corner (see
 /// `World::cornered_hit`): walls meeting at 30 degrees or more.
 const CORNER_SINE: f64 = 0.5;
+
+/// From the sixteenth revision, the largest part of its speed with which a
+/// pushing disc may move across the line tangent to a disc pinned by its
+/// walls and still be taken as sliding along it (see
+/// `World::hit_along_wall`): a disc passing a curved side in a straight
+/// line leaves it so, by 1.1e-7 of its speed a few microseconds after
+/// they last met.
+const PINNED_SLIDE: f64 = 1e-6;
 
 /// From the twelfth revision, the fraction of the faster disc's speed under
 /// which a plastic hit on a light disc in a corner approaches for it to be
@@ -595,7 +604,17 @@ impl World {
             REPEAT_HITS
         })
         .decaying(self.config.revision.collapses_decaying_plastic_rings())
-        .with_elastic(self.config.revision.collapses_rings_with_elastic_pairs());
+        .with_elastic(self.config.revision.collapses_rings_with_elastic_pairs())
+        .squeezed(
+            self.config
+                .revision
+                .collapses_rings_through_squeezed_discs(),
+        )
+        .geometric(
+            self.config
+                .revision
+                .collapses_geometric_rings_through_squeezed_discs(),
+        );
         // From the seventh revision: the fine clock (see `clock`), and the
         // current instant's tick (see `World::instant_tick`), worked out
         // only once an event comes near it.
@@ -663,7 +682,17 @@ impl World {
                         recent.clear();
                     }
                     if r5 && repeats.note(self, &event, self.last_approach) {
-                        self.collapse_repeated(&repeats.repeated(), t);
+                        // From the sixteenth revision, a squeezed disc's
+                        // ring is taken to its plastic limit alone, and
+                        // one shrinking by one ratio a turn is solved by
+                        // the active-set method before the projection's
+                        // cap.
+                        self.collapse_repeated(
+                            &repeats.repeated(),
+                            !repeats.by_squeeze(),
+                            repeats.by_ratio(),
+                            t,
+                        );
                     }
                 } else {
                     instant = (t, 0);
@@ -951,8 +980,17 @@ impl World {
     /// from the eleventh revision, not one with an obstacle, which the
     /// limit would otherwise drive a disc into a picosecond later. From the
     /// thirteenth, `pairs` names the elastic pairs hit more than once too
-    /// (see `limits::Repeats::with_elastic`).
-    fn collapse_repeated(&mut self, pairs: &[(usize, Option<usize>)], t: f64) {
+    /// (see `limits::Repeats::with_elastic`). Followed by the kick of the
+    /// pairs it leaves pressed where `kick` is set (from the sixteenth
+    /// revision, not for a squeezed disc's ring: see
+    /// `limits::Repeats::squeezed`).
+    fn collapse_repeated(
+        &mut self,
+        pairs: &[(usize, Option<usize>)],
+        kick: bool,
+        active_first: bool,
+        t: f64,
+    ) {
         // From the eleventh revision, with every obstacle a member touches
         // (see `Revision::R11`).
         let walls = self.config.revision.at_least_r11();
@@ -982,7 +1020,7 @@ impl World {
         }
         let mut contacts = self.contacts_among(&members, t);
         contacts.retain(|c| involved(self, members[c.a], c.b.map(|b| members[b])));
-        let taken = self.collapse_contacts(&members, contacts, t);
+        let taken = self.collapse_contacts_kicked(&members, contacts, kick, active_first, t);
         self.stats.collapses += taken as u64;
     }
 
@@ -1064,9 +1102,32 @@ impl World {
         contacts: Vec<collapse::Contact>,
         t: f64,
     ) -> bool {
+        self.collapse_contacts_kicked(members, contacts, true, false, t)
+    }
+
+    /// As `collapse_contacts`, the kick left out where `kick` is not set
+    /// (the plastic limit alone, see `limits::Repeats::squeezed`). Where
+    /// `active_first` is set (a ring that shrinks by one ratio a turn, see
+    /// `limits::Repeats::geometric`) the projection is given the pressing
+    /// kick's [`PRESS_SWEEPS`] before the active-set method solves the
+    /// limit, and its [`collapse::MAX_SWEEPS`] only where that fails: on
+    /// such a ring it converges as slowly as the ring, sweep after sweep
+    /// up to its cap, at every collapse.
+    fn collapse_contacts_kicked(
+        &mut self,
+        members: &[usize],
+        contacts: Vec<collapse::Contact>,
+        kick: bool,
+        active_first: bool,
+        t: f64,
+    ) -> bool {
         let (vel, inv) = self.motion(members, t);
         let r3 = self.config.revision.at_least_r3();
-        let plastic = if r3 {
+        let plastic = if active_first {
+            collapse::resolve(&vel, &inv, &contacts, PRESS_SWEEPS)
+                .or_else(|| collapse::active_set(&vel, &inv, &contacts))
+                .or_else(|| collapse::resolve(&vel, &inv, &contacts, collapse::MAX_SWEEPS))
+        } else if r3 {
             collapse::resolve(&vel, &inv, &contacts, collapse::MAX_SWEEPS).or_else(|| {
                 // From the ninth revision, where the projection stalls and
                 // the exact solve of what it pushes is singular (a packed
@@ -1083,7 +1144,7 @@ impl World {
         let Some(after) = plastic else {
             return false;
         };
-        self.take_plastic_limit(members, contacts, (&vel, &inv), after, r3, t)
+        self.take_plastic_limit(members, contacts, (&vel, &inv), after, r3 && kick, t)
     }
 
     /// Sets the velocities of `members` (slots; `vel` and `inv` their
@@ -1147,7 +1208,13 @@ impl World {
     /// From the eleventh revision, a pair whose energy cannot move its
     /// braking discs beyond the gap ([`push::spent_within_gap`]) rests
     /// even with a frictionless disc in it: the braking discs held, the
-    /// frictionless one keeping what does not run into them.
+    /// frictionless one keeping what does not run into them. From the
+    /// sixteenth revision, where the projection of that rest stalls on no
+    /// more contacts than the free discs have directions (a frictionless
+    /// disc wedged between a wall and a held disc, the two contacts 2e-5
+    /// from parallel), the active-set method finds it: kicked instead, the
+    /// held disc stopped 1e-10 s later and was hit again at that instant,
+    /// until `stuck` (mixed-box 438889).
     fn press_cluster(
         &mut self,
         i: usize,
@@ -1244,6 +1311,12 @@ impl World {
                 };
                 let held_rest_by_active_set =
                     self.config.revision.rests_caged_discs_by_active_set();
+                // From the sixteenth revision, a pair resting by its energy
+                // whose projection stalls on fewer contacts (a frictionless
+                // disc wedged between a wall and a held disc, the two
+                // contacts nearly parallel) is solved exactly too.
+                let spent_rest_by_active_set =
+                    kick.is_some() && self.config.revision.rests_wedged_spent_pairs();
                 let hold = |still: &[bool]| {
                     let mut held = vel.clone();
                     let mut inv_held = inv.clone();
@@ -1262,7 +1335,8 @@ impl World {
                             // disc caged by held ones), the active-set
                             // method.
                             let free = inv_held.iter().filter(|&&k| k > 0.0).count();
-                            (held_rest_by_active_set && contacts.len() > 2 * free)
+                            (held_rest_by_active_set
+                                && (contacts.len() > 2 * free || spent_rest_by_active_set))
                                 .then(|| collapse::active_set(&held, &inv_held, &contacts))
                                 .flatten()
                         })
@@ -2000,12 +2074,18 @@ impl World {
         // obstacle it touches, which the hit would drive into it, is held
         // to it through the hit (see `World::hit_along_wall`).
         let mut along_wall = false;
+        // From the sixteenth revision, the disc pinned by its walls that
+        // holds the pushing disc instead of a wall (see
+        // `World::pinning_disc`).
+        let mut pinning = None;
         if self.config.revision.carries_wedged_discs_along_walls()
             || self.config.revision.carries_along_walls()
         {
-            if let Some([wi, wj]) = self.hit_along_wall(i, j, [ui, uj], [vi, vj], n, alpha, t) {
+            if let Some(([wi, wj], p)) = self.hit_along_wall(i, j, [ui, uj], [vi, vj], n, alpha, t)
+            {
                 (vi, vj) = (wi, wj);
                 along_wall = true;
+                pinning = p;
             }
         }
         let s = mi.radius + mj.radius;
@@ -2021,6 +2101,16 @@ impl World {
             Some(push::Press::Part(_))
         ) {
             return false;
+        }
+        // From the sixteenth revision, a pushed disc held to the one
+        // obstacle it touches slides along it (see `World::wedged_along_wall`).
+        if self
+            .config
+            .revision
+            .carries_wedged_discs_along_their_walls()
+            && self.wedged_along_wall(i, j, [pi, pj], [ui, uj], n, t)
+        {
+            return true;
         }
         let before = [vi, vj];
         let Some([(vi, ai), (vj, aj)]) = push::carried(
@@ -2064,7 +2154,9 @@ impl World {
             };
             let stops = v_h == before[usize::from(h == j)];
             if stops {
-                let alone = self.touching(h, &at).all(|c| c == i || c == j);
+                let alone = self
+                    .touching(h, &at)
+                    .all(|c| c == i || c == j || Some(c) == pinning);
                 if !(self.config.revision.carries_wedged_discs_along_walls() && alone) {
                     return false;
                 }
@@ -2105,6 +2197,73 @@ impl World {
         true
     }
 
+    /// From the sixteenth revision, a hit about to be carried
+    /// ([`World::carried_press`]: the discs in slots `i` and `j` at `p`,
+    /// velocities `u` before it, unit normal `n` towards `i`) whose pushed
+    /// disc `L` (the one braking harder) lies against the one obstacle it
+    /// touches and touches no disc but the pushing one `H`, which touches
+    /// no obstacle but some other disc (which takes the sideways share of
+    /// the contact force, as in `push::carried`): the hit is taken with the
+    /// obstacle holding `L` to its line and the other disc `H` to its own,
+    /// and `L` is carried along the obstacle as `H` slides past it
+    /// ([`wedge::carried_along_wall`]), where `L`'s whole slide keeps clear
+    /// of every other disc. A heavy frictionless disc sliding towards a
+    /// wall between a disc in the corner and a light braking disc against
+    /// the wall pressed the light one up the wall, one hit every 1e-5 s,
+    /// each kick spent by its friction before the next, until the event
+    /// cap 0.24 s on (7 s of such hits were left). `false` (nothing done)
+    /// where the rule does not apply.
+    fn wedged_along_wall(
+        &mut self,
+        i: usize,
+        j: usize,
+        [pi, pj]: [DVec2; 2],
+        u: [DVec2; 2],
+        n: DVec2,
+        t: f64,
+    ) -> bool {
+        let (mi, mj) = (self.material[i], self.material[j]);
+        let alpha = [mi.mu * self.g, mj.mu * self.g];
+        let (h, l) = if alpha[1] > alpha[0] { (i, j) } else { (j, i) };
+        let at = self.positions(t);
+        let walls = self.contacts_among(&[l], t);
+        let [wall] = walls[..] else {
+            return false;
+        };
+        // `H` touches another disc, which takes its sideways share of the
+        // contact force, and no obstacle.
+        let held = self.touching(h, &at).any(|c| c != l) && self.contacts_among(&[h], t).is_empty();
+        let alone = self.touching(l, &at).all(|c| c == h);
+        if !(held && alone && wall.b.is_none()) {
+            return false;
+        }
+        let m = [mi.mass, mj.mass];
+        let k = usize::from(l == j);
+        let s = mi.radius + mj.radius;
+        let Some([(vi, ai), (vj, aj)]) =
+            wedge::carried_along_wall(u, m, alpha, n, s, k, wall.n, self.config.revision)
+        else {
+            return false;
+        };
+        // The pushed disc's whole slide keeps clear of every other disc.
+        let (v_l, a_l) = if l == i { (vi, ai) } else { (vj, aj) };
+        let reach = v_l.length_squared() / (2.0 * a_l);
+        let r_l = self.slots[l].radius;
+        let blocked = (0..self.slots.len()).any(|c| {
+            c != l
+                && c != h
+                && self.slots[c].alive
+                && (at[c] - at[l]).length() - (r_l + self.slots[c].radius) <= reach
+        });
+        if blocked || !reach.is_finite() {
+            return false;
+        }
+        let new_i = Trajectory::new(t, pi, vi, ai);
+        let new_j = Trajectory::new(t, pj, vj, aj);
+        self.leave_hit(i, j, new_i, new_j, t);
+        true
+    }
+
     /// From the fifteenth revision, the plastic hit of a pair about to be
     /// carried ([`World::carried_press`]) whose pushing disc `H` (the one
     /// braking less) slides along the one obstacle it touches, the plastic
@@ -2121,7 +2280,11 @@ impl World {
     /// or does not slide along it; and `World::carried_press` takes the
     /// carry so only in its two guarded cases: the pair stopping together
     /// with `H` touching no other disc, or `H` passing with the carried
-    /// disc's slide clear of every other disc (see there).
+    /// disc's slide clear of every other disc (see there). From the
+    /// sixteenth revision, where `H` touches no obstacle, a disc pinned
+    /// by its walls against `H` ([`World::pinning_disc`]) holds it so
+    /// instead, to the line tangent to both at their contact; the pinning
+    /// disc's slot comes with the velocities.
     #[allow(clippy::too_many_arguments)]
     fn hit_along_wall(
         &self,
@@ -2132,23 +2295,87 @@ impl World {
         n: DVec2,
         alpha: [f64; 2],
         t: f64,
-    ) -> Option<[DVec2; 2]> {
+    ) -> Option<([DVec2; 2], Option<usize>)> {
         let h = usize::from(alpha[1] < alpha[0]);
-        let slot = if h == 0 { i } else { j };
+        let (slot, other) = if h == 0 { (i, j) } else { (j, i) };
         let walls: Vec<DVec2> = self
             .contacts_among(&[slot], t)
             .iter()
             .filter(|c| c.b.is_none())
             .map(|c| c.n)
             .collect();
-        let [wall] = walls[..] else {
-            return None;
+        let (wall, pinning) = match walls[..] {
+            [wall] => (wall, None),
+            [] if self.config.revision.holds_pushers_on_pinned_discs() => {
+                let (p, wall) = self.pinning_disc(slot, other, t)?;
+                (wall, Some(p))
+            }
+            _ => return None,
         };
         if !(v[h].dot(wall) < -1e-12 * v[h].length()) {
             return None;
         }
+        let mut u = u;
+        if pinning.is_some() {
+            // `H` slides past the pinning disc's curved side in a straight
+            // line: within [`PINNED_SLIDE`] of its speed, the turn of the
+            // tangent since they last met, it slides along it.
+            let across = u[h].dot(wall);
+            if !(across.abs() <= PINNED_SLIDE * u[h].length()) {
+                return None;
+            }
+            u[h] -= wall * across;
+        }
         let m = [self.material[i].mass, self.material[j].mass];
-        push::plastic_along_wall(u, m, h, n, wall)
+        push::plastic_along_wall(u, m, h, n, wall).map(|v| (v, pinning))
+    }
+
+    /// From the sixteenth revision, the one disc other than `other` that
+    /// the disc in slot `h` touches at `t`, where that disc is at rest,
+    /// touches no disc but `h` and discs at rest (not `other`: no chain),
+    /// and two obstacles that are not parallel
+    /// (see [`CORNER_SINE`]), and those obstacles' normal forces can take
+    /// any push from `h` along the line of centres (the direction from
+    /// `h` to it lies in the cone of the obstacles' inward normals): such
+    /// a disc cannot move before `h`, and holds it as a wall along the
+    /// tangent at their contact would. Its slot and the unit normal from
+    /// it to `h`; `None` where `h` touches no such disc, or another disc
+    /// besides.
+    fn pinning_disc(&self, h: usize, other: usize, t: f64) -> Option<(usize, DVec2)> {
+        let at = self.positions(t);
+        let discs: Vec<usize> = self.touching(h, &at).filter(|&c| c != other).collect();
+        let [p] = discs[..] else {
+            return None;
+        };
+        let resting = |c: usize| self.slots[c].traj.velocity(t) == DVec2::ZERO;
+        if !resting(p)
+            || self
+                .touching(p, &at)
+                .any(|c| c != h && (c == other || !resting(c)))
+        {
+            return None;
+        }
+        let walls: Vec<DVec2> = self
+            .contacts_among(&[p], t)
+            .iter()
+            .filter(|c| c.b.is_none())
+            .map(|c| c.n)
+            .collect();
+        let [w1, w2] = walls[..] else {
+            return None;
+        };
+        let det = w1.perp_dot(w2);
+        if !(det.abs() > CORNER_SINE) {
+            return None;
+        }
+        // The push's direction, from `h` to `p`, as `-(a w1 + b w2)`: the
+        // obstacles take it where `a` and `b` are not negative.
+        let d = (at[p] - at[h]).normalize();
+        let (a, b) = ((-d).perp_dot(w2) / det, w1.perp_dot(-d) / det);
+        if !(a >= 0.0 && b >= 0.0) {
+            return None;
+        }
+        Some((p, -d))
     }
 
     /// From the twelfth revision, a gentle plastic hit between the discs in
@@ -2318,6 +2545,30 @@ impl World {
     /// limit would take from it (a disc grazing over an elastic one on the
     /// floor, each hit so taken, met it again at once, 10,000 such limits
     /// until the event cap, mixed-box 98120).
+    ///
+    /// From the sixteenth revision an elastic disc so driven is taken too
+    /// (`Revision::takes_gentle_hit_on_elastic_disc_into_wall`), where the
+    /// limit drives none of its discs into a disc outside it
+    /// (`World::drives_into_others`): a ring that converges ends with both
+    /// contacts closed, the disc neither leaving the obstacle nor its
+    /// partner, and two closed contacts with impulses along their normals
+    /// alone fix that end, which is the plastic limit. A light elastic disc
+    /// on the floor under a plastic one nine times heavier bounced back
+    /// into it, 0.29 of its speed into the floor left a turn; the collapse
+    /// after repeated hits ended each ring, and the pile pressing the pair
+    /// began the next microseconds later, until the event cap (mixed-box
+    /// 28232, 506944, 555153). Where the limit hands its motion on at once
+    /// (mixed-box 98120, the disc at the end of a frictionless row) it is
+    /// left to its hits as before.
+    ///
+    /// From the sixteenth revision, too, a ring whose discs have no more kinetic
+    /// energy than each of its braking discs' friction does over the
+    /// rounding of its position comes to rest as a cluster's spent ring
+    /// does (`World::spent_ring_rest`): taken to its limit and kicked
+    /// apart by the pressing contact, a frictionless disc sliding down a
+    /// wall at 7e-9 m/s into a heavy braking one on the floor sent it off
+    /// at 3.5e-10 m/s, to stop 3e-11 s later and be hit again at once,
+    /// until `stuck` (mixed-box 536265).
     fn hit_into_wall(
         &mut self,
         i: usize,
@@ -2382,8 +2633,16 @@ impl World {
         // meets at an angle (`GENTLE_WALL_COSINE`): a hit along a row on a
         // wall drives its discs into the wall by rounding alone.
         let gentle_turn = |k: usize| {
+            // From the sixteenth revision a disc with restitution too, hit
+            // by a plastic partner (not at a chatter's end).
             let e = self.material[[i, j][k]].restitution;
-            if e != 0.0 {
+            if e != 0.0
+                && (chatter_end
+                    || !self
+                        .config
+                        .revision
+                        .takes_gentle_hit_on_elastic_disc_into_wall())
+            {
                 return false;
             }
             let mut w = [vi, vj];
@@ -2422,6 +2681,15 @@ impl World {
         if !(slow[0] || slow[1]) && members.len() > GENTLE_WALL_MEMBERS {
             return false;
         }
+        // From the sixteenth revision, a ring whose energy its braking
+        // spends within the rounding of its positions comes to rest, as a
+        // cluster's ring does.
+        if self.config.revision.rests_spent_hits_into_walls() {
+            let (vel, inv) = self.motion(&members, t);
+            if self.spent_ring_rest(&members, &vel, &inv, t) {
+                return true;
+            }
+        }
         let mut contacts = self.contacts_among(&members, t);
         // From the fifteenth revision, every obstacle a member touches, for
         // those the limit drives its discs into.
@@ -2448,7 +2716,12 @@ impl World {
         if walls.is_empty() {
             return self.collapse_few_contacts(&members, contacts, t);
         }
-        self.collapse_few_contacts_reaching(&members, contacts, &walls, noise, t)
+        // From the sixteenth revision, an elastic disc rung gently against
+        // an obstacle: only a limit that hands no motion on to a disc
+        // outside the ring.
+        let elastic_ring =
+            (0..2).any(|k| ringing[k] && !slow[k] && self.material[[i, j][k]].restitution != 0.0);
+        self.collapse_few_contacts_reaching(&members, contacts, &walls, noise, elastic_ring, t)
     }
 
     /// Whether the discs in slots `i` and `j`, leaving a hit along `n` (from
@@ -2503,6 +2776,7 @@ impl World {
         contacts: Vec<collapse::Contact>,
         walls: &[collapse::Contact],
         noise: f64,
+        closed: bool,
         t: f64,
     ) -> bool {
         let (vel, inv) = self.motion(members, t);
@@ -2513,7 +2787,27 @@ impl World {
         };
         let (contacts, after) =
             reached_walls::with_walls_reached(&vel, &inv, contacts, after, walls, noise);
+        if closed && self.drives_into_others(members, &after, noise, t) {
+            return false;
+        }
         self.take_plastic_limit(members, contacts, (&vel, &inv), after, true, t)
+    }
+
+    /// Whether `members` (slots), leaving a limit at velocities `after`,
+    /// would approach a disc outside them that one of them touches faster
+    /// than `noise`: a limit that hands its motion on at once (the sixteenth
+    /// revision's elastic disc rung against an obstacle, see
+    /// `World::hit_into_wall`).
+    fn drives_into_others(&self, members: &[usize], after: &[DVec2], noise: f64, t: f64) -> bool {
+        let at = self.positions(t);
+        members.iter().zip(after).any(|(&m, &v)| {
+            self.touching(m, &at)
+                .filter(|c| !members.contains(c))
+                .any(|c| {
+                    let n = (at[c] - at[m]).normalize_or_zero();
+                    (v - self.slots[c].traj.velocity(t)).dot(n) > noise
+                })
+        })
     }
 
     /// What the approximated pressing contact does to two discs just hit

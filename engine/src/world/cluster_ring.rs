@@ -187,7 +187,9 @@ impl World {
     /// more, no disc brakes, or the limit against the held discs has no
     /// answer. Held to the pressing contact's gap instead of the rounding,
     /// the rest took rings far from rest, and a ring in a corner that
-    /// reached its horizon went on to `stuck` (mixed-box 136800).
+    /// reached its horizon went on to `stuck` (mixed-box 136800). From the
+    /// sixteenth revision a ring of `World::hit_into_wall` rests so too
+    /// (`Revision::rests_spent_hits_into_walls`).
     pub(super) fn spent_ring_rest(
         &mut self,
         slots: &[usize],

@@ -605,8 +605,15 @@ mod tests {
     /// What a browser that accepts brotli downloads: the figure a player
     /// waits for (428 KB when the budget was set; 444,146 bytes before the
     /// offline matches, 554,008 with them, 569,340 with the engine's
-    /// thirteenth revision, 577,503 with its fifteenth).
-    const WASM_BROTLI_BUDGET_BYTES: usize = 580_000;
+    /// thirteenth revision, 577,503 with its fifteenth). It was 580,000
+    /// until the engine's sixteenth revision, whose rules took it to
+    /// 580,081: the page replays every revision's records, so each
+    /// revision's rules are bytes it must carry. Building the client's
+    /// other crates for size (`opt-level = "z"`) would save about 35 KB
+    /// gzipped, but the same setting made the engine 1.6 times slower, and
+    /// under link-time optimisation a per-crate level is not yet measured
+    /// to keep the engine's speed in the page.
+    const WASM_BROTLI_BUDGET_BYTES: usize = 600_000;
 
     #[test]
     fn the_embedded_wasm_stays_within_its_size_budget() {
