@@ -502,7 +502,22 @@ pub(crate) fn carried(
         out[l] = (to_l * carried, carried / duration);
         return Some(out);
     }
-    // `work` grows on [0, pass]: bisect to where it spends the energy.
+    let stop = spent_at(work, energy, pass);
+    if !(stop > 0.0) {
+        return None;
+    }
+    // Both stop together after `2 y* / |v_H|`.
+    let duration = 2.0 * stop / speed;
+    out[h] = (vh, speed / duration);
+    out[l] = (vl, c / duration);
+    Some(out)
+}
+
+/// Where `work`, growing on `[0, pass]`, spends `energy`: the upper end
+/// of the bracket [`CARRY_BISECTIONS`] bisections (or the rounding of a
+/// double) leave, so that the work there is at least the energy. The
+/// pushing disc's stop in a carry (`carried`, `wedge::carried_along_wall`).
+pub(crate) fn spent_at(work: impl Fn(f64) -> f64, energy: f64, pass: f64) -> f64 {
     let (mut lo, mut hi) = (0.0, pass);
     for _ in 0..CARRY_BISECTIONS {
         let mid = 0.5 * (lo + hi);
@@ -515,15 +530,7 @@ pub(crate) fn carried(
             hi = mid;
         }
     }
-    let stop = hi;
-    if !(stop > 0.0) {
-        return None;
-    }
-    // Both stop together after `2 y* / |v_H|`.
-    let duration = 2.0 * stop / speed;
-    out[h] = (vh, speed / duration);
-    out[l] = (vl, c / duration);
-    Some(out)
+    hi
 }
 
 /// Least sine of the angle between the pushing disc's direction and the

@@ -13,11 +13,6 @@ use crate::push::{self, SAME};
 use crate::revision::Revision;
 use glam::DVec2;
 
-/// Most bisection steps [`carried_along_wall`] takes to find where a
-/// pushing disc stops (each halves the interval; 64 reach the rounding
-/// of a double).
-const BISECTIONS: usize = 64;
-
 /// Largest cosine of the angle between the pushing disc's direction and
 /// the normal for which [`carried_along_wall`] takes a pair: `H` slides
 /// past `L` (at least 60 degrees off the line of centres) rather than
@@ -163,20 +158,8 @@ pub(crate) fn carried_along_wall(
         out[l] = (tau * start, rate * passing * passing / reach);
         return Some(out);
     }
-    // `work` grows on [0, pass]: bisect to where it spends the energy.
-    let (mut lo, mut hi) = (0.0, pass);
-    for _ in 0..BISECTIONS {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        if work(mid) < energy {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    let stop = hi;
+    // `work` grows on [0, pass]: where it spends the energy.
+    let stop = push::spent_at(work, energy, pass);
     if !(stop > 0.0) {
         return None;
     }

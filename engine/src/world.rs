@@ -2165,15 +2165,7 @@ impl World {
                     return false;
                 }
                 let (v_l, a_l) = if l == i { (vi, ai) } else { (vj, aj) };
-                let reach = v_l.length_squared() / (2.0 * a_l);
-                let r_l = self.slots[l].radius;
-                let blocked = (0..self.slots.len()).any(|c| {
-                    c != l
-                        && c != h
-                        && self.slots[c].alive
-                        && (at[c] - at[l]).length() - (r_l + self.slots[c].radius) <= reach
-                });
-                if blocked || !reach.is_finite() {
+                if self.slide_blocked(l, h, v_l, a_l, &at) {
                     return false;
                 }
             }
@@ -2195,6 +2187,23 @@ impl World {
         let new_j = Trajectory::new(t, pj, vj, aj);
         self.leave_hit(i, j, new_i, new_j, t);
         true
+    }
+
+    /// Whether the carried disc in slot `l`, sliding from `at[l]` at `v_l`
+    /// and braking at `a_l` until it stops, could reach any live disc but
+    /// itself and its pusher `h` (or its slide has no finite length): a
+    /// carry is taken only where the carried disc's whole slide keeps
+    /// clear of every other disc.
+    fn slide_blocked(&self, l: usize, h: usize, v_l: DVec2, a_l: f64, at: &[DVec2]) -> bool {
+        let reach = v_l.length_squared() / (2.0 * a_l);
+        let r_l = self.slots[l].radius;
+        let blocked = (0..self.slots.len()).any(|c| {
+            c != l
+                && c != h
+                && self.slots[c].alive
+                && (at[c] - at[l]).length() - (r_l + self.slots[c].radius) <= reach
+        });
+        blocked || !reach.is_finite()
     }
 
     /// From the sixteenth revision, a hit about to be carried
@@ -2247,15 +2256,7 @@ impl World {
         };
         // The pushed disc's whole slide keeps clear of every other disc.
         let (v_l, a_l) = if l == i { (vi, ai) } else { (vj, aj) };
-        let reach = v_l.length_squared() / (2.0 * a_l);
-        let r_l = self.slots[l].radius;
-        let blocked = (0..self.slots.len()).any(|c| {
-            c != l
-                && c != h
-                && self.slots[c].alive
-                && (at[c] - at[l]).length() - (r_l + self.slots[c].radius) <= reach
-        });
-        if blocked || !reach.is_finite() {
+        if self.slide_blocked(l, h, v_l, a_l, &at) {
             return false;
         }
         let new_i = Trajectory::new(t, pi, vi, ai);
