@@ -491,6 +491,8 @@ pub enum Revision {
     ///   (`Revision::collapses_geometric_rings_through_squeezed_discs`).
     #[default]
     R16,
+    /// The seventeenth, as the sixteenth but:
+    R17,
 }
 
 impl Revision {
@@ -498,7 +500,7 @@ impl Revision {
     pub const LATEST: Revision = Revision::R16;
 
     /// Every revision, oldest first.
-    pub const ALL: [Revision; 16] = [
+    pub const ALL: [Revision; 17] = [
         Revision::R1,
         Revision::R2,
         Revision::R3,
@@ -515,6 +517,7 @@ impl Revision {
         Revision::R14,
         Revision::R15,
         Revision::R16,
+        Revision::R17,
     ];
 
     /// Whether this revision has the second revision's rules.
@@ -597,6 +600,11 @@ impl Revision {
     /// Whether this revision has the sixteenth revision's rules.
     pub fn at_least_r16(self) -> bool {
         self >= Revision::R16
+    }
+
+    /// Whether this revision has the seventeenth revision's rules.
+    pub fn at_least_r17(self) -> bool {
+        self >= Revision::R17
     }
 
     /// Whether a ring of a touching cluster whose kinetic energy each of
@@ -850,10 +858,10 @@ mod tests {
         for (k, r) in Revision::ALL.into_iter().enumerate() {
             assert_eq!(format!("r{}", k + 1).parse(), Ok(r));
         }
-        let err = "r17".parse::<Revision>().unwrap_err();
+        let err = "r18".parse::<Revision>().unwrap_err();
         assert_eq!(
             err.to_string(),
-            "no engine revision named \"r17\" (r1, r2, ...)"
+            "no engine revision named \"r18\" (r1, r2, ...)"
         );
     }
 }
