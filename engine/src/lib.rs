@@ -55,6 +55,7 @@ pub mod instant;
 pub mod limits;
 pub mod model;
 pub mod obstacle;
+mod pivot;
 pub mod presets;
 pub mod push;
 pub mod revision;

@@ -70,6 +70,39 @@ pub(crate) fn pushing(ti: &Trajectory, pi: DVec2, tj: &Trajectory, pj: DVec2, no
     da.dot(d) < -SAME * (ti.alpha() + tj.alpha()) * dist
 }
 
+/// From the seventeenth revision, the velocities of two touching discs
+/// (`u`, masses `m`, unit normal `n` from `j` to `i`) that part along `n`
+/// so slowly that the braking pressing them together (their accelerations
+/// `acc` at `now`) brings them back into contact within the rounding of
+/// the time `now`: their normal velocities made one (the plastic hit that
+/// comes then, taken now, momentum kept and the energy of their relative
+/// normal motion spent), so that the pair is the pushed pair it is.
+/// Left apart, the contact is found again at `now` (its time falls on the
+/// same number) while the pair still parts, and nothing changes, hit after
+/// hit. `None` where the pair does not part, or its braking does not bring
+/// it back within the rounding of `now`.
+pub(crate) fn rejoined_at_once(
+    u: [DVec2; 2],
+    acc: [DVec2; 2],
+    m: [f64; 2],
+    n: DVec2,
+    now: f64,
+) -> Option<[DVec2; 2]> {
+    let parting = (u[0] - u[1]).dot(n);
+    let closing = -(acc[0] - acc[1]).dot(n);
+    if !(parting > 0.0 && closing > 0.0) {
+        return None;
+    }
+    // Back in contact after twice the time its braking takes to stop the
+    // parting.
+    let back = 2.0 * parting / closing;
+    if now + back != now {
+        return None;
+    }
+    let (w_i, w_j) = impulse::weights(m[0], m[1]);
+    Some([u[0] - n * (parting * w_j), u[1] + n * (parting * w_i)])
+}
+
 /// The common velocity (mass-weighted, so momentum is kept) and braking of
 /// two discs pushed together, from their velocities `v`, masses `m` and
 /// own brakings `alpha` (`mu g`).

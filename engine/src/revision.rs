@@ -489,15 +489,105 @@ pub enum Revision {
     ///   a light elastic disc between a heavy one in the corner and a
     ///   plastic one, 52,923 events and 1.2 s to the horizon, in 376685)
     ///   (`Revision::collapses_geometric_rings_through_squeezed_discs`).
-    #[default]
     R16,
     /// The seventeenth, as the sixteenth but:
+    /// - a touching pair that parts so slowly that its braking brings it
+    ///   back into contact within the rounding of the time is taken at its
+    ///   hit as the pushed pair it is, its normal velocities made one (the
+    ///   plastic hit that comes then, taken now; momentum kept): a row of
+    ///   three on the floor, sliding at 8.8e-13 m/s behind a 77 g disc
+    ///   braking at 2.9 m/s^2, parted from it at 3e-18 m/s, its braking
+    ///   bringing the two back 2e-18 s later, below the rounding of the
+    ///   time at 15.7 s; the contact fell on the same instant, the pair
+    ///   still parting, and the hit changed nothing, 19,667 of the last
+    ///   20,000 events before `stuck` (mixed-box 452272)
+    ///   (`Revision::rejoins_pairs_parting_within_instant`);
+    /// - a pair resting by its energy (`push::spent_within_gap`) whose
+    ///   free disc the held projection leaves running into its held
+    ///   partner, below the projection's tolerance (1e-15 of the cluster's
+    ///   fastest disc) but not below the pair's own contact noise, has that
+    ///   approach taken off against the held disc, as against a wall: a
+    ///   frictionless disc (0.24 kg) sliding at 3.9e-10 m/s past a braking
+    ///   one on the floor, 2.3e-10 of its speed into it, its cluster's
+    ///   fastest disc at 0.098 m/s, was hit 19,859 times at one instant
+    ///   until `stuck` (mixed-box 502923; a frictionless disc sliding down
+    ///   the side wall into a braking one on the floor, the same rest
+    ///   earlier in its run, in 595125)
+    ///   (`Revision::rests_free_disc_on_held_partner`);
+    /// - a light disc wedged aside by a heavy one sliding past it
+    ///   (`push::carried`) that the push drives into a braking disc at
+    ///   rest, whose friction takes the load the light disc passes on, is
+    ///   carried round that disc (`pivot::carried_around`): both stop
+    ///   where the light disc's friction round it spends the pair's
+    ///   energy, or the heavy one pays that friction at once and passes.
+    ///   A heavy frictionless disc (0.72 kg) sliding along the floor
+    ///   under a 2.2 g disc braking at 2.9 m/s^2 pressed it into a 14 g
+    ///   disc at rest, which the pressing contact kicked off at every
+    ///   hit; it stopped 8e-6 s later, the light disc ran into it, and the
+    ///   heavy one caught it again 1e-5 s on, three events a cycle, its
+    ///   speed 4.5e-5 lower each, until the event cap at 7.58 s
+    ///   (mixed-box 403865); it reaches the 100 s horizon in 8,420 events
+    ///   (`Revision::carries_discs_round_held_discs`);
+    /// - a hit that leaves both its discs at rest (their slides below the
+    ///   rounding of their positions) stops whatever runs into them (and
+    ///   whatever runs into that), each keeping only what does not: the
+    ///   plastic limit with the pair held, as the third revision stops it
+    ///   against a pressed pair that rests, where the energy of what runs
+    ///   in is no more than the weaker braking disc of the pair spends
+    ///   over the pressing contact's gap (`World::settled_hit`). A
+    ///   frictionless disc (0.31 kg) at 5.6e-9 m/s pushing a 1.9 g disc
+    ///   into one braking at 240 m/s^2, the light disc settled by each
+    ///   hit against it and caught again at once, 0.63 per cent slower a
+    ///   turn, ran 1,708 events at one instant until `stuck` (mixed-box
+    ///   425978; the box rests at 14.4 s); a heavy frictionless disc
+    ///   running at 5e-9 m/s into a light one on the side wall, which
+    ///   wedged a braking disc aside and settled with it, drove it again
+    ///   every 1.3e-10 s until `stuck` (512700; to the 100 s horizon in
+    ///   4,386 events) (`Revision::stops_discs_running_into_settled_hits`);
+    /// - a ring resting by its spent energy (`World::spent_ring_rest`:
+    ///   its braking discs held, its frictionless ones keeping what does
+    ///   not run into them) weighs the kinetic energy the rest takes away,
+    ///   not all its discs have: a disc grazing the ring along its tangent
+    ///   keeps its motion and spends none of it on the held discs. A
+    ///   frictionless disc (0.20 kg) sliding up the left wall at 3.8e-13
+    ///   m/s into a braking one (1.3 g) beside it, their contact tilted
+    ///   2.4e-7 from level, held 1.5e-26 J against the 2.1e-19 J the
+    ///   braking disc's friction does over the rounding of its position;
+    ///   a frictionless disc sliding past the first at 6.1e-5 m/s brought
+    ///   2.5e-10 J to the ring, which was taken with the wall and kicked
+    ///   apart instead, the braking disc stopping 6.2e-15 s later and hit
+    ///   again at that instant, 9,960 hits in the last 20,000 events before
+    ///   `stuck` (mixed-box 439482)
+    ///   (`Revision::rests_rings_spent_by_what_runs_into_them`);
+    /// - a ring that the sixteenth revision's geometric rule takes, whose
+    ///   approach shrinks to 0.011 or less of the last a turn
+    ///   (`limits::FADING_RATIO`), falls below the rounding of its speeds
+    ///   within the eight hits a count waits for, and is left to them: a
+    ///   striker's ring on the top of a hex-packed plastic pile, 0.0021
+    ///   of the approach left a turn, was taken to the plastic limit of
+    ///   the whole pile, which set its rows sliding at a few millimetres a
+    ///   second, pressed into each other, a pressed hit every 4e-11 s,
+    ///   46,630 events to rest where the fifteenth revision rests in 83
+    ///   (plastic-lines 1082; 70 events now)
+    ///   (`Revision::leaves_fading_rings_to_their_hits`);
+    /// - a pair whose energy cannot move its braking discs beyond the
+    ///   pressing contact's gap (`push::spent_within_gap`) rests as the
+    ///   eleventh revision rests one pressed or parted by its hit, where
+    ///   the hit leaves it neither (`World::press_cluster`): a heavy
+    ///   frictionless disc (0.99 kg) pushing a light frictionless one
+    ///   (1 g) into a braking one (72 g) at 2.9e-12 m/s, each hit leaving
+    ///   the pair parting at 4e-19 m/s, which the braking turned within
+    ///   the rounding of the time, was met again at once, the hit changing
+    ///   nothing, 19,698 hits at one instant until `stuck` (mixed-box
+    ///   79139, which the rule before this one sent there)
+    ///   (`Revision::rests_spent_pairs_left_as_they_were`).
+    #[default]
     R17,
 }
 
 impl Revision {
     /// The revision new computations use.
-    pub const LATEST: Revision = Revision::R16;
+    pub const LATEST: Revision = Revision::R17;
 
     /// Every revision, oldest first.
     pub const ALL: [Revision; 17] = [
@@ -616,6 +706,14 @@ impl Revision {
         self.at_least_r15()
     }
 
+    /// Whether a ring's rest by its spent energy (`World::spent_ring_rest`)
+    /// weighs the energy the rest takes, what runs into its held braking
+    /// discs, rather than all the kinetic energy of its discs (a
+    /// seventeenth revision rule).
+    pub fn rests_rings_spent_by_what_runs_into_them(self) -> bool {
+        self.at_least_r17()
+    }
+
     /// Whether a plastic pair of discs hit a second time at one instant,
     /// every hit of it gentle, one of its discs hit by a third disc at that
     /// instant too, is taken at once as the instant's collapse, its
@@ -632,6 +730,16 @@ impl Revision {
     /// `limits::Repeats::geometric`).
     pub fn collapses_geometric_rings_through_squeezed_discs(self) -> bool {
         self.at_least_r16()
+    }
+
+    /// Whether a ring that the sixteenth revision's geometric rule would
+    /// take (`Revision::collapses_geometric_rings_through_squeezed_discs`)
+    /// is left to its hits where it shrinks so fast a turn
+    /// (`limits::FADING_RATIO`) that it falls below the rounding of its
+    /// speeds within the count's hits (a seventeenth revision rule, see
+    /// `limits::Repeats::lasting`).
+    pub fn leaves_fading_rings_to_their_hits(self) -> bool {
+        self.at_least_r17()
     }
 
     /// Whether a plastic hit whose touching cluster, its hits played in
@@ -822,6 +930,14 @@ impl Revision {
         self.at_least_r16()
     }
 
+    /// Whether a pair resting by its energy (`push::spent_within_gap`)
+    /// rests where its hit leaves it neither pressed nor parted, as the
+    /// eleventh revision rests one pressed or parted (a seventeenth
+    /// revision rule, see `World::press_cluster`).
+    pub fn rests_spent_pairs_left_as_they_were(self) -> bool {
+        self.at_least_r17()
+    }
+
     /// Whether a pushing disc carried aside (`push::carried`) that touches
     /// no wall but slides past a disc at rest pinned by its walls against
     /// the push is held to that disc's tangent through the hit, as the
@@ -830,6 +946,39 @@ impl Revision {
     /// `push::plastic_along_wall`).
     pub fn holds_pushers_on_pinned_discs(self) -> bool {
         self.at_least_r16()
+    }
+
+    /// Whether a touching pair that parts so slowly that its braking
+    /// brings it back into contact within the rounding of the time is
+    /// taken as the pushed pair it is at its hit, its normal velocities
+    /// made one (a seventeenth revision rule, see `push::rejoined_at_once`).
+    pub fn rejoins_pairs_parting_within_instant(self) -> bool {
+        self.at_least_r17()
+    }
+
+    /// Whether a pair resting by its energy (`push::spent_within_gap`)
+    /// whose free disc the held projection leaves running into its held
+    /// partner, below the projection's tolerance, has that approach taken
+    /// off against the held disc (a seventeenth revision rule, see
+    /// `World::press_cluster`).
+    pub fn rests_free_disc_on_held_partner(self) -> bool {
+        self.at_least_r17()
+    }
+
+    /// Whether a pushed disc carried aside (`push::carried`) that the push
+    /// drives into a braking disc at rest, whose friction holds it, is
+    /// carried round that disc (a seventeenth revision rule, see
+    /// `World::carried_around_held` and `pivot::carried_around`).
+    pub fn carries_discs_round_held_discs(self) -> bool {
+        self.at_least_r17()
+    }
+
+    /// Whether a hit that leaves both its discs at rest (their slides
+    /// below the rounding of their positions) stops the discs touching
+    /// them that run into them, the plastic limit with the pair held (a
+    /// seventeenth revision rule, see `World::settled_hit`).
+    pub fn stops_discs_running_into_settled_hits(self) -> bool {
+        self.at_least_r17()
     }
 }
 

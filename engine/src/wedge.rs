@@ -24,7 +24,7 @@ const OBLIQUE: f64 = 0.5;
 /// Largest mass of the wedged disc, as a fraction of the pushing one's,
 /// for which its inertia is left out of the carry (as in
 /// `push::carried`).
-const LIGHT: f64 = 0.1;
+pub(crate) const LIGHT: f64 = 0.1;
 
 /// From the sixteenth revision: the carry of a light disc `L` (index `l`,
 /// 0 for `i`, 1 for `j`) held to the one obstacle it touches (`wall`, the

@@ -38,6 +38,7 @@ use crate::limits::{
     PRESS_SWEEPS, REPEAT_HITS, SETTLE, SNAP, STUCK_EVENTS, STUCK_EVENTS_PER_BODY,
 };
 use crate::obstacle::{Line, LineGeom, Point};
+use crate::pivot;
 use crate::push;
 use crate::revision::Revision;
 use crate::roots::Method;
@@ -614,7 +615,8 @@ impl World {
             self.config
                 .revision
                 .collapses_geometric_rings_through_squeezed_discs(),
-        );
+        )
+        .lasting(self.config.revision.leaves_fading_rings_to_their_hits());
         // From the seventh revision: the fine clock (see `clock`), and the
         // current instant's tick (see `World::instant_tick`), worked out
         // only once an event comes near it.
@@ -1214,7 +1216,12 @@ impl World {
     /// disc wedged between a wall and a held disc, the two contacts 2e-5
     /// from parallel), the active-set method finds it: kicked instead, the
     /// held disc stopped 1e-10 s later and was hit again at that instant,
-    /// until `stuck` (mixed-box 438889).
+    /// until `stuck` (mixed-box 438889). From the seventeenth revision a
+    /// spent pair that the hit leaves neither pressed nor parted rests so
+    /// too: parting by 4e-19 m/s, which the braking of the disc ahead
+    /// turned within the rounding of the time, a pair pushed at 2.9e-12
+    /// m/s was met again at once, each hit changing nothing, until `stuck`
+    /// (mixed-box 79139; `Revision::rests_spent_pairs_left_as_they_were`).
     fn press_cluster(
         &mut self,
         i: usize,
@@ -1246,7 +1253,12 @@ impl World {
         let spent =
             r11 && push::spent_within_gap([vi, vj], masses, braking, s, self.config.revision);
         let rev = self.config.revision;
-        let parted = spent && push::bounce_speed([vi, vj], acc, n, s, rev).is_some();
+        // From the seventeenth revision, a spent pair that its hit leaves
+        // neither pressed nor parted rests too (see
+        // `Revision::rests_spent_pairs_left_as_they_were`).
+        let parted = spent
+            && (push::bounce_speed([vi, vj], acc, n, s, rev).is_some()
+                || rev.rests_spent_pairs_left_as_they_were());
         let Some(mut press) = push::pressing_kick([vi, vj], acc, n, s, at, rev)
             .or_else(|| parted.then_some(push::Press::Part(0.0)))
         else {
@@ -1354,6 +1366,30 @@ impl World {
                             for v in &mut after {
                                 if v.length() <= noise {
                                     *v = DVec2::ZERO;
+                                }
+                            }
+                        }
+                        // From the seventeenth revision, a disc of the pair
+                        // left free still runs into its held partner where
+                        // its approach is below the projection's tolerance
+                        // (set by the fastest disc of the cluster) but not
+                        // below the pair's own: that approach is taken off
+                        // against the held disc, as against a wall.
+                        if kick.is_some() && self.config.revision.rests_free_disc_on_held_partner()
+                        {
+                            let held = [tries[0][0], tries[0][1]];
+                            if let Some(c) = contacts
+                                .iter()
+                                .find(|c| c.a < 2 && c.b.is_some_and(|b| b < 2))
+                            {
+                                let b = c.b.unwrap_or(c.a);
+                                let rel = (after[c.a] - after[b]).dot(c.n);
+                                if rel < 0.0 && held[c.a] != held[b] {
+                                    if held[b] {
+                                        after[c.a] -= c.n * rel;
+                                    } else {
+                                        after[b] += c.n * rel;
+                                    }
                                 }
                             }
                         }
@@ -1873,6 +1909,27 @@ impl World {
         let e = mi.restitution.min(mj.restitution);
         let (ui, uj) = (ti.velocity(t), tj.velocity(t));
         self.last_approach = (uj - ui).dot(n);
+        // From the seventeenth revision, a pair parting so slowly that its
+        // braking brings it back within the rounding of `t` is taken as the
+        // pushed pair it is, its normal velocities made one.
+        let (ui, uj) = match self
+            .config
+            .revision
+            .rejoins_pairs_parting_within_instant()
+            .then(|| {
+                push::rejoined_at_once(
+                    [ui, uj],
+                    [ti.acceleration(t), tj.acceleration(t)],
+                    [mi.mass, mj.mass],
+                    n,
+                    t,
+                )
+            })
+            .flatten()
+        {
+            Some([vi, vj]) => (vi, vj),
+            None => (ui, uj),
+        };
         // From the twelfth revision, a gentle plastic hit on a light disc
         // in a corner is taken with the walls it touches.
         if e == 0.0
@@ -2000,7 +2057,110 @@ impl World {
             };
             self.stats.pressed += 1;
         }
+        // From the seventeenth revision, a hit that settles both discs
+        // stops whatever runs into them (see `World::settled_hit`).
+        if self.config.revision.stops_discs_running_into_settled_hits()
+            && self.settled_hit(i, j, [new_i, new_j], [ui, uj], t)
+        {
+            return;
+        }
         self.leave_hit(i, j, new_i, new_j, t);
+    }
+
+    /// From the seventeenth revision, a hit that leaves both discs in
+    /// slots `i` and `j` (on `new`, `u` their velocities before it) at
+    /// rest, their slides below the rounding of their positions
+    /// (`World::settled`), where a disc touching them still runs into
+    /// them: whatever runs into the pair (or into one that does) keeps
+    /// only what does not run into it, the plastic limit with the pair
+    /// held, as the third revision stops it against a pressed pair that
+    /// rests; only where both discs of the pair brake and what runs in
+    /// has no more kinetic energy than the weaker of their friction
+    /// forces spends over the pressing contact's gap (friction holds
+    /// them, as `push::spent_within_gap` rests a pressed pair by its
+    /// energy). Left moving, the disc behind hit the resting one again at
+    /// once, and a pushed pair caught a light disc it had pressed into a
+    /// heavily braked one, the hit against that one settling the light
+    /// disc each time, the frictionless pusher losing only the light
+    /// disc's share of its speed (0.63 per cent) a turn: a frictionless
+    /// disc (0.31 kg) at 5.6e-9 m/s pushing a 1.9 g disc into one braking
+    /// at 240 m/s^2, 1,708 events at one instant until `stuck`. `false`
+    /// (nothing done) where either disc moves on, neither moved before,
+    /// no disc runs into the pair, what runs in has the energy to move
+    /// it, or the limit has no answer.
+    fn settled_hit(
+        &mut self,
+        i: usize,
+        j: usize,
+        [new_i, new_j]: [Trajectory; 2],
+        [ui, uj]: [DVec2; 2],
+        t: f64,
+    ) -> bool {
+        let (rest_i, rest_j) = (self.settled(new_i, t), self.settled(new_j, t));
+        if rest_i.is_moving() || rest_j.is_moving() || (ui == DVec2::ZERO && uj == DVec2::ZERO) {
+            return false;
+        }
+        let (old_i, old_j) = (self.slots[i].traj, self.slots[j].traj);
+        self.slots[i].traj = rest_i;
+        self.slots[j].traj = rest_j;
+        // The pair, and every disc that runs into a member, in turn.
+        let at = self.positions(t);
+        let noise = 1e-12 * ui.length().max(uj.length());
+        let mut members = vec![i, j];
+        let mut k = 0;
+        while k < members.len() && members.len() < MAX_COLLAPSE {
+            let m = members[k];
+            let vm = self.slots[m].traj.velocity(t);
+            let behind: Vec<usize> = self
+                .touching(m, &at)
+                .filter(|c| !members.contains(c))
+                .filter(|&c| {
+                    let n = (at[m] - at[c]).normalize_or_zero();
+                    (vm - self.slots[c].traj.velocity(t)).dot(n) < -noise
+                })
+                .collect();
+            members.extend(behind);
+            k += 1;
+        }
+        let mut contacts = self.contacts_among(&members, t);
+        let (vel, mut inv) = self.motion(&members, t);
+        (inv[0], inv[1]) = (0.0, 0.0);
+        // Held by their friction: what runs into them has no more kinetic
+        // energy than the weaker of their friction forces spends over the
+        // pressing contact's gap, as a pressed pair rests by its energy
+        // (`push::spent_within_gap`).
+        let (mi, mj) = (self.material[i], self.material[j]);
+        let weakest = (mi.mass * mi.mu).min(mj.mass * mj.mu) * self.g;
+        let gap = push::press_gap(self.config.revision) * (mi.radius + mj.radius);
+        let energy: f64 = members[2..]
+            .iter()
+            .zip(&vel[2..])
+            .map(|(&c, v)| 0.5 * self.material[c].mass * v.length_squared())
+            .sum();
+        if !(weakest > 0.0 && energy <= weakest * gap) {
+            self.slots[i].traj = old_i;
+            self.slots[j].traj = old_j;
+            return false;
+        }
+        contacts.retain(|c| c.a >= 2 || c.b.is_some_and(|b| b >= 2));
+        let after = (members.len() > 2)
+            .then(|| {
+                collapse::resolve(&vel, &inv, &contacts, PRESS_SWEEPS)
+                    .or_else(|| collapse::active_set(&vel, &inv, &contacts))
+            })
+            .flatten();
+        let Some(mut after) = after else {
+            self.slots[i].traj = old_i;
+            self.slots[j].traj = old_j;
+            return false;
+        };
+        for v in &mut after {
+            if v.length() <= noise {
+                *v = DVec2::ZERO;
+            }
+        }
+        self.kick_cluster(&members, &vel, &after, [i, j], t);
+        true
     }
 
     /// Puts the discs in slots `i` and `j` on their trajectories out of a
@@ -2132,6 +2292,16 @@ impl World {
         let held =
             self.touching(h, &at).any(|c| c != l) || !self.contacts_among(&[h], t).is_empty();
         let free = self.touching(l, &at).all(|c| c == h) && self.contacts_among(&[l], t).is_empty();
+        // From the seventeenth revision, a pushed disc driven into a disc
+        // at rest that holds it is carried round it (see
+        // `World::carried_around_held`).
+        if held
+            && !free
+            && self.config.revision.carries_discs_round_held_discs()
+            && self.carried_around_held(h, l, [i, j], [pi, pj], before, &at, t)
+        {
+            return true;
+        }
         if !(held && free) {
             return false;
         }
@@ -2189,17 +2359,118 @@ impl World {
         true
     }
 
+    /// From the seventeenth revision, a hit about to be carried
+    /// ([`World::carried_press`]: the pushing disc in slot `h`, the pushed
+    /// one in slot `l`, the pair's slots `ij` at `p` with velocities `v`
+    /// just after the plastic hit) whose pushed disc `L`, light, touches
+    /// no obstacle and one disc `P` besides the pusher `H`, at rest and
+    /// braking, that the push drives it into: `P`'s friction holds it, and
+    /// `L` is carried round it as `H` slides past
+    /// ([`pivot::carried_around`]), where `H` touches no other disc that
+    /// moves (stopped, it would be caught at once), the hit does not drive
+    /// `H` into an obstacle it touches, and `L`'s slide keeps clear of
+    /// every disc but `H` and `P`. A heavy frictionless disc (0.72 kg)
+    /// sliding along the floor at 2.3e-3 m/s under a light braking one
+    /// (2.2 g) pressed it into a braking disc at rest (14 g): each hit
+    /// kicked the resting disc off by the pressing contact's bounce, it
+    /// stopped 8e-6 s later, the light disc ran into it and stopped, and
+    /// the heavy one caught it again 1e-5 s on, three events a cycle,
+    /// 4.5e-5 of its speed lost each, until the event cap. `false`
+    /// (nothing done) where the rule does not apply.
+    #[allow(clippy::too_many_arguments)]
+    fn carried_around_held(
+        &mut self,
+        h: usize,
+        l: usize,
+        [i, j]: [usize; 2],
+        [pi, pj]: [DVec2; 2],
+        [vi, vj]: [DVec2; 2],
+        at: &[DVec2],
+        t: f64,
+    ) -> bool {
+        let others: Vec<usize> = self.touching(l, at).filter(|&c| c != h).collect();
+        let [p] = others[..] else {
+            return false;
+        };
+        if !self.contacts_among(&[l], t).is_empty() || self.slots[p].traj.velocity(t) != DVec2::ZERO
+        {
+            return false;
+        }
+        let (mh, ml, mp) = (self.material[h], self.material[l], self.material[p]);
+        if !(ml.mass <= wedge::LIGHT * mh.mass) {
+            return false;
+        }
+        let still = |c: usize| self.slots[c].traj.velocity(t) == DVec2::ZERO;
+        if self.touching(h, at).any(|c| c != l && !still(c)) {
+            return false;
+        }
+        let (v_h, p_h, p_l) = if h == i { (vi, pi, pj) } else { (vj, pj, pi) };
+        let Some(dir) = v_h.try_normalize() else {
+            return false;
+        };
+        let chain = pivot::Chain {
+            at: [p_h, p_l, at[p]],
+            dir,
+            reach: [mh.radius + ml.radius, ml.radius + mp.radius],
+        };
+        let energy = push::pair_energy([vi, vj], [self.material[i].mass, self.material[j].mass]);
+        let brake = [
+            mh.mass * mh.mu * self.g,
+            ml.mass * ml.mu * self.g,
+            mp.mass * mp.mu * self.g,
+        ];
+        let Some(carry) = pivot::carried_around(chain, energy, [mh.mass, ml.mass], brake) else {
+            return false;
+        };
+        let (v_h, a_h) = carry.pusher;
+        let (v_l, a_l) = carry.carried;
+        let noise = 1e-12 * v_h.length();
+        if self
+            .contacts_among(&[h], t)
+            .iter()
+            .any(|c| c.b.is_none() && v_h.dot(c.n) < -noise)
+        {
+            return false;
+        }
+        if self.slide_blocked_but(l, &[h, p], v_l, a_l, at) {
+            return false;
+        }
+        let (new_h, new_l) = (
+            Trajectory::new(t, p_h, v_h, a_h),
+            Trajectory::new(t, p_l, v_l, a_l),
+        );
+        if h == i {
+            self.leave_hit(i, j, new_h, new_l, t);
+        } else {
+            self.leave_hit(i, j, new_l, new_h, t);
+        }
+        true
+    }
+
     /// Whether the carried disc in slot `l`, sliding from `at[l]` at `v_l`
     /// and braking at `a_l` until it stops, could reach any live disc but
     /// itself and its pusher `h` (or its slide has no finite length): a
     /// carry is taken only where the carried disc's whole slide keeps
     /// clear of every other disc.
     fn slide_blocked(&self, l: usize, h: usize, v_l: DVec2, a_l: f64, at: &[DVec2]) -> bool {
+        self.slide_blocked_but(l, &[h], v_l, a_l, at)
+    }
+
+    /// [`World::slide_blocked`], with every disc in `but` left out (the
+    /// discs the carried one touches and slides along).
+    fn slide_blocked_but(
+        &self,
+        l: usize,
+        but: &[usize],
+        v_l: DVec2,
+        a_l: f64,
+        at: &[DVec2],
+    ) -> bool {
         let reach = v_l.length_squared() / (2.0 * a_l);
         let r_l = self.slots[l].radius;
         let blocked = (0..self.slots.len()).any(|c| {
             c != l
-                && c != h
+                && !but.contains(&c)
                 && self.slots[c].alive
                 && (at[c] - at[l]).length() - (r_l + self.slots[c].radius) <= reach
         });
