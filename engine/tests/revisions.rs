@@ -1501,8 +1501,15 @@ fn discs_running_into_a_hit_that_settles_both_its_discs_are_stopped_against_it()
     // until `stuck` at 0.616 s. The energy of the disc behind cannot move
     // the settled pair's braking discs beyond the pressing contact's gap:
     // from revision 17 it keeps only what does not run into them.
-    // Mixed-box 425978 rests at 14.4 s, 512700 reaches the horizon.
-    for name in ["mixed-box-425978", "mixed-box-512700"] {
+    // Mixed-box 425978 rests at 14.4 s, 512700 reaches the horizon. In
+    // mixed-box 465022 frictionless plastic discs 2 (18 g) and 3 (1.5 g)
+    // on the floor, wedged right at 3.2e-16 m/s by disc 1 (0.66 kg)
+    // sliding down the side wall, ran into disc 7 (7.4 g, braking at 2.7
+    // m/s^2, at rest), which took its share of each collapse and settled
+    // at once: 11,946 hits of 3-7 and 7,969 of 3-2 at one instant at 70.2
+    // s until `stuck`; stopped against the settled hit, the box reaches
+    // its horizon in 2,063 events.
+    for name in ["mixed-box-425978", "mixed-box-512700", "mixed-box-465022"] {
         settles_from(Revision::R17, name, 100.0, EndReason::Stuck, 10_000);
     }
 }
