@@ -1377,21 +1377,7 @@ impl World {
                         // against the held disc, as against a wall.
                         if kick.is_some() && self.config.revision.rests_free_disc_on_held_partner()
                         {
-                            let held = [tries[0][0], tries[0][1]];
-                            if let Some(c) = contacts
-                                .iter()
-                                .find(|c| c.a < 2 && c.b.is_some_and(|b| b < 2))
-                            {
-                                let b = c.b.unwrap_or(c.a);
-                                let rel = (after[c.a] - after[b]).dot(c.n);
-                                if rel < 0.0 && held[c.a] != held[b] {
-                                    if held[b] {
-                                        after[c.a] -= c.n * rel;
-                                    } else {
-                                        after[b] += c.n * rel;
-                                    }
-                                }
-                            }
+                            stop_against_held(&mut after, [tries[0][0], tries[0][1]], &contacts);
                         }
                         self.kick_cluster(&members, &vel, &after, [i, j], t);
                         return true;
@@ -3456,6 +3442,28 @@ fn within_press_bound(
             .map(|(p, q)| *p + (*q - *p) * l)
             .collect(),
     )
+}
+
+/// From the seventeenth revision, where a pair rests by its energy with
+/// one disc held (`held`, for the pair's members 0 and 1 of `after`): the
+/// approach the projection leaves the free disc into the held one along
+/// their contact in `contacts` is taken off, as against a wall (see
+/// `Revision::rests_free_disc_on_held_partner`).
+fn stop_against_held(after: &mut [DVec2], held: [bool; 2], contacts: &[collapse::Contact]) {
+    let Some((a, b, n)) = contacts.iter().find_map(|c| match c.b {
+        Some(b) if c.a < 2 && b < 2 => Some((c.a, b, c.n)),
+        _ => None,
+    }) else {
+        return;
+    };
+    let rel = (after[a] - after[b]).dot(n);
+    if rel < 0.0 && held[a] != held[b] {
+        if held[b] {
+            after[a] -= n * rel;
+        } else {
+            after[b] += n * rel;
+        }
+    }
 }
 
 #[cfg(test)]
