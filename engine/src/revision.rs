@@ -583,6 +583,8 @@ pub enum Revision {
     ///   (`Revision::rests_spent_pairs_left_as_they_were`).
     #[default]
     R17,
+    /// The eighteenth, as the seventeenth but:
+    R18,
 }
 
 impl Revision {
@@ -590,7 +592,7 @@ impl Revision {
     pub const LATEST: Revision = Revision::R17;
 
     /// Every revision, oldest first.
-    pub const ALL: [Revision; 17] = [
+    pub const ALL: [Revision; 18] = [
         Revision::R1,
         Revision::R2,
         Revision::R3,
@@ -608,6 +610,7 @@ impl Revision {
         Revision::R15,
         Revision::R16,
         Revision::R17,
+        Revision::R18,
     ];
 
     /// Whether this revision has the second revision's rules.
@@ -695,6 +698,11 @@ impl Revision {
     /// Whether this revision has the seventeenth revision's rules.
     pub fn at_least_r17(self) -> bool {
         self >= Revision::R17
+    }
+
+    /// Whether this revision has the eighteenth revision's rules.
+    pub fn at_least_r18(self) -> bool {
+        self >= Revision::R18
     }
 
     /// Whether a ring of a touching cluster whose kinetic energy each of
@@ -1007,10 +1015,10 @@ mod tests {
         for (k, r) in Revision::ALL.into_iter().enumerate() {
             assert_eq!(format!("r{}", k + 1).parse(), Ok(r));
         }
-        let err = "r18".parse::<Revision>().unwrap_err();
+        let err = "r19".parse::<Revision>().unwrap_err();
         assert_eq!(
             err.to_string(),
-            "no engine revision named \"r18\" (r1, r2, ...)"
+            "no engine revision named \"r19\" (r1, r2, ...)"
         );
     }
 }
