@@ -15,6 +15,7 @@
 //! that re-predicts the body). Pairs whose remaining paths never come within
 //! reach are rejected before any polynomial is formed.
 
+use crate::graze;
 use crate::obstacle::LineGeom;
 use crate::push;
 use crate::revision::Revision;
@@ -122,8 +123,11 @@ pub(crate) fn disc_point(m: &Mover, q: DVec2, s: f64, rev: Revision) -> Option<f
     }
     let c = d.length_squared() - s * s;
     if c <= 0.0 {
-        // Touching now: a contact only if the approach is more than noise.
-        return (b < -APPROACH * s * w.length()).then_some(m.now);
+        // Touching now: a contact only if the approach is more than noise,
+        // and from the eighteenth revision more than a graze within the
+        // rounding of the positions.
+        let grazes = rev.passes_grazes_within_rounding() && graze::within_rounding(m.pos, q, w);
+        return (b < -APPROACH * s * w.length() && !grazes).then_some(m.now);
     }
     let l = entry(w.length_squared(), b, c, d.perp_dot(w), s * s, rev)?;
     m.time_at(l * scale)

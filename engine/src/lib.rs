@@ -48,6 +48,7 @@ pub mod clock;
 pub mod collapse;
 pub mod contact;
 pub mod event;
+mod graze;
 pub mod grid;
 pub mod id;
 pub mod impulse;

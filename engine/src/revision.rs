@@ -581,15 +581,82 @@ pub enum Revision {
     ///   nothing, 19,698 hits at one instant until `stuck` (mixed-box
     ///   79139, which the rule before this one sent there)
     ///   (`Revision::rests_spent_pairs_left_as_they_were`).
-    #[default]
     R17,
     /// The eighteenth, as the seventeenth but:
+    /// - the discs a settled hit stops (`World::settled_hit`) take in,
+    ///   too, a disc that runs into one of them only once the limit has
+    ///   stopped it, solved again until none does: a frictionless disc
+    ///   (20 g) sliding down the side wall at 3e-5 m/s along a light
+    ///   plastic one on the floor, their contact tilted 9.6e-7 from level,
+    ///   shared its motion along their normal, so that the settled hit of
+    ///   the braking discs ahead (0.73 kg and 0.26 kg, pushed at 2.8e-11
+    ///   m/s by each limit of the ring) stopped the light disc but not
+    ///   it, and it ran into the light one again at that instant, 18,615
+    ///   of the last 20,000 events at one time until the event cap at 31.2
+    ///   s (mixed-box 531237; to the 100 s horizon in 17,175 events)
+    ///   (`Revision::stops_discs_running_into_stopped_discs`);
+    /// - a braking disc that the pressing kick after a plastic limit sets
+    ///   moving so slowly that it stops within the rounding of its
+    ///   position, the limit having left it so too, is held by its
+    ///   friction instead, where what the limit moves has no more kinetic
+    ///   energy than the held disc's friction spends over the pressing
+    ///   contact's gap: the limit is solved again with it still, and no
+    ///   kick follows (`World::held_against_kick`). A disc (6.7 g) on the
+    ///   side wall, pressed down by a heavy one sliding over it, slid at
+    ///   1.6e-7 m/s into a plastic disc (0.52 kg, braking at 137 m/s^2)
+    ///   at rest on the floor, their contact tilted 6.5e-4 from level;
+    ///   each hit was taken with the wall, the kick sent the heavy disc
+    ///   off at 8e-9 m/s, it stopped 6e-11 s later 2.4e-19 m on and was hit
+    ///   again at that instant, 9,980 hits in the last 20,000 events before
+    ///   `stuck` at 26.2 s (mixed-box 170741; to the 100 s horizon in
+    ///   10,851 events) (`Revision::holds_discs_kicks_cannot_move`);
+    /// - an elastic hit between two frictionless discs that drives one of
+    ///   them into a wall it lies against, the two then ringing between
+    ///   the wall and each other within the rounding of their positions,
+    ///   is played in memory to the ring's end and taken at once (the
+    ///   same elastic impulses, no energy lost): a frictionless elastic
+    ///   disc (2.0 g) in the corner, pressed by a frictionless one (0.15
+    ///   kg) that a row pushed by a heavy disc sliding over it squeezed
+    ///   along the floor, rang between the side wall and its partner some
+    ///   2e-12 m apart, a hit every 4e-7 s, 10,735 of the last 20,000
+    ///   events before the event cap at 3.44 s (mixed-box 401789; to the
+    ///   100 s horizon in 82,546 events)
+    ///   (`Revision::plays_elastic_wall_rings_at_once`);
+    /// - a light braking disc wedged along the wall it lies against by a
+    ///   heavy disc sliding past it (`wedge::carried_along_wall`) is so
+    ///   carried where the heavy disc is held to its line not by a disc
+    ///   but by the one wall it slides along, the push from the light
+    ///   disc driving it into that wall: a frictionless disc (0.64 kg)
+    ///   sliding down the side wall into the corner at 3.9e-4 m/s past a
+    ///   6.6 g disc braking at 2.0 m/s^2 on the floor pushed it along the
+    ///   floor, a hit and a stop every 4.3e-5 s, 4.4e-6 of its speed lost
+    ///   a turn, until the event cap at 20.3 s (mixed-box 1037739; to the
+    ///   100 s horizon in 2,945 events)
+    ///   (`Revision::carries_wedged_discs_between_walls`);
+    /// - a touching pair whose straight relative path closes in by no
+    ///   more than the rounding of its positions before it parts (the
+    ///   sagitta of one's path over the other, `graze::within_rounding`)
+    ///   is a graze, not a contact: no hit is predicted for a disc moving
+    ///   against one at rest, and the ring of a plastic hit
+    ///   (`World::cluster_ring`) is played without it. A light
+    ///   frictionless disc (16 g) sliding down the side wall at 5.3e-4
+    ///   m/s, 2.6e-10 m above the line of a row on the floor (a
+    ///   frictionless disc, then two braking ones), wedged the row at
+    ///   3.7e-12 m/s, 9.2e-19 m of carry left before it reached the floor,
+    ///   1/60 of a position's rounding; each hit of the row's frictionless
+    ///   disc into the braking one was taken as a ring with the wedging
+    ///   disc and the wall, which gave the two the wedge's speed again,
+    ///   and the braking disc, kicked off the next, was caught again
+    ///   1.5e-13 s later: 22,000 events at 0.463 s, no more than 3 at one
+    ///   instant, until `stuck` (mixed-box 129558; the horizon in 41
+    ///   events) (`Revision::passes_grazes_within_rounding`).
+    #[default]
     R18,
 }
 
 impl Revision {
     /// The revision new computations use.
-    pub const LATEST: Revision = Revision::R17;
+    pub const LATEST: Revision = Revision::R18;
 
     /// Every revision, oldest first.
     pub const ALL: [Revision; 18] = [
@@ -981,12 +1048,58 @@ impl Revision {
         self.at_least_r17()
     }
 
+    /// Whether a disc carried along the one obstacle it touches by one
+    /// sliding past it (`wedge::carried_along_wall`) is so carried where
+    /// the pushing disc is held to its line by the one obstacle it slides
+    /// along, as by a disc it touches (an eighteenth revision rule, see
+    /// `World::held_on_own_wall` and `World::wedged_along_wall`).
+    pub fn carries_wedged_discs_between_walls(self) -> bool {
+        self.at_least_r18()
+    }
+
+    /// Whether an elastic hit of two frictionless discs that drives one
+    /// of them into an obstacle it touches, the two then ringing between
+    /// the obstacle and each other, is played to the ring's end at once (an
+    /// eighteenth revision rule, see `World::elastic_wall_ring` and
+    /// `ring::elastic_end`).
+    pub fn plays_elastic_wall_rings_at_once(self) -> bool {
+        self.at_least_r18()
+    }
+
     /// Whether a hit that leaves both its discs at rest (their slides
     /// below the rounding of their positions) stops the discs touching
     /// them that run into them, the plastic limit with the pair held (a
     /// seventeenth revision rule, see `World::settled_hit`).
     pub fn stops_discs_running_into_settled_hits(self) -> bool {
         self.at_least_r17()
+    }
+
+    /// Whether the discs a settled hit stops (see
+    /// `Revision::stops_discs_running_into_settled_hits`) take in, too,
+    /// a disc that runs into one of them only once it is stopped (an
+    /// eighteenth revision rule, see `World::settled_hit`).
+    pub fn stops_discs_running_into_stopped_discs(self) -> bool {
+        self.at_least_r18()
+    }
+
+    /// Whether a braking disc that the pressing kick after a plastic limit
+    /// sets moving so slowly that it stops within the rounding of its
+    /// position is held by its friction instead, the limit solved again
+    /// with it still and no kick (an eighteenth revision rule, see
+    /// `World::held_against_kick`).
+    pub fn holds_discs_kicks_cannot_move(self) -> bool {
+        self.at_least_r18()
+    }
+
+    /// Whether a touching pair whose straight relative path closes in by
+    /// no more than the rounding of its positions before it parts is a
+    /// graze, not a contact: no hit predicted for a disc moving against
+    /// one at rest (`contact::disc_point`), and the ring of a plastic hit
+    /// (`World::cluster_ring`) played without it where it approaches
+    /// beyond the ring's noise (an eighteenth revision rule, see
+    /// `graze::within_rounding`).
+    pub fn passes_grazes_within_rounding(self) -> bool {
+        self.at_least_r18()
     }
 }
 

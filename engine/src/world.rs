@@ -17,8 +17,10 @@
 //! are [`crate::limits`]'s; this module drives them.
 
 mod cluster_ring;
+mod elastic_wall_ring;
 pub mod handler;
 mod reached_walls;
+mod unmoved_kick;
 
 pub use crate::limits::{End, EndReason, Limits};
 pub use handler::{Counter, EventHandler, ExitResponse};
@@ -1154,7 +1156,9 @@ impl World {
     /// of their `contacts`, where `press` is set (the third revision on)
     /// kicked apart first where it leaves pairs pressed (see
     /// `collapse_cluster`), and predicts the discs it changed. `true` if
-    /// any velocity changed.
+    /// any velocity changed. From the eighteenth revision, where the kick
+    /// cannot move a braking disc beyond the rounding of its position,
+    /// that disc is held instead (`World::held_against_kick`).
     fn take_plastic_limit(
         &mut self,
         members: &[usize],
@@ -1165,8 +1169,29 @@ impl World {
         t: f64,
     ) -> bool {
         let alpha = self.braking(members);
+        let unbiased = contacts.clone();
         if press && self.press_biases(members, &mut contacts, &after, &alpha) {
             if let Some(kicked) = self.press_closure(members, &mut contacts, &after, inv, &alpha) {
+                // From the eighteenth revision, a braking disc the kick
+                // cannot move beyond the rounding of its position is held
+                // by its friction instead.
+                if self.config.revision.holds_discs_kicks_cannot_move() {
+                    if let Some(held) = self.held_against_kick(
+                        members,
+                        &unbiased,
+                        (vel, inv),
+                        &alpha,
+                        &after,
+                        &kicked,
+                        t,
+                    ) {
+                        let changed = self.set_velocities(members, vel, &held, t);
+                        for &c in &changed {
+                            self.predict(c, true);
+                        }
+                        return !changed.is_empty();
+                    }
+                }
                 after = if self.config.revision.bounds_collapse_kick_energy() {
                     // From the fourteenth revision, held as the twelfth
                     // holds a pressing kick over a cluster: no more than
@@ -1962,6 +1987,16 @@ impl World {
             self.stats.pressed += 1;
             return;
         }
+        // From the eighteenth revision, an elastic hit of two frictionless
+        // discs that rings between an obstacle and the pair is played to
+        // its end at once.
+        if e == 1.0
+            && self.config.revision.plays_elastic_wall_rings_at_once()
+            && self.elastic_wall_ring(i, j, [pi, pj], [ui, uj], n, t)
+        {
+            self.stats.collapses += 1;
+            return;
+        }
         let (mut vi, mut vj) = impulse::body_body(ui, uj, mi.mass, mj.mass, e, n);
         // Each gets its own friction back (a pushed pair shares one).
         let alpha = [mi.mu * self.g, mj.mu * self.g];
@@ -2073,7 +2108,16 @@ impl World {
     /// at 240 m/s^2, 1,708 events at one instant until `stuck`. `false`
     /// (nothing done) where either disc moves on, neither moved before,
     /// no disc runs into the pair, what runs in has the energy to move
-    /// it, or the limit has no answer.
+    /// it, or the limit has no answer. From the eighteenth revision a disc
+    /// that runs into a member only once the limit has stopped it is taken
+    /// in too, the limit solved again until none does: a frictionless disc
+    /// sliding down the side wall along a light one on the floor shared
+    /// its motion along their normal, ran into it once it was stopped,
+    /// and hit it again at that instant, until the event cap (mixed-box
+    /// 531237; `Revision::stops_discs_running_into_stopped_discs`). Where
+    /// the wider limit fails the test of energy or has no answer, the
+    /// narrower one is kept (refused whole, mixed-box 425978 went back to
+    /// `stuck`).
     fn settled_hit(
         &mut self,
         i: usize,
@@ -2108,9 +2152,6 @@ impl World {
             members.extend(behind);
             k += 1;
         }
-        let mut contacts = self.contacts_among(&members, t);
-        let (vel, mut inv) = self.motion(&members, t);
-        (inv[0], inv[1]) = (0.0, 0.0);
         // Held by their friction: what runs into them has no more kinetic
         // energy than the weaker of their friction forces spends over the
         // pressing contact's gap, as a pressed pair rests by its energy
@@ -2118,23 +2159,55 @@ impl World {
         let (mi, mj) = (self.material[i], self.material[j]);
         let weakest = (mi.mass * mi.mu).min(mj.mass * mj.mu) * self.g;
         let gap = push::press_gap(self.config.revision) * (mi.radius + mj.radius);
-        let energy: f64 = members[2..]
-            .iter()
-            .zip(&vel[2..])
-            .map(|(&c, v)| 0.5 * self.material[c].mass * v.length_squared())
-            .sum();
-        if !(weakest > 0.0 && energy <= weakest * gap) {
-            self.slots[i].traj = old_i;
-            self.slots[j].traj = old_j;
-            return false;
-        }
-        contacts.retain(|c| c.a >= 2 || c.b.is_some_and(|b| b >= 2));
-        let after = (members.len() > 2)
-            .then(|| {
-                collapse::resolve(&vel, &inv, &contacts, PRESS_SWEEPS)
-                    .or_else(|| collapse::active_set(&vel, &inv, &contacts))
-            })
-            .flatten();
+        // From the eighteenth revision, a disc that runs into a member as
+        // the limit leaves it (stopped against the pair) is taken in too,
+        // and the limit solved again, until none does.
+        let closed = self
+            .config
+            .revision
+            .stops_discs_running_into_stopped_discs();
+        // The last limit found before the discs running into it were
+        // taken in: kept where the wider one is refused.
+        let mut narrower: Option<(usize, Vec<DVec2>, Vec<DVec2>)> = None;
+        let (vel, after) = loop {
+            let mut contacts = self.contacts_among(&members, t);
+            let (vel, mut inv) = self.motion(&members, t);
+            (inv[0], inv[1]) = (0.0, 0.0);
+            let energy: f64 = members[2..]
+                .iter()
+                .zip(&vel[2..])
+                .map(|(&c, v)| 0.5 * self.material[c].mass * v.length_squared())
+                .sum();
+            let after = if weakest > 0.0 && energy <= weakest * gap {
+                contacts.retain(|c| c.a >= 2 || c.b.is_some_and(|b| b >= 2));
+                (members.len() > 2)
+                    .then(|| {
+                        collapse::resolve(&vel, &inv, &contacts, PRESS_SWEEPS)
+                            .or_else(|| collapse::active_set(&vel, &inv, &contacts))
+                    })
+                    .flatten()
+            } else {
+                None
+            };
+            let Some(after) = after else {
+                match narrower {
+                    Some((len, vel, after)) => {
+                        members.truncate(len);
+                        break (vel, Some(after));
+                    }
+                    None => break (vel, None),
+                }
+            };
+            if !closed {
+                break (vel, Some(after));
+            }
+            let behind = self.running_into(&members, &after, &at, noise, t);
+            if behind.is_empty() || members.len() + behind.len() > MAX_COLLAPSE {
+                break (vel, Some(after));
+            }
+            narrower = Some((members.len(), vel, after));
+            members.extend(behind);
+        };
         let Some(mut after) = after else {
             self.slots[i].traj = old_i;
             self.slots[j].traj = old_j;
@@ -2147,6 +2220,33 @@ impl World {
         }
         self.kick_cluster(&members, &vel, &after, [i, j], t);
         true
+    }
+
+    /// The live discs outside `members` (slots) that touch one of them
+    /// (the slots at `at`, [`World::positions`]) and run into it faster
+    /// than `noise` where the members move at `after` (their velocities
+    /// out of a limit), the discs outside at their own velocities at `t`.
+    fn running_into(
+        &self,
+        members: &[usize],
+        after: &[DVec2],
+        at: &[DVec2],
+        noise: f64,
+        t: f64,
+    ) -> Vec<usize> {
+        let mut behind: Vec<usize> = Vec::new();
+        for (&m, &vm) in members.iter().zip(after) {
+            for c in self.touching(m, at) {
+                let n = (at[m] - at[c]).normalize_or_zero();
+                if !members.contains(&c)
+                    && !behind.contains(&c)
+                    && (vm - self.slots[c].traj.velocity(t)).dot(n) < -noise
+                {
+                    behind.push(c);
+                }
+            }
+        }
+        behind
     }
 
     /// Puts the discs in slots `i` and `j` on their trajectories out of a
@@ -2499,6 +2599,11 @@ impl World {
         // `H` touches another disc, which takes its sideways share of the
         // contact force, and no obstacle.
         let held = self.touching(h, &at).any(|c| c != l) && self.contacts_among(&[h], t).is_empty();
+        // From the eighteenth revision, or the one obstacle it slides along,
+        // which takes that share (see `World::held_on_own_wall`).
+        let held = held
+            || (self.config.revision.carries_wedged_discs_between_walls()
+                && self.held_on_own_wall(h, l, u[usize::from(h == j)], &at, t));
         let alone = self.touching(l, &at).all(|c| c == h);
         if !(held && alone && wall.b.is_none()) {
             return false;
@@ -2520,6 +2625,33 @@ impl World {
         let new_j = Trajectory::new(t, pj, vj, aj);
         self.leave_hit(i, j, new_i, new_j, t);
         true
+    }
+
+    /// From the eighteenth revision, whether the pushing disc in slot `h`
+    /// of a pair about to be wedged along a wall ([`World::wedged_along_wall`];
+    /// the pushed disc in slot `l`, `at` every disc's centre, `u_h` `H`'s
+    /// velocity before the hit) is held to its line by the one obstacle
+    /// it touches, as the sixteenth revision holds it by a disc: `H`
+    /// touches no disc but `L`, slides along that obstacle (its velocity
+    /// across it within [`push::SAME`] of its speed), and the push from
+    /// `L` drives it into the obstacle, which takes the push's share
+    /// across it. A heavy frictionless disc (0.64 kg) sliding down the side
+    /// wall at 3.9e-4 m/s into the corner past a light disc (6.6 g,
+    /// braking at 2.0 m/s^2) on the floor pressed it along the floor, one
+    /// hit and one stop every 4.3e-5 s, each kick spent by its friction
+    /// before the next, until the event cap at 20.3 s.
+    fn held_on_own_wall(&self, h: usize, l: usize, u_h: DVec2, at: &[DVec2], t: f64) -> bool {
+        let walls = self.contacts_among(&[h], t);
+        let [wall] = walls[..] else {
+            return false;
+        };
+        let speed = u_h.length();
+        let from_l = (at[h] - at[l]).normalize_or_zero();
+        wall.b.is_none()
+            && self.touching(h, at).all(|c| c == l)
+            && speed > 0.0
+            && u_h.dot(wall.n).abs() <= push::SAME * speed
+            && from_l.dot(wall.n) < 0.0
     }
 
     /// From the fifteenth revision, the plastic hit of a pair about to be

@@ -1513,3 +1513,117 @@ fn discs_running_into_a_hit_that_settles_both_its_discs_are_stopped_against_it()
         settles_from(Revision::R17, name, 100.0, EndReason::Stuck, 10_000);
     }
 }
+
+#[test]
+fn a_disc_grazing_a_row_by_less_than_a_position_can_show_passes_it() {
+    // In mixed-box 129558 light frictionless elastic disc 1 (16 g) slides
+    // down the left wall at 5.3e-4 m/s, 2.6e-10 m above the line of a row
+    // on the floor: frictionless plastic disc 2 (0.11 kg), then braking
+    // discs 3 (0.43 kg, 4.8 m/s^2) and 4 (0.61 kg, 2.9 m/s^2). Their line
+    // of centres 6.9e-9 from square to its motion, disc 1 wedges the row
+    // right at 3.7e-12 m/s, but the whole carry left before it reaches
+    // the floor, the sagitta of its path over disc 2, is 9.2e-19 m, 1/60
+    // of the rounding of a position. Played, each hit of disc 2 into the
+    // braking disc 3 was taken as a ring with disc 1 and the wall, which
+    // gave discs 2 and 3 the wedge's speed again; the pressing kick parted
+    // 3 and 4, disc 3 braked and disc 2 caught it 1.5e-13 s later: 22,000
+    // events at 0.463 s, never more than 3 at one instant, until `stuck`
+    // (revisions 15 to 17). From revision 18 a graze within the rounding
+    // of the positions is no contact: the ring of discs 2 and 3 is played
+    // without disc 1, no hit of disc 1 into the resting row is predicted,
+    // the row rests, disc 1 slides on to the floor, and the box reaches
+    // its horizon in 41 events.
+    settles_from(
+        Revision::R18,
+        "mixed-box-129558",
+        100.0,
+        EndReason::Stuck,
+        1_000,
+    );
+}
+
+#[test]
+fn a_disc_that_runs_into_a_settled_hit_only_once_its_discs_stop_is_stopped_too() {
+    // In mixed-box 531237 frictionless elastic disc 1 (20 g) slides down
+    // the side wall at 3.0e-5 m/s, 4.1e-8 m above the floor, along light
+    // frictionless plastic disc 2 (1.8 g) on the floor, their contact
+    // tilted 9.6e-7 from level; disc 2 lies against disc 3 (0.73 kg,
+    // braking at 1.3 m/s^2), on which disc 7 (0.26 kg, braking at 3.0
+    // m/s^2) rests. Each ring of 2 and 1 is taken to its limit, which
+    // sets 2, 3 and 7 moving at 2.8e-11 m/s; the hit of 3 and 7 settles
+    // both, and revision 17's settled hit stops disc 2, which runs into
+    // them, but not disc 1, which shares disc 2's motion along their
+    // normal and runs into it only once it is stopped: 2-1 and 3-7 in
+    // turn, 18,615 of the last 20,000 events at one time, until the event
+    // cap at 31.2 s (revision 16, which stops neither, reaches its
+    // horizon). Disc 1's 8.8e-12 J is far less than the 3.4e-6 J
+    // disc 7's friction does over the pressing contact's gap: from
+    // revision 18 it is taken into the stop as well, and the box reaches
+    // its 100 s horizon in 17,175 events.
+    reaches_the_horizon_from(Revision::R18, "mixed-box-531237", 100.0);
+}
+
+#[test]
+fn a_braking_disc_that_the_kick_after_a_limit_cannot_move_holds_its_partner() {
+    // In mixed-box 170741 disc 1 (6.7 g, elastic, braking at 5.6 m/s^2)
+    // on the side wall, 3.5e-5 m above the floor, pressed down by heavy
+    // disc 5 (0.64 kg) sliding over it at 4.3e-3 m/s, slides at 1.6e-7
+    // m/s into plastic disc 2 (0.52 kg, braking at 137 m/s^2, at rest on
+    // the floor), their contact tilted 6.5e-4 from level. Each hit is
+    // taken with the wall, and the pressing kick after its limit sends
+    // disc 2 off at 8e-9 m/s; it stops 6e-11 s later, 2.4e-19 m on, below
+    // the rounding of its position, and is hit again at that instant:
+    // 10,000 stops and 9,980 hits in the last 20,000 events before `stuck`
+    // at 26.2 s (revision 16 reaches its horizon: revision 17's rest of a
+    // spent pair left as it was turned the run another way at 8 s). Disc 1's 8.4e-17 J could not move disc 2 (71 N of
+    // friction) beyond the pressing contact's gap: from revision 18 disc
+    // 2 is held, disc 1 stops against it and the wall, and the box
+    // reaches its 100 s horizon in 10,851 events.
+    settles_from(
+        Revision::R18,
+        "mixed-box-170741",
+        100.0,
+        EndReason::Stuck,
+        20_000,
+    );
+}
+
+#[test]
+fn a_light_elastic_disc_ringing_between_a_wall_and_its_partner_is_played_to_the_end_at_once() {
+    // In mixed-box 401789 heavy frictionless plastic disc 14 (0.25 kg)
+    // slides at 1.9e-3 m/s over disc 7 (3.8 g), pressing it into disc 3
+    // (4.3 g, braking at 1.0 m/s^2) on the floor, which presses
+    // frictionless elastic disc 2 (0.15 kg) against frictionless elastic
+    // disc 1 (2.0 g) in the corner. Disc 1 lies within 2e-12 m of the side
+    // wall and of disc 2: each hit of disc 2 sends it into the wall and
+    // back at a few micrometres a second, a hit every 4e-7 s, the ring
+    // ending after a dozen turns and beginning again at disc 3's next
+    // push: 10,735 of the last 20,000 events before the event cap at 3.44
+    // s. From revision 18 each ring is played to its end at once (the
+    // same elastic impulses, no energy lost, the wall taking the
+    // momentum), and the box reaches its 100 s horizon in 82,546 events.
+    reaches_the_horizon_from(Revision::R18, "mixed-box-401789", 100.0);
+}
+
+#[test]
+fn a_disc_wedged_along_the_floor_by_one_sliding_down_the_side_wall_is_carried_at_once() {
+    // In mixed-box 1037739 heavy frictionless disc 1 (0.64 kg) slides down
+    // the side wall into the corner at 3.9e-4 m/s, its centre 2.6e-4 m
+    // above that of light plastic disc 2 (6.6 g, braking at 2.0 m/s^2)
+    // on the floor beside it. Each hit wedges disc 2 along the floor at
+    // 2.2e-5 m/s; it stops 1.1e-5 s later and disc 1 catches it again
+    // 3.2e-5 s on, 4.4e-6 of disc 1's speed lost a turn: 10,000 hits and
+    // 9,999 stops in the last 20,000 events before the event cap at 20.3
+    // s, some 15,000 turns short of disc 1 passing. Revision 16 carries a
+    // disc along its wall only where a disc holds the pusher to its line;
+    // here the side wall does, and from revision 18 disc 2 is carried
+    // along the floor as disc 1 slides past: at the first such hit (18.59
+    // s, disc 1 at 7.4e-4 m/s, its centre 1.1e-3 m above disc 2's) the
+    // two stop together 1.5 s later, where disc 2's friction has spent
+    // disc 1's energy, disc 2 carried 1.8e-5 m. The box reaches its 100 s
+    // horizon in 2,945 events.
+    reaches_the_horizon_from(Revision::R18, "mixed-box-1037739", 100.0);
+    let (reason, events, _) = run_until("mixed-box-1037739", Revision::R18, 100.0);
+    assert_eq!(reason, EndReason::Until);
+    assert!(events < 10_000, "{events} events");
+}
