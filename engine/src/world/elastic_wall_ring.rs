@@ -8,6 +8,7 @@
 
 use super::World;
 use crate::impulse;
+use crate::push;
 use crate::ring;
 use crate::trajectory::Trajectory;
 use glam::DVec2;
@@ -58,6 +59,12 @@ impl World {
         if !(mi.restitution == 1.0 && mj.restitution == 1.0 && mi.mu == 0.0 && mj.mu == 0.0) {
             return false;
         }
+        // A ring against a wall needs one of the two against an obstacle
+        // (the test on the hits below refuses it otherwise): most elastic
+        // hits have none, so leave before gathering the contacts.
+        if !(self.may_touch_an_obstacle(i, t) || self.may_touch_an_obstacle(j, t)) {
+            return false;
+        }
         let contacts = self.contacts_among(&[i, j], t);
         if !contacts.iter().any(|c| c.a == 0 && c.b == Some(1)) {
             return false;
@@ -96,5 +103,18 @@ impl World {
         let new_j = Trajectory::new(t, pj, end[1], 0.0);
         self.leave_hit(i, j, new_i, new_j, t);
         true
+    }
+
+    /// Whether disc `c` at `t` lies within touching distance of a solid
+    /// line or a point, by the test `World::contacts_among` makes: true
+    /// wherever that would find an obstacle contact (and where its normal
+    /// would be null, which it drops), so it only ever saves work.
+    fn may_touch_an_obstacle(&self, c: usize, t: f64) -> bool {
+        let (p, r) = (self.slots[c].traj.position(t), self.slots[c].radius);
+        let touching = |gap: f64| gap <= r * (1.0 + push::TOUCHING);
+        self.solid
+            .iter()
+            .any(|&line| touching(self.geoms[line as usize].distance(p)))
+            || self.points.iter().any(|q| touching((p - q.pos).length()))
     }
 }
