@@ -126,8 +126,9 @@ pub(crate) fn disc_point(m: &Mover, q: DVec2, s: f64, rev: Revision) -> Option<f
         // Touching now: a contact only if the approach is more than noise,
         // and from the eighteenth revision more than a graze within the
         // rounding of the positions.
-        let grazes = rev.passes_grazes_within_rounding() && graze::within_rounding(m.pos, q, w);
-        return (b < -APPROACH * s * w.length() && !grazes).then_some(m.now);
+        let approaches = b < -APPROACH * s * w.length();
+        let grazes = || rev.passes_grazes_within_rounding() && graze::within_rounding(m.pos, q, w);
+        return (approaches && !grazes()).then_some(m.now);
     }
     let l = entry(w.length_squared(), b, c, d.perp_dot(w), s * s, rev)?;
     m.time_at(l * scale)

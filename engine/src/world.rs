@@ -1169,16 +1169,21 @@ impl World {
         t: f64,
     ) -> bool {
         let alpha = self.braking(members);
-        let unbiased = contacts.clone();
+        // The contacts before the pressing biases, for the held kick alone.
+        let unbiased = self
+            .config
+            .revision
+            .holds_discs_kicks_cannot_move()
+            .then(|| contacts.clone());
         if press && self.press_biases(members, &mut contacts, &after, &alpha) {
             if let Some(kicked) = self.press_closure(members, &mut contacts, &after, inv, &alpha) {
                 // From the eighteenth revision, a braking disc the kick
                 // cannot move beyond the rounding of its position is held
                 // by its friction instead.
-                if self.config.revision.holds_discs_kicks_cannot_move() {
+                if let Some(unbiased) = &unbiased {
                     if let Some(held) = self.held_against_kick(
                         members,
-                        &unbiased,
+                        unbiased,
                         (vel, inv),
                         &alpha,
                         &after,
