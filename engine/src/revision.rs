@@ -652,6 +652,8 @@ pub enum Revision {
     ///   events) (`Revision::passes_grazes_within_rounding`).
     #[default]
     R18,
+    /// The nineteenth, as the eighteenth but:
+    R19,
 }
 
 impl Revision {
@@ -659,7 +661,7 @@ impl Revision {
     pub const LATEST: Revision = Revision::R18;
 
     /// Every revision, oldest first.
-    pub const ALL: [Revision; 18] = [
+    pub const ALL: [Revision; 19] = [
         Revision::R1,
         Revision::R2,
         Revision::R3,
@@ -678,6 +680,7 @@ impl Revision {
         Revision::R16,
         Revision::R17,
         Revision::R18,
+        Revision::R19,
     ];
 
     /// Whether this revision has the second revision's rules.
@@ -770,6 +773,11 @@ impl Revision {
     /// Whether this revision has the eighteenth revision's rules.
     pub fn at_least_r18(self) -> bool {
         self >= Revision::R18
+    }
+
+    /// Whether this revision has the nineteenth revision's rules.
+    pub fn at_least_r19(self) -> bool {
+        self >= Revision::R19
     }
 
     /// Whether a ring of a touching cluster whose kinetic energy each of
@@ -1128,10 +1136,10 @@ mod tests {
         for (k, r) in Revision::ALL.into_iter().enumerate() {
             assert_eq!(format!("r{}", k + 1).parse(), Ok(r));
         }
-        let err = "r19".parse::<Revision>().unwrap_err();
+        let err = "r20".parse::<Revision>().unwrap_err();
         assert_eq!(
             err.to_string(),
-            "no engine revision named \"r19\" (r1, r2, ...)"
+            "no engine revision named \"r20\" (r1, r2, ...)"
         );
     }
 }
