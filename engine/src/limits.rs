@@ -126,6 +126,16 @@ pub(crate) const PRESS_SWEEPS: usize = 200;
 /// `World::press_closure`).
 pub(crate) const PRESS_ROUNDS: usize = 4;
 
+/// From the nineteenth revision, discs of a cluster beyond which a pressing
+/// kick that projected Gauss–Seidel stalls on is not sought by the
+/// active-set method (see `Revision::finds_stalled_cluster_kicks_by_active_set`):
+/// as many as a mixed box holds. Unbounded, it made nine of plastic-lines
+/// seeds 600,000-699,999 slow (revision 18: two), piles of 24 to 31 discs
+/// (59 to 77 contacts) searched 85 to 107 times a run (630620: 5.5 s,
+/// 65 ms a search); a larger cluster's kick is left to the hit, as
+/// before.
+pub(crate) const EXACT_KICK_CLUSTER: usize = 14;
+
 /// Past this time a run checks, before each event, that every moving body
 /// is still within [`MAX_COORDINATE`] (no scene reaches it otherwise:
 /// speeds stay below 1e150 and start positions too).

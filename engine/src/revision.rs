@@ -650,15 +650,57 @@ pub enum Revision {
     ///   1.5e-13 s later: 22,000 events at 0.463 s, no more than 3 at one
     ///   instant, until `stuck` (mixed-box 129558; the horizon in 41
     ///   events) (`Revision::passes_grazes_within_rounding`).
-    #[default]
     R18,
     /// The nineteenth, as the eighteenth but:
+    /// - a plastic hit that drives a disc sliding along the one obstacle
+    ///   it touches into it, as that disc wedges a braking one aside, is
+    ///   carried (`World::carried_press`, the disc held to its wall
+    ///   through the hit) before it is taken as a ring into that obstacle
+    ///   (`World::hit_into_wall`), whose pressing kick sent the braking
+    ///   disc off to stop and be caught again: a light frictionless disc
+    ///   (1.5 g) sliding up the side wall at 6.5e-6 m/s into a braking
+    ///   one (20 g, 2.9 m/s^2), their contact tilted 1.0e-4 from level
+    ///   (passing it would cost 370 times its energy), kicked it off at
+    ///   3.3e-7 m/s at every hit, a hit and a stop every 2.7e-5 s, 3e-5 of
+    ///   its speed lost a turn, until the event cap at 5.77 s (mixed-box
+    ///   1076279; the two now stop together 1.6e-3 s after the first such
+    ///   hit, to the 100 s horizon in 181 events; a frictionless disc
+    ///   sliding up the wall into a braking row of two, four events a
+    ///   cycle until the event cap at 5.86 s, in 258784, to the horizon in
+    ///   474 events) (`Revision::carries_wedges_before_wall_rings`).
+    /// - a pair resting by its energy (`push::spent_within_gap`) no longer
+    ///   holds with it a braking disc of its cluster that slides beyond
+    ///   the pressing contact's gap on its own and, given its velocity
+    ///   back after the rest, runs into nothing of the cluster: it keeps
+    ///   that velocity. The eleventh revision's rest held every braking disc that
+    ///   the pair's energy could not move beyond the gap, however fast it
+    ///   slid: over the first 20,000 mixed boxes under the eighteenth, 7,543
+    ///   rests held such a disc, 7,471 of them sliding faster than 1e-3 m/s,
+    ///   in 1,637 boxes, up to 9.2 m/s (a disc that would have slid 14 m);
+    ///   in mixed-box 142 an elastic disc (11.6 g, braking at 0.80 m/s^2)
+    ///   leaving a row at 0.80 m/s was stopped dead (3.7 mJ) when a pair
+    ///   of the row rested. A sliding disc that runs into a held one is
+    ///   still held: freed, with its approach taken off, four of the first
+    ///   100,000 mixed boxes ended stuck or at the event cap
+    ///   (`Revision::leaves_sliding_discs_out_of_spent_rests`).
+    /// - the pressing kick over a cluster (`World::press_closure`: every
+    ///   pressed pair parting at its bounce speed, no other contact
+    ///   approaching) is found by the active-set method where projected
+    ///   Gauss–Seidel stalls on its biased contacts, as the ninth
+    ///   revision finds a collapse's limit, instead of being given up
+    ///   (given up, the hit left the pair as it was and it pressed again
+    ///   at once), in clusters of up to fourteen discs: three pressed
+    ///   pairs of mixed-box 6759 took turns for 4,750 pressed hits, 8,686
+    ///   events to the horizon, now 93. Over whole plastic piles the
+    ///   search was too slow (nine held-out piles over a second)
+    ///   (`Revision::finds_stalled_cluster_kicks_by_active_set`).
+    #[default]
     R19,
 }
 
 impl Revision {
     /// The revision new computations use.
-    pub const LATEST: Revision = Revision::R18;
+    pub const LATEST: Revision = Revision::R19;
 
     /// Every revision, oldest first.
     pub const ALL: [Revision; 19] = [
@@ -1108,6 +1150,33 @@ impl Revision {
     /// `graze::within_rounding`).
     pub fn passes_grazes_within_rounding(self) -> bool {
         self.at_least_r18()
+    }
+
+    /// Whether a hit whose pushing disc slides along the one obstacle it
+    /// touches and wedges a braking disc aside is carried
+    /// (`World::carried_press`) before it is taken as a ring into that
+    /// obstacle (a nineteenth revision rule, see `World::collide`).
+    pub fn carries_wedges_before_wall_rings(self) -> bool {
+        self.at_least_r19()
+    }
+
+    /// Whether a pair resting by its energy (`push::spent_within_gap`)
+    /// gives back, after its rest, their velocities to the braking discs
+    /// of its cluster that slide beyond the pressing contact's gap on
+    /// their own and then run into nothing of the cluster, instead of
+    /// holding them with the pair (a nineteenth revision rule, see
+    /// `World::press_cluster`).
+    pub fn leaves_sliding_discs_out_of_spent_rests(self) -> bool {
+        self.at_least_r19()
+    }
+
+    /// Whether the pressing kick over a cluster (`World::press_closure`)
+    /// is found by the active-set method where projected Gauss–Seidel
+    /// stalls on its biased contacts, instead of being given up, in
+    /// clusters of up to `EXACT_KICK_CLUSTER` discs (a nineteenth revision
+    /// rule, see `World::press_cluster`).
+    pub fn finds_stalled_cluster_kicks_by_active_set(self) -> bool {
+        self.at_least_r19()
     }
 }
 

@@ -36,8 +36,8 @@ use crate::impulse;
 use crate::instant::same_instant;
 use crate::limits::{
     snap, Crawl, Repeats, Watched, COLLAPSE_EVENTS, COLLAPSE_WINDOW, CRAWL_EVENTS,
-    EARLY_REPEAT_HITS, FAR_FUTURE, GENTLE, MAX_COLLAPSE, MAX_COORDINATE, PRESS_ROUNDS,
-    PRESS_SWEEPS, REPEAT_HITS, SETTLE, SNAP, STUCK_EVENTS, STUCK_EVENTS_PER_BODY,
+    EARLY_REPEAT_HITS, EXACT_KICK_CLUSTER, FAR_FUTURE, GENTLE, MAX_COLLAPSE, MAX_COORDINATE,
+    PRESS_ROUNDS, PRESS_SWEEPS, REPEAT_HITS, SETTLE, SNAP, STUCK_EVENTS, STUCK_EVENTS_PER_BODY,
 };
 use crate::obstacle::{Line, LineGeom, Point};
 use crate::pivot;
@@ -1252,6 +1252,10 @@ impl World {
     /// turned within the rounding of the time, a pair pushed at 2.9e-12
     /// m/s was met again at once, each hit changing nothing, until `stuck`
     /// (mixed-box 79139; `Revision::rests_spent_pairs_left_as_they_were`).
+    /// From the nineteenth revision a braking disc of the cluster that
+    /// slides beyond the gap on its own and, given its velocity back after
+    /// that rest, runs into nothing of it keeps that velocity (mixed-box 142;
+    /// `Revision::leaves_sliding_discs_out_of_spent_rests`).
     fn press_cluster(
         &mut self,
         i: usize,
@@ -1332,18 +1336,27 @@ impl World {
                 // and two braking discs it pressed took turns at being
                 // pushed, at one instant. Where that has no answer, without.
                 let mut firm = still.clone();
+                // From the nineteenth revision, the braking discs this
+                // energy cannot move beyond the gap but that slide beyond
+                // it on their own (see
+                // `Revision::leaves_sliding_discs_out_of_spent_rests`).
+                let mut sliding = vec![false; members.len()];
                 if self.config.revision.at_least_r4() {
                     let alpha = self.braking(&members);
                     let gap = push::press_gap(self.config.revision) * s;
                     let energy = push::pair_energy([vi, vj], masses);
+                    let frees_sliding = self
+                        .config
+                        .revision
+                        .leaves_sliding_discs_out_of_spent_rests();
                     for k in 2..members.len() {
                         let slide = vel[k].length_squared() / (2.0 * alpha[k]);
                         still[k] = alpha[k] > 0.0 && slide > 0.0 && slide <= gap;
                         let mass = self.material[members[k]].mass;
-                        firm[k] = still[k]
-                            || (kick.is_some()
-                                && alpha[k] > 0.0
-                                && energy <= mass * alpha[k] * gap);
+                        let spent_on =
+                            kick.is_some() && alpha[k] > 0.0 && energy <= mass * alpha[k] * gap;
+                        sliding[k] = frees_sliding && spent_on && slide > gap;
+                        firm[k] = still[k] || spent_on;
                     }
                 }
                 let tries = if firm != still {
@@ -1384,7 +1397,29 @@ impl World {
                         })
                     }
                 };
-                let after = tries.iter().find_map(|still| hold(still));
+                let after = tries
+                    .iter()
+                    .find_map(|still| hold(still).map(|after| (after, still)));
+                // From the nineteenth revision, a disc held only as sliding
+                // beyond the gap keeps its velocity where, given it back,
+                // it runs into nothing of the cluster as the rest leaves it.
+                let after = after.map(|(mut after, still)| {
+                    let mut kept: Vec<bool> =
+                        (0..members.len()).map(|k| sliding[k] && still[k]).collect();
+                    while let Some(k) = (0..members.len()).find(|&k| {
+                        kept[k]
+                            && !runs_into_nothing(
+                                k,
+                                &given_back(&after, &vel, &kept),
+                                &kept,
+                                &contacts,
+                            )
+                    }) {
+                        kept[k] = false;
+                    }
+                    after = given_back(&after, &vel, &kept);
+                    after
+                });
                 match (after, kick) {
                     (Some(mut after), _) => {
                         // From the eleventh revision, what the projection
@@ -1487,7 +1522,22 @@ impl World {
         inv: &[f64],
         alpha: &[f64],
     ) -> Option<Vec<DVec2>> {
-        let mut after = collapse::resolve(vel, inv, contacts, PRESS_SWEEPS)?;
+        // From the nineteenth revision, where projected Gauss–Seidel stalls
+        // on the biased contacts, the active-set method finds the kick, in
+        // a cluster small enough for its search (`EXACT_KICK_CLUSTER`).
+        let exact = self
+            .config
+            .revision
+            .finds_stalled_cluster_kicks_by_active_set()
+            && members.len() <= EXACT_KICK_CLUSTER;
+        let solve = |contacts: &[collapse::Contact]| {
+            collapse::resolve(vel, inv, contacts, PRESS_SWEEPS).or_else(|| {
+                exact
+                    .then(|| collapse::active_set(vel, inv, contacts))
+                    .flatten()
+            })
+        };
+        let mut after = solve(contacts)?;
         if !self.config.revision.at_least_r4() {
             return Some(after);
         }
@@ -1495,7 +1545,7 @@ impl World {
             if !self.press_biases(members, contacts, &after, alpha) {
                 break;
             }
-            after = collapse::resolve(vel, inv, contacts, PRESS_SWEEPS)?;
+            after = solve(contacts)?;
         }
         Some(after)
     }
@@ -1965,6 +2015,17 @@ impl World {
             self.stats.collapses += 1;
             return;
         }
+        // From the nineteenth revision, a plastic hit that drives a disc
+        // sliding along the one obstacle it touches into it, as that disc
+        // wedges a braking one aside, is carried before it is taken as a
+        // ring into that obstacle.
+        if e == 0.0
+            && self.config.revision.carries_wedges_before_wall_rings()
+            && self.carried_press(i, j, [pi, pj], [ui, uj], n, true, t)
+        {
+            self.stats.pressed += 1;
+            return;
+        }
         // From the thirteenth revision, a plastic hit that drives a disc
         // into an obstacle it touches, the two then ringing between the
         // obstacle and each other, is taken with the obstacle.
@@ -1987,7 +2048,7 @@ impl World {
         // From the fourteenth revision, a disc wedging a strongly braked
         // one aside as it slides past takes it along as one body.
         if self.config.revision.carries_wedged_discs()
-            && self.carried_press(i, j, [pi, pj], [ui, uj], n, t)
+            && self.carried_press(i, j, [pi, pj], [ui, uj], n, false, t)
         {
             self.stats.pressed += 1;
             return;
@@ -2298,6 +2359,12 @@ impl World {
     /// the pressing contact kicked aside at every hit; it stopped a
     /// microsecond later and was caught again, two events a cycle until the
     /// event cap. `false` (nothing done) where the rule does not apply.
+    /// With `along_own_wall` (the nineteenth revision's call before the
+    /// hit is taken as a ring into an obstacle,
+    /// `Revision::carries_wedges_before_wall_rings`), only where the
+    /// plastic hit drives the pushing disc into the one obstacle it slides
+    /// along (`World::hit_along_wall`, no pinning disc).
+    #[allow(clippy::too_many_arguments)]
     fn carried_press(
         &mut self,
         i: usize,
@@ -2305,6 +2372,7 @@ impl World {
         [pi, pj]: [DVec2; 2],
         [ui, uj]: [DVec2; 2],
         n: DVec2,
+        along_own_wall: bool,
         t: f64,
     ) -> bool {
         let (mi, mj) = (self.material[i], self.material[j]);
@@ -2338,6 +2406,13 @@ impl World {
                 along_wall = true;
                 pinning = p;
             }
+        }
+        // From the nineteenth revision, asked before the hit is taken as a
+        // ring into an obstacle: only a pushing disc that the hit drives
+        // into the one obstacle it slides along (see
+        // `Revision::carries_wedges_before_wall_rings`).
+        if along_own_wall && !(along_wall && pinning.is_none()) {
+            return false;
         }
         let s = mi.radius + mj.radius;
         // Only where the approximated contact would kick the pair apart
@@ -3579,6 +3654,32 @@ fn within_press_bound(
             .map(|(p, q)| *p + (*q - *p) * l)
             .collect(),
     )
+}
+
+/// From the nineteenth revision: whether disc `k` of a cluster
+/// (velocities `vel`) approaches none of the discs and obstacles it
+/// touches (`contacts`, each normal from `b` to `a`), those `kept` moving
+/// with it apart: what those do to each other is left to their own hits.
+fn runs_into_nothing(
+    k: usize,
+    vel: &[DVec2],
+    kept: &[bool],
+    contacts: &[collapse::Contact],
+) -> bool {
+    contacts
+        .iter()
+        .filter(|c| (c.a == k && c.b.is_none_or(|b| !kept[b])) || (c.b == Some(k) && !kept[c.a]))
+        .all(|c| (vel[c.a] - c.b.map_or(DVec2::ZERO, |b| vel[b])).dot(c.n) >= 0.0)
+}
+
+/// `after` with the discs `kept` given back their velocities `before`.
+fn given_back(after: &[DVec2], before: &[DVec2], kept: &[bool]) -> Vec<DVec2> {
+    after
+        .iter()
+        .zip(before)
+        .zip(kept)
+        .map(|((&a, &b), &k)| if k { b } else { a })
+        .collect()
 }
 
 /// From the seventeenth revision, where a pair rests by its energy with

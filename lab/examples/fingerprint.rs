@@ -1,11 +1,13 @@
 //! `fingerprint`: one line per hostile scene with its event count, end and
 //! a hash of every event (its time's bits, its kind) and of every disc's
 //! trajectory after it (`Debug`, which tells -0.0 from +0.0), under the
-//! latest revision. Two builds of the engine that compute the same bits
+//! latest revision unless another is named. Two builds of the engine that compute the same bits
 //! print the same lines, so `diff` of two runs shows any scene whose run
 //! changed at all (`revision-diff` compares two revisions of one build).
 //! `cargo run --release -p lab --example fingerprint -- plastic-lines 0 10000`
-//! (kind, first seed, scenes).
+//! (kind, first seed, scenes); an optional fourth argument names the
+//! revision to run under (`r12`), so that older revisions' frozen results
+//! can be checked too.
 
 use engine::{Event, EventHandler, Limits, Revision, World, WorldConfig};
 use lab::hostile::{Hostile, Kind, MAX_EVENTS};
@@ -33,22 +35,28 @@ impl EventHandler for Fingerprint {
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let parsed = match args.as_slice() {
-        [kind, seed, count] => Kind::ALL
-            .into_iter()
-            .find(|k| k.name() == kind)
-            .zip(seed.parse::<u64>().ok())
-            .zip(count.parse::<u64>().ok()),
-        _ => None,
+    let (kind, seed, count, revision) = match args.as_slice() {
+        [kind, seed, count] => (kind, seed, count, Some(Revision::LATEST)),
+        [kind, seed, count, revision] => (kind, seed, count, revision.parse().ok()),
+        _ => {
+            eprintln!("usage: fingerprint KIND FIRST_SEED COUNT [REVISION]");
+            return ExitCode::FAILURE;
+        }
     };
-    let Some(((kind, first), count)) = parsed else {
-        eprintln!("usage: fingerprint KIND FIRST_SEED COUNT");
+    let parsed = Kind::ALL
+        .into_iter()
+        .find(|k| k.name() == kind)
+        .zip(seed.parse::<u64>().ok())
+        .zip(count.parse::<u64>().ok())
+        .zip(revision);
+    let Some((((kind, first), count), revision)) = parsed else {
+        eprintln!("usage: fingerprint KIND FIRST_SEED COUNT [REVISION]");
         return ExitCode::FAILURE;
     };
     for seed in first..first.saturating_add(count) {
         let h = Hostile::generate(kind, seed);
         let config = WorldConfig {
-            revision: Revision::LATEST,
+            revision,
             ..WorldConfig::default()
         };
         let Ok(mut world) = World::new(&h.scene, config) else {

@@ -6,6 +6,7 @@ use clap::Parser;
 use engine::Revision;
 use lab::hostile::{run_caught, Failure, Hostile, Kind, Report, MAX_EVENTS};
 use std::collections::BTreeMap;
+use std::io::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -51,6 +52,17 @@ struct Args {
     /// Threads running scenes.
     #[arg(long, default_value_t = 1)]
     jobs: u64,
+}
+
+/// Writes a line to standard output, and ends `main` where it cannot (the
+/// reader went away, as `head` does) with the status a shell gives a
+/// program that a closed pipe stopped (128 + SIGPIPE), instead of a panic.
+macro_rules! say {
+    ($($arg:tt)*) => {
+        if writeln!(std::io::stdout().lock(), $($arg)*).is_err() {
+            return ExitCode::from(141);
+        }
+    };
 }
 
 fn main() -> ExitCode {
@@ -165,7 +177,7 @@ fn main() -> ExitCode {
                 *table.entry((kind, f)).or_default() += 1;
             }
             if args.verbose {
-                println!("{} seed {seed}: {report}", kind.name());
+                say!("{} seed {seed}: {report}", kind.name());
             }
             if let Some(dir) = &args.dump {
                 if dumped < 20 {
@@ -179,11 +191,11 @@ fn main() -> ExitCode {
             }
         }
     }
-    println!(
+    say!(
         "{total} scenes ({per_kind} per kind), {failed} failed, in {:.1} s",
         started.elapsed().as_secs_f64()
     );
-    println!(
+    say!(
         "slowest {:.1} ms ({} seed {}), worst overlap {:.3e} of the contact distance ({} seed {})",
         slowest.0,
         slowest.1.name(),
@@ -192,7 +204,7 @@ fn main() -> ExitCode {
         worst.1.name(),
         worst.2
     );
-    println!(
+    say!(
         "largest energy gain at one event {:.3e} of the energy ({} seed {}); \
          at a pressing hit {:.3e} ({} seed {})",
         gain.0,
@@ -202,16 +214,16 @@ fn main() -> ExitCode {
         press_gain.1.name(),
         press_gain.2
     );
-    println!(
+    say!(
         "longest run of events at one time {} ({} seed {})",
         instant.0,
         instant.1.name(),
         instant.2
     );
     if !table.is_empty() {
-        println!("| kind | failure | scenes |\n| --- | --- | ---: |");
+        say!("| kind | failure | scenes |\n| --- | --- | ---: |");
         for ((kind, f), n) in &table {
-            println!("| {} | {} | {n} |", kind.name(), f.name());
+            say!("| {} | {} | {n} |", kind.name(), f.name());
         }
     }
     let fatal: u64 = table
