@@ -1406,15 +1406,13 @@ impl World {
                 let after = after.map(|(mut after, still)| {
                     let mut kept: Vec<bool> =
                         (0..members.len()).map(|k| sliding[k] && still[k]).collect();
-                    while let Some(k) = (0..members.len()).find(|&k| {
-                        kept[k]
-                            && !runs_into_nothing(
-                                k,
-                                &given_back(&after, &vel, &kept),
-                                &kept,
-                                &contacts,
-                            )
-                    }) {
+                    loop {
+                        let back = given_back(&after, &vel, &kept);
+                        let Some(k) = (0..members.len())
+                            .find(|&k| kept[k] && !runs_into_nothing(k, &back, &kept, &contacts))
+                        else {
+                            break;
+                        };
                         kept[k] = false;
                     }
                     after = given_back(&after, &vel, &kept);
@@ -2021,7 +2019,7 @@ impl World {
         // ring into that obstacle.
         if e == 0.0
             && self.config.revision.carries_wedges_before_wall_rings()
-            && self.carried_press(i, j, [pi, pj], [ui, uj], n, true, t)
+            && self.carried_press(i, j, [pi, pj], [ui, uj], n, Carry::AlongOwnWall, t)
         {
             self.stats.pressed += 1;
             return;
@@ -2048,7 +2046,7 @@ impl World {
         // From the fourteenth revision, a disc wedging a strongly braked
         // one aside as it slides past takes it along as one body.
         if self.config.revision.carries_wedged_discs()
-            && self.carried_press(i, j, [pi, pj], [ui, uj], n, false, t)
+            && self.carried_press(i, j, [pi, pj], [ui, uj], n, Carry::Any, t)
         {
             self.stats.pressed += 1;
             return;
@@ -2359,11 +2357,9 @@ impl World {
     /// the pressing contact kicked aside at every hit; it stopped a
     /// microsecond later and was caught again, two events a cycle until the
     /// event cap. `false` (nothing done) where the rule does not apply.
-    /// With `along_own_wall` (the nineteenth revision's call before the
-    /// hit is taken as a ring into an obstacle,
-    /// `Revision::carries_wedges_before_wall_rings`), only where the
-    /// plastic hit drives the pushing disc into the one obstacle it slides
-    /// along (`World::hit_along_wall`, no pinning disc).
+    /// With [`Carry::AlongOwnWall`] (the nineteenth revision's call before
+    /// the hit is taken as a ring into an obstacle), only where the plastic
+    /// hit drives the pushing disc into the one obstacle it slides along.
     #[allow(clippy::too_many_arguments)]
     fn carried_press(
         &mut self,
@@ -2372,7 +2368,7 @@ impl World {
         [pi, pj]: [DVec2; 2],
         [ui, uj]: [DVec2; 2],
         n: DVec2,
-        along_own_wall: bool,
+        scope: Carry,
         t: f64,
     ) -> bool {
         let (mi, mj) = (self.material[i], self.material[j]);
@@ -2411,7 +2407,7 @@ impl World {
         // ring into an obstacle: only a pushing disc that the hit drives
         // into the one obstacle it slides along (see
         // `Revision::carries_wedges_before_wall_rings`).
-        if along_own_wall && !(along_wall && pinning.is_none()) {
+        if scope == Carry::AlongOwnWall && !(along_wall && pinning.is_none()) {
             return false;
         }
         let s = mi.radius + mj.radius;
@@ -3654,6 +3650,18 @@ fn within_press_bound(
             .map(|(p, q)| *p + (*q - *p) * l)
             .collect(),
     )
+}
+
+/// Which wedged pushes `World::carried_press` takes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Carry {
+    /// Every push it applies to (from the fourteenth revision).
+    Any,
+    /// From the nineteenth revision, asked before a plastic hit is taken as
+    /// a ring into an obstacle: only a pushing disc that the hit drives
+    /// into the one obstacle it slides along (`World::hit_along_wall`, no
+    /// pinning disc; `Revision::carries_wedges_before_wall_rings`).
+    AlongOwnWall,
 }
 
 /// From the nineteenth revision: whether disc `k` of a cluster

@@ -1,9 +1,9 @@
 //! `fingerprint`: one line per hostile scene with its event count, end and
 //! a hash of every event (its time's bits, its kind) and of every disc's
 //! trajectory after it (`Debug`, which tells -0.0 from +0.0), under the
-//! latest revision unless another is named. Two builds of the engine that compute the same bits
-//! print the same lines, so `diff` of two runs shows any scene whose run
-//! changed at all (`revision-diff` compares two revisions of one build).
+//! latest revision unless another is named. Two builds of the engine that
+//! compute the same bits print the same lines, so `diff` of two runs shows
+//! any scene whose run changed at all (`revision-diff` compares two revisions of one build).
 //! `cargo run --release -p lab --example fingerprint -- plastic-lines 0 10000`
 //! (kind, first seed, scenes); an optional fourth argument names the
 //! revision to run under (`r12`), so that older revisions' frozen results
@@ -36,12 +36,20 @@ impl EventHandler for Fingerprint {
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let (kind, seed, count, revision) = match args.as_slice() {
-        [kind, seed, count] => (kind, seed, count, Some(Revision::LATEST)),
-        [kind, seed, count, revision] => (kind, seed, count, revision.parse().ok()),
-        _ => {
-            eprintln!("usage: fingerprint KIND FIRST_SEED COUNT [REVISION]");
-            return ExitCode::FAILURE;
-        }
+        [kind, seed, count] => (
+            kind.as_str(),
+            seed.as_str(),
+            count.as_str(),
+            Some(Revision::LATEST),
+        ),
+        [kind, seed, count, revision] => (
+            kind.as_str(),
+            seed.as_str(),
+            count.as_str(),
+            revision.parse().ok(),
+        ),
+        // Matches no kind: the usage below.
+        _ => ("", "", "", None),
     };
     let parsed = Kind::ALL
         .into_iter()
