@@ -696,6 +696,8 @@ pub enum Revision {
     ///   (`Revision::finds_stalled_cluster_kicks_by_active_set`).
     #[default]
     R19,
+    /// The twentieth, as the nineteenth but:
+    R20,
 }
 
 impl Revision {
@@ -703,7 +705,7 @@ impl Revision {
     pub const LATEST: Revision = Revision::R19;
 
     /// Every revision, oldest first.
-    pub const ALL: [Revision; 19] = [
+    pub const ALL: [Revision; 20] = [
         Revision::R1,
         Revision::R2,
         Revision::R3,
@@ -723,6 +725,7 @@ impl Revision {
         Revision::R17,
         Revision::R18,
         Revision::R19,
+        Revision::R20,
     ];
 
     /// Whether this revision has the second revision's rules.
@@ -820,6 +823,11 @@ impl Revision {
     /// Whether this revision has the nineteenth revision's rules.
     pub fn at_least_r19(self) -> bool {
         self >= Revision::R19
+    }
+
+    /// Whether this revision has the twentieth revision's rules.
+    pub fn at_least_r20(self) -> bool {
+        self >= Revision::R20
     }
 
     /// Whether a ring of a touching cluster whose kinetic energy each of
@@ -1205,10 +1213,10 @@ mod tests {
         for (k, r) in Revision::ALL.into_iter().enumerate() {
             assert_eq!(format!("r{}", k + 1).parse(), Ok(r));
         }
-        let err = "r20".parse::<Revision>().unwrap_err();
+        let err = "r21".parse::<Revision>().unwrap_err();
         assert_eq!(
             err.to_string(),
-            "no engine revision named \"r20\" (r1, r2, ...)"
+            "no engine revision named \"r21\" (r1, r2, ...)"
         );
     }
 }
