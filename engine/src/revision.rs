@@ -694,15 +694,78 @@ pub enum Revision {
     ///   events to the horizon, now 93. Over whole plastic piles the
     ///   search was too slow (nine held-out piles over a second)
     ///   (`Revision::finds_stalled_cluster_kicks_by_active_set`).
-    #[default]
     R19,
     /// The twentieth, as the nineteenth but:
+    /// - a pressed pair coming to rest (`World::press_cluster`, its slide
+    ///   within the pressing contact's gap), a disc of which brakes with a
+    ///   pushed chain, whose plastic limit against its held discs stalls
+    ///   projected Gauss–Seidel in every try, is found by the active-set
+    ///   method (in clusters of up to `EXACT_KICK_CLUSTER` discs) instead
+    ///   of being given up: given up, the hit gave the chain's disc its
+    ///   own braking back, it ran into the disc it pushed and the chain
+    ///   formed again, and the pressing disc ran into it again, at one
+    ///   instant. A disc (35 g, braking at 4.1 m/s^2) on the floor pushing
+    ///   a heavy one (0.48 kg, 78 m/s^2) at 8.3e-5 m/s, the two braking
+    ///   together at 73 m/s^2, was pressed from above by a plastic disc
+    ///   (1.3 g) whose rest over a cluster of eleven discs stalled: the
+    ///   two pairs took turns, 19,974 of the last 20,000 events at 14.19
+    ///   s, until the event cap (mixed-box 544105; to the 100 s horizon in
+    ///   340 events). Taken for every stalled rest, it sent mixed-box
+    ///   70365, whose resting pairs brake on their own, to `stuck`
+    ///   (`Revision::finds_stalled_cluster_rests_by_active_set`).
+    /// - a pair resting by its energy (`push::spent_within_gap`) whose
+    ///   rest has no answer because a disc sliding along one obstacle into
+    ///   the corner is wedged against a row lying along the other (its two
+    ///   contacts nearly opposite, so that every solve stalls) has that
+    ///   row carried as one body along its obstacle, as the sixteenth
+    ///   revision carries one wedged disc (`wedge::carried_row_along_wall`,
+    ///   `World::corner_jam`): the two stop together where the row's
+    ///   friction spends the sliding disc's energy, or it pays that
+    ///   friction at once and passes. A frictionless disc (20.7 g) on the
+    ///   side wall 1.8e-8 m above a braking row on the floor, sliding down
+    ///   at 2.7e-7 m/s (passing would cost 30 times its energy), was
+    ///   kicked off each rest with the row at 1.4e-8 m/s, and the row's
+    ///   pressed pairs hit every 4.7e-10 s, 19,945 of the last 20,000
+    ///   events until `stuck` at 0.258 s (mixed-box 156823; to the 100 s
+    ///   horizon in 342 events; discs passing rows 1.8e-9, 5.9e-10 and
+    ///   4.0e-8 m below them in 157590, 371709 and 241710, `stuck` at 6.02,
+    ///   0.274 and 0.0856 s, to the horizon in 1,402, 2,785 and 3,081
+    ///   events) (`Revision::carries_rows_wedged_into_corners`).
+    /// - the pressing kick over a cluster of more than fourteen discs (a
+    ///   plastic pile) that projected Gauss–Seidel stalls on is found by the
+    ///   active-set method with its pushing set's equalities kept as a
+    ///   Cholesky factor, extended by a row as a contact joins and mended
+    ///   by plane rotations as one leaves (`collapse::factored_active_set`),
+    ///   instead of being given up: the nineteenth revision's search solved
+    ///   every set afresh, 65 ms a search over a pile's 59 to 98 contacts,
+    ///   and was bounded to fourteen discs. Struck plastic piles of 25 to
+    ///   41 discs whose pressed pairs took turns (plastic-lines 113176:
+    ///   21,085 events, 19,921 at one instant; fourteen such seeds of 3,000
+    ///   to 24,133 events, or `stuck`, 0.9 to 5.1 s) end their rings in 2 to
+    ///   35 events at one instant, each in under 0.05 s of CPU. At most
+    ///   32 searches are made at one instant (`KICK_SEARCHES_PER_INSTANT`):
+    ///   a ring the search cannot end paid one at every event
+    ///   (plastic-lines 620478: 3,001 events at one instant, 2.5 s of CPU;
+    ///   0.3 s bounded)
+    ///   (`Revision::finds_large_cluster_kicks_by_factored_active_set`).
+    /// - the plastic limit of a collapse over such a cluster is sought by
+    ///   the projection within a pressing kick's sweeps, then by the
+    ///   factored method; a ring's collapse stops there, a hit's tries the
+    ///   full sweeps and the eliminating method after it. With the kicks
+    ///   found, piles went on to collapses the projection stalls on, each
+    ///   running its 10,000 sweeps (plastic-lines 32437: 1,293 events at
+    ///   one instant, 9 s; 69441, 75314, 78612 over a second); now 7 to
+    ///   195 events at one instant, at most 0.32 s. With both rules, one
+    ///   of the first 100,000 plastic-lines fails (94329, 1.9 s of CPU, a
+    ///   ring of 1,967 events at one instant; under the nineteenth, ten)
+    ///   (`Revision::solves_large_collapses_by_factored_active_set`).
+    #[default]
     R20,
 }
 
 impl Revision {
     /// The revision new computations use.
-    pub const LATEST: Revision = Revision::R19;
+    pub const LATEST: Revision = Revision::R20;
 
     /// Every revision, oldest first.
     pub const ALL: [Revision; 20] = [
@@ -1185,6 +1248,47 @@ impl Revision {
     /// rule, see `World::press_cluster`).
     pub fn finds_stalled_cluster_kicks_by_active_set(self) -> bool {
         self.at_least_r19()
+    }
+
+    /// Whether a pressed pair coming to rest (`World::press_cluster`), a
+    /// disc of which brakes with a pushed chain, whose plastic limit
+    /// against its held discs stalls projected Gauss–Seidel in every try
+    /// is found by the active-set method, the tries taken in the same
+    /// order, in clusters of up to `EXACT_KICK_CLUSTER` discs, instead of
+    /// being given up: given up, the hit gives that disc its own braking
+    /// back and the chain forms again at once (a twentieth revision rule,
+    /// see `World::press_cluster`).
+    pub fn finds_stalled_cluster_rests_by_active_set(self) -> bool {
+        self.at_least_r20()
+    }
+
+    /// Whether a pair resting by its energy whose rest has no answer,
+    /// a disc sliding along one obstacle into the corner wedging a row
+    /// along the other, has that row carried as one body
+    /// (`wedge::carried_row_along_wall`) instead of kicked (a twentieth
+    /// revision rule, see `World::corner_jam`).
+    pub fn carries_rows_wedged_into_corners(self) -> bool {
+        self.at_least_r20()
+    }
+
+    /// Whether the pressing kick over a cluster of more than
+    /// `EXACT_KICK_CLUSTER` discs that projected Gauss–Seidel stalls on is
+    /// found by the active-set method with its set's equalities kept
+    /// factored (`collapse::factored_active_set`), instead of being given
+    /// up (a twentieth revision rule, see `World::press_closure`).
+    pub fn finds_large_cluster_kicks_by_factored_active_set(self) -> bool {
+        self.at_least_r20()
+    }
+
+    /// Whether the plastic limit of a collapse over a cluster of more than
+    /// `EXACT_KICK_CLUSTER` discs is sought by projected Gauss–Seidel
+    /// within a pressing kick's sweeps (`PRESS_SWEEPS`), then by the
+    /// factored active-set method (`collapse::factored_active_set`), and
+    /// only for a hit's collapse (not a ring's) by the projection's full
+    /// sweeps and the eliminating method after it (a twentieth revision
+    /// rule, see `World::collapse_contacts_kicked`).
+    pub fn solves_large_collapses_by_factored_active_set(self) -> bool {
+        self.at_least_r20()
     }
 }
 

@@ -78,8 +78,63 @@ pub(crate) fn carried_along_wall(
     wall: DVec2,
     rev: Revision,
 ) -> Option<[(DVec2, f64); 2]> {
+    carry(u, m, alpha, n, s, l, wall, rev, Pushed::Disc)
+}
+
+/// What [`carry`] carries along the obstacle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Pushed {
+    /// One light disc ([`carried_along_wall`]): no heavier than [`LIGHT`]
+    /// of the pushing disc, and not carried a pass that moves it no
+    /// further than the pressing contact's gap (that is its bounces').
+    Disc,
+    /// A row of discs moving as one ([`carried_row_along_wall`]), however
+    /// heavy, where the inertia it has at the rate the push carries it is
+    /// no more than [`LIGHT`] of the pushing disc's, and carried a pass
+    /// however short.
+    Row,
+}
+
+/// From the twentieth revision, the carry of [`carried_along_wall`] for
+/// a row of discs (slot `l`: the row as one body, its mass `m[l]` the
+/// row's, `alpha[l]` the row's friction over that mass) wedged along the
+/// obstacle (`wall`) it lies against by a disc `H` sliding along another
+/// obstacle into the corner, nearly square to the row's line: the row's
+/// inertia at the rate `r` the wedge carries it (`m_row r^2`) is left out
+/// where it is no more than [`LIGHT`] of `H`'s mass, however heavy the
+/// row, and a pass is carried however little it moves the row (a pass
+/// shorter than the pressing contact's gap, left to the pressing contact,
+/// kicked the row off at every hit). `u[l]` is the row's velocity along
+/// the obstacle (at rest where its own motion is spent).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn carried_row_along_wall(
+    u: [DVec2; 2],
+    m: [f64; 2],
+    alpha: [f64; 2],
+    n: DVec2,
+    s: f64,
+    l: usize,
+    wall: DVec2,
+    rev: Revision,
+) -> Option<[(DVec2, f64); 2]> {
+    carry(u, m, alpha, n, s, l, wall, rev, Pushed::Row)
+}
+
+/// [`carried_along_wall`] and [`carried_row_along_wall`].
+#[allow(clippy::too_many_arguments)]
+fn carry(
+    u: [DVec2; 2],
+    m: [f64; 2],
+    alpha: [f64; 2],
+    n: DVec2,
+    s: f64,
+    l: usize,
+    wall: DVec2,
+    rev: Revision,
+    pushed: Pushed,
+) -> Option<[(DVec2, f64); 2]> {
     let h = 1 - l;
-    if !(alpha[l] > alpha[h] && m[l] <= LIGHT * m[h]) {
+    if !(alpha[l] > alpha[h] && (pushed == Pushed::Row || m[l] <= LIGHT * m[h])) {
         return None;
     }
     let to_l = if l == 0 { n } else { -n };
@@ -104,6 +159,9 @@ pub(crate) fn carried_along_wall(
     // `L` slides along the obstacle only, at the rate that keeps the pair
     // from approaching.
     let rate = c / (speed * along);
+    if pushed == Pushed::Row && !(m[l] * rate * rate <= LIGHT * m[h]) {
+        return None;
+    }
     let vl = tau * (rate * speed);
     if (v[l] - vl).length() > SAME * speed {
         return None;
@@ -136,7 +194,7 @@ pub(crate) fn carried_along_wall(
         // A pass that slides `L` no further than the gap the pressing
         // contact keeps is its bounces'.
         let ahead = rise(pass);
-        if !(ahead > push::press_gap(rev) * s) {
+        if pushed == Pushed::Disc && !(ahead > push::press_gap(rev) * s) {
             return None;
         }
         let passing = speed * speed - 2.0 * force * ahead / m[h];
@@ -266,6 +324,62 @@ mod tests {
         assert!(h.0.x < 0.0 && h.0.x > -1e-2 && h.0.y == 0.0);
         let energy = 0.5 * (0.01 * l.0.length_squared() + h.0.length_squared());
         assert!(energy <= 0.5 * 1e-4);
+        assert!(closest >= 1.0 - 1e-12, "closest {closest}");
+    }
+
+    /// A heavy braking row (1.5 kg, 3.8 N of friction; slot 0) on the
+    /// floor, wedged by a light frictionless disc `H` (20 g; slot 1)
+    /// sliding down the side wall at `speed`, its centre 1e-4 m above the
+    /// row's line: the carry, and the closest the two come over `span`
+    /// (as a fraction of the contact distance).
+    fn row_in_a_corner(speed: f64) -> ([(DVec2, f64); 2], f64) {
+        let (s, h): (f64, f64) = (0.05, 1e-4);
+        let (m, alpha) = ([1.5, 0.02], [3.8 / 1.5, 0.0]);
+        let (pl, ph) = (DVec2::new((s * s - h * h).sqrt(), 0.0), DVec2::new(0.0, h));
+        let n = (pl - ph) / s;
+        let u = [DVec2::ZERO, DVec2::new(0.0, -speed)];
+        let out = carried_row_along_wall(u, m, alpha, n, s, 0, DVec2::Y, Revision::R20)
+            .expect("a wedged row");
+        let span = 2.0 * h / speed;
+        let closest = (0..=10_000)
+            .map(|k| {
+                let t = span * f64::from(k) / 10_000.0;
+                let l = at(pl, out[0].0, out[0].1, t);
+                let p = at(ph, out[1].0, out[1].1, t);
+                assert_eq!(l.y, 0.0, "the row leaves the floor");
+                assert_eq!(p.x, 0.0, "H leaves its wall");
+                (l - p).length()
+            })
+            .fold(f64::INFINITY, f64::min);
+        (out, closest / s)
+    }
+
+    #[test]
+    fn a_light_disc_sliding_into_a_corner_stops_with_the_heavy_row_it_wedges() {
+        let (out, closest) = row_in_a_corner(1e-3);
+        let (row, h) = (out[0], out[1]);
+        // Passing costs 3.8 N over 1e-7 m, 38 times H's 1e-8 J: both stop
+        // at one moment.
+        assert!(row.1 > 0.0 && h.1 > 0.0);
+        let (stop_row, stop_h) = (row.0.length() / row.1, h.0.length() / h.1);
+        assert!((stop_row - stop_h).abs() <= 1e-12 * stop_h);
+        let energy = 0.5 * (1.5 * row.0.length_squared() + 0.02 * h.0.length_squared());
+        assert!(energy <= 0.5 * 0.02 * 1e-6);
+        assert!(closest >= 1.0 - 1e-12, "closest {closest}");
+    }
+
+    #[test]
+    fn a_light_disc_sliding_into_a_corner_fast_passes_paying_the_row_it_wedges_aside() {
+        let (out, closest) = row_in_a_corner(5e-2);
+        let (row, h) = (out[0], out[1]);
+        // H keeps its line and its own braking (none), slower by the
+        // row's friction over its carry; the row slides ahead along the
+        // floor.
+        assert_eq!(h.1, 0.0);
+        assert!(h.0.y < 0.0 && h.0.y > -5e-2);
+        assert!(row.0.x > 0.0 && row.1 > 0.0);
+        let energy = 0.5 * (1.5 * row.0.length_squared() + 0.02 * h.0.length_squared());
+        assert!(energy <= 0.5 * 0.02 * 25e-4);
         assert!(closest >= 1.0 - 1e-12, "closest {closest}");
     }
 

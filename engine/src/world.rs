@@ -17,6 +17,7 @@
 //! are [`crate::limits`]'s; this module drives them.
 
 mod cluster_ring;
+mod corner_jam;
 mod elastic_wall_ring;
 pub mod handler;
 mod reached_walls;
@@ -36,8 +37,9 @@ use crate::impulse;
 use crate::instant::same_instant;
 use crate::limits::{
     snap, Crawl, Repeats, Watched, COLLAPSE_EVENTS, COLLAPSE_WINDOW, CRAWL_EVENTS,
-    EARLY_REPEAT_HITS, EXACT_KICK_CLUSTER, FAR_FUTURE, GENTLE, MAX_COLLAPSE, MAX_COORDINATE,
-    PRESS_ROUNDS, PRESS_SWEEPS, REPEAT_HITS, SETTLE, SNAP, STUCK_EVENTS, STUCK_EVENTS_PER_BODY,
+    EARLY_REPEAT_HITS, EXACT_KICK_CLUSTER, FAR_FUTURE, GENTLE, KICK_SEARCHES_PER_INSTANT,
+    MAX_COLLAPSE, MAX_COORDINATE, PRESS_ROUNDS, PRESS_SWEEPS, REPEAT_HITS, SETTLE, SNAP,
+    STUCK_EVENTS, STUCK_EVENTS_PER_BODY,
 };
 use crate::obstacle::{Line, LineGeom, Point};
 use crate::pivot;
@@ -49,6 +51,7 @@ use crate::trajectory::Trajectory;
 use crate::wedge;
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
+use std::cell::Cell;
 
 /// From the twelfth revision, the sine of the angle between two obstacles'
 /// normals above which a disc touching both lies in a corner (see
@@ -316,6 +319,9 @@ pub struct World {
     /// The speed at which the latest hit's bodies approached (see
     /// [`Repeats`]).
     last_approach: f64,
+    /// The instant of the latest factored kick search and how many were
+    /// made at it (see `KICK_SEARCHES_PER_INSTANT`).
+    kick_searches: Cell<(f64, u32)>,
 }
 
 impl Watched for World {
@@ -463,6 +469,7 @@ impl World {
             grid: None,
             stats: Stats::default(),
             last_approach: 0.0,
+            kick_searches: Cell::new((f64::NEG_INFINITY, 0)),
         };
         let use_grid = match config.broad_phase {
             BroadPhase::AllPairs => false,
@@ -1116,7 +1123,10 @@ impl World {
     /// kick's [`PRESS_SWEEPS`] before the active-set method solves the
     /// limit, and its [`collapse::MAX_SWEEPS`] only where that fails: on
     /// such a ring it converges as slowly as the ring, sweep after sweep
-    /// up to its cap, at every collapse.
+    /// up to its cap, at every collapse. From the twentieth revision a
+    /// cluster of more than `EXACT_KICK_CLUSTER` discs is solved by the
+    /// factored active-set method after the kick's sweeps (see
+    /// `Revision::solves_large_collapses_by_factored_active_set`).
     fn collapse_contacts_kicked(
         &mut self,
         members: &[usize],
@@ -1127,10 +1137,34 @@ impl World {
     ) -> bool {
         let (vel, inv) = self.motion(members, t);
         let r3 = self.config.revision.at_least_r3();
-        let plastic = if active_first {
+        let large = self
+            .config
+            .revision
+            .solves_large_collapses_by_factored_active_set()
+            && members.len() > EXACT_KICK_CLUSTER;
+        let plastic = if active_first && large {
+            // From the twentieth revision, a ring's collapse over a cluster
+            // larger than a pressing kick's exact search takes (a pile):
+            // where the factored active-set method leaves a contact
+            // approaching, so did the eliminating one and the projection's
+            // full sweeps, at the cost of a pile's sweeps at every collapse.
+            collapse::resolve(&vel, &inv, &contacts, PRESS_SWEEPS)
+                .or_else(|| collapse::factored_active_set(&vel, &inv, &contacts))
+        } else if active_first {
             collapse::resolve(&vel, &inv, &contacts, PRESS_SWEEPS)
                 .or_else(|| collapse::active_set(&vel, &inv, &contacts))
                 .or_else(|| collapse::resolve(&vel, &inv, &contacts, collapse::MAX_SWEEPS))
+        } else if r3 && large {
+            // From the twentieth revision, a collapse of a cluster larger
+            // than a pressing kick's exact search takes (a pile) is given
+            // the kick's sweeps, then the factored active-set method, and
+            // the full sweeps and the eliminating method only where that
+            // fails: stalled on a pile, the projection ran its
+            // `MAX_SWEEPS` at every collapse of a ring.
+            collapse::resolve(&vel, &inv, &contacts, PRESS_SWEEPS)
+                .or_else(|| collapse::factored_active_set(&vel, &inv, &contacts))
+                .or_else(|| collapse::resolve(&vel, &inv, &contacts, collapse::MAX_SWEEPS))
+                .or_else(|| collapse::active_set(&vel, &inv, &contacts))
         } else if r3 {
             collapse::resolve(&vel, &inv, &contacts, collapse::MAX_SWEEPS).or_else(|| {
                 // From the ninth revision, where the projection stalls and
@@ -1176,7 +1210,8 @@ impl World {
             .holds_discs_kicks_cannot_move()
             .then(|| contacts.clone());
         if press && self.press_biases(members, &mut contacts, &after, &alpha) {
-            if let Some(kicked) = self.press_closure(members, &mut contacts, &after, inv, &alpha) {
+            if let Some(kicked) = self.press_closure(members, &mut contacts, &after, inv, &alpha, t)
+            {
                 // From the eighteenth revision, a braking disc the kick
                 // cannot move beyond the rounding of its position is held
                 // by its friction instead.
@@ -1256,6 +1291,13 @@ impl World {
     /// slides beyond the gap on its own and, given its velocity back after
     /// that rest, runs into nothing of it keeps that velocity (mixed-box 142;
     /// `Revision::leaves_sliding_discs_out_of_spent_rests`).
+    /// From the twentieth revision a rest of a pair a disc of which brakes
+    /// with a pushed chain, whose held projection stalls in every try, is
+    /// found by the active-set method, in clusters of up to
+    /// `EXACT_KICK_CLUSTER` discs: given up, the hit gave that disc its
+    /// own braking back, it ran into the disc it pushed at once, and the
+    /// pair and the chain took turns at one instant (mixed-box 544105;
+    /// `Revision::finds_stalled_cluster_rests_by_active_set`).
     fn press_cluster(
         &mut self,
         i: usize,
@@ -1372,7 +1414,7 @@ impl World {
                 // contacts nearly parallel) is solved exactly too.
                 let spent_rest_by_active_set =
                     kick.is_some() && self.config.revision.rests_wedged_spent_pairs();
-                let hold = |still: &[bool]| {
+                let hold = |still: &[bool], exact: bool| {
                     let mut held = vel.clone();
                     let mut inv_held = inv.clone();
                     for k in (0..members.len()).filter(|&k| still[k]) {
@@ -1391,15 +1433,39 @@ impl World {
                             // method.
                             let free = inv_held.iter().filter(|&&k| k > 0.0).count();
                             (held_rest_by_active_set
-                                && (contacts.len() > 2 * free || spent_rest_by_active_set))
+                                && (contacts.len() > 2 * free || spent_rest_by_active_set || exact))
                                 .then(|| collapse::active_set(&held, &inv_held, &contacts))
                                 .flatten()
                         })
                     }
                 };
+                // From the twentieth revision, a rest that no try reaches
+                // so, a disc of the pair braking with a pushed chain (not
+                // with its own friction), is found by the active-set
+                // method, the tries taken in the same order, in a cluster
+                // small enough for its search (see
+                // `Revision::finds_stalled_cluster_rests_by_active_set`).
+                let exact_rest = self
+                    .config
+                    .revision
+                    .finds_stalled_cluster_rests_by_active_set()
+                    && members.len() <= EXACT_KICK_CLUSTER
+                    && [i, j]
+                        .iter()
+                        .zip(braking)
+                        .any(|(&c, alpha)| alpha != self.material[c].mu * self.g);
                 let after = tries
                     .iter()
-                    .find_map(|still| hold(still).map(|after| (after, still)));
+                    .find_map(|still| hold(still, false).map(|after| (after, still)))
+                    .or_else(|| {
+                        exact_rest
+                            .then(|| {
+                                tries
+                                    .iter()
+                                    .find_map(|still| hold(still, true).map(|after| (after, still)))
+                            })
+                            .flatten()
+                    });
                 // From the nineteenth revision, a disc held only as sliding
                 // beyond the gap keeps its velocity where, given it back,
                 // it runs into nothing of the cluster as the rest leaves it.
@@ -1418,6 +1484,16 @@ impl World {
                     after = given_back(&after, &vel, &kept);
                     after
                 });
+                // From the twentieth revision, a rest that has no answer
+                // because a disc sliding into a corner wedges a row along
+                // the other obstacle: the row carried as one body.
+                if after.is_none()
+                    && kick.is_some()
+                    && self.config.revision.carries_rows_wedged_into_corners()
+                    && self.corner_jam(&members, &contacts, &vel, [i, j], t)
+                {
+                    return true;
+                }
                 match (after, kick) {
                     (Some(mut after), _) => {
                         // From the eleventh revision, what the projection
@@ -1480,7 +1556,7 @@ impl World {
         if !self.press_biases(&members, &mut contacts, &vel, &alpha) {
             return false;
         }
-        let Some(mut after) = self.press_closure(&members, &mut contacts, &vel, &inv, &alpha)
+        let Some(mut after) = self.press_closure(&members, &mut contacts, &vel, &inv, &alpha, t)
         else {
             return false;
         };
@@ -1519,20 +1595,30 @@ impl World {
         vel: &[DVec2],
         inv: &[f64],
         alpha: &[f64],
+        t: f64,
     ) -> Option<Vec<DVec2>> {
         // From the nineteenth revision, where projected Gauss–Seidel stalls
         // on the biased contacts, the active-set method finds the kick, in
         // a cluster small enough for its search (`EXACT_KICK_CLUSTER`).
-        let exact = self
-            .config
-            .revision
-            .finds_stalled_cluster_kicks_by_active_set()
-            && members.len() <= EXACT_KICK_CLUSTER;
+        // From the twentieth, in a larger one by the factored method, for
+        // at most `KICK_SEARCHES_PER_INSTANT` searches at one instant.
+        let revision = self.config.revision;
+        let small = members.len() <= EXACT_KICK_CLUSTER;
+        let exact = revision.finds_stalled_cluster_kicks_by_active_set() && small;
+        let factored = revision.finds_large_cluster_kicks_by_factored_active_set()
+            && !small
+            && self.kick_searches_at(t) < KICK_SEARCHES_PER_INSTANT;
         let solve = |contacts: &[collapse::Contact]| {
             collapse::resolve(vel, inv, contacts, PRESS_SWEEPS).or_else(|| {
-                exact
-                    .then(|| collapse::active_set(vel, inv, contacts))
-                    .flatten()
+                if exact {
+                    collapse::active_set(vel, inv, contacts)
+                } else if factored {
+                    let searched = self.kick_searches_at(t);
+                    self.kick_searches.set((t, searched + 1));
+                    collapse::factored_active_set(vel, inv, contacts)
+                } else {
+                    None
+                }
             })
         };
         let mut after = solve(contacts)?;
@@ -1546,6 +1632,16 @@ impl World {
             after = solve(contacts)?;
         }
         Some(after)
+    }
+
+    /// How many factored kick searches were made at the instant of `t`.
+    fn kick_searches_at(&self, t: f64) -> u32 {
+        let (at, searched) = self.kick_searches.get();
+        if t == at || (t >= at && same_instant(at, t)) {
+            searched
+        } else {
+            0
+        }
     }
 
     /// Gives `members` their velocities `after` a pressing kick or stop of

@@ -1748,3 +1748,125 @@ fn a_box_whose_pressing_kicks_stalled_the_projection_settles_in_a_hundred_events
         assert!(overlap < 1e-9, "{revision:?}: overlap {overlap:e}");
     }
 }
+
+#[test]
+fn a_pushed_chain_pressed_where_its_rest_stalls_settles_in_a_few_hundred_events() {
+    // In mixed-box 544105 disc 3 (35 g, braking at 4.1 m/s^2) on the
+    // floor pushes heavy disc 4 (0.48 kg, 78 m/s^2) at 8.3e-5 m/s, the two
+    // braking together at 73 m/s^2, while plastic disc 6 (1.3 g) above
+    // them presses disc 3 at no approach. From 14.19 s the rest of 3 and
+    // 6, over a cluster of eleven discs, stalls projected Gauss–Seidel and
+    // is given up: the plain hit gives disc 3 its own braking back, it
+    // runs into disc 4 at once, the chain forms again and disc 6 runs into
+    // disc 3 again, 19,974 of the last 20,000 events at one instant until
+    // the event cap. From revision 20 the rest of a pair whose disc brakes
+    // with a pushed chain is found by the active-set method, and the box
+    // reaches its 100 s horizon in 340 events.
+    settles_from(
+        Revision::R20,
+        "mixed-box-544105",
+        100.0,
+        EndReason::MaxEvents,
+        1_000,
+    );
+}
+
+#[test]
+fn a_disc_sliding_into_a_corner_stops_with_the_braking_row_it_wedges() {
+    // In mixed-box 156823 frictionless disc 1 (20.7 g), on the side wall
+    // 1.8e-8 m above the line of the row on the floor (their contact tilted
+    // 6.9e-7 from level), slides down at 2.7e-7 m/s, pressed by disc 5
+    // riding on it, into the row: disc 2 (0.12 kg, braking at 2.5 m/s^2),
+    // frictionless disc 3 (0.78 kg) and disc 4 (0.61 kg, 5.8 m/s^2).
+    // Passing would cost the row's friction (3.8 N over 6.2e-15 m) 2.4e-14
+    // J, 30 times disc 1's energy. Each hit of disc 1 into disc 2 rests by
+    // its energy, but the rest's solve stalls (disc 1 between the wall and
+    // the held disc 2, the two contacts 6.9e-7 from opposite), and the
+    // pressing kick sent the row off at 1.4e-8 m/s, 50,000 times faster
+    // than the wedge carries it; disc 3 caught disc 4 every 4.7e-10 s,
+    // 19,945 of the last 20,000 events, until `stuck` at 0.258 s. From
+    // revision 20 the row is carried as one body along the floor: at the
+    // first such rest (0.2571 s) it stops with disc 1 where its friction
+    // has spent disc 1's energy, 2.1e-3 s later, disc 1 2.7e-10 m lower
+    // and the row 1.9e-16 m on, and the box reaches its 100 s horizon in
+    // 342 events.
+    settles_from(
+        Revision::R20,
+        "mixed-box-156823",
+        100.0,
+        EndReason::Stuck,
+        1_000,
+    );
+}
+
+#[test]
+fn a_disc_sliding_into_a_corner_passes_paying_the_row_it_wedges_aside() {
+    // In mixed-box 157590 frictionless disc 1 (0.10 kg), on the side wall
+    // 1.8e-9 m above the line of the row on the floor, slides down at
+    // 5.8e-6 m/s into it: disc 2 (0.45 kg, braking at 51 m/s^2), then
+    // frictionless discs 3 and 4, and disc 8 (0.13 kg, 5.5 m/s^2) above
+    // disc 4. Pushing the row aside until disc 1 reaches the floor costs
+    // its friction (23 N) 1.0e-15 J, a thousandth of disc 1's 1.7e-12 J:
+    // disc 1 passes. Each rest of the row's spent pairs stalled on disc
+    // 1's wedge and was kicked instead, disc 4 hit disc 8 and disc 2
+    // stopped, 10,000 hits and 9,979 stops in the last 20,000 events until
+    // `stuck` at 6.02 s. Mixed-box 371709 (disc 1, 0.89 kg at 2.8e-6 m/s,
+    // 5.9e-10 m above a row of four, discs 3 and 7 hitting every 3.7e-9 s
+    // until `stuck` at 0.274 s) and 241710 (disc 1, 0.15 kg at 3.8e-6 m/s,
+    // 4.0e-8 m above frictionless disc 2, which presses disc 6, braking at
+    // 17 m/s^2, hit every 2.4e-14 s until `stuck` at 0.0856 s) jam alike.
+    // From revision 20 disc 1 pays the row's friction at once and passes,
+    // the row carried ahead of it as one body: the boxes reach their 100 s
+    // horizon in 1,402, 2,785 and 3,081 events.
+    for (name, within) in [
+        ("mixed-box-157590", 3_000),
+        ("mixed-box-371709", 5_000),
+        ("mixed-box-241710", 5_000),
+    ] {
+        settles_from(Revision::R20, name, 100.0, EndReason::Stuck, within);
+    }
+}
+
+#[test]
+fn a_struck_plastic_pile_whose_pressed_pairs_took_turns_ends_its_ring() {
+    // In plastic-lines 113176 a striker runs into a pile of 38 plastic
+    // discs. The pressing kick over the pile (its pressed pairs parting at
+    // their bounce speeds, no other contact approaching) stalls projected
+    // Gauss–Seidel, and the nineteenth revision's exact search is bounded
+    // to fourteen discs: the kick was given up, each hit left its pair
+    // pressed, and the pairs took turns, 21,085 events, 19,921 of them at
+    // one instant. From revision 20 the kick is found by the factored
+    // active-set method, and the ring ends within a few events.
+    let (old, old_events, _) = run_until("plastic-lines-113176", Revision::R19, 100.0);
+    assert_eq!(old, EndReason::Rest);
+    assert!(old_events > 20_000, "{old_events} events under revision 19");
+    for revision in Revision::ALL[index(Revision::R20)..].iter().copied() {
+        let (reason, events, overlap) = run_until("plastic-lines-113176", revision, 100.0);
+        assert!(
+            matches!(reason, EndReason::Rest | EndReason::Until),
+            "{revision:?}: {reason:?}"
+        );
+        assert!(events < 500, "{revision:?}: {events} events");
+        assert!(overlap < 1e-9, "{revision:?}: overlap {overlap:e}");
+    }
+}
+
+#[test]
+fn a_plastic_pile_stuck_in_pressed_hits_at_one_instant_comes_to_rest() {
+    // In plastic-lines 81007 a pile's pressed pairs trade a kick that
+    // stalls the projection, for 20,000 events at one instant (the run
+    // judged stuck) under revision 19, whose exact search skips clusters
+    // of more than fourteen discs. The factored search of revision 20
+    // finds the kick, and the pile comes to rest in a few hundred events.
+    let (_, old_events, _) = run_until("plastic-lines-81007", Revision::R19, 100.0);
+    assert!(old_events > 20_000, "{old_events} events under revision 19");
+    for revision in Revision::ALL[index(Revision::R20)..].iter().copied() {
+        let (reason, events, overlap) = run_until("plastic-lines-81007", revision, 100.0);
+        assert!(
+            matches!(reason, EndReason::Rest | EndReason::Until),
+            "{revision:?}: {reason:?}"
+        );
+        assert!(events < 500, "{revision:?}: {events} events");
+        assert!(overlap < 1e-9, "{revision:?}: overlap {overlap:e}");
+    }
+}
