@@ -1439,11 +1439,11 @@ impl World {
                         })
                     }
                 };
-                // From the twentieth revision, a rest that no try reaches
-                // so, a disc of the pair braking with a pushed chain (not
-                // with its own friction), is found by the active-set
-                // method, the tries taken in the same order, in a cluster
-                // small enough for its search (see
+                // From the twentieth revision, where no try reaches a rest
+                // and a disc of the pair brakes with a pushed chain (not
+                // with its own friction), the rest is found by the
+                // active-set method, the tries taken in the same order, in
+                // a cluster small enough for its search (see
                 // `Revision::finds_stalled_cluster_rests_by_active_set`).
                 let exact_rest = self
                     .config
